@@ -1,0 +1,118 @@
+"""The ``mechcli`` command line: a lazy click group and ONE error boundary.
+
+Exit codes (:class:`ExitStatus`): 0 ok, 1 internal error, 2 bad spec or usage,
+3 the problem has no solution.  Subcommand modules are imported only when the
+subcommand runs, so ``mechcli --version`` never imports numpy.
+"""
+
+from __future__ import annotations
+
+import enum
+import importlib
+import sys
+
+import click
+
+from mechcli import __version__
+
+#: subcommand -> (module, attribute, one-line help).  Register only what works.
+COMMANDS = {
+    "kin": ("mechcli.commands.kin", "kin", "Kinematics of a planar linkage (chapter 1)."),
+}
+
+
+class ExitStatus(enum.IntEnum):
+    OK = 0
+    INTERNAL = 1
+    BAD_SPEC = 2
+    UNSOLVABLE = 3
+
+
+class LazyGroup(click.Group):
+    """A click group whose subcommands are imported on first use."""
+
+    def list_commands(self, ctx):
+        return sorted(COMMANDS)
+
+    def get_command(self, ctx, name):
+        if name not in COMMANDS:
+            return None
+        module, attr, _ = COMMANDS[name]
+        return getattr(importlib.import_module(module), attr)
+
+    def format_commands(self, ctx, formatter):
+        rows = [(name, COMMANDS[name][2]) for name in self.list_commands(ctx)]
+        with formatter.section("Commands"):
+            formatter.write_dl(rows)
+
+    def resolve_command(self, ctx, args):
+        try:
+            return super().resolve_command(ctx, args)
+        except click.UsageError as exc:
+            import difflib
+            if args and args[0] not in COMMANDS:
+                near = difflib.get_close_matches(args[0], list(COMMANDS), n=1)
+                if near:
+                    raise click.UsageError(f"{exc.message} (did you mean '{near[0]}'?)",
+                                           ctx) from None
+            raise
+
+
+@click.group(cls=LazyGroup, context_settings={"help_option_names": ["-h", "--help"]})
+@click.version_option(__version__, prog_name="mechcli")
+def cli():
+    """mechcli: theory of machines (机械原理) from TOML problem files.
+
+    Each command reads SPEC.toml, prints the result table in the book's
+    format and writes CSV, PNG plots and GIF animations into --out.
+    """
+
+
+def _err(message):
+    click.echo(f"mechcli: error: {message}", err=True)
+
+
+def _traceback(show):
+    if show:
+        import traceback
+        traceback.print_exc()
+
+
+def main(argv=None):
+    """Entry point: run the CLI and turn every exception into an exit code."""
+    from mechcli.core.errors import ConvergenceError, UnsolvableError
+    from mechcli.spec.errors import SpecError
+
+    args = list(sys.argv[1:] if argv is None else argv)
+    show_tb = "--traceback" in args
+    try:
+        cli.main(args=args, prog_name="mechcli", standalone_mode=False)
+    except SpecError as exc:
+        _traceback(show_tb)
+        _err(exc.format())
+        code = ExitStatus.BAD_SPEC
+    except (UnsolvableError, ConvergenceError) as exc:
+        _traceback(show_tb)
+        _err(str(exc))
+        code = ExitStatus.UNSOLVABLE
+    except click.exceptions.Exit as exc:
+        code = exc.exit_code
+    except click.Abort:
+        _err("aborted")
+        code = ExitStatus.INTERNAL
+    except click.ClickException as exc:
+        exc.show()
+        code = ExitStatus.BAD_SPEC
+    except KeyboardInterrupt:
+        _err("interrupted")
+        code = 130
+    except BrokenPipeError:
+        code = ExitStatus.OK
+    except Exception as exc:  # the one boundary for internal errors
+        _traceback(show_tb)
+        _err(f"internal error: {type(exc).__name__}: {exc} "
+             "(this is a bug; rerun with --traceback and report it)")
+        code = ExitStatus.INTERNAL
+    else:
+        code = ExitStatus.OK
+    sys.exit(int(code))

@@ -1,0 +1,73 @@
+"""Shared matplotlib set-up: Agg backend, CJK fonts for ``--lang zh``, atomic PNG/GIF.
+
+Import this module only when a picture is written: it imports matplotlib.
+"""
+
+from __future__ import annotations
+
+import io
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+from matplotlib import font_manager  # noqa: E402
+
+from mechcli.report.files import write_bytes  # noqa: E402
+
+_CJK_FAMILIES = ("Noto Sans CJK SC", "Noto Sans CJK JP", "Noto Sans SC", "Source Han Sans SC",
+                 "WenQuanYi Zen Hei", "WenQuanYi Micro Hei", "SimHei", "Microsoft YaHei",
+                 "PingFang SC", "AR PL UMing CN", "Droid Sans Fallback")
+
+
+def cjk_font():
+    """Name of an installed font family with Chinese glyphs, or None."""
+    names = {f.name for f in font_manager.fontManager.ttflist}
+    for fam in _CJK_FAMILIES:
+        if fam in names:
+            return fam
+    return None
+
+
+def setup(lang="en"):
+    """Configure matplotlib for *lang*; return the language actually usable.
+
+    With ``zh`` and no CJK font installed, plots fall back to English labels
+    (the caller reports that as a warning).
+    """
+    plt.rcParams.update({"figure.dpi": 100, "savefig.dpi": 100, "axes.grid": True,
+                         "grid.alpha": 0.4, "axes.unicode_minus": False})
+    if lang == "zh":
+        fam = cjk_font()
+        if fam is None:
+            return "en"
+        plt.rcParams["font.sans-serif"] = [fam, "DejaVu Sans"]
+        plt.rcParams["font.family"] = "sans-serif"
+    return lang
+
+
+def save_png(fig, outputs, name):
+    """Render *fig* to PNG in memory, then write it atomically."""
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png", bbox_inches="tight")
+    plt.close(fig)
+    return outputs.add(write_bytes(outputs.path(name), buf.getvalue()))
+
+
+def save_gif(frames, outputs, name, fps=12):
+    """Write a list of RGB(A) uint8 frames (H×W×3/4 arrays) as a looping GIF."""
+    from PIL import Image
+
+    images = [Image.fromarray(f[..., :3]) for f in frames]
+    buf = io.BytesIO()
+    images[0].save(buf, format="GIF", save_all=True, append_images=images[1:],
+                   duration=int(1000 / fps), loop=0, optimize=False)
+    return outputs.add(write_bytes(outputs.path(name), buf.getvalue()))
+
+
+def canvas_frame(fig):
+    """The current RGBA pixels of a figure drawn on the Agg canvas."""
+    import numpy as np
+
+    fig.canvas.draw()
+    return np.asarray(fig.canvas.buffer_rgba()).copy()

@@ -1,0 +1,38 @@
+"""The end of every command: write ``report.txt``, then show the table or the JSON."""
+
+from __future__ import annotations
+
+import click
+
+from mechcli.report import jsonout
+from mechcli.report.table import print_rich, render_text
+
+
+def finish(run, command, report, results, outputs, warnings=()):
+    """Write ``report.txt`` into *outputs* and print what the user asked for.
+
+    Parameters
+    ----------
+    run : mechcli.options.RunOptions
+    command : str
+        Subcommand name (for the JSON document).
+    report : mechcli.report.table.Report
+    results : dict
+        Scalar results (finite floats, ints, bools, strings, lists of those).
+    outputs : mechcli.report.files.Outputs
+        Files already written; ``report.txt`` is added here.
+    warnings : sequence of str
+        One-line warnings; shown on stderr unless ``--json`` (then in the JSON).
+    """
+    for w in warnings:
+        report.notes.append(("警告: " if run.lang == "zh" else "warning: ") + w)
+    outputs.text("report.txt", render_text(report))
+    if run.json:
+        click.echo(jsonout.dumps(command, run.spec_path, results, outputs.files, warnings))
+        return
+    if not run.quiet:
+        print_rich(report)
+        click.echo("written: " + ", ".join(str(f) for f in outputs.files))
+    else:
+        for w in warnings:
+            click.echo(f"mechcli: warning: {w}", err=True)

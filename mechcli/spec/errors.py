@@ -1,0 +1,45 @@
+"""Spec errors: one line naming the file, the key, what was expected, what was found."""
+
+import difflib
+
+
+class SpecError(ValueError):
+    """A problem file (or a ``--set`` override) is invalid; exit code 2.
+
+    Parameters
+    ----------
+    file : str
+        The spec file as the user named it.
+    key : str
+        Dotted key path, e.g. ``mechanism.l1``; ``""`` for the whole file.
+    expected : str
+        What a valid value looks like.
+    got : str
+        What was found.
+    suggestion : str, optional
+        A did-you-mean hint.
+    """
+
+    def __init__(self, file, key, expected, got, suggestion=None):
+        self.file = str(file)
+        self.key = key
+        self.expected = expected
+        self.got = got
+        self.suggestion = suggestion
+        super().__init__(self.format())
+
+    def format(self):
+        where = self.file
+        if self.key:
+            table, _, leaf = self.key.rpartition(".")
+            where += f": [{table}] {leaf}" if table else f": {leaf}"
+        msg = f"{where}: expected {self.expected}, got {self.got}"
+        if self.suggestion:
+            msg += f" (did you mean '{self.suggestion}'?)"
+        return msg
+
+
+def closest(name, candidates):
+    """Nearest valid key to *name*, or None."""
+    hits = difflib.get_close_matches(str(name), list(candidates), n=1, cutoff=0.5)
+    return hits[0] if hits else None

@@ -1,0 +1,303 @@
+"""Reading TOML problem files with strict, explainable validation.
+
+``load_spec`` parses the file (``tomllib``, or ``tomli`` before Python 3.11),
+applies ``--set KEY=VALUE`` overrides and returns the root :class:`Section`.
+A :class:`Section` hands out typed values key by key and remembers which keys
+were read; :meth:`Section.finish` rejects every key nobody asked for, with a
+did-you-mean suggestion.  Overridden keys go through exactly the same checks.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+import sys
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # pragma: no cover
+    import tomli as tomllib
+
+from mechcli.spec.errors import SpecError, closest
+
+REQUIRED = object()
+
+#: metres per declared length unit
+LENGTH_UNITS = {"mm": 1e-3, "cm": 1e-2, "m": 1.0, "in": 0.0254}
+
+
+def _describe(value):
+    if isinstance(value, bool):
+        return f"{str(value).lower()} (a boolean)"
+    if isinstance(value, str):
+        return f"'{value}' (a string)"
+    if isinstance(value, dict):
+        return "a table"
+    if isinstance(value, list):
+        return f"an array of {len(value)}"
+    if isinstance(value, float) and not math.isfinite(value):
+        return str(value)
+    return repr(value)
+
+
+def parse_override(file, text):
+    """Split ``KEY=VALUE``; VALUE in TOML syntax (bare words become strings)."""
+    key, sep, raw = text.partition("=")
+    key = key.strip()
+    if not sep or not key or not re.fullmatch(r"[A-Za-z0-9_.\-]+", key):
+        raise SpecError(file, "--set", "KEY=VALUE with a dotted key such as mechanism.l1=120",
+                        f"'{text}'")
+    raw = raw.strip()
+    try:
+        value = tomllib.loads(f"v = {raw}")["v"]
+    except tomllib.TOMLDecodeError:
+        if re.fullmatch(r"[A-Za-z_][A-Za-z0-9_\-]*", raw):
+            value = raw  # a bare word: treat as a string (branch=crossed)
+        else:
+            raise SpecError(file, key, "a TOML value after '=' (quote strings)",
+                            f"'{raw}'") from None
+    return key, value
+
+
+def apply_override(file, data, key, value):
+    """Set ``data[a][b][c] = value`` for key ``a.b.c``; integers index arrays."""
+    parts = key.split(".")
+    node = data
+    for i, part in enumerate(parts[:-1]):
+        if isinstance(node, list):
+            if not part.isdigit() or int(part) >= len(node):
+                raise SpecError(file, ".".join(parts[: i + 1]),
+                                f"an index below {len(node)}", f"'{part}'")
+            node = node[int(part)]
+            continue
+        nxt = node.get(part)
+        if nxt is None:
+            nxt = node[part] = {}
+        if not isinstance(nxt, (dict, list)):
+            raise SpecError(file, ".".join(parts[: i + 1]), "a table", _describe(nxt))
+        node = nxt
+    last = parts[-1]
+    if isinstance(node, list):
+        if not last.isdigit() or int(last) >= len(node):
+            raise SpecError(file, key, f"an index below {len(node)}", f"'{last}'")
+        node[int(last)] = value
+    else:
+        node[last] = value
+
+
+def load_spec(path, overrides=()):
+    """Read a TOML problem file and apply ``--set`` overrides.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The spec file.
+    overrides : sequence of str
+        ``KEY=VALUE`` strings (dotted keys, TOML values).
+
+    Returns
+    -------
+    Section
+        The root table.
+    """
+    file = str(path)
+    try:
+        with open(path, "rb") as fh:
+            raw = fh.read()
+    except FileNotFoundError:
+        raise SpecError(file, "", "an existing TOML file", "no such file") from None
+    except OSError as exc:
+        raise SpecError(file, "", "a readable TOML file", exc.strerror or str(exc)) from None
+    try:
+        data = tomllib.loads(raw.decode("utf-8"))
+    except UnicodeDecodeError:
+        raise SpecError(file, "", "UTF-8 text", "undecodable bytes") from None
+    except tomllib.TOMLDecodeError as exc:
+        raise SpecError(file, "", "valid TOML", f"a syntax error: {exc}") from None
+    for text in overrides:
+        key, value = parse_override(file, text)
+        apply_override(file, data, key, value)
+    return Section(data, file, "")
+
+
+class Section:
+    """A TOML table being validated.
+
+    Every accessor records the key as known; :meth:`finish` raises on the
+    first unknown key.  Lengths are converted to metres with :meth:`length`.
+
+    Parameters
+    ----------
+    data : dict
+        The table.
+    file : str
+        Spec file name for messages.
+    path : str
+        Dotted path of this table (``""`` for the root).
+    unit : float, optional
+        Metres per length unit of the spec (inherited by sub-tables).
+    """
+
+    def __init__(self, data, file, path, unit=1.0):
+        self.data = data
+        self.file = file
+        self.path = path
+        self.unit = unit
+        self._known = set()
+
+    # -- helpers ---------------------------------------------------------
+    def key(self, name):
+        return f"{self.path}.{name}" if self.path else name
+
+    def error(self, name, expected, got):
+        return SpecError(self.file, self.key(name), expected, got)
+
+    def has(self, name):
+        self._known.add(name)
+        return name in self.data
+
+    def _get(self, name, default):
+        self._known.add(name)
+        if name in self.data:
+            return self.data[name]
+        if default is REQUIRED:
+            raise SpecError(self.file, self.key(name), "this key (it is required)", "nothing")
+        return default
+
+    # -- typed accessors ---------------------------------------------------
+    def number(self, name, default=REQUIRED, *, positive=False, nonneg=False,
+               lo=None, hi=None, expected=None):
+        """A finite real number (int or float) with optional bounds."""
+        value = self._get(name, default)
+        if value is None or (value is default and default is not REQUIRED):
+            return value
+        want = expected or ("a positive number" if positive else
+                            "a non-negative number" if nonneg else "a number")
+        if lo is not None and hi is not None and not expected:
+            want = f"a number in [{lo:g}, {hi:g}]"
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
+            raise self.error(name, want, _describe(value))
+        value = float(value)
+        if not math.isfinite(value):
+            raise self.error(name, "a finite " + want.removeprefix("a "), _describe(value))
+        if (positive and value <= 0) or (nonneg and value < 0) \
+                or (lo is not None and value < lo) or (hi is not None and value > hi):
+            raise self.error(name, want, _describe(value))
+        return value
+
+    def length(self, name, default=REQUIRED, *, positive=True, nonneg=False):
+        """A length in the spec's unit, returned in metres."""
+        value = self.number(name, default, positive=positive and not nonneg, nonneg=nonneg,
+                            expected=None)
+        if value is None or (value is default and default is not REQUIRED):
+            return value
+        return value * self.unit
+
+    def integer(self, name, default=REQUIRED, *, lo=None, hi=None):
+        value = self._get(name, default)
+        if value is default and default is not REQUIRED:
+            return value
+        want = "an integer" if lo is None else (
+            f"an integer >= {lo}" if hi is None else f"an integer in [{lo}, {hi}]")
+        if isinstance(value, bool) or not isinstance(value, int):
+            raise self.error(name, want, _describe(value))
+        if (lo is not None and value < lo) or (hi is not None and value > hi):
+            raise self.error(name, want, _describe(value))
+        return value
+
+    def string(self, name, default=REQUIRED, *, choices=None):
+        value = self._get(name, default)
+        if value is default and default is not REQUIRED:
+            return value
+        if choices is not None:
+            want = "one of " + ", ".join(f"'{c}'" for c in choices)
+        else:
+            want = "a string"
+        if not isinstance(value, str):
+            raise self.error(name, want, _describe(value))
+        if choices is not None and value not in choices:
+            raise SpecError(self.file, self.key(name), want, _describe(value),
+                            closest(value, choices))
+        return value
+
+    def boolean(self, name, default=REQUIRED):
+        value = self._get(name, default)
+        if not isinstance(value, bool):
+            raise self.error(name, "true or false", _describe(value))
+        return value
+
+    def numbers(self, name, default=REQUIRED, *, size=None, positive=False):
+        """An array of finite numbers, of exactly *size* items if given."""
+        value = self._get(name, default)
+        if value is default and default is not REQUIRED:
+            return value
+        want = (f"an array of {size} numbers" if size else "an array of numbers")
+        if not isinstance(value, list) or (size is not None and len(value) != size) \
+                or not value:
+            raise self.error(name, want, _describe(value))
+        out = []
+        for i, item in enumerate(value):
+            if isinstance(item, bool) or not isinstance(item, (int, float)) \
+                    or not math.isfinite(item) or (positive and item <= 0):
+                raise SpecError(self.file, self.key(f"{name}[{i}]"),
+                                "a positive number" if positive else "a finite number",
+                                _describe(item))
+            out.append(float(item))
+        return out
+
+    def strings(self, name, default=REQUIRED, *, choices=None):
+        value = self._get(name, default)
+        if value is default and default is not REQUIRED:
+            return value
+        if not isinstance(value, list) or not all(isinstance(v, str) for v in value):
+            raise self.error(name, "an array of strings", _describe(value))
+        if choices is not None:
+            for v in value:
+                if v not in choices:
+                    raise SpecError(self.file, self.key(name),
+                                    "items from " + ", ".join(f"'{c}'" for c in choices),
+                                    _describe(v), closest(v, choices))
+        return list(value)
+
+    def table(self, name, default=REQUIRED):
+        """A sub-table as a :class:`Section` (``None`` if absent and optional)."""
+        value = self._get(name, default)
+        if value is default and default is not REQUIRED:
+            return value
+        if not isinstance(value, dict):
+            raise self.error(name, "a table", _describe(value))
+        return Section(value, self.file, self.key(name), self.unit)
+
+    def tables(self, name, default=REQUIRED):
+        """An array of tables, as a list of :class:`Section`."""
+        value = self._get(name, default)
+        if value is default and default is not REQUIRED:
+            return value
+        if isinstance(value, dict):
+            value = [value]
+        if not isinstance(value, list) or not all(isinstance(v, dict) for v in value):
+            raise self.error(name, "an array of tables ([[...]])", _describe(value))
+        return [Section(v, self.file, f"{self.key(name)}.{i}", self.unit)
+                for i, v in enumerate(value)]
+
+    def raw(self, name, default=REQUIRED):
+        """The untyped value (the caller validates it)."""
+        return self._get(name, default)
+
+    def keys(self):
+        return list(self.data)
+
+    def finish(self):
+        """Reject every key that no accessor asked for."""
+        for name in self.data:
+            if name not in self._known:
+                hint = closest(name, sorted(self._known))
+                raise SpecError(self.file, self.key(name),
+                                "a known key" + (f" of [{self.path}]" if self.path else ""),
+                                f"unknown key '{name}'", hint)
+
+    def set_unit_from(self, name="units", default="mm"):
+        """Read the declared length unit and set it for this and later sub-tables."""
+        unit = self.string(name, default, choices=list(LENGTH_UNITS))
+        self.unit = LENGTH_UNITS[unit]
+        return unit
