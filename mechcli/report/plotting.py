@@ -29,6 +29,27 @@ def cjk_font():
     return None
 
 
+_HAS_CJK = None
+
+
+def has_cjk_font():
+    global _HAS_CJK
+    if _HAS_CJK is None:
+        _HAS_CJK = cjk_font() is not None
+    return _HAS_CJK
+
+
+def text(s):
+    """*s* as it can be drawn: without CJK characters when no CJK font is installed."""
+    if has_cjk_font():
+        return s
+    import re
+
+    kept = "".join(c for c in s if ord(c) < 0x2E80 or ord(c) > 0xFFEF)
+    kept = re.sub(r"\(\s*\)", "", " ".join(kept.split()))
+    return kept.strip()
+
+
 def setup(lang="en"):
     """Configure matplotlib for *lang*; return the language actually usable.
 
@@ -37,12 +58,12 @@ def setup(lang="en"):
     """
     plt.rcParams.update({"figure.dpi": 100, "savefig.dpi": 100, "axes.grid": True,
                          "grid.alpha": 0.4, "axes.unicode_minus": False})
-    if lang == "zh":
-        fam = cjk_font()
-        if fam is None:
-            return "en"
-        plt.rcParams["font.sans-serif"] = [fam, "DejaVu Sans"]
+    fam = cjk_font()
+    if fam is not None:
+        plt.rcParams["font.sans-serif"] = ["DejaVu Sans", fam]
         plt.rcParams["font.family"] = "sans-serif"
+    elif lang == "zh":
+        return "en"
     return lang
 
 

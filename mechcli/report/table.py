@@ -75,13 +75,17 @@ def print_rich(report: Report, file=None):
     from rich.console import Console
     from rich.table import Table
 
-    console = Console(file=file, highlight=False)
+    natural = max((display_width(line) for line in render_text(report).splitlines()), default=80)
+    probe = Console(file=file)
+    # never squeeze numbers: widen past the terminal rather than truncate cells
+    console = Console(file=file, highlight=False, width=max(probe.width, natural + 4 * max(
+        (len(b.headers) for b in report.blocks), default=0) + 4))
     console.print(f"[bold]{report.title}[/bold]")
     for block in report.blocks:
         if block.headers:
             table = Table(title=block.heading or None, title_justify="left")
             for h in block.headers:
-                table.add_column(h, justify="right")
+                table.add_column(h, justify="right", no_wrap=True)
             for row in block.rows:
                 table.add_row(*row)
         else:

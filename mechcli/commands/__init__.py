@@ -1,0 +1,1 @@
+"""One thin module per subcommand: load spec -> call core -> hand to report."""

@@ -1,0 +1,42 @@
+"""``mechcli kin``: positions, velocities and accelerations of a planar linkage."""
+
+from __future__ import annotations
+
+import click
+
+from mechcli.options import RunOptions, common_options
+
+
+@click.command("kin")
+@click.argument("spec_path", metavar="SPEC.toml")
+@common_options
+def kin(spec_path, **opts):
+    """Kinematics of a planar linkage (chapter 1): four-bar, slider-crank,
+    guide-bar, shaper or any linkage of drivers and RRR/RRP/RPR dyads."""
+    run = RunOptions.from_click(spec_path, opts)
+    from mechcli.core.kinematics import Sweep, analyse_sweep, default_quantities
+    from mechcli.report import kin as report
+    from mechcli.report.files import Outputs
+    from mechcli.report.run import finish
+    from mechcli.spec.kin import load_kin_spec
+
+    spec = load_kin_spec(spec_path, run.sets)
+    inp = spec.input
+    sweep = Sweep(inp.driver, inp.q, inp.omega, inp.alpha, inp.followers, inp.periodic)
+    quantities = default_quantities(spec.linkage, spec.output.order,
+                                    [t.name for t in spec.tracers])
+    result = analyse_sweep(spec.linkage, sweep, quantities, spec.output.order,
+                           partial=inp.partial)
+    outputs = Outputs(run.out_dir)
+    outputs.csv("kin.csv", report.columns(spec, quantities, result))
+    warnings = []
+    animate = spec.output.animate if run.animate is None else run.animate
+    if (run.plot and spec.output.plots) or animate:
+        from mechcli.report import kin_plots
+        warnings += kin_plots.write(spec, quantities, result, sweep, outputs, run.lang,
+                                    plots=run.plot and spec.output.plots, animate=animate)
+    warnings += [f"{why} for input {a:.6g} … {b:.6g} (excluded)" for a, b, why in
+                 ((a * report.input_factor(spec), b * report.input_factor(spec), w)
+                  for a, b, w in result.excluded)]
+    finish(run, "kin", report.build_report(spec, quantities, result, run.lang),
+           report.scalar_results(spec, quantities, result), outputs, warnings)

@@ -1,0 +1,162 @@
+"""Tables, CSV and JSON results of ``mechcli kin``."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from mechcli.report.table import Block, Report
+
+# kind -> (unit suffix template, factor template); {u} = spec length unit
+_UNITS = {
+    "angle": ("deg", lambda s: 180 / math.pi),
+    "angvel": ("rad_s", lambda s: 1.0),
+    "angacc": ("rad_s2", lambda s: 1.0),
+    "length": ("{u}", lambda s: 1 / s),
+    "velocity": ("{u}_s", lambda s: 1 / s),
+    "acceleration": ("{u}_s2", lambda s: 1 / s),
+    "ratio": ("1", lambda s: 1.0),
+}
+_PRETTY_UNIT = {"deg": "°", "rad_s": "rad/s", "rad_s2": "rad/s²"}
+
+_ZH = {
+    "theta": "角位移", "omega": "角速度", "alpha": "角加速度", "gamma": "传动角",
+    "s": "位移", "v": "速度", "a": "加速度", "x": "x 坐标", "y": "y 坐标",
+    "vx": "x 向速度", "vy": "y 向速度", "ax": "x 向加速度", "ay": "y 向加速度",
+}
+
+
+def unit_of(kind, length_unit):
+    return _UNITS[kind][0].format(u=length_unit)
+
+
+def factor_of(kind, scale):
+    return _UNITS[kind][1](scale)
+
+
+def column_name(q, length_unit):
+    return f"{q.symbol}_{unit_of(q.kind, length_unit)}"
+
+
+def input_column(spec):
+    return "theta1_deg" if spec.input.rotary else f"s1_{spec.header.unit}"
+
+
+def input_factor(spec):
+    return 180 / math.pi if spec.input.rotary else 1 / spec.header.scale
+
+
+def columns(spec, quantities, result):
+    """CSV columns: the input, then every quantity in the spec's units."""
+    cols = [(input_column(spec), result.q * input_factor(spec))]
+    for q in quantities:
+        cols.append((column_name(q, spec.header.unit),
+                     result.values[q.symbol] * factor_of(q.kind, spec.header.scale)))
+    return cols
+
+
+def scalar_results(spec, quantities, result):
+    """``--json`` results: extremes (with input angles), strokes, swings, flags."""
+    unit, scale = spec.header.unit, spec.header.scale
+    fin = input_factor(spec)
+    at_unit = "deg" if spec.input.rotary else unit
+    out = {"positions": int(result.q.size)}
+    for q in quantities:
+        if q.symbol not in result.extremes:
+            continue
+        hi, lo = result.extremes[q.symbol]
+        u = unit_of(q.kind, unit)
+        f = factor_of(q.kind, scale)
+        out[f"{q.symbol}_max_{u}"] = hi.value * f
+        out[f"{q.symbol}_max_at_{at_unit}"] = hi.at * fin
+        out[f"{q.symbol}_min_{u}"] = lo.value * f
+        out[f"{q.symbol}_min_at_{at_unit}"] = lo.at * fin
+        if q.kind == "length" and q.symbol.startswith("s"):
+            out[f"{q.symbol}_stroke_{u}"] = (hi.value - lo.value) * f
+        if q.kind == "angle" and q.symbol.startswith("theta"):
+            out[f"{q.symbol}_swing_deg"] = (hi.value - lo.value) * f
+    out["excluded"] = [[a * fin, b * fin, why] for a, b, why in result.excluded]
+    out["toggles"] = [{"at": t.at * fin, "joint": t.joint, "dyad": t.kind,
+                       "gamma_deg": math.degrees(math.asin(min(1.0, t.sin_gamma)))}
+                      for t in result.toggles]
+    return out
+
+
+def pretty_unit(kind, length_unit):
+    u = unit_of(kind, length_unit)
+    return _PRETTY_UNIT.get(u, u.replace("_s2", "/s²").replace("_s", "/s"))
+
+
+def _label(q, unit, lang):
+    pretty = pretty_unit(q.kind, unit)
+    if lang == "zh":
+        base = q.symbol.rstrip("0123456789")
+        for key in sorted(_ZH, key=len, reverse=True):
+            if q.symbol.startswith(key):
+                base = key
+                break
+        return f"{q.symbol} {_ZH.get(base, '')}/{pretty}".replace(" /", "/")
+    return f"{q.symbol}/{pretty}"
+
+
+def table_rows(spec, result, step):
+    """Indices of the analysed positions closest to every ``step`` of the input."""
+    q = result.q
+    targets = np.arange(spec.input.start, spec.input.stop + step * 1e-9, step)
+    idx = np.searchsorted(q, targets)
+    idx = np.clip(idx, 0, q.size - 1)
+    left = np.clip(idx - 1, 0, q.size - 1)
+    idx = np.where(np.abs(q[left] - targets) < np.abs(q[idx] - targets), left, idx)
+    keep = np.abs(q[idx] - targets) <= 0.5 * step
+    return np.unique(idx[keep])
+
+
+def build_report(spec, quantities, result, lang="en"):
+    """The book-style text report: table every ``table_step``, extremes, flags."""
+    zh = lang == "zh"
+    unit, digits = spec.header.unit, spec.output.digits
+    fin = input_factor(spec)
+    cols = columns(spec, quantities, result)
+    in_label = ("曲柄转角 θ1/°" if zh else "theta1/°") if spec.input.rotary else f"s1/{unit}"
+    headers = [in_label] + [_label(q, unit, lang) for q in quantities]
+    rows = []
+    for i in table_rows(spec, result, spec.output.table_step):
+        rows.append([f"{cols[0][1][i]:.2f}"] + [f"{c[1][i]:.{digits}f}" for c in cols[1:]])
+    report = Report(title=spec.header.title)
+    step_txt = f"{spec.output.table_step * fin:g}"
+    report.blocks.append(Block(
+        heading=(f"计算结果 (每 {step_txt}° 一行，长度单位 {unit})" if zh else
+                 f"Results (every {step_txt}{'°' if spec.input.rotary else ' ' + unit}, "
+                 f"lengths in {unit})"),
+        headers=headers, rows=rows))
+    ext_rows = []
+    at_u = "°" if spec.input.rotary else unit
+    for q in quantities:
+        if q.symbol not in result.extremes:
+            continue
+        hi, lo = result.extremes[q.symbol]
+        f = factor_of(q.kind, spec.header.scale)
+        ext_rows.append([_label(q, unit, lang), f"{hi.value * f:.{digits}f}",
+                         f"{hi.at * fin:.4f}", f"{lo.value * f:.{digits}f}", f"{lo.at * fin:.4f}"])
+    if ext_rows:
+        report.blocks.append(Block(
+            heading="极值 (精确到 1e-9 rad)" if zh else "Extremes (refined to 1e-9 rad)",
+            headers=["量" if zh else "quantity", "最大值" if zh else "max",
+                     f"位置/{at_u}" if zh else f"at/{at_u}", "最小值" if zh else "min",
+                     f"位置/{at_u}" if zh else f"at/{at_u}"],
+            rows=ext_rows))
+    flags = []
+    for a, b, why in result.excluded:
+        why_t = {"cannot assemble": "无法装配", "dead point": "死点"}[why] if zh else why
+        flags.append([why_t, f"{a * fin:.6f} … {b * fin:.6f} {at_u}"])
+    for t in result.toggles:
+        g = math.degrees(math.asin(min(1.0, t.sin_gamma)))
+        flags.append([("接近死点" if zh else "near dead point") + f" ({t.kind} {t.joint})",
+                      f"{t.at * fin:.6f} {at_u}, γ = {g:.4f}°"])
+    if flags:
+        report.blocks.append(Block(heading="标记" if zh else "Flags", rows=flags))
+    n = result.q.size
+    report.notes.append((f"共 {n} 个位置" if zh else f"{n} positions analysed")
+                        + (f"; ω1 = {spec.input.omega:g} rad/s" if spec.input.rotary else ""))
+    return report

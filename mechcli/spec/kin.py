@@ -1,0 +1,315 @@
+"""``mechcli kin`` problem files -> :class:`KinSpec` (SI units, radians).
+
+Presets (the book's chapter-1 mechanisms) expand into the general form, so
+there is one engine and one code path:
+
+* ``four_bar``     l1 crank, l2 coupler, l3 rocker, l4 frame; A=(0,0), D=(l4,0) (图 1-2)
+* ``slider_crank`` l1, l2, offset e; A=(0,0), slider guide y = e (图 1-4)
+* ``guide_bar``    l1 crank, l4 = AC frame; C=(0,0), A=(0,l4); optional guide offset e (图 1-6)
+* ``shaper``       l1, l3, l4, l6, l6p (= l6'); C=(0,0), A=(0,l6), ram guide y = l6p (图 1-8)
+* ``general``      ground points, drivers, dyads (RRR, RRP, RPR) and points on links
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from typing import Optional, Tuple
+
+import numpy as np
+
+from mechcli.core.linkage import (RPR, RRP, RRR, Crank, Ground, Linkage,
+                                  LinkageDefinitionError, PointOnLink, SliderDriver)
+from mechcli.spec.common import Header, read_expected, read_header
+from mechcli.spec.errors import SpecError
+from mechcli.spec.reader import load_spec
+
+MECHANISMS = ("four_bar", "slider_crank", "guide_bar", "shaper", "general")
+QUANTITIES = ("position", "velocity", "acceleration")
+
+
+@dataclasses.dataclass(frozen=True)
+class Tracer:
+    """A named point fixed on a link, reported and drawn (coupler curve)."""
+
+    name: str
+    link: int
+
+
+@dataclasses.dataclass(frozen=True)
+class InputSpec:
+    """The primary driver's program.
+
+    ``start``/``stop``/``q`` are radians for a crank, metres for a slider;
+    ``omega`` [rad/s or m/s] and ``alpha`` [rad/s^2 or m/s^2] are the same at
+    every position (the book's convention).
+    """
+
+    driver: int
+    rotary: bool
+    start: float
+    stop: float
+    q: np.ndarray
+    omega: float
+    alpha: float
+    followers: dict
+    partial: bool
+
+    @property
+    def periodic(self):
+        if not self.rotary:
+            return False
+        turns = (self.stop - self.start) / (2 * math.pi)
+        whole = abs(turns - round(turns)) < 1e-9 and round(turns) >= 1
+        return whole and all(abs(r - round(r)) < 1e-12 for r, _ in self.followers.values())
+
+
+@dataclasses.dataclass(frozen=True)
+class OutputSpec:
+    order: int
+    table_step: float  # input units (rad or m)
+    plots: bool
+    animate: bool
+    frames: int
+    draw_at: float  # input units
+    digits: int
+
+
+@dataclasses.dataclass(frozen=True)
+class KinSpec:
+    header: Header
+    mechanism: str
+    linkage: Linkage
+    tracers: Tuple[Tracer, ...]
+    input: InputSpec
+    output: OutputSpec
+    expected: dict
+    guide_length: Optional[float] = None  # drawing only (guide-bar l3) [m]
+
+
+# ---------------------------------------------------------------------------
+def _branch(sec, name, default, named):
+    raw = sec.raw(name, default)
+    if isinstance(raw, str) and raw in named:
+        return named[raw]
+    if isinstance(raw, int) and not isinstance(raw, bool) and raw in (1, -1):
+        return raw
+    opts = ", ".join([f"'{k}'" for k in named] + ["1", "-1"])
+    raise SpecError(sec.file, sec.key(name), f"one of {opts}", repr(raw))
+
+
+def _preset(mech, kind):
+    """Expand a preset into (frame, elements, guide_length)."""
+    open_crossed = {"open": 1, "crossed": -1}
+    if kind == "four_bar":
+        l1, l2, l3, l4 = (mech.length(k) for k in ("l1", "l2", "l3", "l4"))
+        br = _branch(mech, "branch", "open", open_crossed)
+        return 4, [Ground("A", 0.0, 0.0), Ground("D", l4, 0.0),
+                   Crank(1, "A", "B", l1), RRR("C", "B", 2, l2, "D", 3, l3, br)], None
+    if kind == "slider_crank":
+        l1, l2 = mech.length("l1"), mech.length("l2")
+        e = mech.number("e", 0.0) * mech.unit
+        br = _branch(mech, "branch", "right", {"right": 1, "left": -1})
+        return 4, [Ground("A", 0.0, 0.0), Crank(1, "A", "B", l1),
+                   RRP("C", "B", 2, l2, 3, 4, "A", 0.0, e, br, "3")], None
+    if kind == "guide_bar":
+        l1, l4 = mech.length("l1"), mech.length("l4")
+        e = mech.number("e", 0.0) * mech.unit
+        l3 = mech.length("l3", None)
+        br = _branch(mech, "branch", 1, {})
+        return 4, [Ground("C", 0.0, 0.0), Ground("A", 0.0, l4), Crank(1, "A", "B", l1),
+                   RPR("B", 2, "C", 3, e, br, "23")], l3
+    if kind == "shaper":
+        l1, l3, l4, l6, l6p = (mech.length(k) for k in ("l1", "l3", "l4", "l6", "l6p"))
+        br = _branch(mech, "branch", "left", {"left": -1, "right": 1})
+        return 6, [Ground("C", 0.0, 0.0), Ground("A", 0.0, l6), Ground("G", 0.0, l6p),
+                   Crank(1, "A", "B", l1), RPR("B", 2, "C", 3, 0.0, 1, "23"),
+                   PointOnLink("D", 3, "C", l3, 0.0),
+                   RRP("E", "D", 4, l4, 5, 6, "G", 0.0, 0.0, br, "E")], None
+    raise AssertionError(kind)
+
+
+def _general(mech):
+    """Read the general form: ground, driver, dyad tables."""
+    frame = mech.integer("frame", lo=1)
+    elements = []
+    ground = mech.table("ground")
+    for name in ground.keys():
+        xy = ground.numbers(name, size=2)
+        elements.append(Ground(name, xy[0] * mech.unit, xy[1] * mech.unit))
+    ground.finish()
+    followers = {}
+    drivers = mech.tables("driver")
+    for i, d in enumerate(drivers):
+        kind = d.string("type", "crank", choices=["crank", "slider"])
+        link = d.integer("link", lo=1)
+        if kind == "crank":
+            elements.append(Crank(link, d.string("pivot"), d.string("point"), d.length("length")))
+        else:
+            elements.append(SliderDriver(link, d.string("origin"), d.string("point"),
+                                         math.radians(d.number("angle", 0.0)),
+                                         d.string("name", None)))
+        if i > 0:
+            followers[link] = (d.number("ratio", 1.0),
+                               math.radians(d.number("phase", 0.0)) if kind == "crank"
+                               else d.number("phase", 0.0) * mech.unit)
+        d.finish()
+    for dy in mech.tables("dyad", []):
+        kind = dy.string("type", choices=["RRR", "RRP", "RPR"])
+        br = _branch(dy, "branch", 1, {"left": 1, "right": -1})
+        if kind == "RRR":
+            pts = dy.strings("points")
+            links = dy.raw("links")
+            lengths = dy.numbers("lengths", size=2, positive=True)
+            if len(pts) != 2:
+                raise dy.error("points", "an array of 2 point names", repr(pts))
+            if not (isinstance(links, list) and len(links) == 2
+                    and all(isinstance(x, int) and not isinstance(x, bool) and x > 0
+                            for x in links)):
+                raise dy.error("links", "an array of 2 link numbers", repr(links))
+            elements.append(RRR(dy.string("joint"), pts[0], links[0], lengths[0] * mech.unit,
+                                pts[1], links[1], lengths[1] * mech.unit, br))
+        elif kind == "RRP":
+            elements.append(RRP(dy.string("joint"), dy.string("point"), dy.integer("link", lo=1),
+                                dy.length("length"), dy.integer("slider", lo=1),
+                                dy.integer("guide_link", lo=1), dy.string("guide_point"),
+                                math.radians(dy.number("guide_angle", 0.0)),
+                                dy.number("offset", 0.0) * mech.unit, br, dy.string("name", None)))
+        else:
+            elements.append(RPR(dy.string("point"), dy.integer("block", lo=1), dy.string("pivot"),
+                                dy.integer("guide", lo=1), dy.number("offset", 0.0) * mech.unit,
+                                br, dy.string("name", None)))
+        dy.finish()
+    return frame, elements, followers
+
+
+def _points(mech, elements):
+    """``[[mechanism.point]]``: points fixed on links; traced unless ``trace = false``."""
+    tracers = []
+    for pt in mech.tables("point", []):
+        name = pt.string("name")
+        link = pt.integer("link", lo=1)
+        origin = pt.string("from")
+        along = pt.number("along", 0.0) * mech.unit
+        normal = pt.number("normal", 0.0) * mech.unit
+        elements.append(PointOnLink(name, link, origin, along, normal))
+        if pt.boolean("trace", True):
+            tracers.append(Tracer(name, link))
+        pt.finish()
+    return tracers
+
+
+def _build_linkage(mech, frame, elements):
+    try:
+        return Linkage(frame=frame, elements=tuple(elements))
+    except LinkageDefinitionError as exc:
+        key = "mechanism"
+        if exc.index is not None:
+            el = elements[exc.index]
+            key = {PointOnLink: "mechanism.point", Crank: "mechanism.driver",
+                   SliderDriver: "mechanism.driver", Ground: "mechanism.ground"}.get(
+                       type(el), "mechanism.dyad")
+        raise SpecError(mech.file, key, "a linkage whose elements can be solved in order",
+                        str(exc)) from None
+
+
+def _input(sec, linkage, followers):
+    first = linkage.drivers[0]
+    rotary = isinstance(first, Crank)
+    if rotary:
+        has_w, has_n = sec.has("omega1"), sec.has("n1")
+        if has_w and has_n:
+            raise SpecError(sec.file, sec.key("n1"), "either omega1 or n1, not both", "both")
+        if has_n:
+            omega = sec.number("n1") * 2 * math.pi / 60.0
+        else:
+            omega = sec.number("omega1", 1.0)
+        alpha = sec.number("alpha1", 0.0)
+        start = math.radians(sec.number("start", 0.0))
+        stop = math.radians(sec.number("stop", 360.0))
+        unit = math.pi / 180
+    else:
+        omega = sec.number("v1", 1.0) * sec.unit
+        alpha = sec.number("a1", 0.0) * sec.unit
+        start = sec.number("start") * sec.unit
+        stop = sec.number("stop") * sec.unit
+        unit = sec.unit
+    if stop <= start:
+        raise SpecError(sec.file, sec.key("stop"), f"a value above start ({start / unit:g})",
+                        f"{stop / unit:g}")
+    if sec.has("step") and sec.has("count"):
+        raise SpecError(sec.file, sec.key("count"), "either step or count, not both", "both")
+    if sec.has("count"):
+        count = sec.integer("count", lo=2, hi=20_000_001)
+    else:
+        step = sec.number("step", 1.0, positive=True) * unit
+        count = int(round((stop - start) / step)) + 1
+        if count > 20_000_001:
+            raise SpecError(sec.file, sec.key("step"), "a step giving at most 20,000,001 positions",
+                            f"{count} positions")
+        if abs(start + (count - 1) * step - stop) > 1e-9 * max(1.0, abs(stop)):
+            raise SpecError(sec.file, sec.key("step"),
+                            "a step that divides stop - start into whole steps",
+                            f"{step / unit:g} for {(stop - start) / unit:g}")
+        count = max(count, 2)
+    q = np.linspace(start, stop, count)
+    partial = sec.boolean("partial", False)
+    sec.finish()
+    return InputSpec(first.link, rotary, start, stop, q, omega, alpha, followers, partial)
+
+
+def _output(sec, inp):
+    unit = math.pi / 180 if inp.rotary else sec.unit
+    if sec is None:
+        return None
+    qs = sec.strings("quantities", list(QUANTITIES), choices=list(QUANTITIES))
+    if not qs:
+        raise sec.error("quantities", "at least one of " + ", ".join(QUANTITIES), "[]")
+    order = max(QUANTITIES.index(q) for q in qs)
+    span = (inp.stop - inp.start) / unit
+    default_step = 30.0 if inp.rotary else span / 10
+    table_step = sec.number("table_step", default_step, positive=True) * unit
+    plots = sec.boolean("plots", True)
+    animate = sec.boolean("animate", False)
+    frames = sec.integer("frames", 72, lo=2, hi=3600)
+    draw_at = sec.number("draw_at", inp.start / unit) * unit
+    digits = sec.integer("digits", 4, lo=1, hi=12)
+    sec.finish()
+    return OutputSpec(order, table_step, plots, animate, frames, draw_at, digits)
+
+
+def load_kin_spec(path, overrides=()) -> KinSpec:
+    """Read and validate a ``mechcli kin`` spec.
+
+    Raises
+    ------
+    SpecError
+        With the file, key, expectation and what was found.
+    """
+    root = load_spec(path, overrides)
+    header = read_header(root, "kin", default_unit="mm")
+    mech = root.table("mechanism")
+    kind = mech.string("type", choices=list(MECHANISMS))
+    followers = {}
+    guide_length = None
+    if kind == "general":
+        frame, elements, followers = _general(mech)
+    else:
+        frame, elements, guide_length = _preset(mech, kind)
+    tracers = _points(mech, elements)
+    mech.finish()
+    linkage = _build_linkage(mech, frame, elements)
+    if not linkage.drivers:
+        raise SpecError(root.file, "mechanism.driver", "at least one driver", "none")
+    inp = _input(root.table("input") if root.has("input") else _empty(root, "input"),
+                 linkage, followers)
+    out_sec = root.table("output") if root.has("output") else _empty(root, "output")
+    output = _output(out_sec, inp)
+    expected = read_expected(root)
+    root.finish()
+    return KinSpec(header, kind, linkage, tuple(tracers), inp, output, expected, guide_length)
+
+
+def _empty(root, name):
+    from mechcli.spec.reader import Section
+    return Section({}, root.file, name, root.unit)
