@@ -260,7 +260,10 @@ def refine_extremes(linkage, sweep, order, quantities, q, values, runs, iteratio
                     best = (k, i0, i1)
             k, i0, i1 = best
             n = q.size
-            whole = sweep.periodic and len(runs) == 1 and i0 == 0 and i1 == n
+            # a quantity with a net change over a whole-turn sweep (a fully turning
+            # link's unwrapped angle) is not periodic: its extremes are the ends
+            returns = abs(v[-1] - v[0]) <= 1e-9 * max(1.0, float(np.max(np.abs(v))))
+            whole = sweep.periodic and returns and len(runs) == 1 and i0 == 0 and i1 == n
             if whole:
                 lo = q[k - 1] if k > 0 else q[0] - (q[1] - q[0])
                 hi = q[k + 1] if k < n - 1 else q[-1] + (q[1] - q[0])

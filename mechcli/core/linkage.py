@@ -584,8 +584,9 @@ def solve(linkage: Linkage, inputs, order: int = 2, on_fail: str = "mask") -> Li
             local = s + 1j * el.offset
             theta = np.angle(d) - np.angle(local)
             u = _unit(theta)
-            nd = np.maximum(np.sqrt(dist2), 1e-300)
-            sing = np.abs(s) / nd
+            # det of the velocity system is s: singular when the block passes the
+            # foot of the pivot (the guide's direction is then undefined)
+            sing = np.abs(s) / np.maximum(np.sqrt(dist2), scale)
             conds.append(DyadCondition(idx, "RPR", el.point, sing, np.arcsin(np.minimum(sing, 1.0))))
             name = el.name or f"{el.block}{el.guide}"
             if vel:
