@@ -101,6 +101,7 @@ def _branch(sec, name, default, named):
 def _preset(mech, kind):
     """Expand a preset into (frame, elements, guide_length)."""
     open_crossed = {"open": 1, "crossed": -1}
+    mech.declare("l1", "l2", "l3", "l4", "l6", "l6p", "e", "branch", "point")
     if kind == "four_bar":
         l1, l2, l3, l4 = (mech.length(k) for k in ("l1", "l2", "l3", "l4"))
         br = _branch(mech, "branch", "open", open_crossed)

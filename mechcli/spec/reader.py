@@ -144,6 +144,12 @@ class Section:
         self.path = path
         self.unit = unit
         self._known = set()
+        self._declared = set()
+
+    def declare(self, *names):
+        """Name keys that a later accessor will read (so a missing key is not
+        mistaken for a misspelling of one of them)."""
+        self._declared.update(names)
 
     # -- helpers ---------------------------------------------------------
     def key(self, name):
@@ -161,6 +167,13 @@ class Section:
         if name in self.data:
             return self.data[name]
         if default is REQUIRED:
+            # a missing key next to a misspelled one: report the misspelling
+            import difflib
+            strays = [k for k in self.data if k not in self._known and k not in self._declared]
+            near = difflib.get_close_matches(name, strays, n=1, cutoff=0.5)
+            if near:
+                raise SpecError(self.file, self.key(near[0]), "a known key",
+                                f"unknown key '{near[0]}'", name)
             raise SpecError(self.file, self.key(name), "this key (it is required)", "nothing")
         return default
 

@@ -1,0 +1,159 @@
+"""mechcli kin through the command line: outputs, exit codes, one-line messages."""
+
+import csv
+import json
+
+import pytest
+
+from tests.conftest import CONFIGS, run_cli
+
+EX11 = CONFIGS / "ch1" / "ex1-1.toml"
+
+GOOD = """\
+command = "kin"
+units = "mm"
+[mechanism]
+type = "four_bar"
+l1 = 100
+l2 = 300
+l3 = 250
+l4 = 200
+[input]
+omega1 = 10
+step = 5
+"""
+
+
+def write(tmp_path, text, name="spec.toml"):
+    p = tmp_path / name
+    p.write_text(text, encoding="utf-8")
+    return p
+
+
+def one_line_error(proc):
+    lines = [ln for ln in proc.stderr.splitlines() if ln.strip()]
+    assert len(lines) == 1, proc.stderr
+    assert "Traceback" not in proc.stderr
+    return lines[0]
+
+
+def test_version_and_help():
+    assert run_cli("--version").stdout.startswith("mechcli, version")
+    proc = run_cli("kin", "--help")
+    assert proc.returncode == 0
+    for opt in ("--out", "--json", "--no-plot", "--animate", "--lang", "--quiet", "--traceback",
+                "--set"):
+        assert opt in proc.stdout
+
+
+def test_json_csv_and_report_are_written(tmp_path):
+    proc = run_cli("kin", EX11, "--json", "--no-plot", "--out", tmp_path)
+    assert proc.returncode == 0, proc.stderr
+    doc = json.loads(proc.stdout)
+    assert doc["command"] == "kin"
+    assert {p.rsplit("/", 1)[-1] for p in doc["files"]} == {"kin.csv", "report.txt"}
+    with open(tmp_path / "kin.csv", newline="") as fh:
+        rows = list(csv.reader(fh))
+    assert rows[0] == ["theta1_deg", "theta2_deg", "theta3_deg", "gammaC_deg", "omega2_rad_s",
+                       "omega3_rad_s", "alpha2_rad_s2", "alpha3_rad_s2"]
+    assert len(rows) == 362
+    assert not any("nan" in c.lower() or "inf" in c.lower() for r in rows for c in r)
+    assert float(rows[1][2]) == pytest.approx(96.6654, abs=5e-5)  # eq. (1-4) at theta1 = 0
+
+
+def test_lang_zh_report_uses_the_books_labels(tmp_path):
+    proc = run_cli("kin", EX11, "--lang", "zh", "--quiet", "--no-plot", "--out", tmp_path)
+    assert proc.returncode == 0, proc.stderr
+    text = (tmp_path / "report.txt").read_text(encoding="utf-8")
+    assert "曲柄转角" in text and "角速度" in text and "计算结果" in text
+
+
+def test_plots_and_animation(tmp_path):
+    proc = run_cli("kin", CONFIGS / "ch1" / "exercise1-2.toml", "--animate", "--quiet",
+                   "--set", "output.frames=8", "--out", tmp_path)
+    assert proc.returncode == 0, proc.stderr
+    for name in ("kin.png", "path_F.png", "kin.gif"):
+        assert (tmp_path / name).stat().st_size > 1000
+    from PIL import Image
+    with Image.open(tmp_path / "kin.gif") as im:
+        assert im.n_frames == 8
+
+
+def test_set_overrides_are_applied_and_validated(tmp_path):
+    base = json.loads(run_cli("kin", EX11, "--json", "--no-plot", "--out", tmp_path).stdout)
+    proc = run_cli("kin", EX11, "--json", "--no-plot", "--out", tmp_path,
+                   "--set", "mechanism.l1=90", "--set", "input.step=0.5")
+    doc = json.loads(proc.stdout)
+    assert doc["results"]["positions"] == 721
+    assert doc["results"]["theta3_swing_deg"] != base["results"]["theta3_swing_deg"]
+    proc = run_cli("kin", EX11, "--set", "mechanism.l1=-5", "--out", tmp_path)
+    assert proc.returncode == 2
+    assert "[mechanism] l1: expected a positive number, got -5.0" in one_line_error(proc)
+
+
+@pytest.mark.parametrize("edit, key, fragment", [
+    (("l2 = 300", "l22 = 300"), "[mechanism] l22", "did you mean 'l2'"),
+    (("l2 = 300", 'l2 = "abc"'), "[mechanism] l2", "expected a positive number, got 'abc'"),
+    (("l2 = 300", "l2 = -300"), "[mechanism] l2", "expected a positive number"),
+    (("l2 = 300", "l2 = nan"), "[mechanism] l2", "expected a finite positive number, got nan"),
+    (("l2 = 300\n", ""), "[mechanism] l2", "it is required"),
+    (('type = "four_bar"', 'type = "four_bars"'), "[mechanism] type", "did you mean 'four_bar'"),
+    (('units = "mm"', 'units = "km"'), "units", "one of 'mm', 'cm', 'm', 'in'"),
+    (("step = 5", "step = 7"), "[input] step", "divides stop - start"),
+    (("omega1 = 10", "omega1 = 10\nomga1 = 3"), "[input] omga1", "did you mean 'omega1'"),
+    (('command = "kin"', 'command = "cam"'), "command", "mechcli cam"),
+])
+def test_bad_specs_exit_2_with_one_line_naming_file_and_key(tmp_path, edit, key, fragment):
+    spec = write(tmp_path, GOOD.replace(*edit))
+    proc = run_cli("kin", spec, "--out", tmp_path / "out")
+    assert proc.returncode == 2, proc.stderr
+    line = one_line_error(proc)
+    assert str(spec) in line and key in line and fragment in line
+    assert not (tmp_path / "out").exists()
+
+
+def test_toml_syntax_error_reports_line_and_column(tmp_path):
+    spec = write(tmp_path, GOOD.replace("l3 = 250", "l3 = = 250"))
+    proc = run_cli("kin", spec)
+    assert proc.returncode == 2
+    line = one_line_error(proc)
+    assert "valid TOML" in line and "line 7" in line and "column" in line
+
+
+def test_missing_file_exit_2(tmp_path):
+    proc = run_cli("kin", tmp_path / "nope.toml")
+    assert proc.returncode == 2 and "no such file" in one_line_error(proc)
+
+
+def test_unassemblable_linkage_exit_3_with_intervals(tmp_path):
+    spec = write(tmp_path, GOOD.replace("l1 = 100", "l1 = 240"))  # crank too long to turn
+    proc = run_cli("kin", spec, "--out", tmp_path / "out")
+    assert proc.returncode == 3
+    line = one_line_error(proc)
+    assert "cannot assemble for input angle" in line and "partial = true" in line
+    assert not (tmp_path / "out").exists()
+
+
+def test_partial_analysis_reports_feasible_ranges(tmp_path):
+    spec = write(tmp_path, GOOD.replace("l1 = 100", "l1 = 240"))
+    proc = run_cli("kin", spec, "--json", "--no-plot", "--set", "input.partial=true",
+                   "--out", tmp_path)
+    assert proc.returncode == 0, proc.stderr
+    doc = json.loads(proc.stdout)
+    excluded = doc["results"]["excluded"]
+    # the crank cannot pass theta1 = 0 (B too far from D): excluded 352.1° … 360° and 0° … 7.9°
+    assert [why for *_, why in excluded] == ["cannot assemble"] * 2
+    inner = [excluded[0][1], excluded[1][0]]
+    assert excluded[0][0] == 0 and excluded[1][1] == 360 and 0 < inner[0] < inner[1] < 360
+    # boundaries are where B is |l2 - l3| = 50 or l2 + l3 = 550 from D: cosine rule
+    import math
+    for ang in inner:
+        bd = math.dist((240 * math.cos(math.radians(ang)), 240 * math.sin(math.radians(ang))),
+                       (200, 0))
+        assert min(abs(bd - 50), abs(bd - 550)) < 1e-7
+    assert doc["warnings"] and doc["results"]["toggles"]
+
+
+def test_unknown_command_suggests(tmp_path):
+    proc = run_cli("kinn", EX11)
+    assert proc.returncode == 2 and "did you mean 'kin'" in proc.stderr
