@@ -18,6 +18,10 @@ from mechcli import __version__
 #: subcommand -> (module, attribute, one-line help).  Register only what works.
 COMMANDS = {
     "kin": ("mechcli.commands.kin", "kin", "Kinematics of a planar linkage (chapter 1)."),
+    "grashof": ("mechcli.commands.grashof", "grashof",
+                "Linkage type, crank conditions, K, transmission angle, mobility (ch. 3 §1)."),
+    "cam": ("mechcli.commands.cam", "cam",
+            "Disc cams: motion laws, profiles, pressure angle, sizing (chapter 4)."),
 }
 
 

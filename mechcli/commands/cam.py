@@ -1,0 +1,35 @@
+"""``mechcli cam``: follower motion, disc-cam profile, pressure angle, curvature, sizing."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import click
+
+from mechcli.options import RunOptions, common_options
+
+
+@click.command("cam")
+@click.argument("spec", type=click.Path(dir_okay=False, path_type=Path))
+@click.option("--step", type=click.FloatRange(1e-4, 10.0), default=None, metavar="DEG",
+              help="Profile sampling step in degrees [default: spec, else 0.1].")
+@click.option("--points", type=click.IntRange(36, 3_600_000), default=None,
+              help="Profile points per revolution (instead of --step).")
+@common_options
+def cam(spec, step, points, **opts):
+    """Design and check a disc cam from SPEC.toml (chapter 4, 例 7-2)."""
+    run = RunOptions.from_click(spec, opts)
+    from mechcli.core.cam_design import design_cam
+    from mechcli.report.cam import cam_report
+    from mechcli.spec.cam import read_cam_spec
+    from mechcli.spec.reader import load_spec
+
+    cs = read_cam_spec(load_spec(spec, run.sets), step, points)
+    sz = cs.sizing
+    design = design_cam(
+        cs.motion, cs.contact, cs.r0, cs.follower_args, cs.segments, cs.stroke,
+        angular=cs.angular, step=cs.step, alpha_rise=cs.limits.alpha_rise,
+        alpha_return=cs.limits.alpha_return, size_base_radius=bool(sz and sz.base_radius),
+        limit_return=bool(sz and sz.limit_return), rho_min=sz.rho_min if sz else 0.0,
+        round_up=sz.round_up if sz else 0.0, forbid_undercut=cs.limits.forbid_undercut)
+    cam_report(run, cs, design)

@@ -1,0 +1,606 @@
+"""Disc-cam profiles by the inversion method (反转法), with exact normals.
+
+Every follower is described in the *fixed* frame (cam centre O at the origin,
+follower guide along +y): a reference point ``P(δ)`` (roller centre / knife
+edge / flat-face contact point) with its exact derivatives with respect to the
+cam angle δ.  The cam-fixed profile is ``Q(δ) = R(-σδ) P(δ)`` where
+``σ = +1`` for a counter-clockwise cam and ``-1`` for a clockwise one; its
+derivatives follow from ``Q⁽ᵏ⁾ = R(-σδ) Vₖ`` with ``V₀ = P`` and
+``Vₖ₊₁ = Vₖ' − σ J Vₖ`` (``J`` = rotation by +90°).  Tangent, normal, pressure
+angle and curvature are computed from ``V₁, V₂, V₃`` (rotation invariants),
+never by differencing samples.
+
+Notes
+-----
+Counter-clockwise cam, follower right of the centre: ``P = (e, s₀ + s)`` gives
+eq. (4-1) of the book; the working curve of a roller follower is the pitch
+curve moved by ``r_r`` along the inner normal (eq. 4-2 with the normal of eq.
+4-3).  Flat-faced follower: the contact point ``P = (σ s', r₀ + s)`` gives eq.
+(4-4).  Oscillating follower with pivot ``A = (0, a)`` and arm ``l``:
+``P = A + l (−σ sin θ, −cos θ)``, ``θ = φ₀ + φ`` gives eq. (4-5); φ₀ from the
+law of cosines (eq. 4-6).  A clockwise cam is the mirror image (x → −x) of the
+counter-clockwise one.  Pressure angle: angle between the profile normal at
+the contact and the velocity of the follower point (eq. 7-14 for the
+translating follower).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import numpy as np
+from scipy.optimize import brentq
+
+from mechcli.core.cam_motion import MotionProgram
+from mechcli.core.errors import UnsolvableError
+
+FOLLOWER_MOTIONS = ("translating", "oscillating")
+FOLLOWER_CONTACTS = ("knife", "roller", "flat")
+
+#: |ρ| is reported at most RHO_CAP × r0 (a straight stretch has ρ = ∞)
+RHO_CAP = 1e6
+
+
+class UndercutError(UnsolvableError):
+    """The working profile has a cusp or loop (undercut) and the spec forbids it."""
+
+
+class CamGeometryError(UnsolvableError):
+    """The follower cannot be placed as asked (e.g. swing past the geometric limit)."""
+
+
+@dataclasses.dataclass(frozen=True)
+class Follower:
+    """Follower type and mechanism dimensions (SI units).
+
+    Attributes
+    ----------
+    motion : str
+        ``translating`` (直动) or ``oscillating`` (摆动).
+    contact : str
+        ``knife`` (尖顶), ``roller`` (滚子) or ``flat`` (平底; translating only).
+    r0 : float
+        Base-circle radius, m (of the pitch curve for knife/roller followers,
+        of the working curve for the flat-faced follower).
+    rotation : int
+        +1 for a counter-clockwise cam (the book's examples), −1 clockwise.
+    e : float
+        Signed offset of the translating follower's guide, m (positive: right
+        of the cam centre when the follower points up).
+    rr : float
+        Roller radius, m (0 for knife-edge and flat-faced followers).
+    a : float
+        Centre distance cam–pivot of an oscillating follower, m.
+    l : float
+        Arm length of an oscillating follower, m.
+    """
+
+    motion: str
+    contact: str
+    r0: float
+    rotation: int = 1
+    e: float = 0.0
+    rr: float = 0.0
+    a: float = 0.0
+    l: float = 0.0
+
+    def __post_init__(self):
+        if self.motion not in FOLLOWER_MOTIONS or self.contact not in FOLLOWER_CONTACTS:
+            raise ValueError(f"unknown follower {self.motion}/{self.contact}")
+        if self.rotation not in (1, -1):
+            raise ValueError("rotation must be +1 (ccw) or -1 (cw)")
+        if not self.r0 > 0:
+            raise ValueError("r0 must be positive")
+        if self.motion == "translating" and self.contact != "flat" and abs(self.e) >= self.r0:
+            raise ValueError("the offset must be smaller than the base radius")
+        if self.motion == "oscillating":
+            if self.contact == "flat":
+                raise ValueError("an oscillating flat-faced follower is not supported")
+            if not (abs(self.a - self.l) < self.r0 < self.a + self.l):
+                raise ValueError("a, l and r0 cannot form the oscillating follower")
+
+    @property
+    def sigma(self):
+        return self.rotation
+
+    @property
+    def s0(self):
+        """``sqrt(r0² − e²)``: start height of the follower point, m (eq. 4-1)."""
+        if self.contact == "flat":
+            return self.r0
+        return math.sqrt(self.r0 ** 2 - self.e ** 2)
+
+    @property
+    def phi0(self):
+        """Initial arm angle φ₀ of the oscillating follower, rad (eq. 4-6)."""
+        return math.acos((self.a ** 2 + self.l ** 2 - self.r0 ** 2) / (2 * self.a * self.l))
+
+    @property
+    def oscillating(self):
+        return self.motion == "oscillating"
+
+
+def _J(v):
+    return np.stack([-v[1], v[0]])
+
+
+def _cross(u, v):
+    return u[0] * v[1] - u[1] * v[0]
+
+
+def _dot(u, v):
+    return u[0] * v[0] + u[1] * v[1]
+
+
+def _rotate(v, angle):
+    c, s = np.cos(angle), np.sin(angle)
+    return np.stack([c * v[0] - s * v[1], s * v[0] + c * v[1]])
+
+
+def follower_point(fol, s, s1, s2, s3):
+    """Follower reference point in the fixed frame and its δ-derivatives.
+
+    Parameters
+    ----------
+    fol : Follower
+    s, s1, s2, s3 : ndarray
+        Displacement (m or rad) and its derivatives with respect to δ.
+
+    Returns
+    -------
+    P, P1, P2, P3, d, d1 : ndarray, shape (2, n)
+        Point (m) and derivatives (m/rad^k); unit direction of the follower
+        point's motion for increasing s, and its δ-derivative.
+    """
+    sg = fol.sigma
+    z = np.zeros_like(s)
+    if fol.motion == "translating":
+        d = np.stack([z, z + 1.0])
+        if fol.contact == "flat":
+            P = np.stack([sg * s1, fol.r0 + s])
+            return (P, np.stack([sg * s2, s1]), np.stack([sg * s3, s2]),
+                    np.stack([z, s3]), d, np.stack([z, z]))
+        P = np.stack([z + fol.e, fol.s0 + s])
+        return P, np.stack([z, s1]), np.stack([z, s2]), np.stack([z, s3]), d, np.stack([z, z])
+    th = fol.phi0 + s
+    u = np.stack([-sg * np.sin(th), -np.cos(th)])
+    up = np.stack([-sg * np.cos(th), np.sin(th)])
+    P = np.stack([z, z + fol.a]) + fol.l * u
+    P1 = fol.l * up * s1
+    P2 = fol.l * (-u * s1 ** 2 + up * s2)
+    P3 = fol.l * (-up * s1 ** 3 - 3 * u * s1 * s2 + up * s3)
+    return P, P1, P2, P3, up, -u * s1
+
+
+def _derived(fol, s, s1, s2, s3):
+    """V₀…V₃ (fixed-frame images of the profile derivatives) and d, d'."""
+    sg = fol.sigma
+    P, P1, P2, P3, d, d1 = follower_point(fol, s, s1, s2, s3)
+    V1 = P1 - sg * _J(P)
+    V2 = P2 - 2 * sg * _J(P1) - P
+    V3 = P3 - 3 * sg * _J(P2) - 3 * P1 + sg * _J(P)
+    return P, V1, V2, V3, d, d1
+
+
+def pressure_angle_and_rate(fol, s, s1, s2, s3):
+    """Signed pressure angle α (rad) and dα/dδ.
+
+    α = atan2(V₁·d, σ V₁×d): positive when the normal force opposes the
+    follower's motion in a rise.  Zero for a flat face perpendicular to the
+    guide.  Notes: eq. (7-14) for the translating follower.
+    """
+    if fol.contact == "flat":
+        z = np.zeros_like(s)
+        return z, z.copy()
+    sg = fol.sigma
+    P, V1, V2, V3, d, d1 = _derived(fol, s, s1, s2, s3)
+    N = _dot(V1, d)
+    D = sg * _cross(V1, d)
+    dV1 = V2 + sg * _J(V1)
+    dN = _dot(dV1, d) + _dot(V1, d1)
+    dD = sg * (_cross(dV1, d) + _cross(V1, d1))
+    return np.arctan2(N, D), (dN * D - N * dD) / (N ** 2 + D ** 2)
+
+
+def curvature_and_rate(fol, s, s1, s2, s3):
+    """Signed curvature of the pitch curve (1/m, convex positive) and dκ/dδ.
+
+    For the flat-faced follower: ``-(r0 + s + s'')`` and its derivative
+    (the quantity whose maximum gives the smallest radius of curvature).
+    """
+    if fol.contact == "flat":
+        return -(fol.r0 + s + s2), -(s1 + s3)
+    sg = fol.sigma
+    P, V1, V2, V3, d, d1 = _derived(fol, s, s1, s2, s3)
+    n2 = _dot(V1, V1)
+    n3 = n2 ** 1.5
+    c12 = _cross(V1, V2)
+    kappa = -sg * c12 / n3
+    dkappa = -sg * (_cross(V1, V3) / n3 - 3 * c12 * _dot(V1, V2) / (n3 * n2))
+    return kappa, dkappa
+
+
+def _rho(kappa, cap):
+    big = np.abs(kappa) * cap <= 1.0
+    safe = np.where(big, 1.0, kappa)
+    return np.where(big, np.where(kappa < 0, -cap, cap), 1.0 / safe)
+
+
+@dataclasses.dataclass(frozen=True)
+class CamProfile:
+    """Sampled cam: motion, pitch and working curves, checks per sample.
+
+    Attributes
+    ----------
+    delta : ndarray
+        Cam angle, rad.
+    s, s1, s2, s3 : ndarray
+        Displacement (m or rad) and derivatives per rad, rad², rad³.
+    pitch : ndarray (2, n) or None
+        Pitch (theoretical) curve in the cam frame, m (None for flat-faced).
+    work : ndarray (2, n)
+        Working (actual) curve in the cam frame, m.
+    normal : ndarray (2, n)
+        Outward unit normal of the profile in the cam frame.
+    alpha : ndarray
+        Signed pressure angle, rad.
+    rho_pitch : ndarray or None
+        Radius of curvature of the pitch curve, m (convex positive, capped at
+        ``RHO_CAP × r0``).
+    rho_work : ndarray
+        Radius of curvature of the working curve, m (convex positive).
+    roller_angle : ndarray or None
+        Roller rotation angle as the book's simulation computes it: working
+        curve arc length from δ = 0 divided by r_r, rad.
+    face_offset : ndarray or None
+        Flat face: contact point measured from the follower axis, m.
+    """
+
+    delta: np.ndarray
+    s: np.ndarray
+    s1: np.ndarray
+    s2: np.ndarray
+    s3: np.ndarray
+    pitch: np.ndarray | None
+    work: np.ndarray
+    normal: np.ndarray
+    alpha: np.ndarray
+    rho_pitch: np.ndarray | None
+    rho_work: np.ndarray
+    roller_angle: np.ndarray | None
+    face_offset: np.ndarray | None
+
+
+def cam_profile(fol, program: MotionProgram, delta):
+    """Pitch and working curves of the cam at cam angles *delta*.
+
+    Parameters
+    ----------
+    fol : Follower
+    program : MotionProgram
+    delta : ndarray
+        Cam angles, rad (increasing, typically 0 … 2π).
+
+    Returns
+    -------
+    CamProfile
+    """
+    st = program.evaluate(delta)
+    s, s1, s2, s3 = st.s, st.s1, st.s2, st.s3
+    sg = fol.sigma
+    rot = -sg * np.asarray(delta, dtype=float)
+    P, V1, V2, V3, d, d1 = _derived(fol, s, s1, s2, s3)
+    alpha, _ = pressure_angle_and_rate(fol, s, s1, s2, s3)
+    cap = RHO_CAP * fol.r0
+    if fol.contact == "flat":
+        work = _rotate(P, rot)
+        normal = _rotate(np.stack([np.zeros_like(s), np.ones_like(s)]), rot)
+        rho = fol.r0 + s + s2
+        return CamProfile(st.delta, s, s1, s2, s3, None, work, normal, alpha, None,
+                          np.clip(rho, -cap, cap), None, sg * s1 - fol.e)
+    speed = np.sqrt(_dot(V1, V1))
+    n_fixed = sg * _J(V1) / speed
+    pitch = _rotate(P, rot)
+    normal = _rotate(n_fixed, rot)
+    kappa = -sg * _cross(V1, V2) / speed ** 3
+    rho_p = _rho(kappa, cap)
+    if fol.contact == "roller":
+        work = pitch - fol.rr * normal
+        rho_w = np.clip(rho_p - fol.rr, -cap, cap)
+        wspeed = speed * np.abs(1 - fol.rr * kappa)
+        arc = np.concatenate([[0.0], np.cumsum(0.5 * (wspeed[1:] + wspeed[:-1])
+                                                 * np.diff(st.delta))])
+        roller = arc / fol.rr
+    else:
+        work, rho_w, roller = pitch, rho_p, None
+    return CamProfile(st.delta, s, s1, s2, s3, pitch, work, normal, alpha, rho_p, rho_w,
+                      roller, None)
+
+
+# --------------------------------------------------------------------------
+# extrema refined on the exact functions
+
+def _piece_grid(d0, d1, step):
+    n = max(17, int(math.ceil((d1 - d0) / step)) + 1)
+    return np.linspace(d0, d1, n)
+
+
+def maximize_on_pieces(program, pieces, func, step):
+    """Maximum of a piecewise-smooth function of δ, refined to ~1e-13 rad.
+
+    Parameters
+    ----------
+    program : MotionProgram
+    pieces : sequence of int
+        Indices into ``program.pieces()`` to search.
+    func : callable
+        ``func(s, s1, s2, s3) -> (g, dg/dδ)`` on arrays.
+    step : float
+        Coarse sampling step, rad (each piece gets at least 17 samples).
+
+    Returns
+    -------
+    (float, float) or None
+        ``(delta_at_max, g_max)``; None if *pieces* is empty.
+
+    Notes
+    -----
+    The coarse maximum is bracketed between its grid neighbours and the root
+    of dg/dδ found by Brent's method; a maximum at a piece end (one-sided,
+    e.g. a kink) is taken as is.  This replaces the golden-section search of
+    例 7-2 (whose tolerance is 1e-5 rad).
+    """
+    allp = program.pieces()
+    best = None
+    for k in pieces:
+        _, d0, d1, _ = allp[k]
+        grid = _piece_grid(d0, d1, step)
+        g, _ = func(*program.piece_state(k, grid))
+        i = int(np.argmax(g))
+        if best is None or g[i] > best[2][best[3]]:
+            best = (k, grid, g, i)
+    if best is None:
+        return None
+    k, grid, g, i = best
+
+    def dg(x):
+        return float(func(*program.piece_state(k, np.array([x])))[1][0])
+
+    x_best, g_best = float(grid[i]), float(g[i])
+    slope = dg(x_best)
+    if slope > 0 and i < len(grid) - 1:
+        lo, hi = x_best, float(grid[i + 1])
+    elif slope < 0 and i > 0:
+        lo, hi = float(grid[i - 1]), x_best
+    else:
+        return x_best, g_best
+    if dg(lo) > 0 > dg(hi):
+        x = brentq(dg, lo, hi, xtol=1e-15, rtol=1e-15, maxiter=200)
+        gx = float(func(*program.piece_state(k, np.array([x])))[0][0])
+        if gx >= g_best:
+            return x, gx
+    return x_best, g_best
+
+
+def _phase_pieces(program, kind):
+    return [k for k, (i, *_rest) in enumerate(program.pieces())
+            if program.segments[i].kind == kind]
+
+
+@dataclasses.dataclass(frozen=True)
+class Extremum:
+    """A refined extreme value: where (cam angle, rad) and how much."""
+
+    delta: float
+    value: float
+
+
+@dataclasses.dataclass(frozen=True)
+class CamChecks:
+    """Pressure angle, curvature and undercut checks over the cycle.
+
+    Attributes
+    ----------
+    alpha_rise, alpha_return : Extremum or None
+        Largest |α| in the rise (return) segments, rad (None if none).
+    rho_pitch_min : Extremum or None
+        Smallest radius of curvature of the convex pitch curve, m.
+    rho_work_min : Extremum
+        Smallest radius of curvature of the working curve (convex side), m;
+        ≤ 0 means a cusp (undercut).
+    undercut : bool
+        Roller: r_r ≥ ρ_pitch,min; flat face: r0 + s + s'' ≤ 0 somewhere.
+    corners : tuple of (float, bool)
+        Cam angles (rad) where the pitch curve has a corner (velocity jump)
+        and whether the corner is convex.
+    face_width_min : float or None
+        Flat face: 2 max |contact offset from the follower axis|, m.
+    """
+
+    alpha_rise: Extremum | None
+    alpha_return: Extremum | None
+    rho_pitch_min: Extremum | None
+    rho_work_min: Extremum
+    undercut: bool
+    corners: tuple
+    face_width_min: float | None
+
+
+def _abs_alpha_func(fol, sign):
+    def func(s, s1, s2, s3):
+        a, da = pressure_angle_and_rate(fol, s, s1, s2, s3)
+        return sign * a, sign * da
+    return func
+
+
+def max_pressure_angle(fol, program, kind, step=math.radians(1.0)):
+    """Largest |α| over the *kind* (``rise``/``return``) segments.
+
+    Returns
+    -------
+    Extremum or None
+        Cam angle (rad) and |α| (rad), refined to ~1e-13 rad of cam angle.
+        Notes: 例 7-2 (r0 = 40, e = 0, h = 20, 90° cosine rise:
+        22.2077° at 39.2315°).
+    """
+    pieces = _phase_pieces(program, kind)
+    if not pieces or fol.contact == "flat":
+        return None if not pieces else Extremum(program.pieces()[pieces[0]][1], 0.0)
+    hits = [maximize_on_pieces(program, pieces, _abs_alpha_func(fol, sgn), step)
+            for sgn in (1.0, -1.0)]
+    x, g = max(hits, key=lambda h: h[1])
+    return Extremum(x, g)
+
+
+def _corners(fol, program):
+    out = []
+    if fol.contact == "flat":
+        return ()
+    allp = program.pieces()
+    for imp in program.impacts():
+        if imp.kind != "rigid":
+            continue
+        k = next(j for j, p in enumerate(allp) if abs(p[1] - imp.delta) < 1e-12)
+        left = program.piece_state((k - 1) % len(allp), np.array([allp[k - 1][2]]))
+        right = program.piece_state(k, np.array([imp.delta]))
+        _, Vl, *_ = _derived(fol, *left)
+        _, Vr, *_ = _derived(fol, *right)
+        convex = bool(-fol.sigma * _cross(Vl, Vr)[0] > 0)
+        out.append((imp.delta, convex))
+    return tuple(out)
+
+
+def check_cam(fol, program, step=math.radians(1.0)):
+    """Pressure-angle maxima, curvature minima and undercut of a cam.
+
+    Parameters
+    ----------
+    fol : Follower
+    program : MotionProgram
+    step : float
+        Coarse search step, rad (the maxima are refined independently of it).
+
+    Returns
+    -------
+    CamChecks
+    """
+    a_rise = max_pressure_angle(fol, program, "rise", step)
+    a_ret = max_pressure_angle(fol, program, "return", step)
+    allk = range(len(program.pieces()))
+    hit = maximize_on_pieces(
+        program, allk, lambda *st: curvature_and_rate(fol, *st), step)
+    x, kmax = hit
+    face = None
+    if fol.contact == "flat":
+        rho_p = None
+        rho_w = Extremum(x, -kmax)
+        undercut = rho_w.value <= 0
+        vals = []
+        for sgn in (1.0, -1.0):
+            h = maximize_on_pieces(program, allk,
+                                   lambda s, s1, s2, s3, sgn=sgn:
+                                   (sgn * (fol.sigma * s1 - fol.e),
+                                    sgn * fol.sigma * s2), step)
+            vals.append(h[1])
+        face = 2 * max(vals)
+    else:
+        if kmax <= 0:
+            raise CamGeometryError("the pitch curve has no convex part (check r0 and e)")
+        rho_p = Extremum(x, 1.0 / kmax)
+        rho_w = Extremum(x, rho_p.value - fol.rr)
+        undercut = fol.contact == "roller" and rho_p.value <= fol.rr
+    return CamChecks(a_rise, a_ret, rho_p, rho_w, bool(undercut), _corners(fol, program), face)
+
+
+# --------------------------------------------------------------------------
+# sizing
+
+def _translating_s0_needed(program, e, sigma, kind, tan_allow, step):
+    """Smallest s0 keeping |α| ≤ [α] on the *kind* segments (translating)."""
+    pieces = _phase_pieces(program, kind)
+    if not pieces:
+        return -math.inf
+
+    best = -math.inf
+    for sgn in (1.0, -1.0):
+        def func(s, s1, s2, s3, sgn=sgn):
+            return sgn * (s1 - sigma * e) / tan_allow - s, sgn * s2 / tan_allow - s1
+        best = max(best, maximize_on_pieces(program, pieces, func, step)[1])
+    return best
+
+
+def translating_base_radius_min(program, e, rotation, alpha_rise, alpha_return=None,
+                                step=math.radians(1.0)):
+    """Smallest base radius of a translating knife/roller follower for [α].
+
+    Parameters
+    ----------
+    program : MotionProgram
+    e : float
+        Signed offset, m (positive: guide right of the cam centre).
+    rotation : int
+        +1 counter-clockwise cam, −1 clockwise.
+    alpha_rise : float
+        Allowed pressure angle in the rise, rad.
+    alpha_return : float, optional
+        Allowed pressure angle in the return, rad (None: not limited).
+    step : float
+        Coarse search step, rad.
+
+    Returns
+    -------
+    float
+        ``r0_min``, m.
+
+    Notes
+    -----
+    From eq. (7-14): ``tan α = |s' − σe|/(s0 + s) ≤ tan[α]`` gives
+    ``s0 ≥ max(|s' − σe|/tan[α] − s)`` and ``r0 = sqrt(s0² + e²)`` (习题 4-2).
+    """
+    need = _translating_s0_needed(program, e, rotation, "rise", math.tan(alpha_rise), step)
+    if alpha_return is not None:
+        need = max(need, _translating_s0_needed(program, e, rotation, "return",
+                                                math.tan(alpha_return), step))
+    return math.hypot(max(need, 0.0), e)
+
+
+def size_flat_base_radius(program, rho_min=0.0, step=math.radians(1.0)):
+    """Smallest base radius of a flat-faced cam with ρ = r0 + s + s'' ≥ ρ_min (m)."""
+    allk = range(len(program.pieces()))
+    hit = maximize_on_pieces(program, allk, lambda s, s1, s2, s3: (-(s + s2), -(s1 + s3)), step)
+    return max(hit[1] + rho_min, 0.0)
+
+
+def size_oscillating_base_radius(fol, program, alpha_rise, alpha_return=None,
+                                 step=math.radians(1.0), rtol=1e-12):
+    """Smallest base radius of an oscillating follower for [α] (bisection on r0).
+
+    Searches r0 in (|a − l|, a + l) for the smallest value whose pressure-angle
+    maxima stay within the limits; raises :class:`CamGeometryError` if none.
+    """
+    lo_lim, hi_lim = abs(fol.a - fol.l), fol.a + fol.l
+    psi = max(seg.s_start + max(seg.lift, 0) for seg in program.segments)
+
+    def ok(r0):
+        f = dataclasses.replace(fol, r0=r0)
+        if f.phi0 + psi >= math.pi:
+            return False
+        ar = max_pressure_angle(f, program, "rise", step)
+        good = ar is None or ar.value <= alpha_rise
+        if alpha_return is not None:
+            at = max_pressure_angle(f, program, "return", step)
+            good = good and (at is None or at.value <= alpha_return)
+        return good
+
+    grid = np.linspace(lo_lim, hi_lim, 202)[1:-1]
+    first = next((i for i, r in enumerate(grid) if ok(float(r))), None)
+    if first is None:
+        raise CamGeometryError("no base radius between |a - l| and a + l meets the "
+                               "pressure-angle limit")
+    lo = lo_lim if first == 0 else float(grid[first - 1])
+    hi = float(grid[first])
+    while hi - lo > rtol * hi:
+        mid = 0.5 * (lo + hi)
+        lo, hi = (lo, mid) if ok(mid) else (mid, hi)
+    return hi

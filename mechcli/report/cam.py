@@ -1,0 +1,260 @@
+"""``mechcli cam`` output: CSV, book-style report, JSON results, warnings.
+
+Pictures are in :mod:`mechcli.report.cam_plots` (imported only when a PNG or
+GIF is written).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from mechcli.report.files import Outputs
+from mechcli.report.run import finish
+from mechcli.report.table import Block, Report
+
+LABELS = {
+    "en": {
+        "table": "Follower motion and cam profile",
+        "delta": "δ/(°)", "s": "s/{u}", "psi": "ψ/(°)", "v": "ds/dδ/({u}/rad)",
+        "vpsi": "dψ/dδ", "a": "d²s/dδ²/({u}/rad²)", "apsi": "d²ψ/dδ²/(1/rad)",
+        "alpha": "α/(°)", "x": "x/{u}", "y": "y/{u}", "xw": "x'/{u}", "yw": "y'/{u}",
+        "rho": "ρ'/{u}",
+        "summary": "Results", "r0": "base radius r0", "r0_sized": "base radius r0 (sized)",
+        "phi0": "initial arm angle φ0", "h": "lift h", "psi_s": "swing ψ",
+        "a_rise": "max pressure angle, rise", "a_ret": "max pressure angle, return",
+        "at": "at δ =", "rho_p": "min radius of curvature, pitch curve (convex)",
+        "rho_w": "min radius of curvature, working curve",
+        "rr_max": "largest roller radius without undercut",
+        "undercut": "undercut", "yes": "yes", "no": "no",
+        "face": "minimum face width (no margin)",
+        "r0_min": "smallest base radius for [α]", "r0_min_flat": "smallest base radius (convex)",
+        "r0_other": "smallest base radius, offset on the other side",
+        "best_side": "better offset side", "right": "right", "left": "left",
+        "impacts": "Impacts", "rigid": "rigid impact (velocity jump)",
+        "soft": "soft impact (acceleration jump)", "none": "none (velocity and acceleration "
+        "continuous)",
+        "title_default": "Disc cam",
+    },
+    "zh": {
+        "table": "推杆运动规律与凸轮廓线",
+        "delta": "凸轮转角δ/(°)", "s": "位移s/{u}", "psi": "摆角ψ/(°)",
+        "v": "类速度ds/dδ/({u}/rad)", "vpsi": "类角速度dψ/dδ",
+        "a": "类加速度d²s/dδ²/({u}/rad²)", "apsi": "类角加速度d²ψ/dδ²/(1/rad)",
+        "alpha": "压力角α/(°)", "x": "理论廓线x/{u}", "y": "理论廓线y/{u}",
+        "xw": "实际廓线x'/{u}", "yw": "实际廓线y'/{u}", "rho": "曲率半径ρ'/{u}",
+        "summary": "计算结果", "r0": "基圆半径 r0", "r0_sized": "基圆半径 r0 (按计算选取)",
+        "phi0": "推杆初始位置角 φ0", "h": "推杆升程 h", "psi_s": "推杆摆角 ψ",
+        "a_rise": "推程最大压力角", "a_ret": "回程最大压力角", "at": "对应凸轮转角 δ =",
+        "rho_p": "理论廓线最小曲率半径 (外凸)", "rho_w": "实际廓线最小曲率半径",
+        "rr_max": "不失真的最大滚子半径", "undercut": "运动失真 (根切)", "yes": "是",
+        "no": "否", "face": "平底最小宽度 (不含余量)",
+        "r0_min": "满足许用压力角的最小基圆半径", "r0_min_flat": "凸轮廓线全外凸的最小基圆半径",
+        "r0_other": "偏置于另一侧时的最小基圆半径", "best_side": "合理的偏置方位",
+        "right": "右侧", "left": "左侧", "impacts": "冲击",
+        "rigid": "刚性冲击 (速度突变)", "soft": "柔性冲击 (加速度突变)",
+        "none": "无冲击 (速度、加速度连续)", "title_default": "盘形凸轮",
+    },
+}
+
+
+def _f(x, nd=4):
+    return f"{x:.{nd}f}"
+
+
+def results_dict(cs, design):
+    """Scalar results in the spec's units (angles in degrees) for ``--json``."""
+    u = cs.header.scale
+    fol, ch = design.follower, design.checks
+    deg = math.degrees
+    r = {"units": cs.header.unit, "r0": fol.r0 / u, "n_points": len(design.profile.delta) - 1,
+         "step_deg": 360.0 / (len(design.profile.delta) - 1)}
+    if cs.angular:
+        r.update(psi_deg=deg(cs.stroke), phi0_deg=deg(fol.phi0), a=fol.a / u, l=fol.l / u)
+    else:
+        r.update(h=cs.stroke / u, e=abs(fol.e) / u,
+                 offset_side="right" if fol.e > 0 else "left" if fol.e < 0 else "none")
+    if fol.contact == "roller":
+        r["rr"] = fol.rr / u
+    for key, ext in (("alpha_rise_max", ch.alpha_rise), ("alpha_return_max", ch.alpha_return)):
+        if ext is not None:
+            r[f"{key}_deg"] = deg(ext.value)
+            r[f"{key}_at_deg"] = deg(ext.delta)
+    if ch.rho_pitch_min is not None:
+        r["rho_pitch_min"] = ch.rho_pitch_min.value / u
+        r["rho_pitch_min_at_deg"] = deg(ch.rho_pitch_min.delta)
+    r["rho_work_min"] = ch.rho_work_min.value / u
+    r["rho_work_min_at_deg"] = deg(ch.rho_work_min.delta)
+    if design.rr_max is not None:
+        r["rr_max"] = design.rr_max / u
+    r["undercut"] = ch.undercut
+    if ch.face_width_min is not None:
+        r["face_width_min"] = ch.face_width_min / u
+    p = design.profile
+    scale = 1.0 if cs.angular else 1.0 / u
+    r["ds_max"] = float(np.max(np.abs(p.s1))) * scale
+    r["d2s_max"] = float(np.max(np.abs(p.s2))) * scale
+    if cs.omega is not None:
+        r["v_max"] = r["ds_max"] * cs.omega
+        r["a_max"] = r["d2s_max"] * cs.omega ** 2
+        r["j_max"] = float(np.max(np.abs(p.s3))) * scale * cs.omega ** 3
+    rigid = [round(deg(i.delta), 9) for i in design.impacts if i.kind == "rigid"]
+    soft = [round(deg(i.delta), 9) for i in design.impacts if i.kind == "soft"]
+    r.update(n_rigid_impacts=len(rigid), n_soft_impacts=len(soft), rigid_impacts_deg=rigid,
+             soft_impacts_deg=soft)
+    sz = design.sizing
+    if sz is not None:
+        r["r0_min"] = sz.r0_min / u
+        if sz.best_side is not None:
+            r["r0_min_other_side"] = sz.r0_min_other_side / u
+            r["offset_side_best"] = "right" if sz.best_side > 0 else "left"
+    return r
+
+
+def warnings_for(cs, design, lang="en"):
+    """One-line warnings: undercut, pressure angle over the limit, rigid impacts."""
+    zh = lang == "zh"
+    ch, fol = design.checks, design.follower
+    u, unit = cs.header.scale, cs.header.unit
+    out = []
+    deg = math.degrees
+    if ch.undercut:
+        where = deg(ch.rho_work_min.delta)
+        if fol.contact == "flat":
+            out.append(f"the working profile has a cusp near δ = {where:.4g}° "
+                       f"(r0 + s + s'' = {ch.rho_work_min.value / u:.4g} {unit} <= 0); "
+                       "increase r0" if not zh else
+                       f"凸轮实际廓线在 δ = {where:.4g}° 附近出现尖点 (r0 + s + s'' <= 0), 应增大基圆半径")
+        else:
+            out.append(f"undercut: roller radius {fol.rr / u:g} {unit} >= pitch-curve radius of "
+                       f"curvature {ch.rho_pitch_min.value / u:.4g} {unit} near δ = {where:.4g}°"
+                       if not zh else
+                       f"运动失真: 滚子半径 {fol.rr / u:g} {unit} >= 理论廓线曲率半径 "
+                       f"{ch.rho_pitch_min.value / u:.4g} {unit} (δ = {where:.4g}°)")
+    for name, ext, lim in (("rise", ch.alpha_rise, cs.limits.alpha_rise),
+                           ("return", ch.alpha_return, cs.limits.alpha_return)):
+        if ext is not None and ext.value > lim:
+            out.append(f"max pressure angle in the {name} {deg(ext.value):.4f}° exceeds "
+                       f"[α] = {deg(lim):g}°" if not zh else
+                       f"{'推' if name == 'rise' else '回'}程最大压力角 {deg(ext.value):.4f}° "
+                       f"超过许用值 {deg(lim):g}°")
+    rigid = [deg(i.delta) for i in design.impacts if i.kind == "rigid"]
+    if rigid:
+        where = ", ".join(f"{d:.4g}°" for d in rigid)
+        out.append(f"rigid impact (velocity jump) at δ = {where}" if not zh else
+                   f"刚性冲击 (速度突变) 位于 δ = {where}")
+    return out
+
+
+def csv_columns(cs, design):
+    """``(header, values)`` columns of ``cam.csv`` (spec units, degrees)."""
+    p, unit, u = design.profile, cs.header.unit, cs.header.scale
+    cols = [("delta_deg", np.degrees(p.delta))]
+    if cs.angular:
+        cols += [("psi_deg", np.degrees(p.s)), ("v_rad_rad", p.s1), ("a_rad_rad2", p.s2),
+                 ("j_rad_rad3", p.s3)]
+        if cs.omega is not None:
+            w = cs.omega
+            cols += [("omega_rad_s", p.s1 * w), ("alpha_rad_s2", p.s2 * w ** 2),
+                     ("jerk_rad_s3", p.s3 * w ** 3)]
+    else:
+        cols += [(f"s_{unit}", p.s / u), (f"v_{unit}_rad", p.s1 / u),
+                 (f"a_{unit}_rad2", p.s2 / u), (f"j_{unit}_rad3", p.s3 / u)]
+        if cs.omega is not None:
+            w = cs.omega
+            cols += [(f"v_{unit}_s", p.s1 * w / u), (f"a_{unit}_s2", p.s2 * w ** 2 / u),
+                     (f"j_{unit}_s3", p.s3 * w ** 3 / u)]
+    if p.pitch is not None:
+        cols += [(f"x_pitch_{unit}", p.pitch[0] / u), (f"y_pitch_{unit}", p.pitch[1] / u)]
+    cols += [(f"x_work_{unit}", p.work[0] / u), (f"y_work_{unit}", p.work[1] / u),
+             ("pressure_angle_deg", np.degrees(p.alpha))]
+    if p.rho_pitch is not None:
+        cols.append((f"rho_pitch_{unit}", p.rho_pitch / u))
+    cols.append((f"rho_work_{unit}", p.rho_work / u))
+    if p.roller_angle is not None:
+        cols.append(("roller_angle_deg", np.degrees(p.roller_angle)))
+    if p.face_offset is not None:
+        cols.append((f"face_offset_{unit}", p.face_offset / u))
+    return cols
+
+
+def build_report(cs, design, lang="en"):
+    """The book-style text report (table every ``table_step`` plus results)."""
+    L = LABELS[lang]
+    unit, u = cs.header.unit, cs.header.scale
+    p, fol, ch = design.profile, design.follower, design.checks
+    deg = math.degrees
+    rep = Report(cs.header.title)
+    n = len(p.delta) - 1
+    every = max(1, int(round(cs.table_step / (2 * math.pi / n))))
+    idx = np.arange(0, n + 1, every)
+    if cs.angular:
+        heads = [L["delta"], L["psi"], L["vpsi"], L["apsi"]]
+        motion = [np.degrees(p.s), p.s1, p.s2]
+    else:
+        heads = [L["delta"], L["s"], L["v"], L["a"]]
+        motion = [p.s / u, p.s1 / u, p.s2 / u]
+    heads += [L["alpha"]]
+    geo = []
+    if p.pitch is not None:
+        heads += [L["x"], L["y"]]
+        geo += [p.pitch[0] / u, p.pitch[1] / u]
+    heads += [L["xw"], L["yw"], L["rho"]]
+    geo += [p.work[0] / u, p.work[1] / u, p.rho_work / u]
+    rows = []
+    for i in idx:
+        rows.append([_f(deg(p.delta[i]), 1)] + [_f(c[i]) for c in motion]
+                    + [_f(deg(p.alpha[i]))] + [_f(c[i]) for c in geo])
+    rep.blocks.append(Block(L["table"], [h.format(u=unit) for h in heads], rows))
+    kv = []
+    sz = design.sizing
+    kv.append([L["r0_sized"] if cs.r0 is None else L["r0"], f"{fol.r0 / u:.4f} {unit}"])
+    if cs.angular:
+        kv.append([L["psi_s"], f"{deg(cs.stroke):.4f}°"])
+        kv.append([L["phi0"], f"{deg(fol.phi0):.4f}°"])
+    else:
+        kv.append([L["h"], f"{cs.stroke / u:.4f} {unit}"])
+    for key, ext in (("a_rise", ch.alpha_rise), ("a_ret", ch.alpha_return)):
+        if ext is not None:
+            kv.append([L[key], f"{deg(ext.value):.4f}°  ({L['at']} {deg(ext.delta):.4f}°)"])
+    if ch.rho_pitch_min is not None:
+        kv.append([L["rho_p"], f"{ch.rho_pitch_min.value / u:.4f} {unit}  "
+                   f"({L['at']} {deg(ch.rho_pitch_min.delta):.4f}°)"])
+    kv.append([L["rho_w"], f"{ch.rho_work_min.value / u:.4f} {unit}  "
+               f"({L['at']} {deg(ch.rho_work_min.delta):.4f}°)"])
+    if design.rr_max is not None:
+        kv.append([L["rr_max"], f"{design.rr_max / u:.4f} {unit}"])
+    kv.append([L["undercut"], L["yes"] if ch.undercut else L["no"]])
+    if ch.face_width_min is not None:
+        kv.append([L["face"], f"{ch.face_width_min / u:.4f} {unit}"])
+    if sz is not None:
+        kv.append([L["r0_min_flat"] if fol.contact == "flat" else L["r0_min"],
+                   f"{sz.r0_min / u:.4f} {unit}"])
+        if sz.best_side is not None:
+            kv.append([L["r0_other"], f"{sz.r0_min_other_side / u:.4f} {unit}"])
+            kv.append([L["best_side"], L["right"] if sz.best_side > 0 else L["left"]])
+    rep.blocks.append(Block(L["summary"], [], kv))
+    imp = [[L[i.kind], f"δ = {deg(i.delta):.4f}°"] for i in design.impacts]
+    rep.blocks.append(Block(L["impacts"], [], imp or [[L["none"], ""]]))
+    return rep
+
+
+def cam_report(run, cs, design):
+    """Write cam.csv, the pictures and report.txt; print the table or JSON."""
+    out = Outputs(run.out_dir)
+    out.csv("cam.csv", csv_columns(cs, design))
+    warnings = warnings_for(cs, design, run.lang)
+    animate = cs.animate if run.animate is None else run.animate
+    if (run.plot and cs.plot) or animate:
+        from mechcli.report import cam_plots
+
+        used = cam_plots.setup(run.lang)
+        if used != run.lang:
+            warnings.append("no CJK font installed: plot labels in English")
+        if run.plot and cs.plot:
+            cam_plots.plot_all(cs, design, out, used)
+        if animate:
+            cam_plots.animate(cs, design, out, used)
+    finish(run, "cam", build_report(cs, design, run.lang), results_dict(cs, design), out,
+           warnings)

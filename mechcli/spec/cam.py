@@ -1,0 +1,261 @@
+"""The ``mechcli cam`` problem file: follower, motion program, checks, sizing.
+
+See ``docs/cam.md`` for every key, its unit and default.  Lengths are read in
+the spec's ``units`` and converted to metres; angles are degrees in the file
+and radians in the returned :class:`CamSpec`.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+from mechcli.spec.common import read_expected, read_header
+from mechcli.spec.errors import SpecError
+
+LAW_CHOICES = ("uniform", "parabolic", "cosine", "sine", "poly345", "poly4567",
+               "modified-trapezoid", "modified-sine", "constant-velocity", "linear",
+               "constant-acceleration", "harmonic", "simple-harmonic", "cycloidal",
+               "3-4-5", "4-5-6-7")
+
+#: default sampling step of the profile, degrees (see docs/cam.md and benchmarks/bench_cam.py)
+DEFAULT_STEP_DEG = 0.1
+
+
+@dataclasses.dataclass(frozen=True)
+class Limits:
+    """Allowed pressure angles (rad) and the undercut policy."""
+
+    alpha_rise: float
+    alpha_return: float
+    forbid_undercut: bool
+
+
+@dataclasses.dataclass(frozen=True)
+class Sizing:
+    """What to size (``[sizing]``); lengths in m.
+
+    Attributes
+    ----------
+    base_radius : bool
+        Find the smallest base radius (pressure angle for knife/roller,
+        convexity ρ ≥ rho_min for the flat face).
+    limit_return : bool
+        Also keep the return within ``alpha_return`` when sizing.
+    rho_min : float
+        Flat face: smallest allowed radius of curvature of the working curve, m.
+    round_up : float
+        Round the sized base radius up to a multiple of this, m (0: no rounding).
+    """
+
+    base_radius: bool
+    limit_return: bool
+    rho_min: float
+    round_up: float
+
+
+@dataclasses.dataclass(frozen=True)
+class CamSpec:
+    """A validated cam problem (SI units, radians).
+
+    ``follower_args`` are the keyword arguments of
+    :class:`mechcli.core.cam_profile.Follower` except ``r0`` when it is to be
+    sized (``r0`` is None then).  ``segments`` are ``(kind, span, law, lift)``.
+    """
+
+    header: object
+    motion: str
+    contact: str
+    r0: float | None
+    follower_args: dict
+    segments: tuple
+    stroke: float
+    angular: bool
+    omega: float | None
+    limits: Limits
+    sizing: Sizing | None
+    step: float
+    table_step: float
+    plot: bool
+    animate: bool
+    frames: int
+    expected: dict
+
+
+def _segments(motion_sec, stroke, angular, file):
+    secs = motion_sec.tables("segments")
+    if not secs:
+        raise motion_sec.error("segments", "at least one segment", "an empty array")
+    out = []
+    total = 0.0
+    level = 0.0
+    unit_word = "deg" if angular else "length"
+    for sec in secs:
+        kind = sec.string("kind", choices=["rise", "dwell", "return"])
+        span = sec.number("angle", positive=True)
+        if kind == "dwell":
+            law, lift = None, 0.0
+        else:
+            law = sec.string("law", choices=list(LAW_CHOICES))
+            if angular:
+                lift = math.radians(sec.number("lift", math.degrees(stroke), positive=True))
+            else:
+                lift = sec.length("lift") if sec.has("lift") else stroke
+            new = level + (lift if kind == "rise" else -lift)
+            tol = 1e-9 * stroke
+            if new > stroke + tol:
+                raise sec.error("lift", f"a rise ending at most at the stroke ({unit_word} "
+                                f"{'psi' if angular else 'h'})", "one that goes beyond it")
+            if new < -tol:
+                raise sec.error("lift" if sec.has("lift") else "kind",
+                                "a return no larger than the lift reached before it "
+                                "(return lift = rise lift)",
+                                f"a return of {_show(lift, angular, sec.unit)} from "
+                                f"{_show(level, angular, sec.unit)}")
+            level = 0.0 if abs(new) <= tol else new
+        sec.finish()
+        total += span
+        out.append((kind, math.radians(span), law, lift))
+    if abs(total - 360.0) > 1e-6:
+        raise SpecError(file, motion_sec.key("segments"), "segment angles summing to 360 deg",
+                        f"{total:g} deg")
+    if abs(level) > 1e-9 * stroke:
+        raise SpecError(file, motion_sec.key("segments"),
+                        "returns that bring the follower back (return lift = rise lift)",
+                        f"the cycle ending {_show(level, angular, motion_sec.unit)} above "
+                        "the start")
+    if max(_levels(out)) < stroke * (1 - 1e-9):
+        raise SpecError(file, motion_sec.key("segments"),
+                        "rises that reach the stroke " + ("psi" if angular else "h"),
+                        "a largest displacement below it")
+    return tuple(out)
+
+
+def _levels(segs):
+    level = 0.0
+    for kind, _, _, lift in segs:
+        level += lift if kind == "rise" else (-lift if kind == "return" else 0.0)
+        yield level
+
+
+def _show(value, angular, unit):
+    return f"{math.degrees(value):g} deg" if angular else f"{value / unit:g}"
+
+
+def read_cam_spec(root, step_override=None, points_override=None):
+    """Validate a ``mechcli cam`` spec.
+
+    Parameters
+    ----------
+    root : mechcli.spec.reader.Section
+    step_override : float, optional
+        ``--step`` (deg).
+    points_override : int, optional
+        ``--points`` (profile points per revolution).
+
+    Returns
+    -------
+    CamSpec
+    """
+    header = read_header(root, "cam")
+    file = root.file
+    fol = root.table("follower")
+    motion = fol.string("motion", "translating", choices=["translating", "oscillating"])
+    contact = fol.string("contact", choices=["knife", "roller", "flat"])
+    angular = motion == "oscillating"
+    if angular and contact == "flat":
+        raise fol.error("contact", "'knife' or 'roller' for an oscillating follower",
+                        "'flat'")
+    sz = root.table("sizing", None)
+    sizing = None
+    if sz is not None:
+        sizing = Sizing(base_radius=sz.boolean("base_radius", True),
+                        limit_return=sz.boolean("limit_return", False),
+                        rho_min=sz.length("rho_min", 0.0, nonneg=True),
+                        round_up=sz.length("round_up", 0.0, nonneg=True))
+        sz.finish()
+    sized = sizing is not None and sizing.base_radius
+    r0 = fol.length("r0") if fol.has("r0") or not sized else None
+    args = {}
+    if contact == "roller":
+        args["rr"] = fol.length("rr")
+    if motion == "translating":
+        e = fol.length("e", 0.0, nonneg=True)
+        side = fol.string("side", "right", choices=["right", "left"])
+        args["e"] = e if side == "right" else -e
+        if r0 is not None and contact != "flat" and r0 <= e:
+            raise fol.error("r0", f"a base radius larger than the offset e = {e / root.unit:g}",
+                            f"{r0 / root.unit:g}")
+    else:
+        args["a"] = fol.length("a")
+        args["l"] = fol.length("l")
+        a, l = args["a"], args["l"]
+        if r0 is not None and not abs(a - l) < r0 < a + l:
+            raise fol.error("r0", f"|a - l| < r0 < a + l (here {abs(a - l) / root.unit:g} "
+                            f"< r0 < {(a + l) / root.unit:g}) so that a, l, r0 form the "
+                            "oscillating follower (eq. 4-6)", f"{r0 / root.unit:g}")
+    if contact == "roller" and r0 is not None and args["rr"] >= r0:
+        raise fol.error("rr", f"a roller radius smaller than r0 = {r0 / root.unit:g}",
+                        f"{args['rr'] / root.unit:g}")
+    fol.finish()
+
+    cam = root.table("cam", None)
+    rotation, omega = 1, None
+    if cam is not None:
+        rotation = 1 if cam.string("rotation", "ccw", choices=["ccw", "cw"]) == "ccw" else -1
+        omega = cam.number("omega", None, positive=True)
+        cam.finish()
+    args["rotation"] = rotation
+
+    mot = root.table("motion")
+    if angular:
+        psi = mot.number("psi", positive=True)
+        stroke = math.radians(psi)
+        if r0 is not None:
+            phi0 = math.acos((a * a + l * l - r0 * r0) / (2 * a * l))
+            if phi0 + stroke >= math.pi:
+                raise mot.error("psi", f"a swing below {180 - math.degrees(phi0):.6g} deg "
+                                f"(phi0 = {math.degrees(phi0):.6g} deg; phi0 + psi < 180 deg)",
+                                f"{psi:g}")
+    else:
+        stroke = mot.length("h")
+    segments = _segments(mot, stroke, angular, file)
+    mot.finish()
+
+    lim = root.table("limits", None)
+    a_rise_default = 45.0 if angular else 30.0
+    if lim is not None:
+        limits = Limits(math.radians(lim.number("alpha_rise", a_rise_default, lo=0, hi=89.999)),
+                        math.radians(lim.number("alpha_return", 70.0, lo=0, hi=89.999)),
+                        lim.boolean("forbid_undercut", False))
+        lim.finish()
+    else:
+        limits = Limits(math.radians(a_rise_default), math.radians(70.0), False)
+
+    samp = root.table("sampling", None)
+    step = DEFAULT_STEP_DEG
+    if samp is not None:
+        if samp.has("step") and samp.has("points"):
+            raise samp.error("points", "either step or points, not both", "both")
+        step = samp.number("step", step, lo=1e-4, hi=10.0)
+        if samp.has("points"):
+            step = 360.0 / samp.integer("points", lo=36, hi=3_600_000)
+        samp.finish()
+    if step_override is not None:
+        step = float(step_override)
+    if points_override is not None:
+        step = 360.0 / int(points_override)
+
+    out = root.table("output", None)
+    table_step, plot, animate, frames = 10.0, True, False, 72
+    if out is not None:
+        table_step = out.number("table_step", table_step, lo=0.01, hi=180.0)
+        plot = out.boolean("plots", True)
+        animate = out.boolean("animate", False)
+        frames = out.integer("frames", frames, lo=4, hi=720)
+        out.finish()
+    expected = read_expected(root)
+    root.finish()
+    return CamSpec(header, motion, contact, r0, args, segments, stroke, angular, omega,
+                   limits, sizing, math.radians(step), math.radians(table_step), plot,
+                   animate, frames, expected)
