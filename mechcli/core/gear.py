@@ -1,0 +1,207 @@
+"""Geometry of one involute spur gear (standard or profile-shifted).
+
+Lengths in metres, angles in radians.  The gear is the one cut by a standard
+rack cutter (module m, pressure angle alpha, addendum ha* m, clearance c* m)
+shifted by x m.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import numpy as np
+
+from mechcli.core.errors import UnsolvableError
+from mechcli.core.involute import involute_function, inverse_involute
+
+
+class GearGeometryError(UnsolvableError):
+    """A gear that cannot exist as asked (pointed tip, root below the centre, ...)."""
+
+
+@dataclasses.dataclass(frozen=True)
+class SpurGear:
+    """An involute spur gear and its circles (表 5-2, extended by the profile shift).
+
+    Attributes
+    ----------
+    z : int
+        Number of teeth.
+    m : float
+        Module (m).
+    alpha : float
+        Standard pressure angle (rad).
+    ha_star, c_star : float
+        Addendum and clearance coefficients.
+    x : float
+        Profile-shift coefficient (positive away from the centre).
+    """
+
+    z: int
+    m: float
+    alpha: float
+    ha_star: float = 1.0
+    c_star: float = 0.25
+    x: float = 0.0
+
+    # -- circles (m) -----------------------------------------------------
+    @property
+    def d(self):
+        """Reference (pitch) diameter m z (m)."""
+        return self.m * self.z
+
+    @property
+    def r(self):
+        return self.d / 2
+
+    @property
+    def db(self):
+        """Base diameter d cos(alpha) (m), eq. (5-5)."""
+        return self.d * math.cos(self.alpha)
+
+    @property
+    def rb(self):
+        return self.db / 2
+
+    @property
+    def ha(self):
+        """Addendum (ha* + x) m (m); ha* m for the standard gear."""
+        return (self.ha_star + self.x) * self.m
+
+    @property
+    def hf(self):
+        """Dedendum (ha* + c* - x) m (m)."""
+        return (self.ha_star + self.c_star - self.x) * self.m
+
+    @property
+    def h(self):
+        """Whole depth ha + hf (m)."""
+        return self.ha + self.hf
+
+    @property
+    def da(self):
+        """Tip diameter d + 2 ha (m), eq. (5-6)."""
+        return self.d + 2 * self.ha
+
+    @property
+    def ra(self):
+        return self.da / 2
+
+    @property
+    def df(self):
+        """Root diameter d - 2 hf (m), eq. (5-7)."""
+        return self.d - 2 * self.hf
+
+    @property
+    def rf(self):
+        return self.df / 2
+
+    @property
+    def p(self):
+        """Circular pitch pi m (m)."""
+        return math.pi * self.m
+
+    @property
+    def pb(self):
+        """Base pitch p cos(alpha) (m)."""
+        return self.p * math.cos(self.alpha)
+
+    @property
+    def s(self):
+        """Tooth thickness on the reference circle m (pi/2 + 2 x tan alpha) (m)."""
+        return self.m * (math.pi / 2 + 2 * self.x * math.tan(self.alpha))
+
+    @property
+    def e(self):
+        """Space width on the reference circle p - s (m)."""
+        return self.p - self.s
+
+    @property
+    def c(self):
+        """Bottom clearance c* m (m)."""
+        return self.c_star * self.m
+
+    @property
+    def alpha_a(self):
+        """Pressure angle at the tip circle arccos(rb / ra) (rad), eq. (5-8)."""
+        return math.acos(self.rb / self.ra)
+
+    # -- thickness -------------------------------------------------------
+    def tooth_thickness(self, radius):
+        """Arc tooth thickness at a radius >= rb (m).
+
+        s_K = s r_K / r - 2 r_K (inv alpha_K - inv alpha), alpha_K = arccos(rb / r_K).
+        Negative where the tooth would already be pointed.
+        """
+        rk = np.asarray(radius, dtype=float)
+        ak = np.arccos(np.clip(self.rb / rk, -1.0, 1.0))
+        out = rk * (self.s / self.r - 2 * (involute_function(ak) - involute_function(self.alpha)))
+        return out if np.ndim(out) else float(out)
+
+    def space_width(self, radius):
+        """Arc space width 2 pi r_K / z - s_K at a radius >= rb (m)."""
+        rk = np.asarray(radius, dtype=float)
+        out = 2 * np.pi * rk / self.z - self.tooth_thickness(rk)
+        return out if np.ndim(out) else float(out)
+
+    def half_tooth_angle(self, radius):
+        """Half the angle the tooth subtends at a radius >= rb (rad): s_K / (2 r_K)."""
+        rk = np.asarray(radius, dtype=float)
+        ak = np.arccos(np.clip(self.rb / rk, -1.0, 1.0))
+        return self.s / (2 * self.r) + involute_function(self.alpha) - involute_function(ak)
+
+    @property
+    def pointed_radius(self):
+        """Radius where the two flanks meet (tooth thickness 0) (m).
+
+        inv alpha_p = s / d + inv alpha, r_p = rb / cos alpha_p (习题 5-1).
+        """
+        theta = self.s / self.d + involute_function(self.alpha)
+        ap = float(inverse_involute(theta).alpha[0])
+        return self.rb / math.cos(ap)
+
+    # -- undercut ----------------------------------------------------------
+    @property
+    def z_min(self):
+        """Fewest teeth without undercut by the standard rack, 2 ha* / sin^2 alpha."""
+        return 2 * self.ha_star / math.sin(self.alpha) ** 2
+
+    @property
+    def x_min(self):
+        """Least profile shift against undercut, ha* (z_min - z) / z_min."""
+        return self.ha_star * (self.z_min - self.z) / self.z_min
+
+    @property
+    def undercut(self):
+        """True if the standard rack undercuts this gear (x < x_min)."""
+        return self.x < self.x_min - 1e-12
+
+
+def spur_gear(z, m, alpha, ha_star=1.0, c_star=0.25, x=0.0):
+    """Build a :class:`SpurGear` and check that it can exist.
+
+    Parameters
+    ----------
+    z : int
+        Number of teeth (>= 1).
+    m : float
+        Module (m), > 0.
+    alpha : float
+        Pressure angle (rad), in (0, pi/4].
+    ha_star, c_star : float
+        Addendum and clearance coefficients (>= 0).
+    x : float
+        Profile-shift coefficient.
+
+    Raises
+    ------
+    GearGeometryError
+        The root circle would not be outside the centre (df <= 0).
+    """
+    g = SpurGear(int(z), float(m), float(alpha), float(ha_star), float(c_star), float(x))
+    if g.df <= 0:
+        raise GearGeometryError(
+            f"root diameter df = {g.df / g.m:.4g} m would be <= 0 "
+            f"(z = {g.z}, x = {g.x:g}): too few teeth for this shift")
+    return g

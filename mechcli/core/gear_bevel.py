@@ -1,0 +1,98 @@
+"""A pair of straight bevel gears (习题 5-9).  Lengths in metres, angles in radians.
+
+Dimensions at the large end (module m); tip and root cones of the
+"unequal clearance" kind (tip cone angle delta + theta_a).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+
+@dataclasses.dataclass(frozen=True)
+class BevelPair:
+    """Two straight bevel gears with shaft angle sigma.
+
+    Attributes
+    ----------
+    z1, z2 : int
+    m : float
+        Module at the large end (m).
+    alpha : float
+        Pressure angle (rad).
+    ha_star, c_star : float
+    sigma : float
+        Shaft angle (rad).
+    """
+
+    z1: int
+    z2: int
+    m: float
+    alpha: float
+    ha_star: float
+    c_star: float
+    sigma: float
+
+    @property
+    def delta1(self):
+        """Pitch-cone angle of gear 1, tan d1 = sin S / (z2/z1 + cos S) (rad)."""
+        return math.atan2(math.sin(self.sigma), self.z2 / self.z1 + math.cos(self.sigma))
+
+    @property
+    def delta2(self):
+        return self.sigma - self.delta1
+
+    def d(self, z):
+        """Reference diameter m z (m)."""
+        return self.m * z
+
+    @property
+    def R(self):
+        """Cone distance d1 / (2 sin delta1) (m)."""
+        return self.d(self.z1) / (2 * math.sin(self.delta1))
+
+    @property
+    def ha(self):
+        return self.ha_star * self.m
+
+    @property
+    def hf(self):
+        return (self.ha_star + self.c_star) * self.m
+
+    @property
+    def theta_a(self):
+        """Addendum angle arctan(ha / R) (rad)."""
+        return math.atan(self.ha / self.R)
+
+    @property
+    def theta_f(self):
+        """Dedendum angle arctan(hf / R) (rad)."""
+        return math.atan(self.hf / self.R)
+
+    def delta_a(self, delta):
+        """Tip-cone angle delta + theta_a (rad)."""
+        return delta + self.theta_a
+
+    def delta_f(self, delta):
+        """Root-cone angle delta - theta_f (rad)."""
+        return delta - self.theta_f
+
+    def da(self, z, delta):
+        """Tip diameter d + 2 ha cos(delta) (m)."""
+        return self.d(z) + 2 * self.ha * math.cos(delta)
+
+    def df(self, z, delta):
+        """Root diameter d - 2 hf cos(delta) (m)."""
+        return self.d(z) - 2 * self.hf * math.cos(delta)
+
+    @staticmethod
+    def zv(z, delta):
+        """Virtual number of teeth z / cos(delta)."""
+        return z / math.cos(delta)
+
+
+def bevel_pair(z1, z2, m, alpha, ha_star=1.0, c_star=0.2, sigma=math.pi / 2):
+    """Build a :class:`BevelPair` (习题 5-9)."""
+    return BevelPair(int(z1), int(z2), float(m), float(alpha), float(ha_star), float(c_star),
+                     float(sigma))

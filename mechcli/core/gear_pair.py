@@ -1,0 +1,214 @@
+"""A pair of external involute spur gears: centre distance, operating pressure
+angle, pitch circles, backlash, clearance and the contact ratio (表 5-2, 【例 5-4】).
+
+Lengths in metres, angles in radians.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+from mechcli.core.errors import UnsolvableError
+from mechcli.core.gear import SpurGear
+from mechcli.core.involute import involute_function, inverse_involute
+
+
+class MeshError(UnsolvableError):
+    """Two gears cannot mesh as asked."""
+
+
+def standard_centre_distance(g1: SpurGear, g2: SpurGear):
+    """a = m (z1 + z2) / 2 (m)."""
+    return g1.m * (g1.z + g2.z) / 2
+
+
+def zero_backlash_pressure_angle(g1: SpurGear, g2: SpurGear):
+    """Operating pressure angle of the zero-backlash mesh (rad).
+
+    inv alpha' = 2 tan(alpha) (x1 + x2) / (z1 + z2) + inv alpha (习题 5-3).
+    """
+    theta = 2 * math.tan(g1.alpha) * (g1.x + g2.x) / (g1.z + g2.z) + involute_function(g1.alpha)
+    if theta <= 0:
+        raise MeshError(f"x1 + x2 = {g1.x + g2.x:g} is so negative that no zero-backlash "
+                        "pressure angle exists (inv alpha' <= 0)")
+    return float(inverse_involute(theta).alpha[0])
+
+
+def centre_distance_from_pressure_angle(g1, g2, alpha_w):
+    """a' = a cos(alpha) / cos(alpha') (m)."""
+    return standard_centre_distance(g1, g2) * math.cos(g1.alpha) / math.cos(alpha_w)
+
+
+def pressure_angle_from_centre_distance(g1, g2, a_w):
+    """alpha' = arccos(a cos(alpha) / a') (rad); needs a' >= rb1 + rb2."""
+    c = standard_centre_distance(g1, g2) * math.cos(g1.alpha) / a_w
+    if c > 1:
+        raise MeshError(f"centre distance {a_w:g} m is below rb1 + rb2 = "
+                        f"{g1.rb + g2.rb:g} m: the base circles overlap")
+    return math.acos(c)
+
+
+def design_teeth_from_ratio(ratio, a_w, m):
+    """Tooth numbers of a standard pair from the ratio, centre distance and module.
+
+    z1 + z2 = 2 a' / m, z2 = i z1 (习题 5-2).
+
+    Raises
+    ------
+    MeshError
+        2 a' / m or z1 is not a whole number: say which neighbours would work.
+    """
+    total = 2 * a_w / m
+    if abs(total - round(total)) > 1e-9 * max(1.0, total):
+        raise MeshError(f"2 a'/m = {total:.6g} is not a whole number of teeth: a standard "
+                        f"pair needs a' = m (z1 + z2) / 2, e.g. {m * math.floor(total) / 2:g} m "
+                        f"or {m * math.ceil(total) / 2:g} m")
+    total = int(round(total))
+    z1 = total / (1 + ratio)
+    if abs(z1 - round(z1)) > 1e-9 * total:
+        lo = int(math.floor(z1))
+        raise MeshError(f"z1 = (z1 + z2)/(1 + i) = {z1:.6g} is not whole: with z1 + z2 = "
+                        f"{total} the nearest ratios are {(total - lo) / lo:.5g} (z1 = {lo}) "
+                        f"and {(total - lo - 1) / (lo + 1):.5g} (z1 = {lo + 1})")
+    z1 = int(round(z1))
+    return z1, total - z1
+
+
+@dataclasses.dataclass(frozen=True)
+class GearPair:
+    """Two external spur gears mounted at an operating centre distance.
+
+    Attributes
+    ----------
+    g1, g2 : SpurGear
+        Pinion and wheel (same m, alpha).
+    a_w : float
+        Operating centre distance a' (m).
+    alpha_w : float
+        Operating pressure angle alpha' (rad).
+    """
+
+    g1: SpurGear
+    g2: SpurGear
+    a_w: float
+    alpha_w: float
+
+    @property
+    def a(self):
+        """Standard centre distance m (z1 + z2) / 2 (m)."""
+        return standard_centre_distance(self.g1, self.g2)
+
+    @property
+    def ratio(self):
+        """i12 = z2 / z1."""
+        return self.g2.z / self.g1.z
+
+    @property
+    def dw1(self):
+        """Operating pitch diameter d1' = db1 / cos alpha' (m)."""
+        return self.g1.db / math.cos(self.alpha_w)
+
+    @property
+    def dw2(self):
+        return self.g2.db / math.cos(self.alpha_w)
+
+    @property
+    def epsilon_alpha(self):
+        """Transverse contact ratio (表 5-2)::
+
+            [z1 (tan aa1 - tan a') + z2 (tan aa2 - tan a')] / (2 pi)
+        """
+        t = math.tan(self.alpha_w)
+        return (self.g1.z * (math.tan(self.g1.alpha_a) - t)
+                + self.g2.z * (math.tan(self.g2.alpha_a) - t)) / (2 * math.pi)
+
+    @property
+    def line_of_action(self):
+        """Length N1N2 = a' sin alpha' of the theoretical line of action (m)."""
+        return self.a_w * math.sin(self.alpha_w)
+
+    @property
+    def contact_length(self):
+        """Length B1B2 of the actual path of contact (m); equals epsilon_alpha * pb."""
+        return self.epsilon_alpha * self.g1.pb
+
+    @property
+    def tip_reach(self):
+        """(N2B1, N1B2): how far each tip circle cuts the line of action from the
+        other gear's tangent point (m); above N1N2 means interference."""
+        r1 = math.sqrt(self.g1.ra ** 2 - self.g1.rb ** 2)
+        r2 = math.sqrt(self.g2.ra ** 2 - self.g2.rb ** 2)
+        return r2, r1
+
+    @property
+    def interference(self):
+        """True if a tip passes the other gear's tangent point N (meshes below its base circle)."""
+        n = self.line_of_action * (1 + 1e-12)
+        return any(r > n for r in self.tip_reach)
+
+    @property
+    def clearances(self):
+        """Radial tip clearances (a' - ra1 - rf2, a' - ra2 - rf1) (m)."""
+        return (self.a_w - self.g1.ra - self.g2.rf, self.a_w - self.g2.ra - self.g1.rf)
+
+    @property
+    def backlash(self):
+        """Circumferential backlash on the operating pitch circle (m).
+
+        j = 2 pi r1' / z1 - s1' - s2', zero at the zero-backlash a'.
+        """
+        rw1, rw2 = self.dw1 / 2, self.dw2 / 2
+        return (2 * math.pi * rw1 / self.g1.z - self.g1.tooth_thickness(rw1)
+                - self.g2.tooth_thickness(rw2))
+
+    @property
+    def a_zero_backlash(self):
+        """Centre distance of the zero-backlash mesh (m) (习题 5-3)."""
+        return centre_distance_from_pressure_angle(
+            self.g1, self.g2, zero_backlash_pressure_angle(self.g1, self.g2))
+
+
+def gear_pair(g1: SpurGear, g2: SpurGear, a_w=None, alpha_w=None):
+    """Mount two gears: from a', from alpha', or (neither) at zero backlash.
+
+    Parameters
+    ----------
+    g1, g2 : SpurGear
+        Same module and pressure angle.
+    a_w : float, optional
+        Operating centre distance (m).
+    alpha_w : float, optional
+        Operating pressure angle (rad).
+
+    Returns
+    -------
+    GearPair
+
+    Raises
+    ------
+    MeshError
+        Different modules or pressure angles; a' below the zero-backlash
+        distance (the teeth would jam); the tips do not reach the line of
+        action (epsilon_alpha <= 0: the gears do not touch).
+    """
+    if not (math.isclose(g1.m, g2.m, rel_tol=1e-12)
+            and math.isclose(g1.alpha, g2.alpha, rel_tol=1e-12)):
+        raise MeshError("the two gears need the same module and pressure angle to mesh")
+    if a_w is not None and alpha_w is not None:
+        raise ValueError("give a_w or alpha_w, not both")
+    if a_w is None and alpha_w is None:
+        alpha_w = zero_backlash_pressure_angle(g1, g2)
+    if a_w is None:
+        a_w = centre_distance_from_pressure_angle(g1, g2, alpha_w)
+    else:
+        alpha_w = pressure_angle_from_centre_distance(g1, g2, a_w)
+    pair = GearPair(g1, g2, float(a_w), float(alpha_w))
+    a0 = pair.a_zero_backlash
+    if pair.a_w < a0 * (1 - 1e-12):
+        raise MeshError(f"centre distance {pair.a_w:.6g} m is below the zero-backlash distance "
+                        f"{a0:.6g} m: the teeth would jam")
+    if pair.epsilon_alpha <= 0:
+        raise MeshError(f"at a' = {pair.a_w:.6g} m the tip circles do not reach the line of "
+                        f"action (epsilon_alpha = {pair.epsilon_alpha:.3g}): no contact")
+    return pair

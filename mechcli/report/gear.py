@@ -1,0 +1,434 @@
+"""Tables, results, CSV and pictures of ``mechcli gear`` (one function per problem kind).
+
+Every ``present_<kind>`` returns ``(report, results, warnings)`` after writing
+its CSV (and PNG/GIF when asked) into *outputs*.  Lengths are shown in the
+spec's unit, angles in degrees.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from mechcli.core.errors import UnsolvableError
+from mechcli.report.table import Block, Report
+
+
+class GearRequirementError(UnsolvableError):
+    """The spec forbids what the geometry has (undercut, pointed tip, ε < 1, interference)."""
+
+
+def _t(lang, en, zh):
+    return zh if lang == "zh" else en
+
+
+def _suffix(k):
+    return "" if k == 0 else f"_{k + 1}"
+
+
+def _kv_block(heading, rows, lang):
+    """rows: (en, zh, symbol, text) -> Block of [label, 'symbol = text']."""
+    return Block(heading, [], [[_t(lang, en, zh), f"{sym} = {txt}"] for en, zh, sym, txt in rows])
+
+
+# -- involute (【例 5-1】) -----------------------------------------------------------
+def present_involute(spec, sol, run, outputs):
+    p, u, sc = spec.problem, spec.header.unit, spec.header.scale
+    lang = run.lang
+    rows, ang, inv = sol["table"]
+    results = {}
+    for a, v in zip(ang.ravel(), inv.ravel()):
+        whole, tenth = divmod(int(round(a * 10)), 10)
+        key = f"inv_{whole}_{tenth}" if abs(a * 10 - round(a * 10)) < 1e-6 \
+            else "inv_" + f"{a:.6g}".replace(".", "_")
+        results[key] = float(v)
+    r, th, x, y = sol["curve"]
+    results.update({"rb": p.rb / sc, "alpha_max_deg": math.degrees(p.alpha_max),
+                    "theta_max_rad": float(th[-1]), "r_max": float(r[-1] / sc),
+                    "x_max": float(x[-1] / sc), "y_max": float(y[-1] / sc)})
+    outputs.csv("involute.csv", [("alpha_deg", ang.ravel()), ("inv_alpha_rad", inv.ravel())])
+    outputs.csv("curve.csv", [("alpha_K_deg", np.degrees(sol["alpha"])), (f"r_K_{u}", r / sc),
+                              ("theta_K_rad", th), (f"x_{u}", x / sc), (f"y_{u}", y / sc)])
+    cols = [f"{k * p.table_step_deg:.1f}" for k in range(p.columns)]
+    table = Block(_t(lang, "Table 5-1  involute function inv(alpha) = tan(alpha) - alpha",
+                     "表 5-1 渐开线函数值"),
+                  [_t(lang, "deg", "度")] + cols,
+                  [[f"{row:.4f}"] + [f"{v:.{p.digits}f}" for v in line]
+                   for row, line in zip(rows, inv)])
+    curve = _kv_block(_t(lang, "Involute curve (eq. 5-1, 5-2)", "渐开线曲线"), [
+        ("base radius", "基圆半径", "rb", f"{p.rb / sc:.3f} {u}"),
+        ("pressure angle range", "压力角范围", "alpha_K",
+         f"0 … {math.degrees(p.alpha_max):g}°"),
+        ("end point radius", "终点向径", "r_K", f"{r[-1] / sc:.3f} {u}"),
+        ("end point roll angle", "终点展角", "theta_K", f"{th[-1]:.6f} rad"),
+        ("end point", "终点坐标", "(x, y)", f"({x[-1] / sc:.3f}, {y[-1] / sc:.3f}) {u}"),
+    ], lang)
+    report = Report(spec.header.title, [table, curve])
+    if run.plot:
+        from mechcli.report import gear_plot
+        gear_plot.plot_involute(sol, spec, run, outputs)
+    return report, results, []
+
+
+# -- inverse involute (【例 5-2】) -----------------------------------------------------
+def present_inverse_involute(spec, sol, run, outputs):
+    from mechcli.core.involute import degrees_minutes_seconds, format_dms
+    p, lang = spec.problem, run.lang
+    results, warnings, blocks = {}, [], []
+    for k, (th, a, it, res) in enumerate(zip(sol.theta, sol.alpha, sol.iterations,
+                                             sol.residual)):
+        sfx = _suffix(k)
+        dms = format_dms(a, p.dms_seconds_digits, p.dms_rounding)
+        d, mnt, s = degrees_minutes_seconds(a, p.dms_seconds_digits, p.dms_rounding)
+        rel = abs(res) / th if th > 0 else 0.0
+        results.update({f"theta{sfx}": float(th), f"alpha_rad{sfx}": float(a),
+                        f"alpha_deg{sfx}": math.degrees(a), f"alpha_dms{sfx}": dms,
+                        f"iterations{sfx}": int(it), f"residual{sfx}": float(res),
+                        f"relative_residual{sfx}": float(rel)})
+        sec = f"{s:.{p.dms_seconds_digits}f}" if p.dms_seconds_digits else f"{int(s)}"
+        blocks.append(Block("", [], [
+            [_t(lang, "involute function", "渐开线函数值"), f"θ = {th:g}"],
+            [_t(lang, "pressure angle", "渐开线压力角"),
+             f"α = {a:8.7f} " + _t(lang, "rad", "弧度")],
+            [_t(lang, "in degrees, minutes, seconds", "转换成度分秒后的值"),
+             _t(lang, f"α = {d} deg {mnt} min {sec} s  ({dms})", f"α = {d} 度 {mnt} 分 {sec} 秒")],
+            [_t(lang, "Newton iterations", "迭代次数"),
+             f"{it} ({'book start 0.8, ε = 1e-7' if p.method == 'book' else 'auto start'})"],
+            [_t(lang, "residual inv(α) − θ", "残差"), f"{res:.3e}"],
+        ]))
+        if p.method == "book" and rel > 1e-6:
+            warnings.append(f"theta = {th:g}: the book's absolute stop |f| < {p.epsilon:g} "
+                            f"leaves a relative error of {rel:.2g} in inv(alpha); "
+                            "use method = \"auto\"")
+    outputs.csv("involute.csv", [("theta_rad", sol.theta), ("alpha_rad", sol.alpha),
+                                 ("alpha_deg", np.degrees(sol.alpha)),
+                                 ("iterations", sol.iterations), ("residual_rad", sol.residual)],
+                digits=17)
+    return Report(spec.header.title, blocks), results, warnings
+
+
+# -- one spur gear (【例 5-3】, 习题 5-1) ---------------------------------------------
+def present_spur(spec, sol, run, outputs):
+    p, u, sc, lang = spec.problem, spec.header.unit, spec.header.scale, run.lang
+    g, tooth, outline = sol["gear"], sol["tooth"], sol["outline"]
+    warnings = []
+    pointed = g.tooth_thickness(g.ra) <= 0
+    if pointed and p.forbid_pointed:
+        raise GearRequirementError(f"the tip is pointed: the flanks meet at r = "
+                                   f"{g.pointed_radius / sc:.4f} {u} < ra = {g.ra / sc:.4f} {u}")
+    if g.undercut and p.forbid_undercut:
+        raise GearRequirementError(f"z = {g.z} with x = {g.x:g} is undercut by the standard rack "
+                                   f"(z_min = {g.z_min:.2f}, x_min = {g.x_min:.4f})")
+    if pointed:
+        warnings.append(f"pointed tip: the flanks meet at r = {g.pointed_radius / sc:.4f} {u} "
+                        f"below ra = {g.ra / sc:.4f} {u}")
+    if g.undercut:
+        warnings.append(f"undercut: z = {g.z} < z_min = {g.z_min:.2f} with x = {g.x:g} < "
+                        f"x_min = {g.x_min:.4f}")
+    s_a, s_b = g.tooth_thickness(g.ra), g.tooth_thickness(g.rb)
+    L = lambda v: float(v / sc)  # noqa: E731
+    results = {"z": g.z, "m": L(g.m), "alpha_deg": math.degrees(g.alpha), "x": g.x,
+               "d": L(g.d), "db": L(g.db), "da": L(g.da), "df": L(g.df), "p": L(g.p),
+               "pb": L(g.pb), "s": L(g.s), "e": L(g.e), "h": L(g.h), "ha": L(g.ha),
+               "hf": L(g.hf), "c": L(g.c), "alpha_a_deg": math.degrees(g.alpha_a),
+               "s_a": L(s_a), "e_a": L(g.space_width(g.ra)), "s_b": L(s_b),
+               "e_b": L(g.space_width(g.rb)), "r_pointed": L(g.pointed_radius),
+               "z_min": g.z_min, "x_min": g.x_min, "undercut": bool(g.undercut),
+               "pointed": bool(pointed), "r_form": L(tooth.r_form),
+               "undercut_generated": tooth.undercut,
+               "undercut_fraction": tooth.undercut_fraction,
+               "profile_points": int(outline.x.size)}
+    for k, r in enumerate(p.radii):
+        if r < g.rb:
+            raise GearRequirementError(f"thickness_radii: r = {r / sc:g} {u} is inside the base "
+                                       f"circle rb = {g.rb / sc:.4f} {u} (no involute there)")
+        results[f"s_r{k + 1}"] = L(g.tooth_thickness(r))
+        results[f"e_r{k + 1}"] = L(g.space_width(r))
+    f3 = lambda v: f"{v / sc:.3f}{u}"  # noqa: E731
+    rows = [
+        ("number of teeth", "齿数", "z", f"{g.z}"),
+        ("module", "模数", "m", f3(g.m)),
+        ("pressure angle", "压力角", "α", f"{math.degrees(g.alpha):.3f}°"),
+        ("profile shift coefficient", "变位系数", "x", f"{g.x:.4f}"),
+        ("reference diameter", "分度圆直径", "d", f3(g.d)),
+        ("base diameter", "基圆直径", "db", f3(g.db)),
+        ("tip diameter", "齿顶圆直径", "da", f3(g.da)),
+        ("root diameter", "齿根圆直径", "df", f3(g.df)),
+        ("addendum", "齿顶高", "ha", f3(g.ha)),
+        ("dedendum", "齿根高", "hf", f3(g.hf)),
+        ("whole depth", "齿全高", "h", f3(g.h)),
+        ("pitch", "齿距", "p", f3(g.p)),
+        ("base pitch", "基圆齿距", "pb", f3(g.pb)),
+        ("tooth thickness", "齿厚", "s", f3(g.s)),
+        ("space width", "齿槽宽", "e", f3(g.e)),
+        ("tip pressure angle", "齿顶圆压力角", "αa", f"{math.degrees(g.alpha_a):.3f}°"),
+        ("tooth thickness at tip", "齿顶圆齿厚", "sa", f3(s_a)),
+        ("space width at tip", "齿顶圆齿槽宽", "ea", f3(g.space_width(g.ra))),
+        ("tooth thickness at base circle", "基圆齿厚", "sb", f3(s_b)),
+        ("space width at base circle", "基圆齿槽宽", "eb", f3(g.space_width(g.rb))),
+        ("radius of the pointed tip", "齿顶变尖时的齿顶圆半径", "rp", f3(g.pointed_radius)),
+        ("fewest teeth without undercut", "不根切最少齿数", "zmin", f"{g.z_min:.3f}"),
+        ("least shift against undercut", "最小变位系数", "xmin", f"{g.x_min:.4f}"),
+        ("involute starts at (generated)", "渐开线起始圆半径", "r_form", f3(tooth.r_form)),
+        ("involute cut away (generated)", "根切量(渐开线长度比)", "undercut",
+         f"{100 * tooth.undercut_fraction:.2f}%"),
+    ]
+    for k, r in enumerate(p.radii):
+        rows.append((f"thickness at r = {r / sc:g}", f"r = {r / sc:g} 处齿厚", f"s_r{k + 1}",
+                     f3(g.tooth_thickness(r))))
+    report = Report(spec.header.title,
+                    [_kv_block(_t(lang, "Spur gear geometry", "渐开线直齿圆柱齿轮几何尺寸"), rows,
+                               lang)])
+    outputs.csv("gear.csv", [(f"x_{u}", outline.x / sc), (f"y_{u}", outline.y / sc)])
+    if run.plot:
+        from mechcli.report import gear_plot
+        gear_plot.plot_gear(sol, spec, run, outputs)
+    return report, results, warnings
+
+
+# -- a pair (【例 5-4】, 习题 5-2 … 5-5) ----------------------------------------------
+def present_pair(spec, pairs, run, outputs):
+    p, u, sc, lang = spec.problem, spec.header.unit, spec.header.scale, run.lang
+    first = pairs[0]
+    g1, g2 = first.g1, first.g2
+    L = lambda v: float(v / sc)  # noqa: E731
+    warnings = []
+    results = {"z1": g1.z, "z2": g2.z, "m": L(g1.m), "i12": first.ratio, "a": L(first.a),
+               "d1": L(g1.d), "d2": L(g2.d), "db1": L(g1.db), "db2": L(g2.db),
+               "da1": L(g1.da), "da2": L(g2.da), "df1": L(g1.df), "df2": L(g2.df),
+               "ha1": L(g1.ha), "ha2": L(g2.ha), "hf1": L(g1.hf), "hf2": L(g2.hf),
+               "h1": L(g1.h), "h2": L(g2.h), "p": L(g1.p), "pb1": L(g1.pb), "pb2": L(g2.pb),
+               "s1": L(g1.s), "s2": L(g2.s), "e1": L(g1.e), "e2": L(g2.e), "c": L(g1.c),
+               "alpha_a1_deg": math.degrees(g1.alpha_a),
+               "alpha_a2_deg": math.degrees(g2.alpha_a),
+               "a_zero_backlash": L(first.a_zero_backlash)}
+    f3 = lambda v: f"{v / sc:.3f}{u}"  # noqa: E731
+    blocks = []
+    rows_csv = []
+    for k, pr in enumerate(pairs):
+        sfx = _suffix(k)
+        eps = pr.epsilon_alpha
+        cl = pr.clearances
+        results.update({f"a_w{sfx}": L(pr.a_w), f"alpha_w_deg{sfx}": math.degrees(pr.alpha_w),
+                        f"dw1{sfx}": L(pr.dw1), f"dw2{sfx}": L(pr.dw2),
+                        f"epsilon_alpha{sfx}": eps, f"backlash{sfx}": L(pr.backlash),
+                        f"clearance1{sfx}": L(cl[0]), f"clearance2{sfx}": L(cl[1]),
+                        f"interference{sfx}": pr.interference,
+                        f"continuous{sfx}": eps >= 1})
+        rows_csv.append([pr.a_w / sc, math.degrees(pr.alpha_w), pr.dw1 / sc, pr.dw2 / sc, eps,
+                         pr.backlash / sc, cl[0] / sc, cl[1] / sc])
+        where = f"a' = {pr.a_w / sc:.3f} {u}"
+        if eps < 1:
+            msg = (f"{where}: contact ratio epsilon_alpha = {eps:.3f} < 1, the mesh is not "
+                   f"continuous (a' exceeds a = {pr.a / sc:.3f} {u} by "
+                   f"{(pr.a_w - pr.a) / sc:.3f} {u})")
+            if p.require_continuous:
+                raise GearRequirementError(msg)
+            warnings.append(msg)
+        if pr.interference:
+            msg = (f"{where}: interference — a tip passes the tangent point N of the line of "
+                   f"action (N1N2 = {pr.line_of_action / sc:.3f} {u})")
+            if p.forbid_interference:
+                raise GearRequirementError(msg)
+            warnings.append(msg)
+        for i, c in enumerate(cl):
+            if c < 0:
+                msg = f"{where}: tip of gear {i + 1} hits the root of the other (clearance " \
+                      f"{c / sc:.3f} {u})"
+                if p.forbid_interference:
+                    raise GearRequirementError(msg)
+                warnings.append(msg)
+        rows = [
+            ("standard centre distance", "标准中心距", "a", f3(pr.a)),
+            ("operating centre distance", "实际中心距", "aT", f3(pr.a_w)),
+            ("pinion reference diameter", "小齿轮分度圆直径", "d1", f3(g1.d)),
+            ("wheel reference diameter", "大齿轮分度圆直径", "d2", f3(g2.d)),
+            ("pinion base diameter", "小齿轮基圆直径", "db1", f3(g1.db)),
+            ("wheel base diameter", "大齿轮基圆直径", "db2", f3(g2.db)),
+            ("pinion tip diameter", "小齿轮齿顶圆直径", "da1", f3(g1.da)),
+            ("wheel tip diameter", "大齿轮齿顶圆直径", "da2", f3(g2.da)),
+            ("pinion root diameter", "小齿轮齿根圆直径", "df1", f3(g1.df)),
+            ("wheel root diameter", "大齿轮齿根圆直径", "df2", f3(g2.df)),
+            ("pinion tip pressure angle", "小齿轮齿顶圆压力角", "alpha1",
+             f"{math.degrees(g1.alpha_a):.3f}°"),
+            ("wheel tip pressure angle", "大齿轮齿顶圆压力角", "alpha2",
+             f"{math.degrees(g2.alpha_a):.3f}°"),
+            ("operating pressure angle", "啮合角", "alpha", f"{math.degrees(pr.alpha_w):.3f}°"),
+            ("contact ratio", "重合度", "epsilon", f"{eps:.3f}"),
+        ]
+        extra = [
+            ("operating pitch diameters", "节圆直径", "d1', d2'",
+             f"{pr.dw1 / sc:.3f}{u}, {pr.dw2 / sc:.3f}{u}"),
+            ("backlash on the pitch circle", "齿侧间隙", "j", f3(pr.backlash)),
+            ("tip clearances", "顶隙", "c1', c2'", f"{cl[0] / sc:.3f}{u}, {cl[1] / sc:.3f}{u}"),
+            ("zero-backlash centre distance", "无侧隙中心距", "a0'", f3(pr.a_zero_backlash)),
+            ("base pitches", "基圆齿距", "pb1, pb2", f"{g1.pb / sc:.3f}{u}, {g2.pb / sc:.3f}{u}"),
+            ("ratio", "传动比", "i12", f"{pr.ratio:.4f}"),
+        ]
+        if k == 0 and (g1.x or g2.x or p.designed):
+            extra.insert(0, ("teeth", "齿数", "z1, z2", f"{g1.z}, {g2.z}"))
+        blocks.append(_kv_block(_t(lang, "Spur gear pair geometry", "直齿圆柱齿轮几何尺寸")
+                                + ("" if len(pairs) == 1 else f" ({k + 1})"), rows, lang))
+        blocks.append(_kv_block("", extra, lang))
+    cols = list(zip(*rows_csv))
+    names = [f"a_w_{u}", "alpha_w_deg", f"dw1_{u}", f"dw2_{u}", "epsilon_alpha",
+             f"backlash_{u}", f"clearance1_{u}", f"clearance2_{u}"]
+    outputs.csv("gear.csv", list(zip(names, cols)))
+    if run.plot:
+        from mechcli.report import gear_plot
+        gear_plot.plot_pair(first, spec, run, outputs)
+    return Report(spec.header.title, blocks), results, warnings
+
+
+# -- generation (gear_cut) ------------------------------------------------------------
+def present_generation(spec, sol, run, outputs):
+    from mechcli.core.gear_profile import gear_outline
+    p, u, sc, lang = spec.problem, spec.header.unit, spec.header.scale, run.lang
+    L = lambda v: float(v / sc)  # noqa: E731
+    results, warnings, blocks, csv_cols = {}, [], [], [[], [], []]
+    for k, tooth in enumerate(sol["teeth"]):
+        g, sfx = tooth.gear, _suffix(k)
+        sb_gen = 2 * g.rb * float(tooth.half_tooth(g.rb)) if g.rb >= g.rf else float("nan")
+        x_rack = g.ha_star + g.c_star - g.z * math.sin(g.alpha) ** 2 / 2
+        results.update({f"x{sfx}": g.x, f"r{sfx}": L(g.r), f"rb{sfx}": L(g.rb),
+                        f"ra{sfx}": L(g.ra), f"rf{sfx}": L(g.rf),
+                        f"undercut{sfx}": tooth.undercut, f"r_form{sfx}": L(tooth.r_form),
+                        f"undercut_depth{sfx}": L(tooth.r_form - g.rb) if tooth.undercut
+                        else 0.0,
+                        f"undercut_fraction{sfx}": tooth.undercut_fraction,
+                        f"s_b{sfx}": L(g.tooth_thickness(g.rb)),
+                        f"x_min{sfx}": g.x_min, f"x_min_rack{sfx}": x_rack})
+        if math.isfinite(sb_gen):
+            results[f"s_b_generated{sfx}"] = L(sb_gen)
+        if tooth.undercut:
+            warnings.append(f"x = {g.x:g}: undercut, the cutter removes the involute from rb = "
+                            f"{g.rb / sc:.3f} up to r = {tooth.r_form / sc:.3f} {u} "
+                            f"({100 * tooth.undercut_fraction:.1f}% of its length); "
+                            f"x >= {x_rack:.3f} cures it for this cutter")
+        f3 = lambda v: f"{v / sc:.3f}{u}"  # noqa: E731
+        blocks.append(_kv_block(_t(lang, f"Generation by rack cutter, x = {g.x:g}",
+                                   f"齿条刀具范成, x = {g.x:g}"), [
+            ("module, teeth, pressure angle", "模数, 齿数, 压力角", "m, z, α",
+             f"{g.m / sc:g}{u}, {g.z}, {math.degrees(g.alpha):g}°"),
+            ("reference / base radius", "分度圆 / 基圆半径", "r, rb", f"{g.r / sc:.3f}, {g.rb / sc:.3f}{u}"),
+            ("tip / root radius", "齿顶圆 / 齿根圆半径", "ra, rf", f"{g.ra / sc:.3f}, {g.rf / sc:.3f}{u}"),
+            ("undercut", "根切", "", _t(lang, "yes" if tooth.undercut else "no",
+                                          "有" if tooth.undercut else "无")),
+            ("involute begins at", "渐开线起始圆半径", "r_form", f3(tooth.r_form)),
+            ("involute length cut away", "被切去的渐开线长度比", "", f"{100 * tooth.undercut_fraction:.2f}%"),
+            ("least shift against undercut (ha*)", "最小变位系数 (ha*)", "xmin", f"{g.x_min:.4f}"),
+            ("least shift for this sharp cutter", "本刀具不根切最小变位系数", "xmin'", f"{x_rack:.4f}"),
+        ], lang))
+        out = gear_outline(tooth, 60)
+        csv_cols[0].append(np.full(out.x.size, k + 1.0))
+        csv_cols[1].append(out.x / sc)
+        csv_cols[2].append(out.y / sc)
+    outputs.csv("gear.csv", [("shift_index", np.concatenate(csv_cols[0])),
+                             (f"x_{u}", np.concatenate(csv_cols[1])),
+                             (f"y_{u}", np.concatenate(csv_cols[2]))])
+    results["positions"] = int(sol["plan"].phi.size)
+    animate = p.animate if run.animate is None else run.animate
+    if run.plot or animate:
+        from mechcli.report import gear_plot
+        if run.plot:
+            gear_plot.plot_generation(sol, spec, run, outputs)
+        if animate:
+            gear_plot.animate_generation(sol, spec, run, outputs)
+    return Report(spec.header.title, blocks), results, warnings
+
+
+# -- helical, worm, bevel (习题 5-6 … 5-9) ------------------------------------------
+def present_helical(spec, hp, run, outputs):
+    u, sc, lang = spec.header.unit, spec.header.scale, run.lang
+    L = lambda v: float(v / sc)  # noqa: E731
+    results = {"beta_deg": math.degrees(hp.beta), "mt": L(hp.mt),
+               "alpha_t_deg": math.degrees(hp.alpha_t), "d1": L(hp.d(hp.z1)),
+               "d2": L(hp.d(hp.z2)), "da1": L(hp.da(hp.z1)), "da2": L(hp.da(hp.z2)),
+               "df1": L(hp.df(hp.z1)), "df2": L(hp.df(hp.z2)), "db1": L(hp.db(hp.z1)),
+               "db2": L(hp.db(hp.z2)), "a": L(hp.a), "epsilon_alpha": hp.epsilon_alpha,
+               "epsilon_beta": hp.epsilon_beta, "epsilon_gamma": hp.epsilon_gamma,
+               "zv1": hp.zv(hp.z1), "zv2": hp.zv(hp.z2)}
+    return _simple(spec, run, outputs, _t(lang, "Helical gear pair", "斜齿圆柱齿轮传动"), results, [
+        ("helix angle", "螺旋角", "β", "beta_deg", "°"),
+        ("transverse module", "端面模数", "mt", "mt", u),
+        ("transverse pressure angle", "端面压力角", "αt", "alpha_t_deg", "°"),
+        ("reference diameters", "分度圆直径", "d1", "d1", u), ("", "", "d2", "d2", u),
+        ("tip diameters", "齿顶圆直径", "da1", "da1", u), ("", "", "da2", "da2", u),
+        ("root diameters", "齿根圆直径", "df1", "df1", u), ("", "", "df2", "df2", u),
+        ("centre distance", "中心距", "a", "a", u),
+        ("transverse contact ratio", "端面重合度", "εα", "epsilon_alpha", ""),
+        ("overlap ratio", "轴向重合度", "εβ", "epsilon_beta", ""),
+        ("total contact ratio", "总重合度", "εγ", "epsilon_gamma", ""),
+        ("virtual teeth", "当量齿数", "zv1", "zv1", ""), ("", "", "zv2", "zv2", ""),
+    ], [])
+
+
+def present_worm(spec, w, run, outputs):
+    u, sc, lang = spec.header.unit, spec.header.scale, run.lang
+    L = lambda v: float(v / sc)  # noqa: E731
+    results = {"m": L(w.m), "mt2": L(w.m), "mx1": L(w.m), "q": w.q, "d1": L(w.d1),
+               "d2": L(w.d2), "px": L(w.px), "lead": L(w.lead),
+               "gamma_deg": math.degrees(w.gamma), "a": L(w.a), "i12": w.ratio,
+               "da1": L(w.da1), "df1": L(w.df1), "da2": L(w.da2), "df2": L(w.df2)}
+    return _simple(spec, run, outputs, _t(lang, "Worm drive", "蜗杆传动"), results, [
+        ("wheel transverse = worm axial module", "蜗轮端面模数 = 蜗杆轴面模数", "m", "m", u),
+        ("diameter factor", "蜗杆直径系数", "q", "q", ""),
+        ("worm reference diameter", "蜗杆分度圆直径", "d1", "d1", u),
+        ("wheel reference diameter", "蜗轮分度圆直径", "d2", "d2", u),
+        ("worm axial pitch", "蜗杆轴面齿距", "px1", "px", u),
+        ("lead", "导程", "l", "lead", u),
+        ("lead angle", "导程角", "γ", "gamma_deg", "°"),
+        ("centre distance", "中心距", "a", "a", u),
+        ("ratio", "传动比", "i12", "i12", ""),
+        ("worm tip / root diameter", "蜗杆齿顶圆 / 齿根圆直径", "da1", "da1", u),
+        ("", "", "df1", "df1", u),
+        ("wheel tip / root diameter", "蜗轮齿顶圆 / 齿根圆直径", "da2", "da2", u),
+        ("", "", "df2", "df2", u),
+    ], [])
+
+
+def present_bevel(spec, b, run, outputs):
+    u, sc, lang = spec.header.unit, spec.header.scale, run.lang
+    L = lambda v: float(v / sc)  # noqa: E731
+    d1, d2 = b.delta1, b.delta2
+    results = {"delta1_deg": math.degrees(d1), "delta2_deg": math.degrees(d2),
+               "d1": L(b.d(b.z1)), "d2": L(b.d(b.z2)), "R": L(b.R),
+               "theta_a_deg": math.degrees(b.theta_a), "theta_f_deg": math.degrees(b.theta_f),
+               "delta_a1_deg": math.degrees(b.delta_a(d1)),
+               "delta_a2_deg": math.degrees(b.delta_a(d2)),
+               "delta_f1_deg": math.degrees(b.delta_f(d1)),
+               "delta_f2_deg": math.degrees(b.delta_f(d2)),
+               "da1": L(b.da(b.z1, d1)), "da2": L(b.da(b.z2, d2)),
+               "df1": L(b.df(b.z1, d1)), "df2": L(b.df(b.z2, d2)),
+               "zv1": b.zv(b.z1, d1), "zv2": b.zv(b.z2, d2)}
+    return _simple(spec, run, outputs, _t(lang, "Straight bevel gear pair", "直齿圆锥齿轮传动"),
+                   results, [
+        ("pitch-cone angles", "分度圆锥角", "δ1", "delta1_deg", "°"), ("", "", "δ2", "delta2_deg", "°"),
+        ("reference diameters", "分度圆直径", "d1", "d1", u), ("", "", "d2", "d2", u),
+        ("cone distance", "锥距", "R", "R", u),
+        ("addendum angle", "齿顶角", "θa", "theta_a_deg", "°"),
+        ("dedendum angle", "齿根角", "θf", "theta_f_deg", "°"),
+        ("tip-cone angles", "顶锥角", "δa1", "delta_a1_deg", "°"), ("", "", "δa2", "delta_a2_deg", "°"),
+        ("tip diameters", "齿顶圆直径", "da1", "da1", u), ("", "", "da2", "da2", u),
+        ("root diameters", "齿根圆直径", "df1", "df1", u), ("", "", "df2", "df2", u),
+        ("virtual teeth", "当量齿数", "zv1", "zv1", ""), ("", "", "zv2", "zv2", ""),
+    ], [])
+
+
+def _simple(spec, run, outputs, heading, results, rows, warnings):
+    """Key/value table of *rows* (en, zh, symbol, result key, unit) and a one-row CSV."""
+    lang = run.lang
+    block = Block(heading, [], [[_t(lang, en, zh), f"{sym} = {results[key]:.3f}"
+                                 + ("" if not un else (un if un == "°" else f" {un}"))]
+                                for en, zh, sym, key, un in rows])
+    u = spec.header.unit
+    cols = [(key if un in ("", "°") else f"{key}_{u}", [results[key]])
+            for _, _, _, key, un in rows]
+    outputs.csv("gear.csv", cols)
+    return Report(spec.header.title, [block]), results, warnings
+
+
+PRESENTERS = {"involute": present_involute, "inverse_involute": present_inverse_involute,
+              "spur": present_spur, "pair": present_pair, "generation": present_generation,
+              "helical": present_helical, "worm": present_worm, "bevel": present_bevel}

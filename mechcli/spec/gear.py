@@ -1,0 +1,472 @@
+"""The ``mechcli gear`` problem file: one table naming the kind of problem.
+
+A spec holds exactly one of ``[involute]``, ``[inverse_involute]``, ``[spur]``,
+``[pair]``, ``[generation]``, ``[helical]``, ``[worm]``, ``[bevel]`` (see
+``docs/gear.md``).  Lengths are in the spec's ``units`` and converted to metres
+here; angles are given in degrees (keys ending in ``_deg``) and converted to
+radians.  Each problem dataclass has ``solve()``, which calls the core.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+from mechcli.spec.common import Header, read_expected, read_header
+from mechcli.spec.errors import SpecError
+from mechcli.spec.reader import Section, load_spec
+
+KINDS = ("involute", "inverse_involute", "spur", "pair", "generation", "helical", "worm",
+         "bevel")
+
+
+# -- shared readers ----------------------------------------------------------------
+def _teeth(sec: Section, name, default=None, lo=1):
+    """A tooth number: a positive integer (a float such as 20.5 or 0 is an error)."""
+    if default is None:
+        return sec.integer(name, lo=lo)
+    return sec.integer(name, default, lo=lo)
+
+
+def _pressure_angle(sec: Section, name="alpha_deg", default=20.0):
+    """A pressure angle in degrees, strictly inside (0, 45); returned in radians."""
+    value = sec.number(name, default, expected="a number of degrees in (0, 45)")
+    if not 0 < value < 45:
+        raise sec.error(name, "a number of degrees in (0, 45)", repr(value))
+    return math.radians(value)
+
+
+def _module(sec: Section, name="m"):
+    return sec.length(name)   # positive, converted to metres
+
+
+def _one_or_many(sec: Section, name, kind):
+    """A number or an array of numbers; returns a list (empty if absent)."""
+    raw = sec.raw(name, None)
+    if raw is None:
+        return []
+    if isinstance(raw, list):
+        return sec.numbers(name, positive=True)
+    return [sec.number(name, positive=True)]
+
+
+@dataclasses.dataclass(frozen=True)
+class ToothSystem:
+    """Module (m), pressure angle (rad), addendum and clearance coefficients."""
+
+    m: float
+    alpha: float
+    ha_star: float
+    c_star: float
+
+
+def _tooth_system(sec: Section, c_default=0.25):
+    m = _module(sec)
+    alpha = _pressure_angle(sec)
+    ha = sec.number("ha_star", 1.0, nonneg=True)
+    c = sec.number("c_star", c_default, nonneg=True)
+    return ToothSystem(m, alpha, ha, c)
+
+
+def _shift(sec: Section, name):
+    return sec.number(name, 0.0, lo=-1.5, hi=1.5)
+
+
+# -- the problem kinds ---------------------------------------------------------------
+@dataclasses.dataclass(frozen=True)
+class InvoluteProblem:
+    """Involute curve of a base circle and the involute-function table (【例 5-1】)."""
+
+    rb: float                 # m
+    alpha_max: float          # rad
+    curve_step: float         # rad
+    table_from_deg: float
+    table_to_deg: float
+    table_step_deg: float
+    columns: int
+    digits: int
+
+    def solve(self):
+        import numpy as np
+
+        from mechcli.core.involute import involute_curve, involute_table
+        n = int(round(self.alpha_max / self.curve_step)) + 1
+        alpha = np.linspace(0.0, self.alpha_max, n)
+        curve = involute_curve(self.rb, alpha)
+        table = involute_table(self.table_from_deg, self.table_to_deg, self.table_step_deg,
+                               self.columns)
+        return {"alpha": alpha, "curve": curve, "table": table}
+
+
+@dataclasses.dataclass(frozen=True)
+class InverseInvoluteProblem:
+    """alpha = inv^-1(theta) (【例 5-2】)."""
+
+    theta: tuple
+    method: str
+    start: float
+    epsilon: float
+    max_iter: int
+    dms_rounding: str
+    dms_seconds_digits: int
+
+    def solve(self):
+        from mechcli.core.involute import inverse_involute
+        return inverse_involute(list(self.theta), self.method, start=self.start,
+                                epsilon=self.epsilon, max_iter=self.max_iter)
+
+
+@dataclasses.dataclass(frozen=True)
+class SpurProblem:
+    """One spur gear (【例 5-3】, 习题 5-1)."""
+
+    z: int
+    teeth: ToothSystem
+    x: float
+    points: int
+    root: str
+    radii: tuple              # extra radii for the thickness (m)
+    forbid_undercut: bool
+    forbid_pointed: bool
+
+    def solve(self):
+        from mechcli.core.gear import spur_gear
+        from mechcli.core.gear_profile import gear_outline, generated_tooth
+        t = self.teeth
+        g = spur_gear(self.z, t.m, t.alpha, t.ha_star, t.c_star, self.x)
+        tooth = generated_tooth(g)
+        return {"gear": g, "tooth": tooth, "outline": gear_outline(tooth, self.points, self.root)}
+
+
+@dataclasses.dataclass(frozen=True)
+class PairProblem:
+    """A pair of external spur gears (【例 5-4】, 习题 5-2 … 5-5)."""
+
+    z1: int
+    z2: int
+    teeth: ToothSystem
+    x1: float
+    x2: float
+    a_w: tuple                # operating centre distances (m)
+    alpha_w: tuple            # operating pressure angles (rad)
+    designed: bool            # z1, z2 found from ratio, a', m
+    require_continuous: bool
+    forbid_interference: bool
+
+    def solve(self):
+        from mechcli.core.gear import spur_gear
+        from mechcli.core.gear_pair import gear_pair
+        t = self.teeth
+        g1 = spur_gear(self.z1, t.m, t.alpha, t.ha_star, t.c_star, self.x1)
+        g2 = spur_gear(self.z2, t.m, t.alpha, t.ha_star, t.c_star, self.x2)
+        pairs = [gear_pair(g1, g2, a_w=a) for a in self.a_w]
+        pairs += [gear_pair(g1, g2, alpha_w=aw) for aw in self.alpha_w]
+        if not pairs:
+            pairs = [gear_pair(g1, g2)]
+        return pairs
+
+
+@dataclasses.dataclass(frozen=True)
+class GenerationProblem:
+    """Rack-cutter generation of a gear (``gear_cut``)."""
+
+    z: int
+    teeth: ToothSystem
+    shifts: tuple
+    step: float               # rad
+    limit: float              # rad
+    cutter_teeth: int
+    animate: bool
+
+    def solve(self):
+        from mechcli.core.gear import spur_gear
+        from mechcli.core.gear_generation import generation_plan
+        from mechcli.core.gear_profile import generated_tooth
+        t = self.teeth
+        gears = [spur_gear(self.z, t.m, t.alpha, t.ha_star, t.c_star, x) for x in self.shifts]
+        return {"teeth": [generated_tooth(g) for g in gears],
+                "plan": generation_plan(self.limit, self.step)}
+
+
+@dataclasses.dataclass(frozen=True)
+class HelicalProblem:
+    """A pair of helical gears (习题 5-6, 5-7)."""
+
+    z1: int
+    z2: int
+    mn: float
+    alpha_n: float
+    han_star: float
+    cn_star: float
+    beta: float | None        # rad; None: from a_w
+    a_w: float | None         # m
+    b: float | None           # face width (m)
+
+    def solve(self):
+        from mechcli.core.gear_helical import helical_pair
+        return helical_pair(self.z1, self.z2, self.mn, self.alpha_n, self.han_star,
+                            self.cn_star, beta=self.beta, a_w=self.a_w, b=self.b)
+
+
+@dataclasses.dataclass(frozen=True)
+class WormProblem:
+    """A worm and worm wheel (习题 5-8)."""
+
+    z1: int
+    z2: int
+    m: float | None
+    d2: float | None
+    q: float | None
+    d1: float | None
+    alpha: float
+    ha_star: float
+    c_star: float
+
+    def solve(self):
+        from mechcli.core.gear_worm import worm_drive
+        return worm_drive(self.z1, self.z2, m=self.m, d2=self.d2, q=self.q, d1=self.d1,
+                          alpha=self.alpha, ha_star=self.ha_star, c_star=self.c_star)
+
+
+@dataclasses.dataclass(frozen=True)
+class BevelProblem:
+    """A pair of straight bevel gears (习题 5-9)."""
+
+    z1: int
+    z2: int
+    m: float
+    alpha: float
+    ha_star: float
+    c_star: float
+    sigma: float              # shaft angle (rad)
+
+    def solve(self):
+        from mechcli.core.gear_bevel import bevel_pair
+        return bevel_pair(self.z1, self.z2, self.m, self.alpha, self.ha_star, self.c_star,
+                          self.sigma)
+
+
+@dataclasses.dataclass(frozen=True)
+class GearSpec:
+    header: Header
+    kind: str
+    problem: object
+    expected: dict
+
+
+# -- readers per kind -------------------------------------------------------------------
+def _read_involute(sec):
+    rb = sec.length("rb")
+    amax = sec.number("alpha_max_deg", 40.0, expected="degrees in (0, 89]")
+    if not 0 < amax <= 89:
+        raise sec.error("alpha_max_deg", "degrees in (0, 89]", repr(amax))
+    step = sec.number("curve_step_deg", 0.1, positive=True)
+    t0 = sec.number("table_from_deg", 10.0, lo=0.0, hi=89.0)
+    t1 = sec.number("table_to_deg", 30.0, lo=0.0, hi=89.0)
+    ts = sec.number("table_step_deg", 0.1, positive=True)
+    cols = sec.integer("columns", 10, lo=1, hi=20)
+    if t1 < t0:
+        raise sec.error("table_to_deg", f"a number >= table_from_deg = {t0:g}", repr(t1))
+    if t1 + ts * (cols - 1) >= 90:
+        raise sec.error("table_to_deg", "a last row that stays below 90 degrees", repr(t1))
+    digits = sec.integer("digits", 4, lo=1, hi=15)
+    return InvoluteProblem(rb, math.radians(amax), math.radians(step), t0, t1, ts, cols, digits)
+
+
+def _read_inverse(sec):
+    raw = sec.raw("theta")
+    if isinstance(raw, list):
+        theta = sec.numbers("theta")
+    else:
+        theta = [sec.number("theta")]
+    for i, t in enumerate(theta):
+        if t < 0:
+            key = "theta" if not isinstance(raw, list) else f"theta[{i}]"
+            raise SpecError(sec.file, sec.key(key), "a number >= 0", repr(t))
+    method = sec.string("method", "auto", choices=["auto", "book"])
+    start = sec.number("book_start", 0.8, positive=True)
+    eps = sec.number("book_epsilon", 1e-7, positive=True)
+    max_iter = sec.integer("max_iter", 100, lo=1)
+    rounding = sec.string("dms_rounding", "truncate", choices=["truncate", "round"])
+    sd = sec.integer("dms_seconds_digits", 0, lo=0, hi=6)
+    return InverseInvoluteProblem(tuple(theta), method, start, eps, max_iter, rounding, sd)
+
+
+def _read_spur(sec):
+    z = _teeth(sec, "z")
+    ts = _tooth_system(sec)
+    x = _shift(sec, "x")
+    points = sec.integer("points", 40, lo=2, hi=100000)
+    root = sec.string("root", "generated", choices=["generated", "radial"])
+    radii = _one_or_many(sec, "thickness_radii", "spur")
+    radii = tuple(r * sec.unit for r in radii)
+    fu = sec.boolean("forbid_undercut", False)
+    fp = sec.boolean("forbid_pointed", False)
+    return SpurProblem(z, ts, x, points, root, radii, fu, fp)
+
+
+def _read_pair(sec):
+    from mechcli.core.gear_pair import MeshError, design_teeth_from_ratio
+    ts = _tooth_system(sec)
+    a_w = tuple(a * sec.unit for a in _one_or_many(sec, "a_w", "pair"))
+    alpha_w = []
+    for v in _one_or_many(sec, "alpha_w_deg", "pair"):
+        if not 0 < v < 90:
+            raise sec.error("alpha_w_deg", "degrees in (0, 90)", repr(v))
+        alpha_w.append(math.radians(v))
+    designed = sec.has("ratio")
+    if designed:
+        if sec.has("z1") or sec.has("z2"):
+            raise sec.error("ratio", "either ratio (design) or z1 and z2, not both",
+                            "both")
+        ratio = sec.number("ratio", positive=True)
+        if len(a_w) != 1:
+            raise sec.error("a_w", "one centre distance to design the teeth from",
+                            f"{len(a_w)} values")
+        try:
+            z1, z2 = design_teeth_from_ratio(ratio, a_w[0], ts.m)
+        except MeshError:
+            raise
+    else:
+        z1, z2 = _teeth(sec, "z1"), _teeth(sec, "z2")
+    x1, x2 = _shift(sec, "x1"), _shift(sec, "x2")
+    rc = sec.boolean("require_continuous", False)
+    fi = sec.boolean("forbid_interference", False)
+    # a' must not be below the zero-backlash distance (the teeth would jam): exit 2
+    from mechcli.core.gear import spur_gear
+    from mechcli.core.gear_pair import centre_distance_from_pressure_angle, \
+        zero_backlash_pressure_angle
+    g1 = spur_gear(z1, ts.m, ts.alpha, ts.ha_star, ts.c_star, x1)
+    g2 = spur_gear(z2, ts.m, ts.alpha, ts.ha_star, ts.c_star, x2)
+    a0 = centre_distance_from_pressure_angle(g1, g2, zero_backlash_pressure_angle(g1, g2))
+    for i, a in enumerate(a_w):
+        if a < a0 * (1 - 1e-12):
+            key = "a_w" if len(a_w) == 1 else f"a_w[{i}]"
+            raise SpecError(sec.file, sec.key(key),
+                            f"a centre distance >= {a0 / sec.unit:.6g} (zero backlash; "
+                            "smaller jams the teeth)", f"{a / sec.unit:g}")
+    a_std = ts.m * (z1 + z2) / 2
+    for i, aw in enumerate(alpha_w):
+        a = a_std * math.cos(ts.alpha) / math.cos(aw)
+        if a < a0 * (1 - 1e-12):
+            key = "alpha_w_deg" if len(alpha_w) == 1 else f"alpha_w_deg[{i}]"
+            raise SpecError(sec.file, sec.key(key),
+                            f"an operating pressure angle giving a' >= {a0 / sec.unit:.6g}",
+                            f"{math.degrees(aw):g} (a' = {a / sec.unit:.6g})")
+    return PairProblem(z1, z2, ts, x1, x2, a_w, tuple(alpha_w), designed, rc, fi)
+
+
+def _read_generation(sec):
+    z = _teeth(sec, "z")
+    ts = _tooth_system(sec)
+    raw = sec.raw("x", None)
+    if isinstance(raw, list):
+        shifts = sec.numbers("x")
+        for i, v in enumerate(shifts):
+            if not -1.5 <= v <= 1.5:
+                raise SpecError(sec.file, sec.key(f"x[{i}]"), "a number in [-1.5, 1.5]",
+                                repr(v))
+    else:
+        shifts = [_shift(sec, "x")]
+    step = sec.number("step_deg", 6.0, positive=True)
+    limit = sec.number("limit_deg", 126.0, positive=True)
+    teeth = sec.integer("cutter_teeth", 5, lo=1, hi=50)
+    animate = sec.boolean("animate", False)
+    if limit / step > 5000:
+        raise sec.error("step_deg", f"a step giving at most 5000 positions up to {limit:g}",
+                        repr(step))
+    return GenerationProblem(z, ts, tuple(shifts), math.radians(step), math.radians(limit),
+                             teeth, animate)
+
+
+def _read_helical(sec):
+    z1, z2 = _teeth(sec, "z1"), _teeth(sec, "z2")
+    mn = sec.length("mn")
+    an = _pressure_angle(sec, "alpha_n_deg")
+    han = sec.number("han_star", 1.0, nonneg=True)
+    cn = sec.number("cn_star", 0.25, nonneg=True)
+    beta = sec.number("beta_deg", None)
+    a_w = sec.length("a_w", None)
+    if (beta is None) == (a_w is None):
+        raise sec.error("beta_deg", "beta_deg or a_w (exactly one)",
+                        "both" if beta is not None else "neither")
+    if beta is not None and not 0 < beta < 45:
+        raise sec.error("beta_deg", "degrees in (0, 45)", repr(beta))
+    if a_w is not None and a_w < mn * (z1 + z2) / 2 * (1 - 1e-12):
+        raise sec.error("a_w", f"a centre distance >= mn (z1 + z2) / 2 = "
+                        f"{mn * (z1 + z2) / 2 / sec.unit:g} (beta = 0)", f"{a_w / sec.unit:g}")
+    b = sec.length("b", None)
+    return HelicalProblem(z1, z2, mn, an, han, cn,
+                          None if beta is None else math.radians(beta), a_w, b)
+
+
+def _read_worm(sec):
+    z1 = _teeth(sec, "z1")
+    z2 = _teeth(sec, "z2")
+    m = sec.length("m", None)
+    d2 = sec.length("d2", None)
+    if (m is None) == (d2 is None):
+        raise sec.error("m", "m or d2 (exactly one)", "both" if m is not None else "neither")
+    q = sec.number("q", None, positive=True)
+    d1 = sec.length("d1", None)
+    if (q is None) == (d1 is None):
+        raise sec.error("q", "q or d1 (exactly one: the worm diameter is not implied)",
+                        "both" if q is not None else "neither")
+    alpha = _pressure_angle(sec)
+    ha = sec.number("ha_star", 1.0, nonneg=True)
+    c = sec.number("c_star", 0.2, nonneg=True)
+    return WormProblem(z1, z2, m, d2, q, d1, alpha, ha, c)
+
+
+def _read_bevel(sec):
+    z1, z2 = _teeth(sec, "z1"), _teeth(sec, "z2")
+    m = _module(sec)
+    alpha = _pressure_angle(sec)
+    ha = sec.number("ha_star", 1.0, nonneg=True)
+    c = sec.number("c_star", 0.2, nonneg=True)
+    sigma = sec.number("sigma_deg", 90.0, expected="degrees in (0, 180)")
+    if not 0 < sigma < 180:
+        raise sec.error("sigma_deg", "degrees in (0, 180)", repr(sigma))
+    return BevelProblem(z1, z2, m, alpha, ha, c, math.radians(sigma))
+
+
+READERS = {"involute": _read_involute, "inverse_involute": _read_inverse, "spur": _read_spur,
+           "pair": _read_pair, "generation": _read_generation, "helical": _read_helical,
+           "worm": _read_worm, "bevel": _read_bevel}
+
+
+def read_gear_spec(path, overrides=()):
+    """Read and validate a gear problem file.
+
+    Returns
+    -------
+    GearSpec
+
+    Raises
+    ------
+    SpecError
+        Unknown or missing keys, wrong types, values out of range, no or
+        several problem tables.
+    """
+    root = load_spec(path, overrides)
+    header = read_header(root, "gear")
+    present = [k for k in KINDS if root.has(k)]
+    if len(present) != 1:
+        want = "exactly one problem table: " + ", ".join(f"[{k}]" for k in KINDS)
+        if present:
+            got = " and ".join(f"[{k}]" for k in present)
+        else:
+            from mechcli.spec.errors import closest
+            extra = [k for k in root.keys() if isinstance(root.data[k], dict)
+                     and k != "expected"]
+            hint = closest(extra[0], KINDS) if extra else None
+            raise SpecError(root.file, extra[0] if extra else "", want,
+                            f"[{extra[0]}]" if extra else "none", hint)
+        raise SpecError(root.file, "", want, got)
+    kind = present[0]
+    sec = root.table(kind)
+    problem = READERS[kind](sec)
+    sec.finish()
+    expected = read_expected(root)
+    root.finish()
+    return GearSpec(header, kind, problem, expected)
