@@ -18,6 +18,8 @@ from mechcli import __version__
 #: subcommand -> (module, attribute, one-line help).  Register only what works.
 COMMANDS = {
     "kin": ("mechcli.commands.kin", "kin", "Kinematics of a planar linkage (chapter 1)."),
+    "gear": ("mechcli.commands.gear", "gear",
+             "Involute gears: function, geometry, pairs, generation (chapter 5)."),
     "grashof": ("mechcli.commands.grashof", "grashof",
                 "Linkage type, crank conditions, K, transmission angle, mobility (ch. 3 §1)."),
     "cam": ("mechcli.commands.cam", "cam",
