@@ -1,0 +1,57 @@
+"""``mechcli grashof``: linkage type, crank conditions, mobility and quick-return figures."""
+
+from __future__ import annotations
+
+import click
+
+from mechcli.options import RunOptions, common_options
+
+
+@click.command("grashof")
+@click.argument("spec_path", metavar="[SPEC.toml]", required=False)
+@click.option("--lengths", metavar="L1,L2,...", help="Quick form without a file: 4 lengths "
+              "(four-bar), 5 (five-bar) or 2 with --offset (slider-crank).")
+@click.option("--frame", type=int, help="Frame link number (quick form) [default: 4 or 5].")
+@click.option("--input", "input_link", type=int, help="Input link (quick form) [default: 1].")
+@click.option("--offset", type=float, help="Slider offset e (quick form, slider-crank).")
+@click.option("--batch", type=click.Path(dir_okay=False), metavar="SETS.csv",
+              help="Classify many four-bars: rows l1,l2,l3,l4[,frame[,input]] -> grashof.csv.")
+@click.option("--units", type=click.Choice(["mm", "cm", "m", "in"]), default="mm",
+              show_default=True, help="Length unit of --lengths and --batch.")
+@common_options
+def grashof(spec_path, lengths, frame, input_link, offset, batch, units, **opts):
+    """Four-bar type (Grashof) and inversions, θ, ψ, K, transmission angles and
+    dead points; slider-crank, guide-bar, 5R/RRRRP five-bars, mobility F."""
+    given = [x for x in (spec_path, lengths, batch) if x]
+    if len(given) != 1:
+        raise click.UsageError("give exactly one of SPEC.toml, --lengths or --batch")
+    stem = "grashof-batch" if batch else ("grashof" if lengths else None)
+    run = RunOptions.from_click(spec_path or batch, opts, stem=stem)
+    from mechcli.report import grashof as report
+    from mechcli.report.files import Outputs
+    from mechcli.report.run import finish
+    from mechcli.spec import grashof as spec_mod
+
+    outputs = Outputs(run.out_dir)
+    if batch:
+        import numpy as np
+
+        from mechcli.core.grashof import analyse_fourbar, closes
+        bs = spec_mod.read_batch_csv(batch, units)
+        ok = closes(bs.lengths)
+        an = analyse_fourbar(bs.lengths, bs.frame, bs.input, require_closure=False)
+        outputs.text("grashof.csv", report.fourbar_csv(an, bs.header.scale, ok))
+        res = report.batch_results(an, ok)
+        warns = [f"{res['cannot_close']} length sets cannot close (type cannot_close)"] \
+            if not np.all(ok) else []
+        finish(run, "grashof", report.batch_report(bs.header.title, run.lang, res), res,
+               outputs, warns)
+        return
+    if lengths:
+        spec = spec_mod.quick_spec(lengths, frame, input_link, offset, units)
+    else:
+        spec = spec_mod.read_grashof_spec(spec_path, run.sets)
+    results, rep, csv_text, warnings = report.build(spec, run.lang)
+    if csv_text:
+        outputs.text("grashof.csv", csv_text)
+    finish(run, "grashof", rep, results, outputs, warnings)

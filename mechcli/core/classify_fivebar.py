@@ -1,0 +1,224 @@
+"""Type of a 5R five-bar (2 DOF) and the crank condition of the RRRRP five-bar.
+
+Source: 李辉, 张策, 孟宪举, 《平面五杆机构类型判别方法的研究》, 机械设计 2002(5)
+("the paper").  Links are numbered 1..5 around the loop (link *k* joined to
+*k-1* and *k+1*, 5 joined to 1); the default frame is link 5 and the two
+inputs are the links joined to the frame (1 and 4).  Only numpy is used.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+
+from mechcli.core.errors import UnsolvableError
+from mechcli.core.grashof import CHANGE_POINT_RTOL, ClosureError, check_closure
+
+FIVEBAR_TYPES = ("triple_crank", "double_crank", "single_crank", "no_crank",
+                 "single_or_no_crank")
+
+
+def fivebar_roles(frame):
+    """(input_1, input_2, coupler_1, coupler_2) link numbers for a frame link.
+
+    ``input_1`` is the link after the frame in the loop, ``coupler_1`` is
+    joined to ``input_1``; for the default frame 5: (1, 4, 2, 3).
+    """
+    f0 = frame - 1
+    return ((f0 + 1) % 5 + 1, (f0 + 4) % 5 + 1, (f0 + 2) % 5 + 1, (f0 + 3) % 5 + 1)
+
+
+@dataclasses.dataclass(frozen=True)
+class FiveBarClass:
+    """Classification of 5R five-bars (arrays over the batch).
+
+    Attributes
+    ----------
+    klass : ndarray of int
+        1 (class I: L_max + L_min1 + L_min2 <= a + b) or 2 (class II).
+    boundary : ndarray of bool
+        Equality in the class-I condition within the tolerance.
+    code : ndarray of int
+        Index into :data:`FIVEBAR_TYPES` (the paper's rule, §2).
+    crank_mask : ndarray of bool, shape (N, 5)
+        The cranks the paper names (inputs, plus the coupler crank of a
+        triple-crank).
+    short1, short2 : ndarray of int
+        Link numbers of the shortest and second-shortest links.
+    excess : ndarray
+        (L_max + L_min1 + L_min2) − (a + b) [m].
+    inputs_independent : ndarray of bool
+        Closed-form check: the linkage assembles for every pair of input
+        angles with links 2 and 3 never in line (BD stays inside
+        (|l_c1 − l_c2|, l_c1 + l_c2) over the whole torus).
+    """
+
+    klass: np.ndarray
+    boundary: np.ndarray
+    code: np.ndarray
+    crank_mask: np.ndarray
+    short1: np.ndarray
+    short2: np.ndarray
+    excess: np.ndarray
+    inputs_independent: np.ndarray
+
+    @property
+    def types(self):
+        return [FIVEBAR_TYPES[c] for c in self.code.tolist()]
+
+    def cranks(self, i=0):
+        return [k + 1 for k in np.flatnonzero(self.crank_mask[i]).tolist()]
+
+
+def classify_fivebar(lengths, frame=5, rtol=CHANGE_POINT_RTOL):
+    """Class (I/II) and type of 5R five-bars with the two frame links as inputs.
+
+    Parameters
+    ----------
+    lengths : array_like, shape (5,) or (N, 5)
+        l1..l5 in loop order [m].
+    frame : int
+        Frame link number (1..5); the inputs are its two neighbours.
+    rtol : float
+        Relative tolerance of the class-I equality.
+
+    Returns
+    -------
+    FiveBarClass
+
+    Raises
+    ------
+    ClosureError
+        A link is not shorter than the sum of the others.
+
+    Notes
+    -----
+    The paper, eq. (19): class I iff L_max + L_min1 + L_min2 <= a + b.  For
+    class I (§2.1): one short link the frame and the other an input gives a
+    triple crank (both inputs and the coupler joined to the short input, the
+    paper's example 1); both short links the inputs a double crank (example 2);
+    one short link the frame or an input and the other neither, a single
+    crank (the short input; an input next to a short frame); otherwise no
+    crank.  Class II (§2.2) has a single crank or none; the paper gives no
+    rule to tell which, so it is reported as ``single_or_no_crank``.
+    The independent check ``inputs_independent`` uses that B and D are
+    farthest/closest apart at input angles 0 or π (the paper's eqs. 9-10).
+    """
+    L = np.asarray(lengths, dtype=float)
+    L = L[None, :] if L.ndim == 1 else L
+    if L.ndim != 2 or L.shape[1] != 5:
+        raise ValueError(f"expected lengths of shape (N, 5), got {L.shape}")
+    check_closure(L)
+    n = L.shape[0]
+    rows = np.arange(n)
+    order = np.argsort(L, axis=1, kind="stable")
+    srt = np.take_along_axis(L, order, axis=1)
+    excess = (srt[:, 4] + srt[:, 0] + srt[:, 1]) - (srt[:, 2] + srt[:, 3])
+    boundary = np.abs(excess) <= rtol * srt[:, 4]
+    class1 = (excess <= 0) | boundary
+    s1, s2 = order[:, 0], order[:, 1]
+    i1, i2, c1, c2 = (x - 1 for x in fivebar_roles(frame))
+    f0 = frame - 1
+    short = np.zeros((n, 5), dtype=bool)
+    short[rows, s1] = True
+    short[rows, s2] = True
+    fs = short[:, f0]
+    s_in1, s_in2 = short[:, i1], short[:, i2]
+    n_ground = fs.astype(int) + s_in1 + s_in2
+    triple = class1 & fs & (s_in1 | s_in2)
+    double = class1 & s_in1 & s_in2
+    single = class1 & (n_ground == 1)
+    code = np.full(n, FIVEBAR_TYPES.index("no_crank"))
+    code[single] = FIVEBAR_TYPES.index("single_crank")
+    code[double] = FIVEBAR_TYPES.index("double_crank")
+    code[triple] = FIVEBAR_TYPES.index("triple_crank")
+    code[~class1] = FIVEBAR_TYPES.index("single_or_no_crank")
+    mask = np.zeros((n, 5), dtype=bool)
+    mask[:, i1] = triple | double | (single & (s_in1 | fs))
+    mask[:, i2] = triple | double | (single & (s_in2 | fs))
+    mask[:, c1] = triple & s_in1
+    mask[:, c2] = triple & s_in2
+
+    p, q, g, h, f = L[:, i1], L[:, i2], L[:, c1], L[:, c2], L[:, f0]
+    bd_max = f + p + q
+    bd_min = np.maximum.reduce([np.zeros(n), f - p - q, p - f - q, q - f - p])
+    independent = (bd_min > np.abs(g - h)) & (bd_max < g + h)
+    return FiveBarClass(klass=np.where(class1, 1, 2), boundary=boundary, code=code,
+                        crank_mask=mask, short1=s1 + 1, short2=s2 + 1, excess=excess,
+                        inputs_independent=independent)
+
+
+@dataclasses.dataclass(frozen=True)
+class RRRRPCrank:
+    """Crank condition of the RRRRP five-bar.
+
+    Crank 1 (length l1) about A at the origin, links 2 (l2) and 3 (l3), joint
+    D of link 3 on a slider moving on the line y = e; inputs: link 1 and the
+    slider.
+
+    Attributes
+    ----------
+    crank_any_fold : bool
+        Paper eq. (20) with the offset: l1 + |e| <= |l2 − l3|; link 1 then
+        turns fully whatever the angle between links 2 and 3 (each locked
+        angle is a slider-crank whose coupler BD >= |l2 − l3|).
+    boundary : bool
+        Equality in that condition.
+    slider_lo, slider_hi : float
+        Slider positions x >= 0 [m] between which link 1 turns fully with the
+        slider held still (AD between l1 + |l2 − l3| and l2 + l3 − l1);
+        mirrored for x <= 0.  Both 0 when there are none.
+    """
+
+    l1: float
+    l2: float
+    l3: float
+    e: float
+    crank_any_fold: bool
+    boundary: bool
+    slider_lo: float
+    slider_hi: float
+
+
+def rrrrp_crank(l1, l2, l3, e=0.0, rtol=CHANGE_POINT_RTOL):
+    """Crank condition of the RRRRP five-bar (the paper's §4), with slider offset.
+
+    Parameters
+    ----------
+    l1, l2, l3 : float
+        Crank, second and third link lengths [m].
+    e : float
+        Offset of the slider path from the crank pivot A [m].
+
+    Returns
+    -------
+    RRRRPCrank
+
+    Notes
+    -----
+    With links 2 and 3 folded onto each other (paper fig. 9) A, B, D form a
+    slider-crank with coupler |l2 − l3|; its crank condition (slides:
+    a + e <= b) is l1 + |e| <= |l2 − l3|, the paper's eq. (20) for e = 0.  Any
+    other angle between 2 and 3 makes BD longer, so the condition holds for
+    all of them.  With the slider held at x, link 1 turns iff B–D distances
+    |AD − l1| .. AD + l1 stay within |l2 − l3| .. l2 + l3.
+    """
+    l1, l2, l3, e = float(l1), float(l2), float(l3), abs(float(e))
+    if e >= l1 + l2 + l3:
+        raise ClosureError(f"the RRRRP chain cannot reach its slider path: offset {e:.6g} >= "
+                           f"l1 + l2 + l3 = {l1 + l2 + l3:.6g}")
+    fold = abs(l2 - l3)
+    slack = fold - (l1 + e)
+    boundary = abs(slack) <= rtol * (l1 + l2 + l3)
+    ad_lo, ad_hi = max(l1 + fold, e), l2 + l3 - l1
+    if ad_lo <= ad_hi:
+        s_lo = float(np.sqrt(max(ad_lo ** 2 - e ** 2, 0.0)))
+        s_hi = float(np.sqrt(max(ad_hi ** 2 - e ** 2, 0.0)))
+    else:
+        s_lo = s_hi = 0.0
+    return RRRRPCrank(l1, l2, l3, e, bool(slack >= 0 or boundary), bool(boundary), s_lo, s_hi)
+
+
+__all__ = ["FIVEBAR_TYPES", "FiveBarClass", "classify_fivebar", "fivebar_roles",
+           "RRRRPCrank", "rrrrp_crank", "ClosureError", "UnsolvableError"]

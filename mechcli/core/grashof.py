@@ -1,0 +1,771 @@
+"""Type of a four-bar chain (Grashof), its figures of merit, slider-crank and guide-bar.
+
+Everything here is closed form and vectorized over arrays of length sets: a
+batch of 100 000 four-bars is classified by a handful of numpy operations.
+Only numpy is imported (no scipy) so ``mechcli grashof --lengths`` starts fast.
+
+Conventions (book chapter 3 §1, fig. 3-1): the links of a four-bar chain are
+numbered 1..4 around the loop, link *k* joined to links *k-1* and *k+1*
+(1 joined to 4).  The default frame is link 4, the default input (driver)
+link 1, so link 3 (opposite link 1) is the output and link 2 the coupler.
+For the figures of merit the linkage is drawn as in the book's figures: the
+input pivot A at the origin, the output pivot D on the +x axis at distance
+*d* (the frame), the coupler–output joint C above the line AD (the "open"
+assembly).  Angles are counter-clockwise from +x, in radians.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+
+from mechcli.core.errors import UnsolvableError
+
+#: type names, index = integer type code used in batch arrays
+TYPES = (
+    "crank_rocker",
+    "double_crank",
+    "double_rocker",
+    "parallelogram",
+    "antiparallelogram",
+    "change_point_crank_rocker",
+    "change_point_double_crank",
+    "change_point_double_rocker",
+)
+_CODE = {name: i for i, name in enumerate(TYPES)}
+
+#: default relative tolerance of the change-point test s + l = p + q
+CHANGE_POINT_RTOL = 1e-9
+
+
+class ClosureError(UnsolvableError):
+    """The lengths cannot form a closed loop (one link as long as all others together)."""
+
+
+def _lengths_array(lengths, n):
+    arr = np.asarray(lengths, dtype=float)
+    if arr.ndim == 1:
+        arr = arr[None, :]
+    if arr.ndim != 2 or arr.shape[1] != n:
+        raise ValueError(f"expected lengths of shape (N, {n}), got {arr.shape}")
+    return arr
+
+
+def check_closure(lengths):
+    """Raise :class:`ClosureError` if some link is at least as long as all the others.
+
+    Parameters
+    ----------
+    lengths : array_like, shape (n,) or (N, n)
+        Link lengths of one closed chain (or a batch) [m].
+
+    Notes
+    -----
+    A closed chain of rigid links can be assembled (and move) only if every
+    link is shorter than the sum of the others; with equality it is a
+    straight, immobile line.
+    """
+    arr = np.asarray(lengths, dtype=float)
+    arr = arr if arr.ndim == 2 else arr[None, :]
+    longest = arr.max(axis=1)
+    rest = arr.sum(axis=1) - longest
+    bad = np.flatnonzero(longest >= rest)
+    if bad.size:
+        i = int(bad[0])
+        k = int(np.argmax(arr[i])) + 1
+        raise ClosureError(
+            f"the chain cannot close: link {k} ({arr[i, k - 1]:.6g}) is not shorter than "
+            f"the sum of the other links ({rest[i]:.6g})"
+            + (f" (length set {i + 1})" if arr.shape[0] > 1 else ""))
+    return True
+
+
+def closes(lengths):
+    """Boolean array: True where every link is shorter than the sum of the others."""
+    arr = _lengths_array(lengths, np.asarray(lengths).shape[-1])
+    longest = arr.max(axis=1)
+    return longest < arr.sum(axis=1) - longest
+
+
+@dataclasses.dataclass(frozen=True)
+class FourBarClass:
+    """Classification of a batch of four-bar chains with a chosen frame.
+
+    Attributes
+    ----------
+    code : ndarray of int, shape (N,)
+        Index into :data:`TYPES`.
+    grashof : ndarray of bool
+        s + l <= p + q (change point included).
+    change_point : ndarray of bool
+        s + l = p + q within the relative tolerance.
+    crank_mask : ndarray of bool, shape (N, 4)
+        ``crank_mask[i, k-1]``: link *k* turns fully relative to the frame
+        (the frame itself is never marked).
+    longest, shortest : ndarray of int
+        Link numbers (1..4) of the longest and shortest link (first on ties).
+    excess : ndarray of float
+        (s + l) - (p + q) [m]; <= 0 for a Grashof chain.
+    """
+
+    code: np.ndarray
+    grashof: np.ndarray
+    change_point: np.ndarray
+    crank_mask: np.ndarray
+    longest: np.ndarray
+    shortest: np.ndarray
+    excess: np.ndarray
+
+    @property
+    def types(self):
+        """Type names as a list of str."""
+        return [TYPES[c] for c in self.code.tolist()]
+
+    def cranks(self, i=0):
+        """Link numbers of the cranks of length set *i*."""
+        return [k + 1 for k in np.flatnonzero(self.crank_mask[i]).tolist()]
+
+
+def classify_fourbar(lengths, frame=4, crossed=False, rtol=CHANGE_POINT_RTOL):
+    """Classify four-bar chains (crank-rocker, double-crank, double-rocker, ...).
+
+    Parameters
+    ----------
+    lengths : array_like, shape (4,) or (N, 4)
+        l1..l4 in loop order [m] (any consistent unit).
+    frame : int or array of int, shape (N,)
+        Link number (1..4) of the frame.
+    crossed : bool or array of bool
+        Crossed assembly; only changes a parallelogram into an antiparallelogram.
+    rtol : float
+        Relative tolerance of the change-point test ``|s + l - p - q| <= rtol (s + l)``.
+
+    Returns
+    -------
+    FourBarClass
+
+    Notes
+    -----
+    Book eqs. (3-1), (3-2) and the four steps of fig. 3-2 (例 3-1): if s + l > p + q
+    every pair is a rocking pair and the chain is a double rocker whatever the
+    frame; otherwise the two pairs of the shortest link turn fully, so the frame
+    being the shortest link gives a double crank, the shortest link next to the
+    frame a crank-rocker (the shortest link is the crank), the shortest link
+    opposite the frame a double rocker.  Two pairs of equal opposite links give
+    a parallelogram (antiparallelogram when crossed); s + l = p + q otherwise
+    is named a change point (the chain can fold flat).  Lengths are not
+    checked for closure here: see :func:`check_closure`.
+    """
+    L = _lengths_array(lengths, 4)
+    n = L.shape[0]
+    frame = np.broadcast_to(np.asarray(frame, dtype=int), (n,))
+    crossed = np.broadcast_to(np.asarray(crossed, dtype=bool), (n,))
+    srt = np.sort(L, axis=1)
+    s, p, q, lng = srt[:, 0], srt[:, 1], srt[:, 2], srt[:, 3]
+    excess = (s + lng) - (p + q)
+    change = np.abs(excess) <= rtol * (s + lng)
+    grashof = (excess <= 0) | change
+
+    rows = np.arange(n)
+    f0 = frame - 1
+    adj_a = (f0 + 1) % 4
+    adj_b = (f0 + 3) % 4
+    opp = (f0 + 2) % 4
+    tol = rtol * (s + lng)
+    is_short = np.abs(L - s[:, None]) <= tol[:, None]
+    frame_short = is_short[rows, f0]
+    a_short = is_short[rows, adj_a]
+    b_short = is_short[rows, adj_b]
+    opp_short = is_short[rows, opp]
+    parallel = (np.abs(L[:, 0] - L[:, 2]) <= tol) & (np.abs(L[:, 1] - L[:, 3]) <= tol)
+
+    crank_mask = np.zeros((n, 4), dtype=bool)
+    both = grashof & (frame_short | parallel)
+    crank_mask[rows, adj_a] = both | (grashof & a_short)
+    crank_mask[rows, adj_b] = both | (grashof & b_short)
+
+    code = np.full(n, _CODE["double_rocker"])
+    dc = grashof & (frame_short | parallel)
+    cr = grashof & ~dc & (a_short | b_short)
+    code[cr] = _CODE["crank_rocker"]
+    code[dc] = _CODE["double_crank"]
+    cp = change & ~parallel
+    code[cp & (code == _CODE["crank_rocker"])] = _CODE["change_point_crank_rocker"]
+    code[cp & (code == _CODE["double_crank"])] = _CODE["change_point_double_crank"]
+    code[cp & grashof & ~dc & ~cr] = _CODE["change_point_double_rocker"]
+    code[parallel & ~crossed] = _CODE["parallelogram"]
+    code[parallel & crossed] = _CODE["antiparallelogram"]
+    del opp_short
+    return FourBarClass(code=code, grashof=grashof, change_point=change,
+                        crank_mask=crank_mask, longest=np.argmax(L, axis=1) + 1,
+                        shortest=np.argmin(L, axis=1) + 1, excess=excess)
+
+
+def classify_inversions(lengths, rtol=CHANGE_POINT_RTOL):
+    """The type of the chain for each of the four choices of frame.
+
+    Parameters
+    ----------
+    lengths : array_like, shape (4,) or (N, 4)
+        l1..l4 [m].
+
+    Returns
+    -------
+    list of FourBarClass
+        Element ``k-1`` has link *k* as the frame.
+
+    Notes
+    -----
+    Kinematic inversion (slides §2-1 "倒置法"): a Grashof chain gives two
+    crank-rockers, one double crank and one double rocker.
+    """
+    return [classify_fourbar(lengths, frame=k, rtol=rtol) for k in (1, 2, 3, 4)]
+
+
+def driven_links(frame, input_link):
+    """(input, coupler, output) link numbers for a frame and an input next to it.
+
+    Raises
+    ------
+    ValueError
+        If the input is the frame or not joined to it.
+    """
+    f0 = frame - 1
+    nb = ((f0 + 1) % 4 + 1, (f0 + 3) % 4 + 1)
+    if input_link not in nb:
+        raise ValueError(f"the input link must be joined to the frame {frame}: one of {nb}")
+    output = nb[1] if input_link == nb[0] else nb[0]
+    coupler = (f0 + 2) % 4 + 1
+    return input_link, coupler, output
+
+
+def _acos(x):
+    return np.arccos(np.clip(x, -1.0, 1.0))
+
+
+def _wrap(angle):
+    return np.mod(angle, 2 * np.pi)
+
+
+@dataclasses.dataclass(frozen=True)
+class FourBarMerit:
+    """Figures of merit of driven four-bars (arrays over the batch, radians).
+
+    Lengths ``a`` input, ``b`` coupler, ``c`` output, ``d`` frame.  Entries
+    that do not exist for a length set (no limit positions for a double
+    crank, say) are masked by the boolean ``has_*`` arrays and hold 0.
+
+    Attributes
+    ----------
+    input_turns, output_turns : ndarray of bool
+        The input (output) link turns fully relative to the frame.
+    has_limits : ndarray of bool
+        Crank-rocker driven by its crank: the output has two limit positions
+        and θ, ψ, K exist.
+    theta1_ext, theta1_fold : ndarray
+        Input angle at the extended (crank and coupler in line, C farthest
+        from A) and folded limit positions [rad, 0..2π).
+    theta3_ext, theta3_fold : ndarray
+        Output angle at those positions [rad, 0..2π).
+    theta : ndarray
+        Limit-position angle θ (crank angle between the two limit positions
+        minus π, absolute value) [rad].
+    psi : ndarray
+        Output swing ψ [rad].
+    K : ndarray
+        Time ratio (π + θ)/(π − θ).
+    input_lo, input_hi : ndarray
+        Input angle range [rad] when the input is a rocker (0, 2π if it turns).
+    gamma_min, gamma_max : ndarray
+        Extreme transmission angles over the input's motion [rad].
+    gamma_min_at, gamma_max_at : ndarray
+        Input angle where they occur [rad, 0..π, the mirror 2π − x also].
+    has_gamma0, has_gamma180 : ndarray of bool
+        The input reaches θ1 = 0 (π) (crank along (against) the frame line).
+    gamma0, gamma180 : ndarray
+        Transmission angle at θ1 = 0 and θ1 = π (book eq. 3-49) [rad].
+    dead_output : ndarray of bool, shape (N, 2)
+        Dead point when the output drives: input and coupler in line, extended
+        (column 0) and folded (column 1), reachable in the assembly.
+    dead_theta3 : ndarray, shape (N, 2)
+        Output angles at those dead points [rad, C above AD].
+    """
+
+    a: np.ndarray
+    b: np.ndarray
+    c: np.ndarray
+    d: np.ndarray
+    input_turns: np.ndarray
+    output_turns: np.ndarray
+    has_limits: np.ndarray
+    theta1_ext: np.ndarray
+    theta1_fold: np.ndarray
+    theta3_ext: np.ndarray
+    theta3_fold: np.ndarray
+    theta: np.ndarray
+    psi: np.ndarray
+    K: np.ndarray
+    input_lo: np.ndarray
+    input_hi: np.ndarray
+    gamma_min: np.ndarray
+    gamma_min_at: np.ndarray
+    gamma_max: np.ndarray
+    gamma_max_at: np.ndarray
+    has_gamma0: np.ndarray
+    has_gamma180: np.ndarray
+    gamma0: np.ndarray
+    gamma180: np.ndarray
+    dead_output: np.ndarray
+    dead_theta3: np.ndarray
+
+
+def _output_angle(ac, phi, c, d):
+    """Angle of DC [rad] for C at distance *ac* from A in direction *phi*."""
+    cx = ac * np.cos(phi) - d
+    cy = ac * np.sin(phi)
+    return _wrap(np.arctan2(cy, cx))
+
+
+def fourbar_merit(a, b, c, d, input_turns, output_turns):
+    """Limit positions, θ, ψ, K, transmission angles and dead points.
+
+    Parameters
+    ----------
+    a, b, c, d : array_like
+        Input, coupler, output and frame lengths [m] (broadcast together).
+    input_turns, output_turns : array_like of bool
+        Whether input and output turn fully (from :func:`classify_fourbar`).
+
+    Returns
+    -------
+    FourBarMerit
+
+    Notes
+    -----
+    Limit positions: crank and coupler in line, AC = b + a (extended) and
+    AC = b − a (folded); the triangle ACD gives the directions (law of
+    cosines), θ = ∠C1AC2, K = (180° + θ)/(180° − θ) (slides §2-2, book
+    eq. 3-39 inverted).  Transmission angle γ = ∠BCD folded into [0, 90°]:
+    cos∠BCD = (b² + c² − BD²)/(2bc), BD² = a² + d² − 2ad cos θ1, so γ is
+    extreme at θ1 = 0 or π (book eq. 3-49, fig. 3-19) or at the ends of a
+    rocking input's range, and 90° where BD² = b² + c².  All exact, no sampling.
+    """
+    a, b, c, d = np.broadcast_arrays(*(np.atleast_1d(np.asarray(x, dtype=float))
+                                       for x in (a, b, c, d)))
+    tin = np.broadcast_to(np.asarray(input_turns, dtype=bool), a.shape)
+    tout = np.broadcast_to(np.asarray(output_turns, dtype=bool), a.shape)
+    has_limits = tin & ~tout
+
+    # limit positions (meaningful where has_limits)
+    ac_e = b + a
+    ac_f = np.abs(b - a)
+    den_e = 2 * ac_e * d
+    den_f = np.where(ac_f > 0, 2 * ac_f * d, 1.0)
+    phi_e = _acos((ac_e ** 2 + d ** 2 - c ** 2) / den_e)
+    phi_f = _acos((ac_f ** 2 + d ** 2 - c ** 2) / den_f)
+    theta1_e = _wrap(phi_e)
+    theta1_f = _wrap(phi_f + np.pi)
+    theta3_e = _output_angle(ac_e, phi_e, c, d)
+    theta3_f = _output_angle(ac_f, phi_f, c, d)
+    theta = np.abs(phi_f - phi_e)
+    dpsi = np.abs(theta3_e - theta3_f)
+    psi = np.minimum(dpsi, 2 * np.pi - dpsi)
+    K = (np.pi + theta) / (np.pi - np.minimum(theta, np.pi * (1 - 1e-15)))
+    zero = np.zeros_like(a)
+    theta1_e, theta1_f, theta3_e, theta3_f, theta, psi, K = (
+        np.where(has_limits, x, zero) for x in (theta1_e, theta1_f, theta3_e, theta3_f,
+                                                  theta, psi, K))
+
+    # range of BD over the input's motion
+    bd_lo = np.abs(d - a)
+    bd_hi = d + a
+    lo = np.maximum(bd_lo, np.abs(b - c))
+    hi = np.minimum(bd_hi, b + c)
+    lo = np.where(tin, bd_lo, lo)
+    hi = np.where(tin, bd_hi, hi)
+    two_ad = 2 * a * d
+    th_lo = _acos((a ** 2 + d ** 2 - lo ** 2) / two_ad)
+    th_hi = _acos((a ** 2 + d ** 2 - hi ** 2) / two_ad)
+    input_lo = np.where(tin, 0.0, th_lo)
+    input_hi = np.where(tin, 2 * np.pi, th_hi)
+
+    def gamma_of(bd):
+        delta = _acos((b ** 2 + c ** 2 - bd ** 2) / (2 * b * c))
+        return np.minimum(delta, np.pi - delta)
+
+    g_lo, g_hi = gamma_of(lo), gamma_of(hi)
+    gamma_min = np.minimum(g_lo, g_hi)
+    gamma_min_at = np.where(g_lo <= g_hi, th_lo, th_hi)
+    right = b ** 2 + c ** 2
+    spans = (lo ** 2 <= right) & (right <= hi ** 2)
+    th_right = _acos((a ** 2 + d ** 2 - right) / two_ad)
+    gamma_max = np.where(spans, np.pi / 2, np.maximum(g_lo, g_hi))
+    gamma_max_at = np.where(spans, th_right, np.where(g_lo >= g_hi, th_lo, th_hi))
+    has_g0 = tin | (lo <= bd_lo * (1 + 1e-12))
+    has_g180 = tin | (hi >= bd_hi * (1 - 1e-12))
+    gamma0 = np.where(has_g0, gamma_of(bd_lo), zero)
+    gamma180 = np.where(has_g180, gamma_of(bd_hi), zero)
+
+    # dead points with the output driving: input and coupler in line, if C can be there
+    c_lo, c_hi = np.abs(d - c), d + c
+    dead = np.stack([(ac_e >= c_lo) & (ac_e <= c_hi), (ac_f >= c_lo) & (ac_f <= c_hi)], axis=1)
+    dead &= ~tout[:, None]
+    dead_th3 = np.where(dead, np.stack([_output_angle(ac_e, phi_e, c, d),
+                                        _output_angle(ac_f, phi_f, c, d)], axis=1), 0.0)
+    return FourBarMerit(a=a, b=b, c=c, d=d, input_turns=tin, output_turns=tout,
+                        has_limits=has_limits, theta1_ext=theta1_e, theta1_fold=theta1_f,
+                        theta3_ext=theta3_e, theta3_fold=theta3_f, theta=theta, psi=psi, K=K,
+                        input_lo=input_lo, input_hi=input_hi, gamma_min=gamma_min,
+                        gamma_min_at=gamma_min_at, gamma_max=gamma_max,
+                        gamma_max_at=gamma_max_at, has_gamma0=has_g0, has_gamma180=has_g180,
+                        gamma0=gamma0, gamma180=gamma180, dead_output=dead,
+                        dead_theta3=dead_th3)
+
+
+@dataclasses.dataclass(frozen=True)
+class FourBarAnalysis:
+    """One or many four-bars: lengths, frame/input choice, class and merit.
+
+    Attributes
+    ----------
+    lengths : ndarray, shape (N, 4)
+        l1..l4 [m].
+    frame, input : ndarray of int
+        Link numbers.
+    coupler, output : ndarray of int
+        Derived link numbers.
+    klass : FourBarClass
+    merit : FourBarMerit
+    """
+
+    lengths: np.ndarray
+    frame: np.ndarray
+    input: np.ndarray
+    coupler: np.ndarray
+    output: np.ndarray
+    klass: FourBarClass
+    merit: FourBarMerit
+
+
+def analyse_fourbar(lengths, frame=4, input_link=1, crossed=False, rtol=CHANGE_POINT_RTOL,
+                    require_closure=True):
+    """Classify four-bars and compute their figures of merit (vectorized).
+
+    Parameters
+    ----------
+    lengths : array_like, shape (4,) or (N, 4)
+        l1..l4 [m].
+    frame, input_link : int or array of int
+        Frame and input link numbers; the input must be joined to the frame.
+    crossed : bool or array of bool
+        Crossed assembly (parallelogram -> antiparallelogram).
+    rtol : float
+        Change-point tolerance (relative).
+    require_closure : bool
+        Raise :class:`ClosureError` if a set cannot close (else those rows
+        are classified but their merit is meaningless; see :func:`closes`).
+
+    Returns
+    -------
+    FourBarAnalysis
+
+    Raises
+    ------
+    ClosureError
+        A link is not shorter than the sum of the others.
+    ValueError
+        An input link that is not joined to the frame.
+    """
+    L = _lengths_array(lengths, 4)
+    n = L.shape[0]
+    if require_closure:
+        check_closure(L)
+    frame = np.broadcast_to(np.asarray(frame, dtype=int), (n,)).copy()
+    inp = np.broadcast_to(np.asarray(input_link, dtype=int), (n,)).copy()
+    f0 = frame - 1
+    nb1, nb2 = (f0 + 1) % 4, (f0 + 3) % 4
+    i0 = inp - 1
+    if np.any((i0 != nb1) & (i0 != nb2)):
+        raise ValueError("the input link must be joined to the frame")
+    o0 = np.where(i0 == nb1, nb2, nb1)
+    c0 = (f0 + 2) % 4
+    klass = classify_fourbar(L, frame, crossed, rtol)
+    rows = np.arange(n)
+    merit = fourbar_merit(L[rows, i0], L[rows, c0], L[rows, o0], L[rows, f0],
+                          klass.crank_mask[rows, i0], klass.crank_mask[rows, o0])
+    return FourBarAnalysis(lengths=L, frame=frame, input=inp, coupler=c0 + 1, output=o0 + 1,
+                           klass=klass, merit=merit)
+
+
+# --------------------------------------------------------------------------- ranges
+@dataclasses.dataclass(frozen=True)
+class LengthRange:
+    """One interval of a varied link length with a constant type.
+
+    Attributes
+    ----------
+    type : str
+        Basic type (change-point ends are folded into the neighbouring type).
+    crank : int or None
+        The crank link of a crank-rocker.
+    lo, hi : float
+        Interval ends [m].
+    lo_closed, hi_closed : bool
+        Whether the ends belong to the interval.
+    """
+
+    type: str
+    crank: int | None
+    lo: float
+    hi: float
+    lo_closed: bool
+    hi_closed: bool
+
+
+_BASIC = {"change_point_crank_rocker": "crank_rocker",
+          "change_point_double_crank": "double_crank",
+          "change_point_double_rocker": "double_rocker"}
+
+
+def length_ranges(lengths, vary, frame=4, rtol=CHANGE_POINT_RTOL):
+    """Intervals of one link's length giving each type, the other three fixed.
+
+    Parameters
+    ----------
+    lengths : sequence of 4 float
+        l1..l4 [m]; the entry of the varied link is ignored.
+    vary : int
+        Link number (1..4) whose length varies over (0, sum of the others).
+    frame : int
+        Frame link number.
+
+    Returns
+    -------
+    list of LengthRange
+        Adjacent, covering (0, sum of the others); a change point s + l = p + q
+        belongs to the neighbouring Grashof type (book eq. 3-1 has "<="), a
+        parallelogram is a one-point interval of its own.
+
+    Notes
+    -----
+    The type can only change where the varied length equals another length
+    (the shortest/longest link changes) or where s + l = p + q; those
+    candidate points split (0, Σ) into pieces whose type is constant and is
+    read at the midpoint (slides exam problems 2 and 4; Hrones–Nelson's
+    ranges example).
+    """
+    fixed = [float(x) for k, x in enumerate(lengths) if k != vary - 1]
+    total = sum(fixed)
+    cand = {0.0, total}
+    cand.update(fixed)
+    for i in range(3):
+        j, k = [m for m in range(3) if m != i]
+        for x in (fixed[j] + fixed[k] - fixed[i], fixed[i] + fixed[j] - fixed[k],
+                  fixed[i] + fixed[k] - fixed[j]):
+            if 0 < x < total:
+                cand.add(x)
+    pts = sorted(cand)
+    mids = [(u + v) / 2 for u, v in zip(pts[:-1], pts[1:]) if v - u > rtol * total]
+    inner = pts[1:-1]
+    xs = np.array(mids + inner)
+    L = np.tile(np.asarray(lengths, dtype=float), (len(xs), 1))
+    L[:, vary - 1] = xs
+    kl = classify_fourbar(L, frame=frame, rtol=rtol)
+    labels = []
+    for i, code in enumerate(kl.code.tolist()):
+        name = _BASIC.get(TYPES[code], TYPES[code])
+        cr = kl.cranks(i)
+        labels.append((name, cr[0] if name == "crank_rocker" and cr else None))
+    nm = len(mids)
+    # walk left to right: piece, point, piece, point, ...
+    seq = []
+    mid_i, pt_i = 0, 0
+    for u, v in zip(pts[:-1], pts[1:]):
+        if v - u > rtol * total:
+            seq.append(("open", u, v, labels[mid_i]))
+            mid_i += 1
+        if 0 < v < total:
+            seq.append(("point", v, v, labels[nm + pt_i]))
+            pt_i += 1
+    out = []
+    for kind, u, v, lab in seq:
+        if out and (out[-1].type, out[-1].crank) == lab:
+            prev = out[-1]
+            out[-1] = dataclasses.replace(prev, hi=v, hi_closed=(kind == "point"))
+            continue
+        if out and kind == "open" and not out[-1].hi_closed:
+            pass
+        out.append(LengthRange(type=lab[0], crank=lab[1], lo=u, hi=v,
+                               lo_closed=(kind == "point"), hi_closed=(kind == "point")))
+    return out
+
+
+# ---------------------------------------------------------------- slider-crank, guide-bar
+@dataclasses.dataclass(frozen=True)
+class SliderCrank:
+    """Offset slider-crank: crank a about A, coupler b, slider pin on the line y = e.
+
+    Attributes
+    ----------
+    crank_exists : bool
+        a + |e| <= b.
+    boundary : bool
+        a + |e| = b within tolerance (the coupler reaches 90° to the guide).
+    stroke : float
+        H [m].
+    x_ext, x_fold : float
+        Slider positions at the limit (dead) positions [m].
+    theta1_ext, theta1_fold : float
+        Crank angles there [rad].
+    theta, K : float
+        Limit-position angle [rad] and time ratio.
+    alpha_max, alpha_max_at : float
+        Maximum pressure angle on the slider (crank driving) and the crank
+        angle where it occurs [rad].
+    """
+
+    a: float
+    b: float
+    e: float
+    crank_exists: bool
+    boundary: bool
+    stroke: float
+    x_ext: float
+    x_fold: float
+    theta1_ext: float
+    theta1_fold: float
+    theta: float
+    K: float
+    alpha_max: float
+    alpha_max_at: float
+
+
+def analyse_slider_crank(a, b, e=0.0, rtol=CHANGE_POINT_RTOL):
+    """Crank condition, stroke, θ, K and pressure angle of an offset slider-crank.
+
+    Parameters
+    ----------
+    a, b : float
+        Crank and coupler lengths [m].
+    e : float
+        Offset of the slider path from the crank pivot [m] (path y = e).
+
+    Returns
+    -------
+    SliderCrank
+
+    Raises
+    ------
+    ClosureError
+        |e| >= a + b: the coupler never reaches the slider path.
+
+    Notes
+    -----
+    Slides §2-2: the crank exists iff a + e <= b.  Limit positions with crank
+    and coupler in line: x = sqrt((b ± a)² − e²), θ = |arcsin(e/(b − a)) −
+    arcsin(e/(b + a))|, H = x_ext − x_fold, K = (π + θ)/(π − θ).  The pressure
+    angle on the slider is the angle of the coupler to the path,
+    sin α = (a sin θ1 − e)/b, greatest at θ1 = 270° (e >= 0) where
+    sin α = (a + e)/b.  Exam problem 3 of the slides (a = 20, b = 60, K = 2,
+    H = 69.28) has e = 40 = b − a: the boundary case.
+    """
+    a, b, e = float(a), float(b), float(e)
+    if abs(e) >= a + b:
+        raise ClosureError(f"the slider-crank cannot close: offset |e| = {abs(e):.6g} is not "
+                           f"shorter than crank + coupler = {a + b:.6g}")
+    slack = b - (a + abs(e))
+    boundary = abs(slack) <= rtol * (a + b)
+    exists = slack >= 0 or boundary
+    if not exists:
+        return SliderCrank(a, b, e, False, False, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+    s_e = e / (a + b)
+    s_f = min(1.0, max(-1.0, e / (b - a))) if b > a else 0.0
+    x_e = np.sqrt(max((a + b) ** 2 - e ** 2, 0.0))
+    x_f = np.sqrt(max((b - a) ** 2 - e ** 2, 0.0))
+    t_e, t_f = np.arcsin(s_e), np.arcsin(s_f)
+    theta = abs(t_f - t_e)
+    K = (np.pi + theta) / (np.pi - theta)
+    alpha_max = np.arcsin(min(1.0, (a + abs(e)) / b))
+    at = 1.5 * np.pi if e >= 0 else 0.5 * np.pi
+    return SliderCrank(a, b, e, True, bool(boundary), float(x_e - x_f), float(x_e), float(x_f),
+                       float(t_e % (2 * np.pi)), float((t_f + np.pi) % (2 * np.pi)),
+                       float(theta), float(K), float(alpha_max), at)
+
+
+@dataclasses.dataclass(frozen=True)
+class GuideBar:
+    """Guide-bar (导杆机构): crank a about A, guide pivoted at C, frame AC = d.
+
+    Attributes
+    ----------
+    kind : str
+        ``oscillating``, ``rotating``, ``boundary`` (a + e = d or d + e = a)
+        or ``no_crank`` (|d − a| < e: the crank cannot turn).
+    theta, psi, K : float
+        For an oscillating guide: θ = ψ [rad] and the time ratio.
+    gamma_min, gamma_max : float
+        Transmission angle on the guide, crank driving [rad]: 90° − arcsin(e/CB).
+    """
+
+    a: float
+    d: float
+    e: float
+    kind: str
+    theta: float
+    psi: float
+    K: float
+    gamma_min: float
+    gamma_max: float
+
+
+def analyse_guide_bar(a, d, e=0.0, rtol=CHANGE_POINT_RTOL):
+    """Oscillating or rotating guide, θ = ψ, K and transmission angle.
+
+    Parameters
+    ----------
+    a : float
+        Crank length AB [m].
+    d : float
+        Frame length AC (crank pivot to guide pivot) [m].
+    e : float
+        Offset of the guide line from its pivot C [m] (0: the guide passes through C).
+
+    Returns
+    -------
+    GuideBar
+
+    Notes
+    -----
+    Slides §2-2: a + e <= d gives an oscillating guide (crank exists, the guide
+    rocks), d + e <= a a rotating guide.  Extreme guide directions where the
+    guide line touches the crank circle: cos β = (±a − e)/d, hence
+    ψ = arccos((−a − e)/d) − arccos((a − e)/d) and θ = ψ (the crank is normal
+    to the guide at both limits); for e = 0, ψ = 2 arcsin(a/d).  The force of
+    the block on the guide is normal to the guide and the velocity of the
+    guide's point at B is normal to CB, so γ = 90° − arcsin(e/CB), CB between
+    |d − a| and d + a.  Slides fill-in 1: ψ = 30° gives K = 1.4.
+    """
+    a, d, e = float(a), float(d), abs(float(e))
+    tol = rtol * (a + d)
+    if a + e < d - tol:
+        kind = "oscillating"
+    elif d + e < a - tol:
+        kind = "rotating"
+    elif abs(a + e - d) <= tol or abs(d + e - a) <= tol:
+        kind = "boundary"
+    else:
+        kind = "no_crank"
+    theta = psi = 0.0
+    K = 1.0
+    if kind == "oscillating" or (kind == "boundary" and a <= d):
+        lo = np.arccos(min(1.0, max(-1.0, (a - e) / d)))
+        hi = np.arccos(min(1.0, max(-1.0, (-a - e) / d)))
+        theta = psi = float(hi - lo)
+        K = float((np.pi + theta) / (np.pi - theta))
+    if kind == "no_crank":
+        return GuideBar(a, d, e, kind, 0.0, 0.0, 0.0, 0.0, 0.0)
+    cb_lo, cb_hi = abs(d - a), d + a
+    g_min = np.pi / 2 - np.arcsin(min(1.0, e / cb_lo)) if cb_lo > 0 else 0.0
+    g_max = np.pi / 2 - np.arcsin(min(1.0, e / cb_hi))
+    return GuideBar(a, d, e, kind, theta, psi, K, float(g_min), float(g_max))

@@ -1,0 +1,443 @@
+"""Results, book-format report and ``grashof.csv`` of ``mechcli grashof``.
+
+Lengths are shown in the spec's unit, angles in degrees.  ``results`` dicts
+hold only finite numbers, strings, booleans, None and lists of those.
+"""
+
+from __future__ import annotations
+
+import math
+
+from mechcli.report.table import Block, Report
+
+ZH_TYPES = {
+    "crank_rocker": "曲柄摇杆机构", "double_crank": "双曲柄机构", "double_rocker": "双摇杆机构",
+    "parallelogram": "平行四边形机构", "antiparallelogram": "反平行四边形机构",
+    "change_point_crank_rocker": "曲柄摇杆机构(变点机构)",
+    "change_point_double_crank": "双曲柄机构(变点机构)",
+    "change_point_double_rocker": "双摇杆机构(变点机构)",
+    "triple_crank": "三曲柄机构", "single_crank": "单曲柄机构", "no_crank": "无曲柄机构",
+    "single_or_no_crank": "单曲柄或无曲柄机构",
+    "oscillating": "摆动导杆机构", "rotating": "转动导杆机构",
+    "boundary": "临界(变点)导杆机构", "rocker_slider": "摇杆滑块机构(无曲柄)",
+    "crank_slider": "曲柄滑块机构", "crank_slider_boundary": "曲柄滑块机构(临界: a + e = b)",
+}
+
+
+def _deg(x):
+    return math.degrees(float(x))
+
+
+def _f(x, nd=2):
+    return f"{x:.{nd}f}"
+
+
+def _g(x):
+    return f"{x:.6g}"
+
+
+def _label(lang, en, zh):
+    return zh if lang == "zh" else en
+
+
+def _type_text(lang, t):
+    return ZH_TYPES.get(t, t) if lang == "zh" else t.replace("_", " ")
+
+
+def interval_text(ranges):
+    """``(0, 30] ∪ [70, 90]`` from a list of ``(lo, hi, lo_closed, hi_closed)`` in display units."""
+    parts = []
+    for lo, hi, lc, hc in ranges:
+        if lo == hi:
+            parts.append(f"{{{_g(lo)}}}")
+        else:
+            parts.append(f"{'[' if lc else '('}{_g(lo)}, {_g(hi)}{']' if hc else ')'}")
+    return " ∪ ".join(parts) if parts else "∅"
+
+
+# --------------------------------------------------------------------- four-bar
+def fourbar_results(prob, an, inversions, ranges, scale):
+    """Results dict of one four-bar (row 0 of a :class:`FourBarAnalysis`)."""
+    kl, m = an.klass, an.merit
+    L = an.lengths[0] / scale
+    t = kl.types[0]
+    cranks = kl.cranks(0)
+    if t.endswith("crank_rocker"):
+        crank = cranks[0]
+    elif cranks:
+        crank = int(an.input[0]) if int(an.input[0]) in cranks else cranks[0]
+    else:
+        crank = None
+    r = {
+        "type": t, "crank": crank, "cranks": cranks, "grashof": bool(kl.grashof[0]),
+        "change_point": bool(kl.change_point[0]),
+        "longest": float(L.max()), "shortest": float(L.min()),
+        "longest_link": int(kl.longest[0]), "shortest_link": int(kl.shortest[0]),
+        "excess": float(kl.excess[0] / scale),
+        "frame": int(an.frame[0]), "input": int(an.input[0]), "coupler": int(an.coupler[0]),
+        "output": int(an.output[0]),
+        "input_turns": bool(m.input_turns[0]), "output_turns": bool(m.output_turns[0]),
+    }
+    if m.has_limits[0]:
+        r.update(theta_deg=_deg(m.theta[0]), psi_deg=_deg(m.psi[0]), K=float(m.K[0]),
+                 theta1_ext_deg=_deg(m.theta1_ext[0]), theta1_fold_deg=_deg(m.theta1_fold[0]),
+                 theta3_ext_deg=_deg(m.theta3_ext[0]), theta3_fold_deg=_deg(m.theta3_fold[0]))
+    if not m.input_turns[0]:
+        r.update(input_min_deg=_deg(m.input_lo[0]), input_max_deg=_deg(m.input_hi[0]))
+    r.update(gamma_min_deg=_deg(m.gamma_min[0]), gamma_min_at_deg=_deg(m.gamma_min_at[0]),
+             gamma_max_deg=_deg(m.gamma_max[0]), gamma_max_at_deg=_deg(m.gamma_max_at[0]))
+    if m.has_gamma0[0]:
+        r["gamma_at_0_deg"] = _deg(m.gamma0[0])
+    if m.has_gamma180[0]:
+        r["gamma_at_180_deg"] = _deg(m.gamma180[0])
+    r["dead_points_output_driving"] = [
+        _deg(m.dead_theta3[0, j]) for j in (0, 1) if m.dead_output[0, j]]
+    for k, inv in enumerate(inversions, start=1):
+        r[f"inversion_frame{k}"] = inv.types[0]
+        r[f"inversion_frame{k}_cranks"] = inv.cranks(0)
+    for link, rs in ranges.items():
+        by_type = {}
+        for x in rs:
+            by_type.setdefault(x.type, []).append(x)
+            if x.type == "crank_rocker":
+                by_type.setdefault(f"crank_rocker_crank{x.crank}", []).append(x)
+        for name, xs in by_type.items():
+            r[f"l{link}_{name}"] = interval_text(
+                [(x.lo / scale, x.hi / scale, x.lo_closed, x.hi_closed) for x in xs])
+    return r
+
+
+def fourbar_report(title, lang, r, unit, ranges_present):
+    zh = lang == "zh"
+    rep = Report(title)
+    rows = [[_label(lang, "longest link", "最长杆"), _f(r["longest"])],
+            [_label(lang, "shortest link", "最短杆"), _f(r["shortest"])]]
+    rep.blocks.append(Block("", rows=rows))
+    statement = ("该机构是" + ZH_TYPES[r["type"]]) if zh else \
+        f"The linkage is a {r['type'].replace('_', ' ')}" + (
+            f" (crank: link {r['crank']})" if r["crank"] is not None else "") + "."
+    facts = [
+        [_label(lang, "Grashof (s + l <= p + q)", "满足杆长之和条件"),
+         _label(lang, "yes" if r["grashof"] else "no", "是" if r["grashof"] else "否")],
+        [_label(lang, f"s + l - (p + q) [{unit}]", f"s + l - (p + q) ({unit})"),
+         _f(r["excess"])],
+        [_label(lang, "frame / input / output", "机架 / 原动件 / 从动件"),
+         f"{r['frame']} / {r['input']} / {r['output']}"],
+        [_label(lang, "cranks", "曲柄"), ", ".join(map(str, r["cranks"])) or "-"],
+    ]
+    rep.blocks.append(Block(statement, rows=facts))
+    merit = []
+    if "theta_deg" in r:
+        merit += [
+            [_label(lang, "limit-position angle θ [°]", "极位夹角 θ (°)"), _f(r["theta_deg"])],
+            [_label(lang, "output swing ψ [°]", "摆角 ψ (°)"), _f(r["psi_deg"])],
+            [_label(lang, "time ratio K", "行程速比系数 K"), f"{r['K']:.4f}"],
+            [_label(lang, "limit positions θ1 [°]", "极限位置 θ1 (°)"),
+             f"{_f(r['theta1_ext_deg'])}, {_f(r['theta1_fold_deg'])}"],
+            [_label(lang, "limit positions θ3 [°]", "极限位置 θ3 (°)"),
+             f"{_f(r['theta3_ext_deg'])}, {_f(r['theta3_fold_deg'])}"],
+        ]
+    if "input_min_deg" in r:
+        lo, hi = r["input_min_deg"], r["input_max_deg"]
+        if hi >= 180 - 1e-9:
+            span = f"[{_f(lo)}, {_f(360 - lo)}]"
+        elif lo <= 1e-9:
+            span = f"[{_f(-hi)}, {_f(hi)}]"
+        else:
+            span = f"[{_f(lo)}, {_f(hi)}] | [{_f(-hi)}, {_f(-lo)}]"
+        merit.append([_label(lang, "input range θ1 [°]", "原动件摆动范围 θ1 (°)"), span])
+    merit += [
+        [_label(lang, "minimum transmission angle γmin [°]", "最小传动角 γmin (°)"),
+         f"{_f(r['gamma_min_deg'])} (θ1 = {_f(r['gamma_min_at_deg'])})"],
+        [_label(lang, "maximum transmission angle γmax [°]", "最大传动角 γmax (°)"),
+         f"{_f(r['gamma_max_deg'])} (θ1 = {_f(r['gamma_max_at_deg'])})"],
+    ]
+    if "gamma_at_0_deg" in r:
+        merit.append([_label(lang, "γ at θ1 = 0° (eq. 3-49) [°]", "传动角 γ1 (θ1 = 0°)"),
+                      _f(r["gamma_at_0_deg"])])
+    if "gamma_at_180_deg" in r:
+        merit.append([_label(lang, "γ at θ1 = 180° (eq. 3-49) [°]", "传动角 γ2 (θ1 = 180°)"),
+                      _f(r["gamma_at_180_deg"])])
+    dead = r["dead_points_output_driving"]
+    merit.append([_label(lang, "dead points, output driving (θ3) [°]",
+                         "从动件主动时的死点 θ3 (°)"),
+                  ", ".join(_f(x) for x in dead) if dead else _label(lang, "none", "无")])
+    rep.blocks.append(Block(_label(lang, "Figures of merit", "运动特性"), rows=merit))
+    inv_rows = [[str(k), _type_text(lang, r[f"inversion_frame{k}"]),
+                 ", ".join(map(str, r[f"inversion_frame{k}_cranks"])) or "-"]
+                for k in (1, 2, 3, 4)]
+    rep.blocks.append(Block(_label(lang, "Inversions", "取不同构件为机架"),
+                            headers=[_label(lang, "frame", "机架"), _label(lang, "type", "类型"),
+                                     _label(lang, "cranks", "曲柄")], rows=inv_rows))
+    if ranges_present:
+        rows = [[k.split("_", 1)[0], _type_text(lang, k.split("_", 1)[1]), v]
+                for k, v in r.items() if k[:1] == "l" and k[1:2].isdigit() and "_" in k]
+        rep.blocks.append(Block(_label(lang, f"Length ranges [{unit}]", f"杆长范围 ({unit})"),
+                                headers=[_label(lang, "link", "杆"), _label(lang, "type", "类型"),
+                                         _label(lang, "range", "范围")], rows=rows))
+    return rep
+
+
+# ------------------------------------------------------------------- batch CSV
+CSV_HEADER = ("l1,l2,l3,l4,frame,input,type,crank,grashof,theta_deg,psi_deg,K,"
+              "gamma_min_deg,gamma_min_at_deg,gamma_max_deg")
+
+
+def fourbar_csv(an, scale, closes_mask=None):
+    """``grashof.csv`` text, one row per length set (empty cells: does not exist)."""
+    import numpy as np
+
+    kl, m = an.klass, an.merit
+    n = an.lengths.shape[0]
+    ok = np.ones(n, dtype=bool) if closes_mask is None else closes_mask
+    L = an.lengths / scale
+    types = np.array(kl.code)
+    from mechcli.core.grashof import TYPES
+    tnames = np.array(TYPES + ("cannot_close",))
+    types = np.where(ok, types, len(TYPES))
+    cm = kl.crank_mask
+    rows_i = np.arange(n)
+    in_crank = cm[rows_i, an.input - 1]
+    first = np.argmax(cm, axis=1) + 1
+    crank = np.where(in_crank, an.input, np.where(cm.any(axis=1), first, 0))
+    deg = 180.0 / np.pi
+    lim = m.has_limits & ok
+
+    def col(x, mask, fmt="%.6g"):
+        out = np.char.mod(fmt, np.where(mask, x, 0.0))
+        return np.where(mask, out, "")
+
+    cols = [np.char.mod("%.10g", L[:, k]) for k in range(4)]
+    cols += [np.char.mod("%d", an.frame), np.char.mod("%d", an.input), tnames[types],
+             np.where((crank > 0) & ok, np.char.mod("%d", crank), ""),
+             np.where(ok, np.where(kl.grashof, "true", "false"), ""),
+             col(m.theta * deg, lim), col(m.psi * deg, lim), col(m.K, lim),
+             col(m.gamma_min * deg, ok), col(m.gamma_min_at * deg, ok),
+             col(m.gamma_max * deg, ok)]
+    body = cols[0]
+    for c in cols[1:]:
+        body = np.char.add(np.char.add(body, ","), c)
+    return CSV_HEADER + "\n" + "\n".join(body.tolist()) + "\n"
+
+
+def batch_results(an, closes_mask):
+    import numpy as np
+
+    from mechcli.core.grashof import TYPES
+    counts = {}
+    codes = an.klass.code[closes_mask]
+    for i, name in enumerate(TYPES):
+        c = int(np.count_nonzero(codes == i))
+        if c:
+            counts[name] = c
+    n_bad = int(np.count_nonzero(~closes_mask))
+    res = {"sets": int(an.lengths.shape[0]), "counts": counts, "cannot_close": n_bad}
+    return res
+
+
+def batch_report(title, lang, res):
+    rep = Report(title)
+    rows = [[_type_text(lang, k), str(v)] for k, v in res["counts"].items()]
+    if res["cannot_close"]:
+        rows.append([_label(lang, "cannot close", "不能构成闭环"), str(res["cannot_close"])])
+    rep.blocks.append(Block(_label(lang, f"{res['sets']} length sets",
+                                   f"共 {res['sets']} 组杆长"),
+                            headers=[_label(lang, "type", "类型"), _label(lang, "count", "数目")],
+                            rows=rows))
+    return rep
+
+
+# -------------------------------------------------------------- slider, guide
+def slider_results(sc, scale):
+    if not sc.crank_exists:
+        return {"type": "rocker_slider", "crank": None, "crank_exists": False,
+                "boundary": False}
+    return {"type": "crank_slider_boundary" if sc.boundary else "crank_slider", "crank": 1,
+            "crank_exists": True, "boundary": sc.boundary, "stroke": sc.stroke / scale,
+            "theta_deg": _deg(sc.theta), "K": sc.K,
+            "pressure_angle_max_deg": _deg(sc.alpha_max),
+            "pressure_angle_max_at_deg": _deg(sc.alpha_max_at),
+            "theta1_ext_deg": _deg(sc.theta1_ext), "theta1_fold_deg": _deg(sc.theta1_fold),
+            "x_ext": sc.x_ext / scale, "x_fold": sc.x_fold / scale,
+            "dead_points_slider_driving": [sc.x_ext / scale, sc.x_fold / scale]}
+
+
+def slider_report(title, lang, r, unit):
+    rep = Report(title)
+    rows = [[_label(lang, "crank exists (a + |e| <= b)", "存在曲柄 (a + e ≤ b)"),
+             _label(lang, "yes" if r["crank_exists"] else "no",
+                    "是" if r["crank_exists"] else "否")]]
+    if r["crank_exists"]:
+        rows += [
+            [_label(lang, f"stroke H [{unit}]", f"行程 H ({unit})"), _f(r["stroke"])],
+            [_label(lang, "limit-position angle θ [°]", "极位夹角 θ (°)"), _f(r["theta_deg"])],
+            [_label(lang, "time ratio K", "行程速比系数 K"), f"{r['K']:.4f}"],
+            [_label(lang, "max pressure angle on slider [°]", "滑块最大压力角 (°)"),
+             f"{_f(r['pressure_angle_max_deg'])} (θ1 = {_f(r['pressure_angle_max_at_deg'])})"],
+            [_label(lang, f"dead points, slider driving (x) [{unit}]",
+                    f"滑块主动时的死点 x ({unit})"),
+             ", ".join(_f(x) for x in r["dead_points_slider_driving"])],
+        ]
+    rep.blocks.append(Block(_type_text(lang, r["type"]), rows=rows))
+    if r.get("boundary"):
+        rep.notes.append(_label(lang, "a + |e| = b: the coupler stands normal to the slider path "
+                                "once a turn (pressure angle 90°).",
+                                "a + e = b: 连杆每转一次垂直于导路 (压力角 90°)。"))
+    return rep
+
+
+def guide_results(gb, scale):
+    r = {"type": gb.kind, "crank": 1 if gb.kind != "no_crank" else None}
+    if gb.kind in ("oscillating", "boundary") and gb.theta > 0:
+        r.update(theta_deg=_deg(gb.theta), psi_deg=_deg(gb.psi), K=gb.K)
+    if gb.kind != "no_crank":
+        r.update(gamma_min_deg=_deg(gb.gamma_min), gamma_max_deg=_deg(gb.gamma_max))
+    return r
+
+
+def guide_report(title, lang, r):
+    rep = Report(title)
+    rows = []
+    if "theta_deg" in r:
+        rows += [[_label(lang, "θ = ψ [°]", "极位夹角 θ = 摆角 ψ (°)"), _f(r["theta_deg"])],
+                 [_label(lang, "time ratio K", "行程速比系数 K"), f"{r['K']:.4f}"]]
+    if "gamma_min_deg" in r:
+        rows += [[_label(lang, "γmin [°]", "最小传动角 γmin (°)"), _f(r["gamma_min_deg"])],
+                 [_label(lang, "γmax [°]", "最大传动角 γmax (°)"), _f(r["gamma_max_deg"])]]
+    rep.blocks.append(Block(_type_text(lang, r["type"]), rows=rows))
+    return rep
+
+
+# --------------------------------------------------------------- five-bar etc.
+def fivebar_results(prob, kl, scale):
+    import numpy as np
+
+    L = np.asarray(prob.lengths) / scale
+    return {"class": "I" if kl.klass[0] == 1 else "II", "class_boundary": bool(kl.boundary[0]),
+            "type": kl.types[0], "cranks": kl.cranks(0), "frame": prob.frame,
+            "inputs": list(prob.inputs), "shortest": [int(kl.short1[0]), int(kl.short2[0])],
+            "longest": float(L.max()), "excess": float(kl.excess[0] / scale),
+            "inputs_independent": bool(kl.inputs_independent[0])}
+
+
+def fivebar_report(title, lang, r):
+    rep = Report(title)
+    rows = [
+        [_label(lang, "class (L_max + L_min1 + L_min2 <= a + b)", "类别"),
+         ("Ⅰ" if r["class"] == "I" else "Ⅱ") if lang == "zh" else r["class"]],
+        [_label(lang, "frame / inputs", "机架 / 输入杆"),
+         f"{r['frame']} / {r['inputs'][0]}, {r['inputs'][1]}"],
+        [_label(lang, "shortest links", "最短杆 / 次短杆"),
+         f"{r['shortest'][0]}, {r['shortest'][1]}"],
+        [_label(lang, "cranks", "曲柄"), ", ".join(map(str, r["cranks"])) or "-"],
+        [_label(lang, "both inputs turn independently", "两输入杆可独立整周转动"),
+         _label(lang, "yes" if r["inputs_independent"] else "no",
+                "是" if r["inputs_independent"] else "否")],
+    ]
+    rep.blocks.append(Block(_type_text(lang, r["type"]), rows=rows))
+    return rep
+
+
+def rrrrp_results(rc, scale):
+    return {"crank": 1 if rc.crank_any_fold else None, "crank_any_fold": rc.crank_any_fold,
+            "boundary": rc.boundary, "slider_lo": rc.slider_lo / scale,
+            "slider_hi": rc.slider_hi / scale}
+
+
+def rrrrp_report(title, lang, r, unit):
+    rep = Report(title)
+    rows = [[_label(lang, "l1 + |e| <= |l2 - l3| (paper eq. 20)", "l1 + e ≤ |l2 − l3| (式 20)"),
+             _label(lang, "yes" if r["crank_any_fold"] else "no",
+                    "是" if r["crank_any_fold"] else "否")],
+            [_label(lang, f"slider positions where link 1 turns [{unit}]",
+                    f"杆 1 可整周转动的滑块位置 ({unit})"),
+             f"±[{_f(r['slider_lo'])}, {_f(r['slider_hi'])}]" if r["slider_hi"] > 0 else "-"]]
+    rep.blocks.append(Block("RRRRP", rows=rows))
+    return rep
+
+
+def mobility_results(mob):
+    return {"F": mob.F, "n": mob.n, "P_L": mob.P_L, "P_H": mob.P_H,
+            "local_dof": mob.local_dof, "redundant": mob.redundant,
+            "moving_links": list(mob.moving), "frame": mob.frame}
+
+
+def mobility_report(title, lang, mob):
+    rep = Report(title)
+    rows = []
+    for j in mob.joints:
+        kind = {"R": _label(lang, "revolute", "转动副"), "P": _label(lang, "prismatic", "移动副"),
+                "H": _label(lang, "higher pair", "高副")}[j.kind]
+        why = ""
+        if j.kind == "R" and len(j.links) > 2:
+            why = _label(lang, f"compound hinge of {len(j.links)} links",
+                         f"{len(j.links)} 个构件的复合铰链")
+        rows.append([j.name or "-", kind, ", ".join(map(str, j.links)), str(j.pairs), why])
+    rep.blocks.append(Block(_label(lang, "Pairs", "运动副"),
+                            headers=[_label(lang, "joint", "运动副"), _label(lang, "kind", "类型"),
+                                     _label(lang, "links", "构件"), _label(lang, "pairs", "计数"),
+                                     ""], rows=rows))
+    expl = [
+        [_label(lang, "moving links n", "活动构件数 n"),
+         f"{mob.n} ({', '.join(map(str, mob.moving))}; frame {mob.frame})"],
+        [_label(lang, "lower pairs P_L", "低副数 P_L"), str(mob.P_L)],
+        [_label(lang, "higher pairs P_H", "高副数 P_H"), str(mob.P_H)],
+        [_label(lang, "local DOF F'", "局部自由度 F'"), str(mob.local_dof)],
+        [_label(lang, "redundant constraints p'", "虚约束 p'"), str(mob.redundant)],
+        ["F", f"3×{mob.n} − 2×{mob.P_L} − {mob.P_H} − {mob.local_dof} + {mob.redundant}"
+              f" = {mob.F}"],
+    ]
+    rep.blocks.append(Block(_label(lang, "Mobility F = 3n − 2P_L − P_H − F' + p'",
+                                   "自由度 F = 3n − 2P_L − P_H − F' + p'"), rows=expl))
+    return rep
+
+
+# ------------------------------------------------------------------ dispatch
+def build(spec, lang):
+    """Solve a :class:`~mechcli.spec.grashof.GrashofSpec` with the core.
+
+    Returns
+    -------
+    results : dict
+    report : Report
+    csv_text : str or None
+        ``grashof.csv`` content (four-bar only).
+    warnings : list of str
+    """
+    from mechcli.core import grashof as gf
+
+    p, unit, scale, title = spec.problem, spec.header.unit, spec.header.scale, spec.header.title
+    warnings = []
+    if spec.kind == "fourbar":
+        an = gf.analyse_fourbar(p.lengths, p.frame, p.input, p.crossed, p.rtol)
+        invs = gf.classify_inversions(p.lengths, p.rtol)
+        ranges = {k: gf.length_ranges(p.lengths, k, p.frame, p.rtol) for k in p.vary}
+        r = fourbar_results(p, an, invs, ranges, scale)
+        if r["change_point"]:
+            warnings.append("s + l = p + q: a change-point linkage (it can fold flat; "
+                            "the motion branch is undetermined there)")
+        return (r, fourbar_report(title, lang, r, unit, bool(ranges)), fourbar_csv(an, scale),
+                warnings)
+    if spec.kind == "slider_crank":
+        sc = gf.analyse_slider_crank(p.crank, p.coupler, p.offset, p.rtol)
+        r = slider_results(sc, scale)
+        if sc.boundary:
+            warnings.append("a + |e| = b: the crank just exists (pressure angle reaches 90°)")
+        return r, slider_report(title, lang, r, unit), None, warnings
+    if spec.kind == "guide_bar":
+        gb = gf.analyse_guide_bar(p.crank, p.frame, p.offset, p.rtol)
+        r = guide_results(gb, scale)
+        return r, guide_report(title, lang, r), None, warnings
+    if spec.kind == "fivebar":
+        from mechcli.core.classify_fivebar import classify_fivebar
+        kl = classify_fivebar(p.lengths, p.frame, p.rtol)
+        r = fivebar_results(p, kl, scale)
+        return r, fivebar_report(title, lang, r), None, warnings
+    if spec.kind == "rrrrp":
+        from mechcli.core.classify_fivebar import rrrrp_crank
+        r = rrrrp_results(rrrrp_crank(p.l1, p.l2, p.l3, p.offset, p.rtol), scale)
+        return r, rrrrp_report(title, lang, r, unit), None, warnings
+    from mechcli.core.mobility import Joint, count_mobility
+    mob = count_mobility([Joint(j.kind, j.links, j.name) for j in p.joints], p.frame,
+                         p.local_dof, p.redundant)
+    return mobility_results(mob), mobility_report(title, lang, mob), None, warnings

@@ -1,0 +1,400 @@
+"""``mechcli grashof`` problem files -> :class:`GrashofSpec` (SI units).
+
+One spec holds exactly one problem table: ``[fourbar]``, ``[slider_crank]``,
+``[guide_bar]``, ``[fivebar]``, ``[rrrrp]`` or ``[mobility]`` (see
+docs/grashof.md).  The quick form ``--lengths`` builds the same spec without a
+file (:func:`quick_spec`).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from pathlib import Path
+
+from mechcli.spec.common import Header, read_expected, read_header
+from mechcli.spec.errors import SpecError
+from mechcli.spec.reader import LENGTH_UNITS, load_spec
+
+PROBLEMS = ("fourbar", "slider_crank", "guide_bar", "fivebar", "rrrrp", "mobility")
+
+
+@dataclasses.dataclass(frozen=True)
+class FourBarProblem:
+    lengths: tuple          # l1..l4 [m]
+    frame: int
+    input: int
+    crossed: bool
+    vary: tuple             # link numbers whose length ranges are wanted
+    rtol: float
+
+
+@dataclasses.dataclass(frozen=True)
+class SliderCrankProblem:
+    crank: float            # [m]
+    coupler: float
+    offset: float
+    rtol: float
+
+
+@dataclasses.dataclass(frozen=True)
+class GuideBarProblem:
+    crank: float            # [m]
+    frame: float
+    offset: float
+    rtol: float
+
+
+@dataclasses.dataclass(frozen=True)
+class FiveBarProblem:
+    lengths: tuple          # l1..l5 [m]
+    frame: int
+    inputs: tuple
+    rtol: float
+
+
+@dataclasses.dataclass(frozen=True)
+class RRRRPProblem:
+    l1: float
+    l2: float
+    l3: float
+    offset: float
+    rtol: float
+
+
+@dataclasses.dataclass(frozen=True)
+class JointSpec:
+    kind: str
+    links: tuple
+    name: str
+
+
+@dataclasses.dataclass(frozen=True)
+class MobilityProblem:
+    joints: tuple           # of JointSpec
+    frame: int
+    local_dof: int
+    redundant: int
+    source: str             # "joints" or the kin spec path
+
+
+@dataclasses.dataclass(frozen=True)
+class GrashofSpec:
+    header: Header
+    kind: str
+    problem: object
+    expected: dict
+    path: Path | None
+
+
+def _rtol(sec):
+    return sec.number("change_point_rtol", 1e-9, lo=0.0, hi=1e-2)
+
+
+def _link_number(sec, name, default, n):
+    return sec.integer(name, default, lo=1, hi=n)
+
+
+def _read_fourbar(sec):
+    lengths = tuple(x * sec.unit for x in sec.numbers("lengths", size=4, positive=True))
+    frame = _link_number(sec, "frame", 4, 4)
+    neighbours = ((frame % 4) + 1, ((frame + 2) % 4) + 1)
+    default_input = 1 if 1 in neighbours else neighbours[0]
+    inp = sec.integer("input", default_input, lo=1, hi=4)
+    if inp not in neighbours:
+        raise sec.error("input", f"a link joined to the frame {frame}: "
+                        f"{neighbours[0]} or {neighbours[1]}", repr(inp))
+    assembly = sec.string("assembly", "open", choices=["open", "crossed"])
+    vary = sec.raw("vary", [])
+    if isinstance(vary, int) and not isinstance(vary, bool):
+        vary = [vary]
+    if not isinstance(vary, list) or not all(isinstance(v, int) and not isinstance(v, bool)
+                                             and 1 <= v <= 4 for v in vary):
+        raise sec.error("vary", "a link number 1..4 or an array of them", repr(vary))
+    rtol = _rtol(sec)
+    sec.finish()
+    return FourBarProblem(lengths, frame, inp, assembly == "crossed", tuple(vary), rtol)
+
+
+def _read_slider(sec):
+    prob = SliderCrankProblem(sec.length("crank"), sec.length("coupler"),
+                              sec.length("offset", 0.0, positive=False) or 0.0, _rtol(sec))
+    sec.finish()
+    return prob
+
+
+def _read_guide(sec):
+    prob = GuideBarProblem(sec.length("crank"), sec.length("frame"),
+                           sec.length("offset", 0.0, nonneg=True) or 0.0, _rtol(sec))
+    sec.finish()
+    return prob
+
+
+def _read_fivebar(sec):
+    lengths = tuple(x * sec.unit for x in sec.numbers("lengths", size=5, positive=True))
+    frame = _link_number(sec, "frame", 5, 5)
+    nb = sorted(((frame % 5) + 1, ((frame + 3) % 5) + 1))
+    inputs = sec.raw("inputs", list(nb))
+    if not isinstance(inputs, list) or sorted(inputs) != nb:
+        raise sec.error("inputs", f"the two links joined to the frame {frame}: {nb}",
+                        repr(inputs))
+    prob = FiveBarProblem(lengths, frame, tuple(nb), _rtol(sec))
+    sec.finish()
+    return prob
+
+
+def _read_rrrrp(sec):
+    prob = RRRRPProblem(sec.length("l1"), sec.length("l2"), sec.length("l3"),
+                        sec.length("offset", 0.0, positive=False) or 0.0, _rtol(sec))
+    sec.finish()
+    return prob
+
+
+def _read_mobility(sec, spec_dir):
+    local = sec.integer("local_dof", 0, lo=0)
+    redundant = sec.integer("redundant", 0, lo=0)
+    kin = sec.string("kin", None)
+    if kin is not None:
+        path = Path(kin)
+        if not path.is_absolute():
+            path = spec_dir / path
+        joints, frame = _joints_from_kin(path)
+        sec.finish()
+        return MobilityProblem(joints, frame, local, redundant, str(kin))
+    frame = sec.integer("frame", lo=0)
+    joints = []
+    for js in sec.tables("joint"):
+        kind = js.string("kind", "R", choices=["R", "P", "H"])
+        links = js.raw("links")
+        if not isinstance(links, list) or not all(isinstance(v, int) and not isinstance(v, bool)
+                                                  and v >= 0 for v in links) \
+                or len(links) < 2 or len(set(links)) != len(links):
+            raise js.error("links", "an array of at least 2 different link numbers",
+                           repr(links))
+        if kind == "H" and len(links) != 2:
+            raise js.error("links", "exactly 2 links for a higher pair", repr(links))
+        name = js.string("name", "")
+        js.finish()
+        joints.append(JointSpec(kind, tuple(links), name))
+    if not joints:
+        raise sec.error("joint", "at least one [[mobility.joint]]", "none")
+    sec.finish()
+    return MobilityProblem(tuple(joints), frame, local, redundant, "joints")
+
+
+def _joints_from_kin(path):
+    """Joints of a ``mechcli kin`` spec's linkage, revolutes merged by point name.
+
+    Crank = 1 R pair at its pivot, RRR = 3 R, RRP and RPR = 2 R + 1 P; a point
+    where several revolutes meet becomes one compound hinge.
+    """
+    from mechcli.core.linkage import RPR, RRP, RRR, Crank, Ground, PointOnLink, SliderDriver
+    from mechcli.spec.kin import load_kin_spec
+
+    lk = load_kin_spec(path, ()).linkage
+    frame = lk.frame
+    owner = {}
+    for el in lk.elements:
+        if isinstance(el, Ground):
+            owner[el.name] = frame
+        elif isinstance(el, (Crank, SliderDriver)):
+            owner[el.point] = el.link
+        elif isinstance(el, RRR):
+            owner[el.joint] = el.link_a
+        elif isinstance(el, RRP):
+            owner[el.joint] = el.link
+        elif isinstance(el, PointOnLink):
+            owner[el.name] = el.link
+    hinges, others = {}, []
+
+    def hinge(point, *links):
+        hinges.setdefault(point, [])
+        for ln in links:
+            if ln not in hinges[point]:
+                hinges[point].append(ln)
+
+    for el in lk.elements:
+        if isinstance(el, Crank):
+            hinge(el.pivot, owner.get(el.pivot, frame), el.link)
+        elif isinstance(el, SliderDriver):
+            others.append(JointSpec("P", (frame, el.link), el.name or el.point))
+        elif isinstance(el, RRR):
+            hinge(el.point_a, owner.get(el.point_a, frame), el.link_a)
+            hinge(el.point_b, owner.get(el.point_b, frame), el.link_b)
+            hinge(el.joint, el.link_a, el.link_b)
+        elif isinstance(el, RRP):
+            hinge(el.point, owner.get(el.point, frame), el.link)
+            hinge(el.joint, el.link, el.slider)
+            others.append(JointSpec("P", (el.slider, el.guide_link), el.name or el.joint))
+        elif isinstance(el, RPR):
+            hinge(el.point, owner.get(el.point, frame), el.block)
+            hinge(el.pivot, owner.get(el.pivot, frame), el.guide)
+            others.append(JointSpec("P", (el.block, el.guide), el.name or el.point))
+    joints = [JointSpec("R", tuple(links), name) for name, links in hinges.items()]
+    return tuple(joints + others), frame
+
+
+def read_grashof_spec(path, overrides=()):
+    """Load and validate a ``mechcli grashof`` spec.
+
+    Raises
+    ------
+    SpecError
+        Any invalid, missing or unknown key (exit code 2).
+    """
+    root = load_spec(path, overrides)
+    header = read_header(root, "grashof")
+    present = [k for k in PROBLEMS if root.has(k)]
+    if len(present) != 1:
+        raise SpecError(root.file, "", "exactly one problem table: "
+                        + ", ".join(f"[{k}]" for k in PROBLEMS),
+                        "none" if not present else ", ".join(f"[{k}]" for k in present))
+    kind = present[0]
+    sec = root.table(kind)
+    readers = {"fourbar": _read_fourbar, "slider_crank": _read_slider,
+               "guide_bar": _read_guide, "fivebar": _read_fivebar, "rrrrp": _read_rrrrp}
+    if kind == "mobility":
+        problem = _read_mobility(sec, Path(path).resolve().parent)
+    else:
+        problem = readers[kind](sec)
+    expected = read_expected(root)
+    root.finish()
+    return GrashofSpec(header, kind, problem, expected, Path(path))
+
+
+def quick_spec(lengths_text, frame=None, input_link=None, offset=None, units="mm"):
+    """The spec of the file-less quick form ``--lengths 100,150,170,110``.
+
+    Two lengths with ``--offset`` (or two lengths alone) make a slider-crank
+    (crank, coupler), four a four-bar, five a 5R five-bar.
+    """
+    where = "--lengths"
+    parts = [p.strip() for p in str(lengths_text).split(",") if p.strip()]
+    vals = []
+    for i, p in enumerate(parts):
+        try:
+            v = float(p)
+        except ValueError:
+            raise SpecError(where, f"lengths[{i}]", "a positive number", repr(p)) from None
+        if not (v > 0) or v != v or v in (float("inf"),):
+            raise SpecError(where, f"lengths[{i}]", "a positive finite number", repr(p))
+        vals.append(v)
+    scale = LENGTH_UNITS[units]
+    header = Header(title="mechcli grashof --lengths " + ",".join(parts), unit=units,
+                    scale=scale)
+    m = [v * scale for v in vals]
+    if len(vals) == 2:
+        off = 0.0 if offset is None else float(offset) * scale
+        prob = SliderCrankProblem(m[0], m[1], off, 1e-9)
+        return GrashofSpec(header, "slider_crank", prob, {}, None)
+    if offset is not None:
+        raise SpecError(where, "--offset", "2 lengths (crank, coupler) with --offset",
+                        f"{len(vals)} lengths")
+    if len(vals) == 4:
+        fr = 4 if frame is None else frame
+        if not 1 <= fr <= 4:
+            raise SpecError(where, "--frame", "a link number 1..4", repr(fr))
+        nb = ((fr % 4) + 1, ((fr + 2) % 4) + 1)
+        inp = input_link if input_link is not None else (1 if 1 in nb else nb[0])
+        if inp not in nb:
+            raise SpecError(where, "--input", f"a link joined to the frame {fr}: "
+                            f"{nb[0]} or {nb[1]}", repr(inp))
+        return GrashofSpec(header, "fourbar", FourBarProblem(tuple(m), fr, inp, False, (), 1e-9),
+                           {}, None)
+    if len(vals) == 5:
+        fr = 5 if frame is None else frame
+        if not 1 <= fr <= 5:
+            raise SpecError(where, "--frame", "a link number 1..5", repr(fr))
+        nb = tuple(sorted(((fr % 5) + 1, ((fr + 3) % 5) + 1)))
+        return GrashofSpec(header, "fivebar", FiveBarProblem(tuple(m), fr, nb, 1e-9), {}, None)
+    raise SpecError(where, "lengths", "2 (slider-crank), 4 (four-bar) or 5 (five-bar) "
+                    "comma-separated lengths", f"{len(vals)}")
+
+
+@dataclasses.dataclass(frozen=True)
+class BatchSpec:
+    """Length sets from a CSV file (``--batch``), lengths in metres."""
+
+    header: Header
+    lengths: object         # ndarray (N, 4)
+    frame: object           # ndarray (N,) of int
+    input: object           # ndarray (N,) of int
+    path: Path
+
+
+def read_batch_csv(path, units="mm"):
+    """Read ``l1,l2,l3,l4[,frame,input]`` rows (an optional header line) from a CSV file.
+
+    Raises
+    ------
+    SpecError
+        Unreadable file, wrong column count, non-numeric or non-positive
+        lengths, a frame or input that is not a link (the message names the row).
+    """
+    import numpy as np
+
+    file = str(path)
+    try:
+        text = Path(path).read_text(encoding="utf-8")
+    except FileNotFoundError:
+        raise SpecError(file, "", "an existing CSV file", "no such file") from None
+    except (OSError, UnicodeDecodeError) as exc:
+        raise SpecError(file, "", "a readable UTF-8 CSV file", str(exc)) from None
+    lines = [ln for ln in text.splitlines() if ln.strip() and not ln.lstrip().startswith("#")]
+    if lines and any(c.isalpha() for c in lines[0].replace("e", "").replace("E", "")):
+        head = [h.strip().lower() for h in lines[0].split(",")]
+        if head[:4] != ["l1", "l2", "l3", "l4"] or head[4:] not in ([], ["frame"],
+                                                                    ["frame", "input"]):
+            raise SpecError(file, "header", "l1,l2,l3,l4[,frame[,input]]", repr(lines[0]))
+        lines = lines[1:]
+        start = 2
+    else:
+        start = 1
+    if not lines:
+        raise SpecError(file, "", "at least one row of lengths", "none")
+    ncol = lines[0].count(",") + 1
+    if ncol not in (4, 5, 6):
+        raise SpecError(file, f"row {start}", "4 to 6 comma-separated columns "
+                        "(l1,l2,l3,l4[,frame[,input]])", f"{ncol} columns")
+    try:
+        data = np.array([ln.split(",") for ln in lines], dtype=float)
+    except ValueError:
+        for i, ln in enumerate(lines):
+            cells = ln.split(",")
+            if len(cells) != ncol:
+                raise SpecError(file, f"row {i + start}", f"{ncol} columns",
+                                f"{len(cells)}") from None
+            for j, c in enumerate(cells):
+                try:
+                    float(c)
+                except ValueError:
+                    raise SpecError(file, f"row {i + start}", "numbers",
+                                    f"{c.strip()!r} in column {j + 1}") from None
+        raise
+    L = data[:, :4]
+    bad = ~(np.isfinite(L) & (L > 0))
+    if bad.any():
+        i, j = map(int, np.argwhere(bad)[0])
+        raise SpecError(file, f"row {i + start}", f"a positive length l{j + 1}",
+                        repr(float(L[i, j])))
+    frame = data[:, 4] if ncol >= 5 else np.full(len(L), 4.0)
+    fr_ok = np.isin(frame, (1, 2, 3, 4))
+    if not fr_ok.all():
+        i = int(np.flatnonzero(~fr_ok)[0])
+        raise SpecError(file, f"row {i + start}", "a frame link number 1..4",
+                        repr(float(frame[i])))
+    frame = frame.astype(int)
+    nb1, nb2 = frame % 4 + 1, (frame + 2) % 4 + 1
+    if ncol == 6:
+        inp = data[:, 5]
+        ok = (inp == nb1) | (inp == nb2)
+        if not ok.all():
+            i = int(np.flatnonzero(~ok)[0])
+            raise SpecError(file, f"row {i + start}",
+                            f"an input link joined to the frame {frame[i]}: {nb1[i]} or {nb2[i]}",
+                            repr(float(inp[i])))
+        inp = inp.astype(int)
+    else:
+        inp = np.where((nb1 == 1) | (nb2 == 1), 1, nb1)
+    scale = LENGTH_UNITS[units]
+    header = Header(title=f"mechcli grashof --batch {file}", unit=units, scale=scale)
+    return BatchSpec(header, L * scale, frame, inp, Path(path))
