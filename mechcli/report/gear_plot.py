@@ -1,0 +1,177 @@
+"""Pictures of ``mechcli gear``: involute curve, gear drawing, pair in mesh,
+rack-cutter generation (PNG) and its animation (GIF).
+
+Imports matplotlib: import this module only when a picture is written.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from mechcli.report import plotting
+from mechcli.report.plotting import plt
+
+
+def _t(lang, en, zh):
+    return zh if lang == "zh" else en
+
+
+def _circle(ax, r, style, label=None, lw=0.8, centre=(0.0, 0.0)):
+    t = np.linspace(0, 2 * np.pi, 361)
+    ax.plot(centre[0] + r * np.cos(t), centre[1] + r * np.sin(t), style, lw=lw, label=label)
+
+
+def plot_involute(sol, spec, run, outputs):
+    """involute.png: the involute of 【例 5-1】 (图 5-2) with its base circle."""
+    lang = plotting.setup(run.lang)
+    sc, u = spec.header.scale, spec.header.unit
+    _, _, x, y = sol["curve"]
+    fig, ax = plt.subplots(figsize=(6, 6))
+    ax.plot(x / sc, y / sc, "b-", lw=1.5, label=_t(lang, "involute", "渐开线"))
+    _circle(ax, spec.problem.rb / sc, "c--", _t(lang, "base circle", "基圆"))
+    ax.set_aspect("equal")
+    ax.set_xlabel(f"x ({u})")
+    ax.set_ylabel(f"y ({u})")
+    ax.set_title(_t(lang, "Involute curve", "渐开线曲线"))
+    ax.legend(loc="lower left")
+    plotting.save_png(fig, outputs, "involute.png")
+
+
+def _gear_axes(ax, g, sc, lang, centre=(0.0, 0.0), legend=True):
+    for r, style, en, zh in ((g.ra, "r:", "tip circle", "齿顶圆"), (g.r, "g-.", "reference circle", "分度圆"),
+                             (g.rb, "c--", "base circle", "基圆"), (g.rf, "b:", "root circle", "齿根圆")):
+        _circle(ax, r / sc, style, _t(lang, en, zh) if legend else None, centre=centre)
+
+
+def plot_gear(sol, spec, run, outputs):
+    """gear.png: the whole gear (【例 5-3】, 图 5-7) with its circles, and one tooth enlarged."""
+    lang = plotting.setup(run.lang)
+    sc, u = spec.header.scale, spec.header.unit
+    g, out, tooth = sol["gear"], sol["outline"], sol["tooth"]
+    fig, (ax, bx) = plt.subplots(1, 2, figsize=(12, 6))
+    for a in (ax, bx):
+        a.plot(out.x / sc, out.y / sc, "k-", lw=1.0)
+        _gear_axes(a, g, sc, lang, legend=a is ax)
+        a.set_aspect("equal")
+        a.set_xlabel(f"x ({u})")
+        a.set_ylabel(f"y ({u})")
+    ax.legend(loc="lower left", fontsize=8)
+    ax.set_title(_t(lang, f"Spur gear m = {g.m / sc:g}, z = {g.z}, x = {g.x:g}",
+                    f"渐开线直齿圆柱齿轮 m={g.m / sc:g}, z={g.z}, x={g.x:g}"))
+    half = 1.6 * math.pi / g.z
+    r0, r1 = g.rf / sc * 0.97, g.ra / sc * 1.02
+    bx.set_xlim(-r1 * math.sin(half), r1 * math.sin(half))
+    bx.set_ylim(r0 * math.cos(half), r1)
+    _circle(bx, tooth.r_form / sc, "m-", lw=0.6)
+    bx.set_title(_t(lang, f"one tooth; involute from r = {tooth.r_form / sc:.3f} {u} (magenta)",
+                    f"单齿; 渐开线起始圆 r = {tooth.r_form / sc:.3f} {u}"))
+    plotting.save_png(fig, outputs, "gear.png")
+
+
+def plot_pair(pair, spec, run, outputs):
+    """pair.png: both gears in mesh at a' with the line of action."""
+    from mechcli.core.gear_profile import gear_outline, generated_tooth
+
+    lang = plotting.setup(run.lang)
+    sc, u = spec.header.scale, spec.header.unit
+    g1, g2 = pair.g1, pair.g2
+    fig, ax = plt.subplots(figsize=(8, 8))
+    o1 = gear_outline(generated_tooth(g1), 30)
+    o2 = gear_outline(generated_tooth(g2), 30)
+    ax.plot(o1.x / sc, o1.y / sc, "b-", lw=0.8)
+    rot = math.pi + math.pi / g2.z
+    c, s = math.cos(rot), math.sin(rot)
+    ax.plot((c * o2.x - s * o2.y) / sc, (s * o2.x + c * o2.y + pair.a_w) / sc, "r-", lw=0.8)
+    _circle(ax, pair.dw1 / 2 / sc, "g-.", _t(lang, "operating pitch circles", "节圆"))
+    _circle(ax, pair.dw2 / 2 / sc, "g-.", centre=(0, pair.a_w / sc))
+    _circle(ax, g1.rb / sc, "c--", _t(lang, "base circles", "基圆"))
+    _circle(ax, g2.rb / sc, "c--", centre=(0, pair.a_w / sc))
+    # line of action N1N2: tangent to both base circles through the pitch point
+    aw = pair.alpha_w
+    n1 = g1.rb * np.array([-math.cos(aw), math.sin(aw)])
+    n2 = np.array([0.0, pair.a_w]) + g2.rb * np.array([math.cos(aw), -math.sin(aw)])
+    ax.plot([n1[0] / sc, n2[0] / sc], [n1[1] / sc, n2[1] / sc], "m-", lw=1.0,
+            label=_t(lang, "line of action", "啮合线"))
+    rw1 = pair.dw1 / 2
+    span = 4 * g1.p
+    ax.set_xlim(-span / sc, span / sc)
+    ax.set_ylim((rw1 - span) / sc, (rw1 + span) / sc)
+    ax.set_aspect("equal")
+    ax.legend(loc="lower left", fontsize=8)
+    ax.set_xlabel(f"x ({u})")
+    ax.set_ylabel(f"y ({u})")
+    ax.set_title(_t(lang, f"z1 = {g1.z}, z2 = {g2.z}, a' = {pair.a_w / sc:g} {u}, "
+                    f"ε_α = {pair.epsilon_alpha:.3f}",
+                    f"z1={g1.z}, z2={g2.z}, a'={pair.a_w / sc:g}{u}, 重合度 {pair.epsilon_alpha:.3f}"))
+    plotting.save_png(fig, outputs, "pair.png")
+
+
+def _generation_axes(ax, tooth, phi, spec, lang, teeth, cutter=True):
+    from mechcli.core.gear_generation import cutter_positions
+    from mechcli.core.gear_profile import gear_outline
+
+    sc, u = spec.header.scale, spec.header.unit
+    g = tooth.gear
+    if cutter:
+        cx, cy = cutter_positions(g, phi, teeth)
+        ax.plot(cx.T / sc, cy.T / sc, "-", color="0.55", lw=0.4)
+    out = gear_outline(tooth, 60)
+    rot = -math.pi - math.pi / g.z   # a tooth space to -y, where the cutter is
+    c, s = math.cos(rot), math.sin(rot)
+    ax.plot((c * out.x - s * out.y) / sc, (s * out.x + c * out.y) / sc, "k-", lw=1.3)
+    _gear_axes(ax, g, sc, lang)
+    if tooth.undercut:
+        _circle(ax, tooth.r_form / sc, "m-", _t(lang, "undercut: involute starts here",
+                                                  "根切: 渐开线起始圆"), lw=0.8)
+    ax.set_aspect("equal")
+    ax.set_xlabel(f"x ({u})")
+    ax.set_ylabel(f"y ({u})")
+    ax.set_title(_t(lang, f"m = {g.m / sc:g}, z = {g.z}, α = {math.degrees(g.alpha):g}°, x = {g.x:g}"
+                    + (f": {100 * tooth.undercut_fraction:.1f}% of the involute cut away"
+                       if tooth.undercut else ": no undercut"),
+                    f"m={g.m / sc:g}, z={g.z}, α={math.degrees(g.alpha):g}°, x={g.x:g}"
+                    + (f": 根切 {100 * tooth.undercut_fraction:.1f}%" if tooth.undercut
+                       else ": 无根切")), fontsize=9)
+    lim = g.ra * 1.25 / sc
+    ax.set_xlim(-lim, lim)
+    ax.set_ylim(-(g.r + (g.x + 2) * g.m) / sc * 1.05, lim)
+    ax.legend(loc="upper right", fontsize=7)
+
+
+def plot_generation(sol, spec, run, outputs):
+    """generation.png: cutter positions and the generated gear, one panel per shift (图 5-10)."""
+    lang = plotting.setup(run.lang)
+    teeth = sol["teeth"]
+    phi = sol["plan"].phi
+    fig, axes = plt.subplots(1, len(teeth), figsize=(6.5 * len(teeth), 6.5), squeeze=False)
+    for ax, tooth in zip(axes[0], teeth):
+        _generation_axes(ax, tooth, phi, spec, lang, spec.problem.cutter_teeth)
+    fig.suptitle(_t(lang, "Generation of an involute gear by a rack cutter",
+                    "渐开线齿轮范成的动态模拟"))
+    plotting.save_png(fig, outputs, "generation.png")
+
+
+def animate_generation(sol, spec, run, outputs):
+    """generation.gif: the cutter rolling round the blank (first shift), positions accumulating."""
+    from mechcli.core.gear_generation import cutter_positions
+
+    lang = plotting.setup(run.lang)
+    tooth = sol["teeth"][0]
+    g, sc = tooth.gear, spec.header.scale
+    phi = sol["plan"].phi
+    order = np.argsort(phi, kind="stable")
+    phi = phi[order]
+    cx, cy = cutter_positions(g, phi, spec.problem.cutter_teeth)
+    fig, ax = plt.subplots(figsize=(5.5, 5.5))
+    _generation_axes(ax, tooth, phi[:0], spec, lang, spec.problem.cutter_teeth, cutter=False)
+    current, = ax.plot([], [], "r-", lw=1.2)
+    frames = []
+    for k in range(phi.size):
+        if k:
+            ax.plot(cx[k - 1] / sc, cy[k - 1] / sc, "-", color="0.6", lw=0.4)
+        current.set_data(cx[k] / sc, cy[k] / sc)
+        frames.append(plotting.canvas_frame(fig))
+    plt.close(fig)
+    plotting.save_gif(frames, outputs, "generation.gif", fps=8)
