@@ -703,7 +703,8 @@ class GuideBar:
         ``oscillating``, ``rotating``, ``boundary`` (a + e = d or d + e = a)
         or ``no_crank`` (|d − a| < e: the crank cannot turn).
     theta, psi, K : float
-        For an oscillating guide: θ = ψ [rad] and the time ratio.
+        For an oscillating guide: θ = ψ [rad] and the time ratio (K = 0 when
+        θ = 180°, the boundary a = d, where it is unbounded).
     gamma_min, gamma_max : float
         Transmission angle on the guide, crank driving [rad]: 90° − arcsin(e/CB).
     """
@@ -762,7 +763,8 @@ def analyse_guide_bar(a, d, e=0.0, rtol=CHANGE_POINT_RTOL):
         lo = np.arccos(min(1.0, max(-1.0, (a - e) / d)))
         hi = np.arccos(min(1.0, max(-1.0, (-a - e) / d)))
         theta = psi = float(hi - lo)
-        K = float((np.pi + theta) / (np.pi - theta))
+        # a boundary guide-bar (a = d, e = 0) swings 180°: K is unbounded, reported as 0
+        K = float((np.pi + theta) / (np.pi - theta)) if theta < np.pi * (1 - 1e-9) else 0.0
     if kind == "no_crank":
         return GuideBar(a, d, e, kind, 0.0, 0.0, 0.0, 0.0, 0.0)
     cb_lo, cb_hi = abs(d - a), d + a

@@ -289,7 +289,9 @@ def slider_report(title, lang, r, unit):
 def guide_results(gb, scale):
     r = {"type": gb.kind, "crank": 1 if gb.kind != "no_crank" else None}
     if gb.kind in ("oscillating", "boundary") and gb.theta > 0:
-        r.update(theta_deg=_deg(gb.theta), psi_deg=_deg(gb.psi), K=gb.K)
+        r.update(theta_deg=_deg(gb.theta), psi_deg=_deg(gb.psi))
+        if gb.K > 0:
+            r["K"] = gb.K
     if gb.kind != "no_crank":
         r.update(gamma_min_deg=_deg(gb.gamma_min), gamma_max_deg=_deg(gb.gamma_max))
     return r
@@ -300,7 +302,8 @@ def guide_report(title, lang, r):
     rows = []
     if "theta_deg" in r:
         rows += [[_label(lang, "θ = ψ [°]", "极位夹角 θ = 摆角 ψ (°)"), _f(r["theta_deg"])],
-                 [_label(lang, "time ratio K", "行程速比系数 K"), f"{r['K']:.4f}"]]
+                 [_label(lang, "time ratio K", "行程速比系数 K"),
+                  f"{r['K']:.4f}" if "K" in r else "∞"]]
     if "gamma_min_deg" in r:
         rows += [[_label(lang, "γmin [°]", "最小传动角 γmin (°)"), _f(r["gamma_min_deg"])],
                  [_label(lang, "γmax [°]", "最大传动角 γmax (°)"), _f(r["gamma_max_deg"])]]

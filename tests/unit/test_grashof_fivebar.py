@@ -1,0 +1,162 @@
+"""5R five-bar and RRRRP crank conditions (the five-bar paper), and the mobility count.
+
+The paper's double-crank criterion is checked independently by sweeping both
+input angles of the 2-DOF five-bar through the linkage engine: the two inputs
+turn fully and independently iff the linkage assembles, with links 2 and 3
+never in line, at every pair of input angles.  The grids contain 0 and π, where
+B and D are closest and farthest apart (the paper's eqs. 9-10), so the sweep
+sees the extreme configurations exactly.
+"""
+
+import numpy as np
+import pytest
+
+from mechcli.core.classify_fivebar import classify_fivebar, fivebar_roles, rrrrp_crank
+from mechcli.core.errors import UnsolvableError
+from mechcli.core.linkage import RRP, RRR, Crank, DriverMotion, Ground, Linkage, solve
+from mechcli.core.mobility import Joint, MobilityError, count_mobility
+
+
+def _five_bar(L, frame=5):
+    """The engine's five-bar: frame link on the x axis, inputs about its two ends."""
+    i1, i2, c1, c2 = fivebar_roles(frame)
+    f = L[frame - 1]
+    return Linkage(frame=frame, elements=(
+        Ground("A", 0.0, 0.0), Ground("E", f, 0.0),
+        Crank(link=i1, pivot="A", point="B", length=L[i1 - 1]),
+        Crank(link=i2, pivot="E", point="D", length=L[i2 - 1]),
+        RRR(joint="C", point_a="B", link_a=c1, length_a=L[c1 - 1], point_b="D", link_b=c2,
+            length_b=L[c2 - 1], branch=+1)))
+
+
+def _sweep_all_regular(L, frame=5, n=145):
+    i1, i2, _, _ = fivebar_roles(frame)
+    th = np.linspace(0, 2 * np.pi, n)          # step 2.5°, contains 0 and π
+    t1, t4 = np.meshgrid(th, th, indexing="ij")
+    mo = solve(_five_bar(L, frame), {i1: DriverMotion(t1), i2: DriverMotion(t4)}, order=0,
+               on_fail="mask")
+    if not mo.feasible.all():
+        return False
+    # links 2 and 3 never in line (no dead point of the 2-DOF linkage)
+    _, _, c1, c2 = fivebar_roles(frame)
+    s = np.abs(np.sin(mo.links[c1].theta - mo.links[c2].theta))
+    return bool(s.min() > 1e-9)
+
+
+def test_paper_example_1_triple_crank():
+    kl = classify_fivebar([10, 21, 19, 20, 5])
+    assert kl.types == ["triple_crank"] and kl.klass[0] == 1
+    assert kl.cranks() == [1, 2, 4]     # AB, DE input cranks, BC the coupler crank
+    assert _sweep_all_regular([10, 21, 19, 20, 5])
+
+
+def test_paper_example_2_double_crank():
+    kl = classify_fivebar([5, 20, 22, 13, 21])
+    assert kl.types == ["double_crank"] and kl.cranks() == [1, 4]
+    assert _sweep_all_regular([5, 20, 22, 13, 21])
+
+
+def test_the_rule_against_the_engine_sweep():
+    """Triple or double crank (the paper) <=> both inputs turn independently (engine)."""
+    rng = np.random.default_rng(11)
+    seen = set()
+    count = 0
+    while count < 40:
+        L = rng.integers(2, 30, 5).astype(float)
+        if L.max() >= L.sum() - L.max():
+            continue
+        frame = int(rng.integers(1, 6))
+        kl = classify_fivebar(L, frame=frame)
+        t = kl.types[0]
+        if t in seen and count > 20 and t not in ("triple_crank", "double_crank"):
+            continue
+        if abs(kl.excess[0]) < 0.5:          # keep clear of the class-I boundary
+            continue
+        seen.add(t)
+        count += 1
+        expect = t in ("triple_crank", "double_crank")
+        assert kl.inputs_independent[0] == expect, (L, frame, t)
+        assert _sweep_all_regular(list(L), frame) == expect, (L, frame, t)
+    assert {"triple_crank", "double_crank"} <= seen and len(seen) >= 4
+
+
+def test_closed_form_independence_matches_rule_on_many_samples():
+    rng = np.random.default_rng(5)
+    L = rng.uniform(1, 10, (50_000, 5))
+    L = L[L.max(axis=1) < L.sum(axis=1) - L.max(axis=1)]
+    for frame in (1, 3, 5):
+        kl = classify_fivebar(L, frame=frame)
+        rule = np.isin(kl.code, [0, 1])
+        assert np.array_equal(rule, kl.inputs_independent)
+
+
+def test_fivebar_that_cannot_close():
+    with pytest.raises(UnsolvableError, match="cannot close"):
+        classify_fivebar([1, 1, 1, 1, 10])
+
+
+# ------------------------------------------------------------------------ RRRRP
+def _slider_crank(l1, c, e):
+    return Linkage(frame=4, elements=(
+        Ground("A", 0.0, 0.0), Ground("O", 0.0, e),
+        Crank(link=1, pivot="A", point="B", length=l1),
+        RRP(joint="D", point="B", link=2, length=c, slider=3, guide_link=4, guide_point="O")))
+
+
+@pytest.mark.parametrize("l1, l2, l3, e", [(10, 40, 25, 3), (10, 40, 30, 0), (10, 40, 28, 3)])
+def test_rrrrp_condition_against_locked_fold_angles(l1, l2, l3, e):
+    """Eq. (20) with offset: link 1 turns for every locked angle between links 2 and 3.
+
+    Each locked angle makes a slider-crank with coupler BD between |l2 - l3| and
+    l2 + l3; the engine sweeps the crank through a full turn for each.
+    """
+    rc = rrrrp_crank(l1, l2, l3, e)
+    th = np.linspace(0, 2 * np.pi, 3601)
+    all_turn = True
+    for c in np.linspace(abs(l2 - l3), l2 + l3, 41):
+        mo = solve(_slider_crank(l1, c, e), {1: DriverMotion(th)}, order=0, on_fail="mask")
+        all_turn &= bool(mo.feasible.all())
+    assert rc.crank_any_fold == all_turn
+    assert rc.crank_any_fold == (l1 + e <= abs(l2 - l3))
+
+
+def test_rrrrp_slider_positions_where_link1_turns():
+    """With the slider held at x, the crank + RRR to D = (x, e) turns iff x in [lo, hi]."""
+    l1, l2, l3, e = 10.0, 40.0, 25.0, 3.0
+    rc = rrrrp_crank(l1, l2, l3, e)
+    th = np.linspace(0, 2 * np.pi, 3601)
+
+    def turns(x):
+        lk = Linkage(frame=5, elements=(
+            Ground("A", 0.0, 0.0), Ground("D", x, e),
+            Crank(link=1, pivot="A", point="B", length=l1),
+            RRR(joint="C", point_a="B", link_a=2, length_a=l2, point_b="D", link_b=3,
+                length_b=l3)))
+        return bool(solve(lk, {1: DriverMotion(th)}, order=0, on_fail="mask").feasible.all())
+
+    for x in np.linspace(rc.slider_lo, rc.slider_hi, 7)[1:-1]:
+        assert turns(x) and turns(-x)
+    assert not turns(rc.slider_lo - 0.5) and not turns(rc.slider_hi + 0.5)
+
+
+# ---------------------------------------------------------------------- mobility
+def test_mobility_counts_compound_hinge_local_dof_and_redundancy():
+    mob = count_mobility([Joint("R", (6, 1), "A"), Joint("R", (1, 2), "B"),
+                          Joint("R", (2, 3, 4), "C"), Joint("R", (3, 6), "D"),
+                          Joint("R", (4, 5), "E"), Joint("P", (5, 6))], frame=6)
+    assert (mob.n, mob.P_L, mob.P_H, mob.F) == (5, 7, 0, 1)
+    cam = count_mobility([Joint("R", (1, 2)), Joint("R", (3, 4)), Joint("P", (4, 1)),
+                          Joint("H", (2, 3))], frame=1, local_dof=1)
+    assert cam.F == 1 and cam.P_H == 1
+    # a parallelogram with a third parallel crank: F = 3·4 − 2·6 = 0 counted, 1 redundant
+    par = count_mobility([Joint("R", (4, 1)), Joint("R", (1, 2)), Joint("R", (2, 3)),
+                          Joint("R", (3, 4)), Joint("R", (4, 5)), Joint("R", (5, 2))],
+                         frame=4, redundant=1)
+    assert par.F == 1
+
+
+def test_mobility_rejects_bad_joints():
+    with pytest.raises(MobilityError):
+        count_mobility([Joint("H", (1, 2, 3))], frame=1)
+    with pytest.raises(MobilityError):
+        count_mobility([Joint("R", (1, 1))], frame=1)
