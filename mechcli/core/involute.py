@@ -181,7 +181,7 @@ def inverse_involute(theta, method="auto", *, start=BOOK_START, epsilon=BOOK_EPS
             bad = th[active][(aa <= 0) | (aa >= np.pi / 2)]
             raise ConvergenceError(
                 f"book Newton start {start:g} left (0, pi/2) for theta = {bad[0]:.6g} "
-                "(its first step passes pi/2 for theta > 1.0467); use method = \"auto\"")
+                "(its first step passes pi/2 for theta > 1.0468); use method = \"auto\"")
         f = involute_function(aa) - th[active]
         tan_a = np.tan(aa)
         df = tan_a * tan_a
