@@ -91,6 +91,9 @@ def main(argv=None):
 
     args = list(sys.argv[1:] if argv is None else argv)
     show_tb = "--traceback" in args
+    if not any(a in ("--version", "--help", "-h") for a in args[:1]):
+        from mechcli._alloc import keep_heap_warm
+        keep_heap_warm()
     try:
         cli.main(args=args, prog_name="mechcli", standalone_mode=False)
     except SpecError as exc:

@@ -149,8 +149,8 @@ def default_quantities(linkage: Linkage, order: int, tracers=(), primary=None):
     for name in slides:
         out.append(Quantity(f"s{name}", "length", 0, lambda m, k=name: m.slides[k].s))
     for tr in tracers:
-        out.append(Quantity(f"x{tr}", "length", 0, lambda m, k=tr: m.points[k].p.real))
-        out.append(Quantity(f"y{tr}", "length", 0, lambda m, k=tr: m.points[k].p.imag))
+        out.append(Quantity(f"x{tr}", "length", 0, lambda m, k=tr: m.points[k].x))
+        out.append(Quantity(f"y{tr}", "length", 0, lambda m, k=tr: m.points[k].y))
     for i, el in enumerate(linkage.elements):
         if isinstance(el, RRR):
             out.append(Quantity(f"gamma{el.joint}", "angle", 0,
@@ -161,16 +161,16 @@ def default_quantities(linkage: Linkage, order: int, tracers=(), primary=None):
         for name in slides:
             out.append(Quantity(f"v{name}", "velocity", 1, lambda m, k=name: m.slides[k].v))
         for tr in tracers:
-            out.append(Quantity(f"vx{tr}", "velocity", 1, lambda m, k=tr: m.points[k].v.real))
-            out.append(Quantity(f"vy{tr}", "velocity", 1, lambda m, k=tr: m.points[k].v.imag))
+            out.append(Quantity(f"vx{tr}", "velocity", 1, lambda m, k=tr: m.points[k].vx))
+            out.append(Quantity(f"vy{tr}", "velocity", 1, lambda m, k=tr: m.points[k].vy))
     if order >= 2:
         for n in sorted(rotating):
             out.append(Quantity(f"alpha{n}", "angacc", 2, lambda m, n=n: m.links[n].alpha))
         for name in slides:
             out.append(Quantity(f"a{name}", "acceleration", 2, lambda m, k=name: m.slides[k].a))
         for tr in tracers:
-            out.append(Quantity(f"ax{tr}", "acceleration", 2, lambda m, k=tr: m.points[k].a.real))
-            out.append(Quantity(f"ay{tr}", "acceleration", 2, lambda m, k=tr: m.points[k].a.imag))
+            out.append(Quantity(f"ax{tr}", "acceleration", 2, lambda m, k=tr: m.points[k].ax))
+            out.append(Quantity(f"ay{tr}", "acceleration", 2, lambda m, k=tr: m.points[k].ay))
     return out
 
 
@@ -202,11 +202,12 @@ def _take(motion: LinkageMotion, idx) -> LinkageMotion:
     """Restrict every array of a motion to the positions ``idx``."""
     def cut(x):
         return None if x is None else x[idx]
-    pts = {k: type(v)(cut(v.p), cut(v.v), cut(v.a)) for k, v in motion.points.items()}
+    pts = {k: type(v)(cut(v.x), cut(v.y), cut(v.vx), cut(v.vy), cut(v.ax), cut(v.ay))
+           for k, v in motion.points.items()}
     lks = {k: type(v)(cut(v.theta), cut(v.omega), cut(v.alpha)) for k, v in motion.links.items()}
     sls = {k: dataclasses.replace(v, s=cut(v.s), v=cut(v.v), a=cut(v.a))
            for k, v in motion.slides.items()}
-    cds = tuple(dataclasses.replace(c, sin_gamma=cut(c.sin_gamma), gamma=cut(c.gamma))
+    cds = tuple(dataclasses.replace(c, sin_gamma=cut(c.sin_gamma), cos_joint=cut(c.cos_joint))
                 for c in motion.conditions)
     return LinkageMotion(motion.order, motion.feasible[idx], motion.regular[idx], pts, lks,
                          sls, cds)

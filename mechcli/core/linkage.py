@@ -33,6 +33,7 @@ slider-crank of 例 1-2 is ``Crank`` + ``RRP``; the guide-bar of 例 1-3 is
 from __future__ import annotations
 
 import dataclasses
+import functools
 from typing import Dict, Optional, Tuple, Union
 
 import numpy as np
@@ -294,11 +295,30 @@ class Linkage:
 # ---------------------------------------------------------------------------
 @dataclasses.dataclass(frozen=True)
 class PointMotion:
-    """Position ``p`` [m], velocity ``v`` [m/s], acceleration ``a`` [m/s^2] (complex)."""
+    """Motion of a point: coordinates x, y [m], velocity vx, vy [m/s] and
+    acceleration ax, ay [m/s^2] (``None`` where not computed).
 
-    p: np.ndarray
-    v: Optional[np.ndarray] = None
-    a: Optional[np.ndarray] = None
+    ``p``, ``v``, ``a`` give the same as complex numbers ``x + iy``.
+    """
+
+    x: np.ndarray
+    y: np.ndarray
+    vx: Optional[np.ndarray] = None
+    vy: Optional[np.ndarray] = None
+    ax: Optional[np.ndarray] = None
+    ay: Optional[np.ndarray] = None
+
+    @functools.cached_property
+    def p(self):
+        return self.x + 1j * self.y
+
+    @functools.cached_property
+    def v(self):
+        return None if self.vx is None else self.vx + 1j * self.vy
+
+    @functools.cached_property
+    def a(self):
+        return None if self.ax is None else self.ax + 1j * self.ay
 
 
 @dataclasses.dataclass(frozen=True)
@@ -328,19 +348,27 @@ class SlideMotion:
 
 @dataclasses.dataclass(frozen=True)
 class DyadCondition:
-    """Conditioning of one dyad: ``sin_gamma`` = |sin| of the angle between the
-    two columns of its 2x2 velocity system (0 at a toggle/dead point).
+    """Conditioning of one dyad: ``sin_gamma`` is 0 at a toggle/dead point.
 
-    For an RRR dyad this is |sin| of the angle between its two links at the
-    joint, i.e. the sine of the transmission angle; ``gamma`` [rad] is that
-    acute transmission angle in [0, pi/2].
+    For an RRR dyad it is |sin| of the angle between its two links at the
+    joint and ``cos_joint`` that angle's cosine, so ``gamma`` is the acute
+    transmission angle in [0, pi/2]; for RRP |cos| of the angle between rod
+    and guide; for RPR |s| over the pivot-block distance (or the linkage
+    scale, whichever is larger).
     """
 
     element: int
     kind: str
     joint: str
     sin_gamma: np.ndarray
-    gamma: Optional[np.ndarray] = None
+    cos_joint: Optional[np.ndarray] = None
+
+    @property
+    def gamma(self):
+        """Acute transmission angle [rad]."""
+        if self.cos_joint is None:
+            return np.arcsin(np.minimum(self.sin_gamma, 1.0))
+        return np.arctan2(self.sin_gamma, np.abs(self.cos_joint))
 
 
 @dataclasses.dataclass(frozen=True)
@@ -380,23 +408,47 @@ class LinkageMotion:
 
 
 # ---------------------------------------------------------------------------
-# solver
+# solver (contiguous real arrays: x and y components kept apart)
 # ---------------------------------------------------------------------------
-def _cross(a, b):
-    """z-component of a x b for complex-encoded 2-vectors."""
-    return a.real * b.imag - a.imag * b.real
+class _Solve2:
+    """Cramer's rule for ``X*(c1x, c1y) + Y*(c2x, c2y) = (rx, ry)`` on arrays.
+
+    Positions in ``bad`` (a mask, or None when all are regular) get 0, never
+    inf or NaN.
+    """
+
+    def __init__(self, c1x, c1y, c2x, c2y, bad):
+        det = c1x * c2y - c1y * c2x
+        if bad is not None:
+            det = np.where(bad, 1.0, det)
+        self.inv = 1.0 / det
+        self.c = (c1x, c1y, c2x, c2y)
+        self.bad = bad
+
+    def __call__(self, rx, ry):
+        c1x, c1y, c2x, c2y = self.c
+        x = (rx * c2y - ry * c2x) * self.inv
+        y = (c1x * ry - c1y * rx) * self.inv
+        if self.bad is not None:
+            x = np.where(self.bad, 0.0, x)
+            y = np.where(self.bad, 0.0, y)
+        return x, y
 
 
-def _solve2(c1, c2, rhs, det, ok):
-    """Solve ``X*c1 + Y*c2 = rhs`` (complex-encoded 2x2, real X, Y) by Cramer's rule."""
-    safe = np.where(ok, det, 1.0)
-    x = _cross(rhs, c2) / safe
-    y = _cross(c1, rhs) / safe
-    return np.where(ok, x, 0.0), np.where(ok, y, 0.0)
+class _Link:
+    """Internal link state: angle, its cosine and sine, omega, alpha."""
+
+    __slots__ = ("theta", "c", "s", "w", "al")
+
+    def __init__(self, theta, c, s, w, al):
+        self.theta, self.c, self.s, self.w, self.al = theta, c, s, w, al
 
 
-def _unit(theta):
-    return np.cos(theta) + 1j * np.sin(theta)
+class _Pt:
+    __slots__ = ("x", "y", "vx", "vy", "ax", "ay")
+
+    def __init__(self, x, y, vx=None, vy=None, ax=None, ay=None):
+        self.x, self.y, self.vx, self.vy, self.ax, self.ay = x, y, vx, vy, ax, ay
 
 
 def solve(linkage: Linkage, inputs, order: int = 2, on_fail: str = "mask") -> LinkageMotion:
@@ -427,192 +479,206 @@ def solve(linkage: Linkage, inputs, order: int = 2, on_fail: str = "mask") -> Li
         if d.link not in inputs:
             raise LinkageDefinitionError(f"no input given for driver link {d.link}")
     shape = np.broadcast(*[np.asarray(m.q) for m in inputs.values()]).shape
-    zeros = np.zeros(shape)
+    zero = np.broadcast_to(0.0, shape)  # a view: costs no memory
     feasible = np.ones(shape, dtype=bool)
     regular = np.ones(shape, dtype=bool)
     vel, acc = order >= 1, order >= 2
     scale = linkage.scale()
+    frame = linkage.frame
 
-    P: Dict[str, PointMotion] = {}
-    L: Dict[int, LinkMotion] = {linkage.frame: LinkMotion(zeros, zeros, zeros)}
+    def full(x):
+        x = np.asarray(x, dtype=float)
+        if x.shape == shape:
+            return x
+        return np.broadcast_to(x, shape) if x.ndim == 0 else x + zero
+
+    P: Dict[str, _Pt] = {}
+    L: Dict[int, _Link] = {frame: _Link(zero, 1.0, 0.0, zero, zero)}
     S: Dict[str, SlideMotion] = {}
     conds = []
 
-    def point_state(name):
-        pm = P[name]
-        return pm.p, pm.v, pm.a
-
-    def put_link(num, theta, omega=None, alpha=None):
-        L[num] = LinkMotion(theta, omega if vel else None, alpha if acc else None)
-
-    def put_point(name, p, v=None, a=None):
-        P[name] = PointMotion(p + zeros, (v + zeros) if vel and v is not None else None,
-                              (a + zeros) if acc and a is not None else None)
+    def mark(ok, sing):
+        """Update the masks; return the 'bad' mask for the 2x2 solves (None if none)."""
+        nonlocal feasible, regular
+        feasible &= ok
+        if not vel:
+            return None
+        good = ok & (sing > SINGULAR_TOL)
+        regular &= good
+        return None if good.all() else ~good
 
     for idx in linkage.order:
         el = linkage.elements[idx]
         if isinstance(el, Ground):
-            c = complex(el.x, el.y)
-            put_point(el.name, np.full(shape, c), 0j, 0j)
+            P[el.name] = _Pt(full(el.x), full(el.y), zero, zero, zero, zero)
 
         elif isinstance(el, Crank):
             m = inputs[el.link]
-            th = np.asarray(m.q, dtype=float) + zeros
-            w = np.asarray(m.dq, dtype=float) + zeros
-            al = np.asarray(m.ddq, dtype=float) + zeros
-            p0, v0, a0 = point_state(el.pivot)
-            r = el.length * _unit(th)
-            put_point(el.point, p0 + r, (v0 + 1j * w * r) if vel else None,
-                      (a0 + (1j * al - w * w) * r) if acc else None)
-            put_link(el.link, th, w, al)
+            th, w, al = full(m.q), full(m.dq), full(m.ddq)
+            c, s = np.cos(th), np.sin(th)
+            o = P[el.pivot]
+            rx, ry = el.length * c, el.length * s
+            p = _Pt(o.x + rx, o.y + ry)
+            if vel:
+                p.vx, p.vy = o.vx - w * ry, o.vy + w * rx
+            if acc:
+                w2 = w * w
+                p.ax = o.ax - al * ry - w2 * rx
+                p.ay = o.ay + al * rx - w2 * ry
+            P[el.point] = p
+            L[el.link] = _Link(th, c, s, w, al)
 
         elif isinstance(el, SliderDriver):
             m = inputs[el.link]
-            s = np.asarray(m.q, dtype=float) + zeros
-            u = complex(np.cos(el.angle), np.sin(el.angle))
-            p0, v0, a0 = point_state(el.origin)
-            put_point(el.point, p0 + s * u, (v0 + np.asarray(m.dq) * u) if vel else None,
-                      (a0 + np.asarray(m.ddq) * u) if acc else None)
-            put_link(el.link, zeros + el.angle, zeros, zeros)
+            s = full(m.q)
+            ux, uy = np.cos(el.angle), np.sin(el.angle)
+            o = P[el.origin]
+            p = _Pt(o.x + s * ux, o.y + s * uy)
+            v = full(m.dq) if vel else None
+            a = full(m.ddq) if acc else None
+            if vel:
+                p.vx, p.vy = o.vx + v * ux, o.vy + v * uy
+            if acc:
+                p.ax, p.ay = o.ax + a * ux, o.ay + a * uy
+            P[el.point] = p
+            L[el.link] = _Link(full(el.angle), ux, uy, zero, zero)
             name = el.name or str(el.link)
-            S[name] = SlideMotion(name, el.link, linkage.frame, s,
-                                  (np.asarray(m.dq, dtype=float) + zeros) if vel else None,
-                                  (np.asarray(m.ddq, dtype=float) + zeros) if acc else None)
+            S[name] = SlideMotion(name, el.link, frame, s, v, a)
 
         elif isinstance(el, RRR):
-            pa, va, aa = point_state(el.point_a)
-            pb, vb, ab = point_state(el.point_b)
-            d = pb - pa
-            dist2 = d.real ** 2 + d.imag ** 2
-            dist = np.sqrt(dist2)
-            ok_d = dist > ASSEMBLY_TOL * scale
-            sd = np.where(ok_d, dist, 1.0)
-            along = (el.length_a ** 2 - el.length_b ** 2 + dist2) / (2 * sd)
-            h2 = el.length_a ** 2 - along ** 2
-            tol = ASSEMBLY_TOL * el.length_a ** 2 * 4
-            ok = ok_d & (h2 >= -tol)
-            h = np.sqrt(np.where(ok, np.maximum(h2, 0.0), 0.0))
-            q = pa + (along + 1j * el.branch * h) * d / sd
-            feasible &= ok
-            ra, rb = q - pa, q - pb
-            # sin of the angle between the links at the joint
-            na = np.abs(ra)
-            nb = np.abs(rb)
-            cr = _cross(ra, rb)
-            sing = np.abs(cr) / np.maximum(na * nb, 1e-300)
-            cosj = (ra.real * rb.real + ra.imag * rb.imag) / np.maximum(na * nb, 1e-300)
-            gamma = np.arctan2(sing, np.abs(cosj))
-            conds.append(DyadCondition(idx, "RRR", el.joint, sing, gamma))
-            tha, thb = np.angle(ra), np.angle(rb)
+            pa, pb = P[el.point_a], P[el.point_b]
+            la, lb = el.length_a, el.length_b
+            dx, dy = pb.x - pa.x, pb.y - pa.y
+            d2 = dx * dx + dy * dy
+            dist = np.sqrt(d2)
+            ok = dist > ASSEMBLY_TOL * scale
+            if not ok.all():
+                dist = np.where(ok, dist, 1.0)
+            inv = 1.0 / dist
+            along = (la * la - lb * lb + d2) * (0.5 * inv)
+            h2 = la * la - along * along
+            ok &= h2 >= -4 * ASSEMBLY_TOL * la * la
+            h = np.sqrt(np.maximum(h2, 0.0)) * (el.branch * 1.0)
+            ex, ey = dx * inv, dy * inv
+            qx = pa.x + along * ex - h * ey
+            qy = pa.y + along * ey + h * ex
+            rax, ray = qx - pa.x, qy - pa.y
+            rbx, rby = qx - pb.x, qy - pb.y
+            nab = 1.0 / (la * lb)
+            cross = rax * rby - ray * rbx
+            sing = np.abs(cross) * nab
+            conds.append(DyadCondition(idx, "RRR", el.joint, sing,
+                                       (rax * rbx + ray * rby) * nab))
+            bad = mark(ok, sing)
+            q = _Pt(qx, qy)
+            wa = wb = aa = ab = None
             if vel:
-                reg = ok & (sing > SINGULAR_TOL)
-                regular &= reg
-                c1, c2 = 1j * ra, -1j * rb
-                det = _cross(c1, c2)
-                wa, wb = _solve2(c1, c2, vb - va, det, reg)
-                vq = va + 1j * wa * ra
+                solve2 = _Solve2(-ray, rax, rby, -rbx, bad)
+                wa, wb = solve2(pb.vx - pa.vx, pb.vy - pa.vy)
+                q.vx, q.vy = pa.vx - wa * ray, pa.vy + wa * rax
                 if acc:
-                    rhs = ab - aa + wa * wa * ra - wb * wb * rb
-                    aa_, ab_ = _solve2(c1, c2, rhs, det, reg)
-                    aq = aa + (1j * aa_ - wa * wa) * ra
-                else:
-                    aa_ = ab_ = aq = None
-            else:
-                wa = wb = aa_ = ab_ = vq = aq = None
-            put_point(el.joint, q, vq, aq)
-            put_link(el.link_a, tha, wa, aa_)
-            put_link(el.link_b, thb, wb, ab_)
+                    wa2, wb2 = wa * wa, wb * wb
+                    aa, ab = solve2(pb.ax - pa.ax + wa2 * rax - wb2 * rbx,
+                                    pb.ay - pa.ay + wa2 * ray - wb2 * rby)
+                    q.ax = pa.ax - aa * ray - wa2 * rax
+                    q.ay = pa.ay + aa * rax - wa2 * ray
+            P[el.joint] = q
+            L[el.link_a] = _Link(np.arctan2(ray, rax), rax * (1 / la), ray * (1 / la), wa, aa)
+            L[el.link_b] = _Link(np.arctan2(rby, rbx), rbx * (1 / lb), rby * (1 / lb), wb, ab)
 
         elif isinstance(el, RRP):
-            pp, vp, ap = point_state(el.point)
-            pg, vg, ag = point_state(el.guide_point)
-            g = L[el.guide_link]
-            u = _unit(g.theta + el.guide_angle)
-            n = 1j * u
-            base = pg + el.offset * n
-            w = base - pp
-            b = w.real * u.real + w.imag * u.imag
-            c = w.real ** 2 + w.imag ** 2 - el.length ** 2
-            disc = b * b - c
-            tol = ASSEMBLY_TOL * el.length ** 2 * 4
-            ok = disc >= -tol
-            feasible &= ok
-            s = -b + el.branch * np.sqrt(np.where(ok, np.maximum(disc, 0.0), 0.0))
-            q = base + s * u
-            r = q - pp
-            nr = np.maximum(np.abs(r), 1e-300)
-            sing = np.abs(r.real * u.real + r.imag * u.imag) / nr
-            conds.append(DyadCondition(idx, "RRP", el.joint, sing, np.arcsin(np.minimum(sing, 1.0))))
-            name = el.name or (str(el.slider) if el.guide_link == linkage.frame
-                               else f"{el.slider}{el.guide_link}")
-            put_link(el.slider, g.theta + el.guide_angle, g.omega, g.alpha)
+            pp, pg, g = P[el.point], P[el.guide_point], L[el.guide_link]
+            cphi, sphi = np.cos(el.guide_angle), np.sin(el.guide_angle)
+            ux, uy = g.c * cphi - g.s * sphi, g.s * cphi + g.c * sphi
+            ux, uy = full(ux), full(uy)
+            moving = el.guide_link != frame
+            bx, by = pg.x - el.offset * uy, pg.y + el.offset * ux  # base of the slide
+            wx, wy = bx - pp.x, by - pp.y
+            b = wx * ux + wy * uy
+            disc = b * b - (wx * wx + wy * wy - el.length ** 2)
+            ok = disc >= -4 * ASSEMBLY_TOL * el.length ** 2
+            s = np.sqrt(np.maximum(disc, 0.0)) * (el.branch * 1.0) - b
+            qx, qy = bx + s * ux, by + s * uy
+            rx, ry = qx - pp.x, qy - pp.y
+            sing = np.abs(rx * ux + ry * uy) * (1.0 / el.length)
+            conds.append(DyadCondition(idx, "RRP", el.joint, sing))
+            bad = mark(ok, sing)
+            name = el.name or (str(el.slider) if not moving else f"{el.slider}{el.guide_link}")
+            q = _Pt(qx, qy)
+            wr = ar = sd = sdd = None
             if vel:
-                reg = ok & (sing > SINGULAR_TOL)
-                regular &= reg
-                wg = g.omega
-                vbase = vg + 1j * wg * (base - pg)
-                c1, c2 = 1j * r, -u
-                det = _cross(c1, c2)
-                rhs = vbase + 1j * wg * s * u - vp
-                wr, sd = _solve2(c1, c2, rhs, det, reg)
-                vq = vp + 1j * wr * r
+                solve2 = _Solve2(-ry, rx, -ux, -uy, bad)
+                rhs_x, rhs_y = pg.vx - pp.vx, pg.vy - pp.vy
+                if moving:
+                    gx, gy = bx - pg.x, by - pg.y
+                    rhs_x = rhs_x - g.w * (gy + s * uy)
+                    rhs_y = rhs_y + g.w * (gx + s * ux)
+                wr, sd = solve2(rhs_x, rhs_y)
+                q.vx, q.vy = pp.vx - wr * ry, pp.vy + wr * rx
                 if acc:
-                    ab_ = ag + (1j * g.alpha - wg * wg) * (base - pg)
-                    rhs = (ab_ + 2j * sd * wg * u + s * (1j * g.alpha - wg * wg) * u
-                           - ap + wr * wr * r)
-                    ar, sdd = _solve2(c1, c2, rhs, det, reg)
-                    aq = ap + (1j * ar - wr * wr) * r
-                else:
-                    ar = sdd = aq = None
-            else:
-                wr = ar = sd = sdd = vq = aq = None
-            put_point(el.joint, q, vq, aq)
-            put_link(el.link, np.angle(r), wr, ar)
+                    wr2 = wr * wr
+                    rhs_x = pg.ax - pp.ax + wr2 * rx
+                    rhs_y = pg.ay - pp.ay + wr2 * ry
+                    if moving:
+                        w2 = g.w * g.w
+                        lx, ly = gx + s * ux, gy + s * uy  # base->pin relative to the guide point
+                        rhs_x = rhs_x - g.al * ly - w2 * lx - 2 * sd * g.w * uy
+                        rhs_y = rhs_y + g.al * lx - w2 * ly + 2 * sd * g.w * ux
+                    ar, sdd = solve2(rhs_x, rhs_y)
+                    q.ax = pp.ax - ar * ry - wr2 * rx
+                    q.ay = pp.ay + ar * rx - wr2 * ry
+            P[el.joint] = q
+            L[el.link] = _Link(np.arctan2(ry, rx), rx * (1 / el.length), ry * (1 / el.length),
+                               wr, ar)
+            L[el.slider] = _Link(g.theta + el.guide_angle if moving else full(el.guide_angle),
+                                 ux, uy, g.w, g.al)
             S[name] = SlideMotion(name, el.slider, el.guide_link, s, sd, sdd)
 
         elif isinstance(el, RPR):
-            pp, vp, ap = point_state(el.point)
-            pc, vc, ac = point_state(el.pivot)
-            d = pp - pc
-            dist2 = d.real ** 2 + d.imag ** 2
-            disc = dist2 - el.offset ** 2
-            tol = ASSEMBLY_TOL * scale ** 2
-            ok = disc >= -tol
-            feasible &= ok
-            s = el.branch * np.sqrt(np.where(ok, np.maximum(disc, 0.0), 0.0))
-            # d = (s + i*offset) * u  =>  u = d / (s + i*offset)
-            local = s + 1j * el.offset
-            theta = np.angle(d) - np.angle(local)
-            u = _unit(theta)
+            pp, pc = P[el.point], P[el.pivot]
+            e = el.offset
+            dx, dy = pp.x - pc.x, pp.y - pc.y
+            d2 = dx * dx + dy * dy
+            disc = d2 - e * e
+            ok = disc >= -ASSEMBLY_TOL * scale * scale
+            s = np.sqrt(np.maximum(disc, 0.0)) * (el.branch * 1.0)
+            # d = (s + i e) u  =>  u = d (s - i e) / |d|^2
+            inv = 1.0 / np.maximum(d2, 1e-300 * scale * scale + 1e-300)
+            ux, uy = (dx * s + dy * e) * inv, (dy * s - dx * e) * inv
+            if e == 0.0:
+                # exact unit vector even where d -> 0 (the foot of the pivot)
+                ux, uy = dx * (inv * s), dy * (inv * s)
             # det of the velocity system is s: singular when the block passes the
             # foot of the pivot (the guide's direction is then undefined)
-            sing = np.abs(s) / np.maximum(np.sqrt(dist2), scale)
-            conds.append(DyadCondition(idx, "RPR", el.point, sing, np.arcsin(np.minimum(sing, 1.0))))
+            sing = np.abs(s) / np.maximum(np.sqrt(d2), scale)
+            conds.append(DyadCondition(idx, "RPR", el.point, sing))
+            bad = mark(ok, sing)
             name = el.name or f"{el.block}{el.guide}"
+            wg = ag = sd = sdd = None
             if vel:
-                reg = ok & (sing > SINGULAR_TOL)
-                regular &= reg
-                c1, c2 = u, 1j * d
-                det = _cross(c1, c2)
-                sd, wg = _solve2(c1, c2, vp - vc, det, reg)
+                solve2 = _Solve2(ux, uy, -dy, dx, bad)
+                sd, wg = solve2(pp.vx - pc.vx, pp.vy - pc.vy)
                 if acc:
-                    rhs = ap - ac - 2j * sd * wg * u + wg * wg * d
-                    sdd, ag = _solve2(c1, c2, rhs, det, reg)
-                else:
-                    sdd = ag = None
-            else:
-                sd = wg = sdd = ag = None
-            put_link(el.guide, theta, wg, ag)
-            put_link(el.block, theta, wg, ag)
+                    w2 = wg * wg
+                    sdd, ag = solve2(pp.ax - pc.ax + 2 * sd * wg * uy + w2 * dx,
+                                     pp.ay - pc.ay - 2 * sd * wg * ux + w2 * dy)
+            theta = np.arctan2(uy, ux)
+            L[el.guide] = _Link(theta, ux, uy, wg, ag)
+            L[el.block] = L[el.guide]
             S[name] = SlideMotion(name, el.block, el.guide, s, sd, sdd)
 
         elif isinstance(el, PointOnLink):
-            po, vo, ao = point_state(el.origin)
-            k = L[el.link]
-            r = complex(el.along, el.normal) * _unit(k.theta)
-            put_point(el.name, po + r,
-                      (vo + 1j * k.omega * r) if vel else None,
-                      (ao + (1j * k.alpha - k.omega * k.omega) * r) if acc else None)
+            o, k = P[el.origin], L[el.link]
+            rx = el.along * k.c - el.normal * k.s
+            ry = el.along * k.s + el.normal * k.c
+            p = _Pt(o.x + rx, o.y + ry)
+            if vel:
+                p.vx, p.vy = o.vx - k.w * ry, o.vy + k.w * rx
+            if acc:
+                w2 = k.w * k.w
+                p.ax = o.ax - k.al * ry - w2 * rx
+                p.ay = o.ay + k.al * rx - w2 * ry
+            P[el.name] = p
 
     if not vel:
         regular = feasible.copy()
@@ -620,4 +686,8 @@ def solve(linkage: Linkage, inputs, order: int = 2, on_fail: str = "mask") -> Li
         bad = int(np.size(regular) - np.count_nonzero(regular))
         raise AssemblyError(f"the linkage cannot be assembled (or is at a dead point) at "
                             f"{bad} of {np.size(regular)} input positions")
-    return LinkageMotion(order, feasible, regular if vel else feasible, P, L, S, tuple(conds))
+    points = {n: PointMotion(p.x, p.y, p.vx, p.vy, p.ax, p.ay) for n, p in P.items()}
+    links = {n: LinkMotion(full(k.theta), None if k.w is None or not vel else full(k.w),
+                           None if k.al is None or not acc else full(k.al))
+             for n, k in L.items()}
+    return LinkageMotion(order, feasible, regular, points, links, S, tuple(conds))
