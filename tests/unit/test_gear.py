@@ -1,0 +1,228 @@
+"""Spur gear, pair and generated-profile geometry against independent checks (ch. 5)."""
+
+import math
+
+import numpy as np
+import pytest
+from numpy.testing import assert_allclose
+
+from mechcli.core.gear import GearGeometryError, spur_gear
+from mechcli.core.gear_bevel import bevel_pair
+from mechcli.core.gear_generation import (cutter_positions, generation_plan,
+                                          swept_half_space)
+from mechcli.core.gear_helical import helical_pair
+from mechcli.core.gear_pair import (MeshError, design_teeth_from_ratio, gear_pair,
+                                    zero_backlash_pressure_angle)
+from mechcli.core.gear_profile import (flank_chordal_deviation, gear_outline,
+                                       generated_tooth)
+from mechcli.core.gear_worm import worm_drive
+from mechcli.core.involute import involute_function
+
+A20 = math.radians(20)
+MM = 1e-3
+
+
+def test_example_5_3_circles():
+    g = spur_gear(35, 5 * MM, A20)
+    assert g.d == pytest.approx(0.175)
+    assert g.db == pytest.approx(0.175 * math.cos(A20))
+    assert g.da == pytest.approx(0.185)
+    assert g.df == pytest.approx(0.1625)
+    assert g.s + g.e == pytest.approx(g.p)
+    assert g.h == pytest.approx(11.25 * MM)
+
+
+def test_thickness_identities():
+    g = spur_gear(18, 10 * MM, A20, x=0.3)
+    # on the reference circle the thickness is s = m (pi/2 + 2 x tan alpha)
+    assert g.tooth_thickness(g.r) == pytest.approx(g.s, rel=1e-14)
+    # thickness + space = circular pitch at any radius
+    r = np.linspace(g.rb, g.ra, 7)
+    assert_allclose(g.tooth_thickness(r) + g.space_width(r), 2 * np.pi * r / g.z, rtol=1e-14)
+    # zero thickness at the pointed radius
+    assert abs(g.tooth_thickness(g.pointed_radius)) < 1e-15
+
+
+def test_exercise_5_1_by_chord_construction():
+    # independent: half tooth angle at the base circle = s/(2r) + inv(alpha)
+    g = spur_gear(18, 10 * MM, A20)
+    sb = 2 * g.rb * (math.pi / (2 * g.z) + math.tan(A20) - A20)
+    assert g.tooth_thickness(g.rb) == pytest.approx(sb, rel=1e-14)
+    assert g.tooth_thickness(g.ra) == pytest.approx(6.8166 * MM, abs=5e-8)
+
+
+def test_z_min_and_x_min():
+    g = spur_gear(9, 10 * MM, A20)
+    assert g.z_min == pytest.approx(17.097, abs=1e-3)
+    assert g.x_min == pytest.approx((17.0972 - 9) / 17.0972, abs=1e-4)
+    assert g.undercut
+    assert not spur_gear(9, 10 * MM, A20, x=g.x_min).undercut
+
+
+def test_base_pitch_equal_and_contact_ratio_from_path_of_contact():
+    g1 = spur_gear(20, 5 * MM, A20)
+    g2 = spur_gear(80, 5 * MM, A20)
+    pr = gear_pair(g1, g2, a_w=0.255)
+    assert g1.pb == pytest.approx(g2.pb, rel=1e-15)
+    assert g1.pb == pytest.approx(2 * math.pi * g1.rb / g1.z, rel=1e-15)
+    # independent: B1B2 = sqrt(ra1^2 - rb1^2) + sqrt(ra2^2 - rb2^2) - a' sin(alpha')
+    b1b2 = (math.sqrt(g1.ra ** 2 - g1.rb ** 2) + math.sqrt(g2.ra ** 2 - g2.rb ** 2)
+            - pr.a_w * math.sin(pr.alpha_w))
+    assert pr.epsilon_alpha == pytest.approx(b1b2 / g1.pb, rel=1e-13)
+    assert pr.epsilon_alpha == pytest.approx(0.765, abs=5e-4)
+    # pitch circles roll: d1' + d2' = 2 a', d2'/d1' = z2/z1
+    assert pr.dw1 + pr.dw2 == pytest.approx(2 * pr.a_w, rel=1e-15)
+    assert pr.dw2 / pr.dw1 == pytest.approx(4.0, rel=1e-15)
+
+
+def test_zero_backlash_exercise_5_3():
+    g1 = spur_gear(10, 10 * MM, A20, x=0.45)
+    g2 = spur_gear(12, 10 * MM, A20, x=0.31)
+    pr = gear_pair(g1, g2)
+    assert math.degrees(pr.alpha_w) == pytest.approx(27.3831, abs=5e-5)
+    assert pr.a_w == pytest.approx(116.4098 * MM, abs=5e-8)
+    assert abs(pr.backlash) < 1e-15
+    # moving apart opens backlash at the rate 2 tan(alpha') (finite difference)
+    h = 1e-7
+    far = gear_pair(g1, g2, a_w=pr.a_w + h)
+    assert far.backlash / h == pytest.approx(2 * math.tan(pr.alpha_w), rel=1e-5)
+    with pytest.raises(MeshError):
+        gear_pair(g1, g2, a_w=pr.a_w * (1 - 1e-9))
+
+
+def test_alpha_w_and_a_w_are_inverse():
+    g1, g2 = spur_gear(30, 20 * MM, A20), spur_gear(40, 20 * MM, A20)
+    pr = gear_pair(g1, g2, a_w=0.725)
+    back = gear_pair(g1, g2, alpha_w=pr.alpha_w)
+    assert back.a_w == pytest.approx(0.725, rel=1e-15)
+    assert math.degrees(pr.alpha_w) == pytest.approx(24.8666, abs=5e-5)
+
+
+def test_no_contact_and_zero_backlash_limits():
+    g1, g2 = spur_gear(20, 5 * MM, A20), spur_gear(80, 5 * MM, A20)
+    with pytest.raises(MeshError, match="no contact"):
+        gear_pair(g1, g2, a_w=0.262)
+    assert zero_backlash_pressure_angle(g1, g2) == pytest.approx(A20, rel=1e-15)
+
+
+def test_design_from_ratio_exercise_5_2():
+    assert design_teeth_from_ratio(1.6, 0.078, 0.003) == (20, 32)
+    with pytest.raises(MeshError, match="not whole"):
+        design_teeth_from_ratio(1.7, 0.078, 0.003)
+    with pytest.raises(MeshError, match="whole number"):
+        design_teeth_from_ratio(1.6, 0.0785, 0.003)
+
+
+@pytest.mark.parametrize("z, x", [(9, 0.0), (9, 0.75), (35, 0.0), (12, -0.2)])
+def test_generated_profile_matches_brute_force_sweep(z, x):
+    g = spur_gear(z, 10 * MM, A20, x=x)
+    tooth = generated_tooth(g)
+    lim = 1.5 * math.sqrt(g.ra ** 2 - g.rf ** 2) / g.r + math.pi / g.z
+    phi = np.linspace(-lim, lim, 2000)
+    rho = np.linspace(tooth.r_form + 1e-3 * g.m, tooth.r_top, 200)
+    eta = swept_half_space(g, rho, phi)
+    analytic = math.pi / g.z - tooth.half_tooth(rho)
+    # above the form circle: the involute; sampling error falls as (step)^2
+    assert np.max(np.abs(eta - analytic) * rho) < 5e-8 * g.m / 0.01
+    # and on the fillet too the swept space never exceeds the analytic one
+    rho_f = np.linspace(g.rf * (1 + 1e-9), tooth.r_form, 100)
+    eta_f = swept_half_space(g, rho_f, phi)
+    assert np.all(eta_f <= math.pi / g.z - tooth.half_tooth(rho_f) + 1e-12)
+    assert np.max(np.abs(eta_f - (math.pi / g.z - tooth.half_tooth(rho_f)))) < 3e-3
+
+
+def test_cutter_never_enters_the_finished_tooth():
+    g = spur_gear(9, 10 * MM, A20)
+    tooth = generated_tooth(g)
+    cx, cy = cutter_positions(g, generation_plan(math.radians(126), math.radians(2)).phi)
+    f = np.linspace(0, 1, 40)
+    x = (cx[:, :-1, None] * (1 - f) + cx[:, 1:, None] * f).ravel()
+    y = (cy[:, :-1, None] * (1 - f) + cy[:, 1:, None] * f).ravel()
+    rho, ang = np.hypot(x, y), np.arctan2(x, -y)
+    pitch = 2 * math.pi / g.z
+    rel = (ang - pitch / 2) % pitch
+    rel = np.minimum(rel, pitch - rel)
+    m = (rho > g.rf * (1 + 1e-9)) & (rho < tooth.r_top)
+    assert np.all(rel[m] >= tooth.half_tooth(rho[m]) - 1e-12)
+
+
+def test_undercut_measure_and_its_cure():
+    g = spur_gear(9, 10 * MM, A20)
+    t0 = generated_tooth(g)
+    assert t0.undercut and t0.r_form > g.rb
+    assert 0.04 < t0.undercut_fraction < 0.06
+    # the sharp cutter corner sits (ha* + c* - x) m inside r: no undercut once it is <= r sin^2(alpha)
+    x_cure = 1.25 - 9 * math.sin(A20) ** 2 / 2
+    assert generated_tooth(spur_gear(9, 10 * MM, A20, x=x_cure - 1e-3)).undercut
+    t1 = generated_tooth(spur_gear(9, 10 * MM, A20, x=x_cure + 1e-3))
+    assert not t1.undercut and t1.undercut_fraction == 0.0
+
+
+def test_outline_is_closed_and_has_z_fold_symmetry():
+    g = spur_gear(35, 5 * MM, A20)
+    out = gear_outline(generated_tooth(g), 40)
+    assert out.x[0] == out.x[-1] and out.y[0] == out.y[-1]
+    assert np.all(np.isfinite(out.x))
+    r = np.hypot(out.x, out.y)
+    assert r.min() == pytest.approx(g.rf, rel=1e-12)
+    assert r.max() == pytest.approx(g.ra, rel=1e-12)
+    n = (out.x.size - 1) // g.z
+    c, s = math.cos(2 * math.pi / g.z), math.sin(2 * math.pi / g.z)
+    assert_allclose(c * out.x[:n] - s * out.y[:n], out.x[n:2 * n], atol=1e-15)
+
+
+def test_radial_root_is_the_books_construction():
+    g = spur_gear(35, 5 * MM, A20)
+    out = gear_outline(generated_tooth(g), 10, root="radial")
+    assert out.flank_r[0] == pytest.approx(g.rf)
+    assert out.flank_r[1] == pytest.approx(g.r - g.m)      # r_w = (z/2 - 1) m, eq. (5-10)
+    assert out.flank_psi[0] == out.flank_psi[1]            # radial line WF, eq. (5-15)
+
+
+def test_chordal_deviation_falls_as_n_squared():
+    g = spur_gear(35, 5 * MM, A20)
+    d10 = flank_chordal_deviation(g, g.rb, g.ra, 10)
+    d40 = flank_chordal_deviation(g, g.rb, g.ra, 40)
+    assert 8 < d10 / d40 < 20
+    assert d40 < 2.5e-6                                     # 2.3 µm at m = 5 mm
+
+
+def test_pointed_and_impossible_gears():
+    g = spur_gear(10, 10 * MM, A20, x=1.0)
+    assert g.tooth_thickness(g.ra) < 0
+    assert generated_tooth(g).tip_pointed
+    with pytest.raises(GearGeometryError):
+        spur_gear(2, 10 * MM, A20, x=-1.0)
+    with pytest.raises(GearGeometryError, match="pointed"):
+        generated_tooth(spur_gear(20, 10 * MM, math.radians(33), c_star=0.25))
+
+
+def test_helical_exercises():
+    hp = helical_pair(21, 22, 2 * MM, A20, a_w=55 * MM)
+    assert math.degrees(hp.beta) == pytest.approx(38.5727, abs=5e-5)
+    assert hp.a == pytest.approx(55 * MM, rel=1e-14)
+    hp = helical_pair(20, 40, 8 * MM, A20, beta=math.radians(15), b=30 * MM)
+    assert hp.d(20) == pytest.approx(165.6442 * MM, abs=5e-8)
+    # transverse base pitch equals normal base pitch / cos(beta_b) (independent identity)
+    beta_b = math.atan(math.tan(hp.beta) * math.cos(hp.alpha_t))
+    pbt = math.pi * hp.mt * math.cos(hp.alpha_t)
+    assert pbt == pytest.approx(math.pi * hp.mn * math.cos(hp.alpha_n) / math.cos(beta_b), rel=1e-14)
+
+
+def test_worm_and_bevel():
+    w = worm_drive(1, 40, d2=0.28, q=10)
+    assert w.m == pytest.approx(0.007)
+    assert w.lead == pytest.approx(math.pi * 0.007)
+    assert w.a == pytest.approx(0.175)
+    b = bevel_pair(20, 40, 5 * MM, A20)
+    assert b.delta1 + b.delta2 == pytest.approx(math.pi / 2)
+    # both pitch cones share the cone distance: R = d2 / (2 sin delta2)
+    assert b.R == pytest.approx(b.d(40) / (2 * math.sin(b.delta2)), rel=1e-14)
+
+
+def test_involute_function_consistent_with_gear_thickness():
+    g = spur_gear(25, 4 * MM, A20)
+    r = 0.051
+    a = math.acos(g.rb / r)
+    assert g.half_tooth_angle(r) == pytest.approx(
+        g.s / g.d + involute_function(A20) - involute_function(a), rel=1e-14)
