@@ -1,0 +1,112 @@
+"""``mechcli gear`` from the command line: outputs, warnings, exit codes and messages."""
+
+import json
+
+import pytest
+
+from tests.conftest import CONFIGS, run_cli
+
+CH5 = CONFIGS / "ch5"
+
+
+def _spec(tmp_path, body, name="g.toml"):
+    path = tmp_path / name
+    path.write_text('command = "gear"\nunits = "mm"\n' + body, encoding="utf-8")
+    return path
+
+
+def test_example_5_4_warns_about_contact_ratio(tmp_path):
+    proc = run_cli("gear", CH5 / "ex5-4.toml", "--json", "--no-plot", "--out", tmp_path)
+    assert proc.returncode == 0, proc.stderr
+    doc = json.loads(proc.stdout)
+    assert doc["results"]["epsilon_alpha"] == pytest.approx(0.765, abs=5e-4)
+    assert any("0.765 < 1" in w for w in doc["warnings"])
+    for key in ("a", "a_w", "d1", "d2", "db1", "db2", "da1", "da2", "df1", "df2",
+                "alpha_a1_deg", "alpha_a2_deg", "alpha_w_deg", "epsilon_alpha"):
+        assert key in doc["results"]
+    assert (tmp_path / "gear.csv").read_text().startswith("a_w_mm,alpha_w_deg")
+
+
+def test_example_5_4_listing_in_chinese(tmp_path):
+    proc = run_cli("gear", CH5 / "ex5-4.toml", "--lang", "zh", "--quiet", "--no-plot",
+                   "--out", tmp_path)
+    assert proc.returncode == 0
+    text = (tmp_path / "report.txt").read_text(encoding="utf-8")
+    for line in ("直齿圆柱齿轮几何尺寸", "标准中心距", "a = 250.000mm", "db2 = 375.877mm",
+                 "alpha1 = 31.321°", "alpha2 = 23.541°", "alpha = 22.888°", "epsilon = 0.765",
+                 "警告"):
+        assert line in text
+
+
+def test_require_continuous_mesh_exits_3(tmp_path):
+    proc = run_cli("gear", CH5 / "ex5-4.toml", "--set", "pair.require_continuous=true",
+                   "--no-plot", "--out", tmp_path)
+    assert proc.returncode == 3
+    assert "epsilon_alpha = 0.765 < 1" in proc.stderr
+
+
+def test_table_5_1_files_and_layout(tmp_path):
+    proc = run_cli("gear", CH5 / "ex5-1.toml", "--quiet", "--no-plot", "--lang", "zh",
+                   "--set", "involute.digits=6", "--out", tmp_path)
+    assert proc.returncode == 0, proc.stderr
+    text = (tmp_path / "report.txt").read_text(encoding="utf-8")
+    assert "表 5-1" in text
+    row20 = next(line for line in text.splitlines() if line.lstrip().startswith("20.0000"))
+    assert row20.split()[1:4] == ["0.014904", "0.015137", "0.015372"]
+    lines = (tmp_path / "involute.csv").read_text().splitlines()
+    assert lines[0] == "alpha_deg,inv_alpha_rad" and len(lines) == 211
+    assert (tmp_path / "curve.csv").exists()
+
+
+def test_pictures_are_written(tmp_path):
+    proc = run_cli("gear", CH5 / "gear-cut.toml", "--quiet", "--animate", "--out", tmp_path,
+                   "--set", "generation.step_deg=18")
+    assert proc.returncode == 0, proc.stderr
+    assert (tmp_path / "generation.png").stat().st_size > 10000
+    assert (tmp_path / "generation.gif").read_bytes()[:6] == b"GIF89a"
+
+
+def test_inverse_involute_auto(tmp_path):
+    spec = _spec(tmp_path, "[inverse_involute]\ntheta = [1e-12, 0.02, 1.5]\n")
+    proc = run_cli("gear", spec, "--json", "--out", tmp_path / "o")
+    assert proc.returncode == 0, proc.stderr
+    res = json.loads(proc.stdout)["results"]
+    assert res["alpha_dms_2"] == "21°58′51″"
+    assert res["iterations"] <= 4 and res["relative_residual"] < 1e-14
+    assert res["relative_residual_3"] < 1e-14
+
+
+def test_book_start_outside_its_region_exits_3(tmp_path):
+    spec = _spec(tmp_path, '[inverse_involute]\ntheta = 1.2\nmethod = "book"\n')
+    proc = run_cli("gear", spec, "--out", tmp_path / "o")
+    assert proc.returncode == 3
+    assert "book Newton start" in proc.stderr
+
+
+@pytest.mark.parametrize("body, key, fragment", [
+    ("[spur]\nz = 20.5\nm = 5\n", "[spur] z", "an integer >= 1"),
+    ("[spur]\nz = 0\nm = 5\n", "[spur] z", "an integer >= 1"),
+    ("[spur]\nz = 20\nm = -5\n", "[spur] m", "positive"),
+    ("[spur]\nz = 20\nm = 5\nalpha_deg = 45\n", "[spur] alpha_deg", "(0, 45)"),
+    ("[spur]\nz = 20\nm = 5\nalpa_deg = 20\n", "[spur] alpa_deg", "did you mean 'alpha_deg'"),
+    ("[pair]\nz1 = 20\nz2 = 80\nm = 5\na_w = 245\n", "[pair] a_w", ">= 250"),
+    ("[worm]\nz1 = 1\nz2 = 40\nd2 = 280\n", "[worm] q", "q or d1"),
+    ("[spur]\nz = 20\nm = 5\n[pair]\nz1 = 1\n", "", "exactly one problem table"),
+    ("[spurr]\nz = 20\n", "spurr", "did you mean 'spur'"),
+])
+def test_bad_specs_exit_2_naming_the_key(tmp_path, body, key, fragment):
+    proc = run_cli("gear", _spec(tmp_path, body), "--out", tmp_path / "o")
+    assert proc.returncode == 2, proc.stderr
+    assert key in proc.stderr and fragment in proc.stderr
+    assert "Traceback" not in proc.stderr
+
+
+@pytest.mark.parametrize("body, fragment", [
+    ("[spur]\nz = 10\nm = 10\nx = 1.0\nforbid_pointed = true\n", "pointed"),
+    ("[spur]\nz = 9\nm = 10\nforbid_undercut = true\n", "undercut"),
+    ("[pair]\nratio = 1.7\na_w = 78\nm = 3\n", "not whole"),
+])
+def test_unsolvable_exit_3(tmp_path, body, fragment):
+    proc = run_cli("gear", _spec(tmp_path, body), "--no-plot", "--out", tmp_path / "o")
+    assert proc.returncode == 3, proc.stderr
+    assert fragment in proc.stderr
