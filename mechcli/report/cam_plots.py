@@ -1,11 +1,224 @@
-"""Pictures of ``mechcli cam`` (imports matplotlib: import only to write a PNG/GIF)."""
+"""Pictures of ``mechcli cam``: s-v-a-j diagrams, the cam drawing (图 4-5 … 4-7),
+pressure angle and curvature diagrams, and the GIF of the turning cam (运动仿真).
 
-from mechcli.report.plotting import setup  # noqa: F401
+Imports matplotlib: import this module only when a PNG or GIF is written.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from mechcli.report.plotting import canvas_frame, plt, save_gif, save_png, setup  # noqa: F401
+
+TEXT = {
+    "en": {"delta": "cam angle δ (°)", "s": "s ({u})", "psi": "ψ (°)",
+           "v": "ds/dδ ({u}/rad)", "a": "d²s/dδ² ({u}/rad²)", "j": "d³s/dδ³ ({u}/rad³)",
+           "vt": "v ({u}/s)", "at": "a ({u}/s²)", "jt": "j ({u}/s³)",
+           "vpsi": "dψ/dδ", "apsi": "d²ψ/dδ² (1/rad)", "jpsi": "d³ψ/dδ³ (1/rad²)",
+           "vpsit": "ω (rad/s)", "apsit": "ε (rad/s²)", "jpsit": "dε/dt (rad/s³)",
+           "base": "base circle", "pitch": "pitch curve", "work": "working curve",
+           "offset": "offset circle", "alpha": "pressure angle α (°)",
+           "limit": "[α]", "rho": "radius of curvature ({u})", "rho_p": "pitch curve",
+           "rho_w": "working curve", "motion": "Follower motion", "impact_r": "rigid impact",
+           "impact_s": "soft impact", "x": "x ({u})", "y": "y ({u})"},
+    "zh": {"delta": "凸轮转角 δ/(°)", "s": "位移 s/{u}", "psi": "摆角 ψ/(°)",
+           "v": "类速度 ds/dδ/({u}/rad)", "a": "类加速度/({u}/rad²)", "j": "类跃度/({u}/rad³)",
+           "vt": "速度 v/({u}/s)", "at": "加速度 a/({u}/s²)", "jt": "跃度 j/({u}/s³)",
+           "vpsi": "类角速度 dψ/dδ", "apsi": "类角加速度/(1/rad)", "jpsi": "类角跃度/(1/rad²)",
+           "vpsit": "角速度/(rad/s)", "apsit": "角加速度/(rad/s²)", "jpsit": "角跃度/(rad/s³)",
+           "base": "基圆", "pitch": "理论廓线", "work": "实际廓线", "offset": "偏距圆",
+           "alpha": "压力角 α/(°)", "limit": "许用压力角", "rho": "曲率半径/{u}",
+           "rho_p": "理论廓线", "rho_w": "实际廓线", "motion": "推杆运动线图",
+           "impact_r": "刚性冲击", "impact_s": "柔性冲击", "x": "x/{u}", "y": "y/{u}"},
+}
+
+
+def _t(lang, key, unit):
+    return TEXT[lang][key].format(u=unit)
+
+
+def _title(cs, lang):
+    """The spec title, without CJK characters when no CJK font is installed."""
+    from mechcli.report.plotting import cjk_font
+
+    title = cs.header.title
+    if lang == "zh" or cjk_font() is not None:
+        return title
+    kept = "".join(c for c in title if ord(c) < 0x2E80 and c not in "【】")
+    kept = " ".join(kept.split())
+    return kept or "cam"
+
+
+def _boundaries(ax, design):
+    for seg in design.program.segments:
+        ax.axvline(math.degrees(seg.start), color="0.6", lw=0.6, ls=":")
+
+
+def plot_motion(cs, design, out, lang):
+    """``motion.png``: displacement, velocity, acceleration, jerk against δ."""
+    p, unit, u = design.profile, cs.header.unit, cs.header.scale
+    d = np.degrees(p.delta)
+    w = cs.omega
+    if cs.angular:
+        ys = [np.degrees(p.s), p.s1, p.s2, p.s3]
+        keys = ["psi", "vpsi", "apsi", "jpsi"] if w is None else ["psi", "vpsit", "apsit",
+                                                                   "jpsit"]
+    else:
+        ys = [p.s / u, p.s1 / u, p.s2 / u, p.s3 / u]
+        keys = ["s", "v", "a", "j"] if w is None else ["s", "vt", "at", "jt"]
+    if w is not None:
+        ys = [ys[0], ys[1] * w, ys[2] * w ** 2, ys[3] * w ** 3]
+    fig, axes = plt.subplots(4, 1, figsize=(8, 9), sharex=True)
+    for ax, y, key in zip(axes, ys, keys):
+        ax.plot(d, y, lw=1.2)
+        ax.set_ylabel(_t(lang, key, unit))
+        _boundaries(ax, design)
+    for imp in design.impacts:
+        ax = axes[1] if imp.kind == "rigid" else axes[2]
+        ax.axvline(math.degrees(imp.delta), color="r" if imp.kind == "rigid" else "orange",
+                   lw=1.0, alpha=0.7)
+    axes[-1].set_xlabel(_t(lang, "delta", unit))
+    axes[-1].set_xlim(0, 360)
+    axes[0].set_title(_title(cs, lang))
+    return save_png(fig, out, "motion.png")
+
+
+def _circle(r, cx=0.0, cy=0.0, n=361):
+    t = np.linspace(0, 2 * np.pi, n)
+    return cx + r * np.cos(t), cy + r * np.sin(t)
+
+
+def _follower_lines(cs, design, k):
+    """Line pieces (list of (x, y) arrays, spec units) of the follower at sample *k*."""
+    fol, p, u = design.follower, design.profile, cs.header.scale
+    s = p.s[k]
+    lines = []
+    size = max(fol.r0, cs.stroke if not cs.angular else fol.l) / u
+    if fol.motion == "translating":
+        if fol.contact == "flat":
+            y = (fol.r0 + s) / u
+            half = 0.5 * max(design.checks.face_width_min / u * 1.3, 0.4 * size)
+            x0 = fol.e / u
+            lines.append((np.array([x0 - half, x0 + half]), np.array([y, y])))
+            lines.append((np.array([x0, x0]), np.array([y, y + 0.8 * size])))
+        else:
+            x0, y0 = fol.e / u, (fol.s0 + s) / u
+            top = y0 + 0.8 * size
+            if fol.contact == "roller":
+                lines.append(_circle(fol.rr / u, x0, y0, 91))
+            lines.append((np.array([x0, x0]), np.array([y0, top])))
+    else:
+        th = fol.phi0 + s
+        bx = -fol.rotation * fol.l * math.sin(th) / u
+        by = (fol.a - fol.l * math.cos(th)) / u
+        lines.append((np.array([0.0, bx]), np.array([fol.a / u, by])))
+        if fol.contact == "roller":
+            lines.append(_circle(fol.rr / u, bx, by, 91))
+    return lines
+
+
+def plot_profile(cs, design, out, lang):
+    """``profile.png``: base circle, pitch and working curves, follower at δ = 0."""
+    p, fol, unit, u = design.profile, design.follower, cs.header.unit, cs.header.scale
+    fig, ax = plt.subplots(figsize=(7, 7))
+    ax.plot(*_circle(fol.r0 / u), color="g", lw=0.8, label=_t(lang, "base", unit))
+    if fol.motion == "translating" and fol.e != 0 and fol.contact != "flat":
+        ax.plot(*_circle(abs(fol.e) / u), color="c", lw=0.6, ls="--",
+                label=_t(lang, "offset", unit))
+    if p.pitch is not None and fol.contact == "roller":
+        ax.plot(p.pitch[0] / u, p.pitch[1] / u, "r--", lw=1.0, label=_t(lang, "pitch", unit))
+    ax.plot(p.work[0] / u, p.work[1] / u, "b", lw=1.5, label=_t(lang, "work", unit))
+    for x, y in _follower_lines(cs, design, 0):
+        ax.plot(x, y, "k", lw=1.2)
+    if fol.motion == "oscillating":
+        ax.plot([0], [fol.a / u], "ko", ms=4)
+    ax.plot([0], [0], "k+", ms=10)
+    ax.set_aspect("equal")
+    ax.set_xlabel(_t(lang, "x", unit))
+    ax.set_ylabel(_t(lang, "y", unit))
+    ax.set_title(_title(cs, lang))
+    ax.legend(loc="lower left", fontsize=8)
+    return save_png(fig, out, "profile.png")
+
+
+def plot_checks(cs, design, out, lang):
+    """``checks.png``: pressure angle and radii of curvature against δ."""
+    p, fol, unit, u = design.profile, design.follower, cs.header.unit, cs.header.scale
+    d = np.degrees(p.delta)
+    fig, (a1, a2) = plt.subplots(2, 1, figsize=(8, 7), sharex=True)
+    a1.plot(d, np.degrees(p.alpha), lw=1.2)
+    for lim in (cs.limits.alpha_rise, cs.limits.alpha_return):
+        for sgn in (1, -1):
+            a1.axhline(sgn * math.degrees(lim), color="r", lw=0.6, ls="--")
+    for ext in (design.checks.alpha_rise, design.checks.alpha_return):
+        if ext is not None:
+            a1.plot([math.degrees(ext.delta)], [math.degrees(ext.value) * np.sign(
+                np.interp(ext.delta, p.delta, p.alpha) or 1.0)], "ro", ms=4)
+    a1.set_ylabel(_t(lang, "alpha", unit))
+    _boundaries(a1, design)
+    lim = 4 * fol.r0 / u
+    if p.rho_pitch is not None:
+        a2.plot(d, np.clip(p.rho_pitch / u, -lim, lim), "r--", lw=1.0,
+                label=_t(lang, "rho_p", unit))
+    a2.plot(d, np.clip(p.rho_work / u, -lim, lim), "b", lw=1.2, label=_t(lang, "rho_w", unit))
+    a2.axhline(0, color="k", lw=0.6)
+    a2.set_ylabel(_t(lang, "rho", unit))
+    a2.set_xlabel(_t(lang, "delta", unit))
+    a2.set_xlim(0, 360)
+    a2.legend(fontsize=8)
+    _boundaries(a2, design)
+    return save_png(fig, out, "checks.png")
 
 
 def plot_all(cs, design, out, lang):
-    pass
+    """Write every PNG of a cam run."""
+    plot_motion(cs, design, out, lang)
+    plot_profile(cs, design, out, lang)
+    plot_checks(cs, design, out, lang)
 
 
-def animate(cs, design, out, lang):
-    pass
+def animate(cs, design, out, lang, fps=12):
+    """``cam.gif``: the cam turning and the follower moving (the book's 运动仿真)."""
+    p, fol, unit, u = design.profile, design.follower, cs.header.unit, cs.header.scale
+    n = len(p.delta) - 1
+    idx = np.unique(np.round(np.linspace(0, n, cs.frames, endpoint=False)).astype(int))
+    fig, (ax, axs) = plt.subplots(1, 2, figsize=(8, 4), dpi=72,
+                                  gridspec_kw={"width_ratios": [1.2, 1]})
+    reach = float(np.max(np.hypot(*p.work))) / u
+    if fol.motion == "oscillating":
+        reach = max(reach, (fol.a + fol.rr) / u)
+    top = reach + (0.9 * max(fol.r0, cs.stroke if not cs.angular else fol.l)) / u
+    ax.set_xlim(-1.15 * reach, 1.15 * reach)
+    ax.set_ylim(-1.15 * reach, max(top, 1.15 * reach))
+    ax.set_aspect("equal")
+    ax.set_title(_title(cs, lang), fontsize=9)
+    cam_line, = ax.plot([], [], "b", lw=1.5)
+    base_x, base_y = _circle(fol.r0 / u)
+    ax.plot(base_x, base_y, color="g", lw=0.6)
+    ax.plot([0], [0], "k+", ms=8)
+    marker, = ax.plot([], [], "r.", ms=4)
+    foll = [ax.plot([], [], "k", lw=1.2)[0] for _ in range(2)]
+    d = np.degrees(p.delta)
+    y = np.degrees(p.s) if cs.angular else p.s / u
+    axs.plot(d, y, lw=1.2)
+    dot, = axs.plot([], [], "ro", ms=5)
+    axs.set_xlim(0, 360)
+    axs.set_xlabel(_t(lang, "delta", unit))
+    axs.set_ylabel(_t(lang, "psi" if cs.angular else "s", unit))
+    frames = []
+    for k in idx:
+        ang = fol.rotation * p.delta[k]
+        c, s = math.cos(ang), math.sin(ang)
+        wx, wy = p.work / u
+        cam_line.set_data(c * wx - s * wy, s * wx + c * wy)
+        mx, my = wx[0], wy[0]
+        marker.set_data([c * mx - s * my], [s * mx + c * my])
+        lines = _follower_lines(cs, design, k)
+        for art, ln in zip(foll, lines + [(np.array([]), np.array([]))] * 2):
+            art.set_data(*ln)
+        dot.set_data([d[k]], [y[k]])
+        frames.append(canvas_frame(fig))
+    plt.close(fig)
+    return save_gif(frames, out, "cam.gif", fps=fps)

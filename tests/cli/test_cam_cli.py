@@ -1,0 +1,177 @@
+"""``mechcli cam`` end to end: outputs, overrides, bad specs (exit 2), undercut (exit 3)."""
+
+import csv
+import json
+import math
+
+import pytest
+
+from tests.conftest import CONFIGS, run_cli
+
+BASE = """command = "cam"
+title = "test"
+units = "mm"
+
+[follower]
+motion = "translating"
+contact = "roller"
+r0 = 40
+rr = 10
+e = 15
+
+[motion]
+h = 60
+segments = [
+  { kind = "rise", angle = 100, law = "parabolic" },
+  { kind = "dwell", angle = 60 },
+  { kind = "return", angle = 90, law = "cosine" },
+  { kind = "dwell", angle = 110 },
+]
+"""
+
+OSC = """command = "cam"
+[follower]
+motion = "oscillating"
+contact = "roller"
+a = 60
+l = 50
+r0 = 25
+rr = 8
+[motion]
+psi = 25
+segments = [
+  { kind = "rise", angle = 180, law = "cosine" },
+  { kind = "return", angle = 180, law = "sine" },
+]
+"""
+
+
+def _spec(tmp_path, text, name="spec.toml"):
+    path = tmp_path / name
+    path.write_text(text, encoding="utf-8")
+    return path
+
+
+def _json(proc):
+    assert proc.returncode == 0, proc.stderr
+    return json.loads(proc.stdout)
+
+
+def test_outputs_csv_report_and_json(tmp_path):
+    spec = _spec(tmp_path, BASE + "[cam]\nomega = 10\n")
+    doc = _json(run_cli("cam", spec, "--json", "--no-plot", "--out", tmp_path / "o",
+                        "--step", "1"))
+    assert doc["command"] == "cam"
+    res = doc["results"]
+    assert res["n_points"] == 360
+    assert res["v_max"] == pytest.approx(10 * res["ds_max"])
+    with open(tmp_path / "o" / "cam.csv", newline="") as fh:
+        rows = list(csv.reader(fh))
+    head = rows[0]
+    for col in ("delta_deg", "s_mm", "v_mm_rad", "a_mm_rad2", "j_mm_rad3", "v_mm_s",
+                "x_pitch_mm", "y_pitch_mm", "x_work_mm", "y_work_mm", "pressure_angle_deg",
+                "rho_pitch_mm", "rho_work_mm", "roller_angle_deg"):
+        assert col in head
+    assert len(rows) == 362
+    row = dict(zip(head, map(float, rows[51])))    # δ = 50°: s = h/2 of the parabolic rise
+    assert row["delta_deg"] == pytest.approx(50.0)
+    assert row["s_mm"] == pytest.approx(30.0, abs=1e-9)
+    report = (tmp_path / "o" / "report.txt").read_text(encoding="utf-8")
+    assert "38.7067" in report and "soft impact" in report
+
+
+def test_chinese_report_and_plots(tmp_path):
+    spec = _spec(tmp_path, OSC)
+    proc = run_cli("cam", spec, "--lang", "zh", "--quiet", "--out", tmp_path / "o")
+    assert proc.returncode == 0, proc.stderr
+    report = (tmp_path / "o" / "report.txt").read_text(encoding="utf-8")
+    assert "推程最大压力角" in report and "柔性冲击" in report
+    for name in ("motion.png", "profile.png", "checks.png"):
+        assert (tmp_path / "o" / name).stat().st_size > 1000
+
+
+def test_animation_written_on_request(tmp_path):
+    spec = _spec(tmp_path, BASE + "[output]\nframes = 8\n")
+    doc = _json(run_cli("cam", spec, "--json", "--no-plot", "--animate", "--out", tmp_path,
+                        "--step", "2"))
+    gif = [f for f in doc["files"] if f.endswith(".gif")]
+    assert gif and (tmp_path / "cam.gif").read_bytes()[:6] in (b"GIF89a", b"GIF87a")
+
+
+def test_set_override_and_sizing(tmp_path):
+    spec = _spec(tmp_path, BASE)
+    doc = _json(run_cli("cam", spec, "--json", "--no-plot", "--out", tmp_path, "--set",
+                        "sizing.base_radius=true", "--set", "follower.side=left"))
+    res = doc["results"]
+    assert res["offset_side"] == "left"
+    assert res["offset_side_best"] == "right"
+    assert res["r0_min_other_side"] < res["r0_min"]
+
+
+def test_undercut_warning_then_exit_3_when_forbidden(tmp_path):
+    text = BASE.replace("r0 = 40", "r0 = 12").replace("e = 15", "e = 0").replace(
+        "angle = 100, law = \"parabolic\"", "angle = 40, law = \"parabolic\"").replace(
+        "{ kind = \"dwell\", angle = 60 }", "{ kind = \"dwell\", angle = 120 }")
+    spec = _spec(tmp_path, text)
+    doc = _json(run_cli("cam", spec, "--json", "--no-plot", "--out", tmp_path))
+    assert doc["results"]["undercut"] is True
+    assert any("undercut" in w for w in doc["warnings"])
+    proc = run_cli("cam", spec, "--no-plot", "--out", tmp_path, "--set",
+                   "limits.forbid_undercut=true")
+    assert proc.returncode == 3
+    assert "undercut" in proc.stderr and "Traceback" not in proc.stderr
+
+
+@pytest.mark.parametrize("edit, key, words", [
+    (("angle = 110", "angle = 100"), "segments", "360"),
+    (("law = \"cosine\"", "law = \"cosin\""), "law", "did you mean 'cosine'"),
+    (("law = \"cosine\"", "law = \"bogus\""), "law", "modified-trapezoid"),
+    (("{ kind = \"return\", angle = 90, law = \"cosine\" }",
+      "{ kind = \"return\", angle = 90, law = \"cosine\", lift = 50 }"), "segments",
+     "return lift = rise lift"),
+    (("{ kind = \"return\", angle = 90, law = \"cosine\" }",
+      "{ kind = \"return\", angle = 90, law = \"cosine\", lift = 70 }"), "lift",
+     "return lift = rise lift"),
+    (("r0 = 40", "r0 = 15"), "r0", "larger than the offset"),
+    (("rr = 10", "rr = 10\nrrr = 3"), "rrr", "did you mean 'rr'"),
+    (("h = 60", "h = -60"), "h", "positive"),
+    (("contact = \"roller\"", "contact = \"needle\""), "contact", "knife"),
+    (("command = \"cam\"", "command = \"kin\""), "command", "mechcli cam"),
+])
+def test_bad_specs_exit_2_naming_the_key(tmp_path, edit, key, words):
+    spec = _spec(tmp_path, BASE.replace(*edit))
+    proc = run_cli("cam", spec, "--no-plot", "--out", tmp_path)
+    assert proc.returncode == 2, proc.stderr
+    err = proc.stderr.strip()
+    assert len(err.splitlines()) == 1 and key in err and words in err, err
+
+
+@pytest.mark.parametrize("edit, key, words", [
+    (("r0 = 25", "r0 = 5"), "r0", "|a - l| < r0 < a + l"),
+    (("r0 = 25", "r0 = 120"), "r0", "|a - l| < r0 < a + l"),
+    (("psi = 25", "psi = 160"), "psi", "phi0 + psi < 180"),
+    (("contact = \"roller\"", "contact = \"flat\""), "contact", "oscillating"),
+])
+def test_bad_oscillating_specs_exit_2(tmp_path, edit, key, words):
+    spec = _spec(tmp_path, OSC.replace(*edit))
+    proc = run_cli("cam", spec, "--no-plot", "--out", tmp_path)
+    assert proc.returncode == 2, proc.stderr
+    err = proc.stderr.strip()
+    assert key in err and words in err, err
+
+
+def test_swing_just_below_the_geometric_limit(tmp_path):
+    phi0 = math.degrees(math.acos((60 ** 2 + 50 ** 2 - 25 ** 2) / (2 * 60 * 50)))
+    psi = 180 - phi0 - 1e-3
+    spec = _spec(tmp_path, OSC.replace("psi = 25", f"psi = {psi!r}"))
+    doc = _json(run_cli("cam", spec, "--json", "--no-plot", "--out", tmp_path, "--step", "1"))
+    # the arm ends almost on the line pivot–cam centre: the pressure angle reaches ~90°
+    assert 85 < doc["results"]["alpha_rise_max_deg"] < 90
+    assert any("exceeds" in w for w in doc["warnings"])
+
+
+def test_ex7_2_config_text_output():
+    proc = run_cli("cam", CONFIGS / "ch7" / "ex7-2.toml", "--no-plot", "--out",
+                   "/tmp/mechcli-test-ex7-2")
+    assert proc.returncode == 0, proc.stderr
+    assert "22.2077°" in proc.stdout and "39.2315°" in proc.stdout
