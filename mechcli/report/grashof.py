@@ -203,21 +203,20 @@ def fourbar_csv(an, scale, closes_mask=None):
     deg = 180.0 / np.pi
     lim = m.has_limits & ok
 
-    def col(x, mask, fmt="%.6g"):
-        out = np.char.mod(fmt, np.where(mask, x, 0.0))
-        return np.where(mask, out, "")
+    def col(x, mask, fmt="{:.6g}"):
+        f = fmt.format
+        return [f(v) if k else "" for v, k in zip(x.tolist(), np.broadcast_to(mask, (n,)).tolist())]
 
-    cols = [np.char.mod("%.10g", L[:, k]) for k in range(4)]
-    cols += [np.char.mod("%d", an.frame), np.char.mod("%d", an.input), tnames[types],
-             np.where((crank > 0) & ok, np.char.mod("%d", crank), ""),
-             np.where(ok, np.where(kl.grashof, "true", "false"), ""),
+    always = np.ones(n, dtype=bool)
+    cols = [col(L[:, k], always, "{:.10g}") for k in range(4)]
+    cols += [list(map(str, an.frame.tolist())), list(map(str, an.input.tolist())),
+             tnames[types].tolist(), col(crank, (crank > 0) & ok, "{:d}"),
+             [("true" if g else "false") if k else "" for g, k in
+              zip(kl.grashof.tolist(), ok.tolist())],
              col(m.theta * deg, lim), col(m.psi * deg, lim), col(m.K, lim),
              col(m.gamma_min * deg, ok), col(m.gamma_min_at * deg, ok),
              col(m.gamma_max * deg, ok)]
-    body = cols[0]
-    for c in cols[1:]:
-        body = np.char.add(np.char.add(body, ","), c)
-    return CSV_HEADER + "\n" + "\n".join(body.tolist()) + "\n"
+    return CSV_HEADER + "\n" + "\n".join(map(",".join, zip(*cols))) + "\n"
 
 
 def batch_results(an, closes_mask):
