@@ -26,7 +26,6 @@ import numpy as np
 from scipy.optimize import brentq
 
 from mechcli.core.gear import GearGeometryError, SpurGear
-from mechcli.core.involute import involute_function
 
 
 def rack_corner(g: SpurGear):

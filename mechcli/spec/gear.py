@@ -40,7 +40,7 @@ def _module(sec: Section, name="m"):
     return sec.length(name)   # positive, converted to metres
 
 
-def _one_or_many(sec: Section, name, kind):
+def _one_or_many(sec: Section, name):
     """A number or an array of numbers; returns a list (empty if absent)."""
     raw = sec.raw(name, None)
     if raw is None:
@@ -298,7 +298,7 @@ def _read_spur(sec):
     x = _shift(sec, "x")
     points = sec.integer("points", 40, lo=2, hi=100000)
     root = sec.string("root", "generated", choices=["generated", "radial"])
-    radii = _one_or_many(sec, "thickness_radii", "spur")
+    radii = _one_or_many(sec, "thickness_radii")
     radii = tuple(r * sec.unit for r in radii)
     fu = sec.boolean("forbid_undercut", False)
     fp = sec.boolean("forbid_pointed", False)
@@ -306,11 +306,11 @@ def _read_spur(sec):
 
 
 def _read_pair(sec):
-    from mechcli.core.gear_pair import MeshError, design_teeth_from_ratio
+    from mechcli.core.gear_pair import design_teeth_from_ratio
     ts = _tooth_system(sec)
-    a_w = tuple(a * sec.unit for a in _one_or_many(sec, "a_w", "pair"))
+    a_w = tuple(a * sec.unit for a in _one_or_many(sec, "a_w"))
     alpha_w = []
-    for v in _one_or_many(sec, "alpha_w_deg", "pair"):
+    for v in _one_or_many(sec, "alpha_w_deg"):
         if not 0 < v < 90:
             raise sec.error("alpha_w_deg", "degrees in (0, 90)", repr(v))
         alpha_w.append(math.radians(v))
@@ -323,10 +323,7 @@ def _read_pair(sec):
         if len(a_w) != 1:
             raise sec.error("a_w", "one centre distance to design the teeth from",
                             f"{len(a_w)} values")
-        try:
-            z1, z2 = design_teeth_from_ratio(ratio, a_w[0], ts.m)
-        except MeshError:
-            raise
+        z1, z2 = design_teeth_from_ratio(ratio, a_w[0], ts.m)   # MeshError: exit 3
     else:
         z1, z2 = _teeth(sec, "z1"), _teeth(sec, "z2")
     x1, x2 = _shift(sec, "x1"), _shift(sec, "x2")
