@@ -124,7 +124,7 @@ class SweepResult:
     motion: LinkageMotion
 
 
-def default_quantities(linkage: Linkage, order: int, tracers=(), primary=None):
+def default_quantities(linkage: Linkage, order: int, tracers=()):
     """The book's quantities: angles/ω/α of every rotating non-driver link, every
     slide s/v/a, the transmission angle of every RRR dyad, and x, y (vx, vy, ax,
     ay) of every tracer point.
@@ -143,34 +143,33 @@ def default_quantities(linkage: Linkage, order: int, tracers=(), primary=None):
     from mechcli.core.linkage import RPR
     blocks = {el.block for el in linkage.elements if isinstance(el, RPR)}
     rotating = [ln for ln in rotating if ln not in blocks]
-    for n in sorted(rotating):
-        out.append(Quantity(f"theta{n}", "angle", 0, lambda m, n=n: m.links[n].theta))
     slides = _slide_names(linkage)
-    for name in slides:
-        out.append(Quantity(f"s{name}", "length", 0, lambda m, k=name: m.slides[k].s))
-    for tr in tracers:
-        out.append(Quantity(f"x{tr}", "length", 0, lambda m, k=tr: m.points[k].x))
-        out.append(Quantity(f"y{tr}", "length", 0, lambda m, k=tr: m.points[k].y))
-    for i, el in enumerate(linkage.elements):
-        if isinstance(el, RRR):
-            out.append(Quantity(f"gamma{el.joint}", "angle", 0,
-                                lambda m, j=el.joint: _cond(m, j).gamma))
-    if order >= 1:
+    # (symbol prefix, kind, attribute) per derivative order, for links, slides, points
+    table = (
+        (("theta", "angle", "theta"), ("s", "length", "s"),
+         (("x", "length", "x"), ("y", "length", "y"))),
+        (("omega", "angvel", "omega"), ("v", "velocity", "v"),
+         (("vx", "velocity", "vx"), ("vy", "velocity", "vy"))),
+        (("alpha", "angacc", "alpha"), ("a", "acceleration", "a"),
+         (("ax", "acceleration", "ax"), ("ay", "acceleration", "ay"))),
+    )
+    for k in range(order + 1):
+        (lp, lkind, lattr), (sp, skind, sattr), pts = table[k]
         for n in sorted(rotating):
-            out.append(Quantity(f"omega{n}", "angvel", 1, lambda m, n=n: m.links[n].omega))
+            out.append(Quantity(f"{lp}{n}", lkind, k,
+                                lambda m, n=n, a=lattr: getattr(m.links[n], a)))
         for name in slides:
-            out.append(Quantity(f"v{name}", "velocity", 1, lambda m, k=name: m.slides[k].v))
+            out.append(Quantity(f"{sp}{name}", skind, k,
+                                lambda m, n=name, a=sattr: getattr(m.slides[n], a)))
         for tr in tracers:
-            out.append(Quantity(f"vx{tr}", "velocity", 1, lambda m, k=tr: m.points[k].vx))
-            out.append(Quantity(f"vy{tr}", "velocity", 1, lambda m, k=tr: m.points[k].vy))
-    if order >= 2:
-        for n in sorted(rotating):
-            out.append(Quantity(f"alpha{n}", "angacc", 2, lambda m, n=n: m.links[n].alpha))
-        for name in slides:
-            out.append(Quantity(f"a{name}", "acceleration", 2, lambda m, k=name: m.slides[k].a))
-        for tr in tracers:
-            out.append(Quantity(f"ax{tr}", "acceleration", 2, lambda m, k=tr: m.points[k].ax))
-            out.append(Quantity(f"ay{tr}", "acceleration", 2, lambda m, k=tr: m.points[k].ay))
+            for pp, pkind, pattr in pts:
+                out.append(Quantity(f"{pp}{tr}", pkind, k,
+                                    lambda m, n=tr, a=pattr: getattr(m.points[n], a)))
+        if k == 0:
+            for el in linkage.elements:
+                if isinstance(el, RRR):
+                    out.append(Quantity(f"gamma{el.joint}", "angle", 0,
+                                        lambda m, j=el.joint: _cond(m, j).gamma))
     return out
 
 

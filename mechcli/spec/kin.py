@@ -226,8 +226,8 @@ def _input(sec, linkage, followers):
         else:
             omega = sec.number("omega1", 1.0)
         alpha = sec.number("alpha1", 0.0)
-        start = math.radians(sec.number("start", 0.0))
-        stop = math.radians(sec.number("stop", 360.0))
+        start = math.radians(sec.number("start", 0.0, lo=-36000.0, hi=36000.0))
+        stop = math.radians(sec.number("stop", 360.0, lo=-36000.0, hi=36000.0))
         unit = math.pi / 180
     else:
         omega = sec.number("v1", 1.0) * sec.unit
@@ -273,7 +273,8 @@ def _output(sec, inp):
     plots = sec.boolean("plots", True)
     animate = sec.boolean("animate", False)
     frames = sec.integer("frames", 72, lo=2, hi=3600)
-    draw_at = sec.number("draw_at", inp.start / unit) * unit
+    draw_at = sec.number("draw_at", inp.start / unit, lo=inp.start / unit,
+                         hi=inp.stop / unit) * unit
     digits = sec.integer("digits", 4, lo=1, hi=12)
     sec.finish()
     return OutputSpec(order, table_step, plots, animate, frames, draw_at, digits)

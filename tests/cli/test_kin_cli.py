@@ -157,3 +157,16 @@ def test_partial_analysis_reports_feasible_ranges(tmp_path):
 def test_unknown_command_suggests(tmp_path):
     proc = run_cli("kinn", EX11)
     assert proc.returncode == 2 and "did you mean 'kin'" in proc.stderr
+
+
+@pytest.mark.parametrize("override, fragment", [
+    ("output.draw_at=400", "[output] draw_at: expected a number in [0, 360], got 400"),
+    ("input.start=1e9", "[input] start: expected a number in [-36000, 36000]"),
+    ("input.stop=-10", "[input] stop: expected a value above start (0), got -10"),
+    ("input.count=1", "[input] count: expected an integer in [2, 20000001], got 1"),
+])
+def test_out_of_range_angles_and_counts_exit_2(tmp_path, override, fragment):
+    spec = write(tmp_path, GOOD.replace("step = 5\n", ""))
+    proc = run_cli("kin", spec, "--set", override, "--out", tmp_path / "o")
+    assert proc.returncode == 2
+    assert fragment in one_line_error(proc)
