@@ -51,7 +51,12 @@ def grashof(spec_path, lengths, frame, input_link, offset, batch, units, **opts)
         spec = spec_mod.quick_spec(lengths, frame, input_link, offset, units)
     else:
         spec = spec_mod.read_grashof_spec(spec_path, run.sets)
-    results, rep, csv_text, warnings = report.build(spec, run.lang)
+    results, rep, csv_text, warnings, curve = report.build(spec, run.lang)
     if csv_text:
         outputs.text("grashof.csv", csv_text)
+    if curve is not None:
+        outputs.csv("transmission.csv", report.curve_outputs(curve, spec.problem.curve_step,
+                                                             run.lang)[0])
+        if run.plot:
+            warnings += report.write_curve_png(curve, outputs, run.lang, spec.header.title)
     finish(run, "grashof", rep, results, outputs, warnings)

@@ -771,3 +771,69 @@ def analyse_guide_bar(a, d, e=0.0, rtol=CHANGE_POINT_RTOL):
     g_min = np.pi / 2 - np.arcsin(min(1.0, e / cb_lo)) if cb_lo > 0 else 0.0
     g_max = np.pi / 2 - np.arcsin(min(1.0, e / cb_hi))
     return GuideBar(a, d, e, kind, theta, psi, K, float(g_min), float(g_max))
+
+
+# ------------------------------------------------------------ transmission curves
+@dataclasses.dataclass(frozen=True)
+class TransmissionCurve:
+    """Transmission angle against the input angle (传动角的变化规律).
+
+    Attributes
+    ----------
+    theta1 : ndarray
+        Input angles [rad].
+    gamma : ndarray
+        Acute transmission angle [rad] (0 where ``feasible`` is False).
+    feasible : ndarray of bool
+        The linkage assembles at that input angle.
+    """
+
+    theta1: np.ndarray
+    gamma: np.ndarray
+    feasible: np.ndarray
+
+
+def fourbar_transmission(a, b, c, d, theta1):
+    """γ(θ1) of a four-bar: input a, coupler b, output c, frame d [m].
+
+    Notes
+    -----
+    cos∠BCD = (b² + c² − BD²)/(2bc), BD² = a² + d² − 2ad cos θ1 (both
+    assemblies have the same γ); γ is ∠BCD folded into [0, 90°] (slides §2-2).
+    """
+    th = np.asarray(theta1, dtype=float)
+    bd2 = a * a + d * d - 2 * a * d * np.cos(th)
+    cosd = (b * b + c * c - bd2) / (2 * b * c)
+    ok = np.abs(cosd) <= 1 + 1e-12
+    delta = _acos(cosd)
+    gamma = np.where(ok, np.minimum(delta, np.pi - delta), 0.0)
+    return TransmissionCurve(th, gamma, ok)
+
+
+def slider_transmission(a, b, e, theta1):
+    """γ(θ1) on the slider of an offset slider-crank (γ = 90° − pressure angle).
+
+    Notes
+    -----
+    sin α = |a sin θ1 − e| / b: the coupler's angle to the slider path (path y = e).
+    """
+    th = np.asarray(theta1, dtype=float)
+    s = np.abs(a * np.sin(th) - e) / b
+    ok = s <= 1 + 1e-12
+    gamma = np.where(ok, np.pi / 2 - np.arcsin(np.minimum(s, 1.0)), 0.0)
+    return TransmissionCurve(th, gamma, ok)
+
+
+def guide_transmission(a, d, e, theta1):
+    """γ(θ1) on the guide of a guide-bar, crank a about A = (0, 0), guide pivot C = (d, 0).
+
+    Notes
+    -----
+    γ = 90° − arcsin(e/CB), CB² = a² + d² − 2ad cos θ1 (see :func:`analyse_guide_bar`).
+    """
+    th = np.asarray(theta1, dtype=float)
+    cb = np.sqrt(np.maximum(a * a + d * d - 2 * a * d * np.cos(th), 0.0))
+    ok = cb >= abs(e) * (1 - 1e-12)
+    ratio = np.where(ok & (cb > 0), abs(e) / np.where(cb > 0, cb, 1.0), 0.0)
+    gamma = np.where(ok, np.pi / 2 - np.arcsin(np.minimum(ratio, 1.0)), 0.0)
+    return TransmissionCurve(th, gamma, ok)

@@ -394,6 +394,62 @@ def mobility_report(title, lang, mob):
     return rep
 
 
+# ------------------------------------------------------- transmission curve
+def curve_outputs(curve, step, lang):
+    """``transmission.csv`` columns and a report block of γ every 30° (or every step)."""
+    import numpy as np
+
+    ok = curve.feasible
+    cols = [("theta1_deg", np.degrees(curve.theta1[ok])), ("gamma_deg", np.degrees(curve.gamma[ok]))]
+    every = max(1, int(round(np.radians(30.0) / step)))
+    rows = [[_f(np.degrees(t)), _f(np.degrees(g)) if k else "-"]
+            for t, g, k in zip(curve.theta1[::every], curve.gamma[::every], ok[::every])]
+    block = Block(_label(lang, "Transmission angle γ against the input angle",
+                         "传动角的变化规律"),
+                  headers=[_label(lang, "θ1 [°]", "θ1 (°)"), _label(lang, "γ [°]", "γ (°)")],
+                  rows=rows)
+    return cols, block
+
+
+def write_curve_png(curve, outputs, lang, title):
+    """``transmission.png`` (imports matplotlib: call only when a picture is wanted)."""
+    import numpy as np
+
+    from mechcli.report import plotting
+
+    used = plotting.setup(lang)
+    fig, ax = plotting.plt.subplots(figsize=(7, 4))
+    th = np.degrees(curve.theta1)
+    g = np.where(curve.feasible, np.degrees(curve.gamma), np.nan)
+    ax.plot(th, g)
+    ax.set_xlabel(_label(used, "input angle θ1 [°]", "原动件转角 θ1 (°)"))
+    ax.set_ylabel(_label(used, "transmission angle γ [°]", "传动角 γ (°)"))
+    if used == "zh" or title.isascii():   # no tofu boxes without a CJK font
+        ax.set_title(title)
+    ax.set_xlim(th.min(), th.max())
+    plotting.save_png(fig, outputs, "transmission.png")
+    return [] if used == lang else ["no CJK font installed: plot labels in English"]
+
+
+def _curve(spec, kind, p):
+    import numpy as np
+
+    from mechcli.core import grashof as gf
+
+    step = getattr(p, "curve_step", None)
+    if step is None:
+        return None
+    n = int(round(2 * np.pi / step))
+    th = np.linspace(0.0, n * step, n + 1)
+    if kind == "fourbar":
+        i, c, o = gf.driven_links(p.frame, p.input)
+        L = p.lengths
+        return gf.fourbar_transmission(L[i - 1], L[c - 1], L[o - 1], L[p.frame - 1], th)
+    if kind == "slider_crank":
+        return gf.slider_transmission(p.crank, p.coupler, p.offset, th)
+    return gf.guide_transmission(p.crank, p.frame, p.offset, th)
+
+
 # ------------------------------------------------------------------ dispatch
 def build(spec, lang):
     """Solve a :class:`~mechcli.spec.grashof.GrashofSpec` with the core.
@@ -405,7 +461,17 @@ def build(spec, lang):
     csv_text : str or None
         ``grashof.csv`` content (four-bar only).
     warnings : list of str
+    curve : TransmissionCurve or None
+        When the spec asks for ``curve_step``.
     """
+    r, rep, csv_text, warnings = _build(spec, lang)
+    curve = _curve(spec, spec.kind, spec.problem)
+    if curve is not None:
+        rep.blocks.append(curve_outputs(curve, spec.problem.curve_step, lang)[1])
+    return r, rep, csv_text, warnings, curve
+
+
+def _build(spec, lang):
     from mechcli.core import grashof as gf
 
     p, unit, scale, title = spec.problem, spec.header.unit, spec.header.scale, spec.header.title

@@ -26,6 +26,7 @@ class FourBarProblem:
     crossed: bool
     vary: tuple             # link numbers whose length ranges are wanted
     rtol: float
+    curve_step: float | None = None   # [rad] step of the transmission-angle curve
 
 
 @dataclasses.dataclass(frozen=True)
@@ -34,6 +35,7 @@ class SliderCrankProblem:
     coupler: float
     offset: float
     rtol: float
+    curve_step: float | None = None
 
 
 @dataclasses.dataclass(frozen=True)
@@ -42,6 +44,7 @@ class GuideBarProblem:
     frame: float
     offset: float
     rtol: float
+    curve_step: float | None = None
 
 
 @dataclasses.dataclass(frozen=True)
@@ -90,6 +93,12 @@ def _rtol(sec):
     return sec.number("change_point_rtol", 1e-9, lo=0.0, hi=1e-2)
 
 
+def _curve_step(sec):
+    """``curve_step`` [deg] -> radians, or None (no transmission-angle curve)."""
+    step = sec.number("curve_step", None, lo=0.01, hi=90.0)
+    return None if step is None else step * 3.141592653589793 / 180.0
+
+
 def _link_number(sec, name, default, n):
     return sec.integer(name, default, lo=1, hi=n)
 
@@ -111,20 +120,23 @@ def _read_fourbar(sec):
                                              and 1 <= v <= 4 for v in vary):
         raise sec.error("vary", "a link number 1..4 or an array of them", repr(vary))
     rtol = _rtol(sec)
+    step = _curve_step(sec)
     sec.finish()
-    return FourBarProblem(lengths, frame, inp, assembly == "crossed", tuple(vary), rtol)
+    return FourBarProblem(lengths, frame, inp, assembly == "crossed", tuple(vary), rtol, step)
 
 
 def _read_slider(sec):
     prob = SliderCrankProblem(sec.length("crank"), sec.length("coupler"),
-                              sec.length("offset", 0.0, positive=False) or 0.0, _rtol(sec))
+                              sec.length("offset", 0.0, positive=False) or 0.0, _rtol(sec),
+                              _curve_step(sec))
     sec.finish()
     return prob
 
 
 def _read_guide(sec):
     prob = GuideBarProblem(sec.length("crank"), sec.length("frame"),
-                           sec.length("offset", 0.0, nonneg=True) or 0.0, _rtol(sec))
+                           sec.length("offset", 0.0, nonneg=True) or 0.0, _rtol(sec),
+                           _curve_step(sec))
     sec.finish()
     return prob
 

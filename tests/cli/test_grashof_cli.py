@@ -159,3 +159,18 @@ def test_quick_form_imports_neither_matplotlib_nor_scipy(tmp_path):
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT,
                          check=True).stdout.strip().splitlines()[-1]
     assert out == "[]"
+
+
+def test_transmission_curve_files(tmp_path):
+    spec = CONFIGS / "ch3" / "exercise3-1.toml"
+    proc = run_cli("grashof", spec, "-q", "--out", tmp_path / "a")
+    assert proc.returncode == 0, proc.stderr
+    assert (tmp_path / "a" / "transmission.png").stat().st_size > 1000
+    rows = (tmp_path / "a" / "transmission.csv").read_text().splitlines()
+    assert rows[0] == "theta1_deg,gamma_deg" and len(rows) == 362
+    assert rows[181].startswith("180,22.734")
+    proc = run_cli("grashof", spec, "-q", "--no-plot", "--out", tmp_path / "b")
+    assert not (tmp_path / "b" / "transmission.png").exists()
+    proc = run_cli("grashof", spec, "--lang", "zh", "-q", "--no-plot", "--out", tmp_path / "c")
+    assert proc.returncode == 0
+    assert "传动角的变化规律" in (tmp_path / "c" / "report.txt").read_text(encoding="utf-8")

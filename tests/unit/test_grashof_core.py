@@ -264,3 +264,42 @@ def test_ranges_agree_with_pointwise_classification():
             kl = gf.classify_fourbar(M)
             for i, t in enumerate(kl.types):
                 assert t.removeprefix("change_point_") in (r.type, "parallelogram"), (L, vary, r)
+
+
+# ------------------------------------------------------------ transmission curves
+def test_fourbar_transmission_curve_against_engine():
+    """习题 3-1 传动角的变化规律: γ(θ1) equals the coupler-output angle of the engine."""
+    a, b, c, d = 28, 52, 50, 72
+    th = np.linspace(0, 2 * np.pi, 721)
+    curve = gf.fourbar_transmission(a, b, c, d, th)
+    mo = solve(_fourbar(a, b, c, d), {1: DriverMotion(th)}, order=0, on_fail="raise")
+    gam = np.arccos(np.clip(np.abs(np.cos(mo.links[2].theta - mo.links[3].theta)), 0, 1))
+    assert curve.feasible.all()
+    assert_allclose(curve.gamma, gam, atol=1e-9)
+
+
+def test_fourbar_transmission_curve_marks_unassemblable_inputs():
+    th = np.linspace(0, 2 * np.pi, 721)
+    curve = gf.fourbar_transmission(100, 150, 170, 110, th)
+    mo = solve(_fourbar(100, 150, 170, 110), {1: DriverMotion(th)}, order=0, on_fail="mask")
+    assert np.array_equal(curve.feasible, mo.feasible)
+
+
+def test_slider_and_guide_transmission_curves_against_engine():
+    th = np.linspace(0, 2 * np.pi, 721)
+    a, b, e = 15, 48, 20
+    mo = solve(_slider(a, b, e), {1: DriverMotion(th)}, order=0, on_fail="raise")
+    rod = mo.points["C"].p - mo.points["B"].p
+    gam = np.pi / 2 - np.arcsin(np.abs(rod.imag) / b)
+    assert_allclose(gf.slider_transmission(a, b, e, th).gamma, gam, atol=1e-9)
+    a, d, e = 100, 200, 40
+    link = Linkage(frame=4, elements=(
+        Ground("A", 0.0, 0.0), Ground("C", d, 0.0),
+        Crank(link=1, pivot="A", point="B", length=a),
+        RPR(point="B", block=2, pivot="C", guide=3, offset=e)))
+    mo = solve(link, {1: DriverMotion(th, 1.0)}, order=1, on_fail="raise")
+    v_guide = 1j * mo.links[3].omega * (mo.points["B"].p - d)
+    normal = np.exp(1j * (mo.links[3].theta + np.pi / 2))
+    cos_a = np.abs((v_guide * np.conj(normal)).real) / np.abs(v_guide)
+    gam = np.pi / 2 - np.arccos(np.clip(cos_a, 0, 1))
+    assert_allclose(gf.guide_transmission(a, d, e, th).gamma, gam, atol=1e-9)
