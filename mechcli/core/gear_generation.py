@@ -37,7 +37,7 @@ def rack_outline(g: SpurGear, teeth=5):
     return u.ravel(), d.ravel()
 
 
-def cutter_positions(g: SpurGear, phi, teeth=5):
+def cutter_positions(g: SpurGear, phi, teeth=5, body=False):
     """The cutter outline at gear turns *phi*, in the gear's frame (eq. 5-18 … 5-21).
 
     Parameters
@@ -47,13 +47,20 @@ def cutter_positions(g: SpurGear, phi, teeth=5):
         Rolling angles (rad).
     teeth : int
         Cutter teeth.
+    body : bool
+        Close the outline through the cutter body (two points 3 m behind its
+        root line) so that it can be filled as a polygon.
 
     Returns
     -------
-    x, y : numpy.ndarray, shape (len(phi), 4 * teeth)
+    x, y : numpy.ndarray, shape (len(phi), 4 * teeth [+ 2])
     """
     phi = np.atleast_1d(np.asarray(phi, dtype=float))[:, None]
     u, d = rack_outline(g, teeth)
+    if body:
+        back = -(g.ha_star + g.c_star + 3) * g.m
+        u = np.concatenate([u, [u[-1], u[0]]])
+        d = np.concatenate([d, [back, back]])
     wx = u[None, :] + g.r * phi                  # translated by r phi (eq. 5-18)
     wy = -(g.r + g.x * g.m - d[None, :])
     c, s = np.cos(phi), np.sin(phi)              # then turned back by phi about O

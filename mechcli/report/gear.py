@@ -301,6 +301,11 @@ def present_generation(spec, sol, run, outputs):
                         f"x_min{sfx}": g.x_min, f"x_min_rack{sfx}": x_rack})
         if math.isfinite(sb_gen):
             results[f"s_b_generated{sfx}"] = L(sb_gen)
+        results[f"tip_pointed{sfx}"] = tooth.tip_pointed
+        results[f"s_a{sfx}"] = L(max(g.tooth_thickness(g.ra), 0.0))
+        if tooth.tip_pointed:
+            warnings.append(f"x = {g.x:g}: pointed tip, the flanks meet at r = "
+                            f"{g.pointed_radius / sc:.3f} {u} below ra = {g.ra / sc:.3f} {u}")
         if tooth.undercut:
             warnings.append(f"x = {g.x:g}: undercut, the cutter removes the involute from rb = "
                             f"{g.rb / sc:.3f} up to r = {tooth.r_form / sc:.3f} {u} "

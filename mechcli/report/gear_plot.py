@@ -115,6 +115,12 @@ def _generation_axes(ax, tooth, phi, spec, lang, teeth, cutter=True):
     sc, u = spec.header.scale, spec.header.unit
     g = tooth.gear
     if cutter:
+        # the blank, every cutter position painted over it (the swept space), the outlines
+        t = np.linspace(0, 2 * np.pi, 361)
+        ax.fill(g.ra / sc * np.cos(t), g.ra / sc * np.sin(t), color="#9ecae1", zorder=0)
+        bx, by = cutter_positions(g, phi, teeth, body=True)
+        for k in range(bx.shape[0]):
+            ax.fill(bx[k] / sc, by[k] / sc, color="white", zorder=0.5)
         cx, cy = cutter_positions(g, phi, teeth)
         ax.plot(cx.T / sc, cy.T / sc, "-", color="0.55", lw=0.4)
     out = gear_outline(tooth, 60)
@@ -154,24 +160,32 @@ def plot_generation(sol, spec, run, outputs):
 
 
 def animate_generation(sol, spec, run, outputs):
-    """generation.gif: the cutter rolling round the blank (first shift), positions accumulating."""
+    """generation.gif: the cutter (filled) rolling round the blank of the first shift.
+
+    Every cutter position is painted over the blank, so the frames show the
+    gear being cut; the last frame is the finished gear with the analytic
+    outline (black) drawn on top.
+    """
     from mechcli.core.gear_generation import cutter_positions
 
     lang = plotting.setup(run.lang)
     tooth = sol["teeth"][0]
     g, sc = tooth.gear, spec.header.scale
-    phi = sol["plan"].phi
-    order = np.argsort(phi, kind="stable")
-    phi = phi[order]
-    cx, cy = cutter_positions(g, phi, spec.problem.cutter_teeth)
+    phi = np.sort(sol["plan"].phi, kind="stable")
+    cx, cy = cutter_positions(g, phi, spec.problem.cutter_teeth, body=True)
     fig, ax = plt.subplots(figsize=(5.5, 5.5))
+    t = np.linspace(0, 2 * np.pi, 361)
+    ax.fill(g.ra / sc * np.cos(t), g.ra / sc * np.sin(t), color="#9ecae1", zorder=1)
     _generation_axes(ax, tooth, phi[:0], spec, lang, spec.problem.cutter_teeth, cutter=False)
-    current, = ax.plot([], [], "r-", lw=1.2)
+    for line in ax.lines:
+        line.set_zorder(4)
+    current, = ax.fill([0], [0], facecolor="none", edgecolor="r", lw=1.2, zorder=5)
     frames = []
     for k in range(phi.size):
-        if k:
-            ax.plot(cx[k - 1] / sc, cy[k - 1] / sc, "-", color="0.6", lw=0.4)
-        current.set_data(cx[k] / sc, cy[k] / sc)
+        ax.fill(cx[k] / sc, cy[k] / sc, color="white", zorder=2)
+        current.set_xy(np.column_stack([cx[k], cy[k]]) / sc)
         frames.append(plotting.canvas_frame(fig))
+    current.set_visible(False)
+    frames.append(plotting.canvas_frame(fig))
     plt.close(fig)
     plotting.save_gif(frames, outputs, "generation.gif", fps=8)
