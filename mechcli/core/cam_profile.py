@@ -352,31 +352,49 @@ def maximize_on_pieces(program, pieces, func, step):
     例 7-2 (whose tolerance is 1e-5 rad).
     """
     allp = program.pieces()
-    best = None
+    sampled = []
     for k in pieces:
         _, d0, d1, _ = allp[k]
         grid = _piece_grid(d0, d1, step)
-        g, _ = func(*program.piece_state(k, grid))
-        i = int(np.argmax(g))
-        if best is None or g[i] > best[2][best[3]]:
-            best = (k, grid, g, i)
-    if best is None:
+        g, dg = func(*program.piece_state(k, grid))
+        sampled.append((k, grid, g, dg))
+    if not sampled:
         return None
-    k, grid, g, i = best
+    top = max(float(np.max(g)) for _, _, g, _ in sampled)
+    best = (None, -math.inf)
+    for k, grid, g, dg in sampled:
+        h = grid[1] - grid[0]
+        # no point of this piece can exceed a grid value by more than h max|g'|
+        reach = h * float(np.max(np.abs(dg)))
+        if float(np.max(g)) + reach < top:
+            continue
+        inner = np.ones(len(g), dtype=bool)
+        inner[1:] &= g[1:] >= g[:-1]
+        inner[:-1] &= g[:-1] >= g[1:]
+        for i in np.flatnonzero(inner & (g + reach >= top)):
+            cand = _refine(program, k, func, grid, g, dg, int(i))
+            if cand[1] > best[1]:
+                best = cand
+    return best
 
-    def dg(x):
+
+def _refine(program, k, func, grid, g, dg, i):
+    """Refine the grid maximum *i* of piece *k* by a root of dg/dδ."""
+
+    def slope(x):
         return float(func(*program.piece_state(k, np.array([x])))[1][0])
 
     x_best, g_best = float(grid[i]), float(g[i])
-    slope = dg(x_best)
-    if slope > 0 and i < len(grid) - 1:
+    if dg[i] > 0 and i < len(grid) - 1:
         lo, hi = x_best, float(grid[i + 1])
-    elif slope < 0 and i > 0:
+        dlo, dhi = float(dg[i]), float(dg[i + 1])
+    elif dg[i] < 0 and i > 0:
         lo, hi = float(grid[i - 1]), x_best
+        dlo, dhi = float(dg[i - 1]), float(dg[i])
     else:
         return x_best, g_best
-    if dg(lo) > 0 > dg(hi):
-        x = brentq(dg, lo, hi, xtol=1e-15, rtol=1e-15, maxiter=200)
+    if dlo > 0 > dhi:
+        x = brentq(slope, lo, hi, xtol=1e-15, rtol=1e-15, maxiter=200)
         gx = float(func(*program.piece_state(k, np.array([x])))[0][0])
         if gx >= g_best:
             return x, gx

@@ -1,0 +1,122 @@
+"""Cam property tests at the extremes: correct numbers or a clear error, never garbage."""
+
+import dataclasses
+import math
+
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from mechcli.core.cam_motion import LAWS, build_program
+from mechcli.core.cam_profile import (CamGeometryError, Follower, cam_profile, check_cam,
+                                      max_pressure_angle)
+from mechcli.core.errors import UnsolvableError
+
+SETTINGS = settings(max_examples=40, deadline=None,
+                    suppress_health_check=[HealthCheck.too_slow])
+
+
+@st.composite
+def programs(draw, angular=False):
+    stroke = math.radians(draw(st.floats(1, 40))) if angular else draw(st.floats(1e-3, 0.1))
+    n_moves = draw(st.integers(1, 2))
+    kinds = []
+    for _ in range(n_moves):
+        kinds += ["rise", "dwell", "return", "dwell"]
+    weights = [draw(st.floats(0.02, 1.0)) for _ in kinds]
+    if draw(st.booleans()):           # some very short segment
+        weights[draw(st.integers(0, len(kinds) - 1))] = 1e-4
+    total = sum(weights)
+    spans = [2 * math.pi * w / total for w in weights]
+    spans[-1] = 2 * math.pi - sum(spans[:-1])
+    segs, level = [], 0.0
+    for kind, span in zip(kinds, spans):
+        law = draw(st.sampled_from(LAWS))
+        lift = stroke if kind != "dwell" else 0.0
+        segs.append((kind, span, law, lift))
+    return build_program(segs, stroke, angular)
+
+
+@SETTINGS
+@given(prog=programs(), r0_factor=st.floats(1e-6, 3.0), e_frac=st.floats(-0.99, 0.99),
+       rot=st.sampled_from([1, -1]), rr_frac=st.floats(0.01, 0.9))
+def test_translating_roller_extremes(prog, r0_factor, e_frac, rot, rr_frac):
+    r0 = prog.stroke * (0.05 + r0_factor)
+    e = e_frac * r0
+    fol = Follower("translating", "roller", r0, rot, e=e, rr=rr_frac * r0)
+    delta = np.linspace(0, 2 * np.pi, 721)
+    p = cam_profile(fol, prog, delta)
+    for arr in (p.pitch, p.work, p.alpha, p.rho_pitch, p.rho_work, p.roller_angle):
+        assert np.all(np.isfinite(arr))
+    np.testing.assert_allclose(np.hypot(*(p.pitch - p.work)), fol.rr, rtol=1e-10)
+    assert np.all(np.abs(p.alpha) < math.pi / 2)
+    ch = check_cam(fol, prog)
+    # the refined maxima bound every sample, and the undercut flag agrees with the samples
+    if ch.alpha_rise is not None:
+        rise = np.concatenate([np.linspace(s.start, s.end, 200)[:-1] for s in prog.segments
+                               if s.kind == "rise"])
+        grid = np.max(np.abs(cam_profile(fol, prog, rise).alpha))
+        assert ch.alpha_rise.value >= grid - 1e-12
+    convex = p.rho_pitch[p.rho_pitch > 0]
+    assert ch.rho_pitch_min.value <= np.min(convex) * (1 + 1e-9)
+    if np.min(convex) <= fol.rr:
+        assert ch.undercut
+
+
+@SETTINGS
+@given(prog=programs(), scale=st.floats(-3, 3))
+def test_scale_invariance(prog, scale):
+    """Lengths × k: angles unchanged, radii × k (1e-3 .. 1e3)."""
+    k = 10.0 ** scale
+    base = Follower("translating", "roller", 2 * prog.stroke, 1, e=0.3 * prog.stroke,
+                    rr=0.2 * prog.stroke)
+    big = Follower("translating", "roller", base.r0 * k, 1, e=base.e * k, rr=base.rr * k)
+    segs = [(s.kind, s.span, s.law, abs(s.lift) * k) for s in prog.segments]
+    prog_k = build_program(segs, prog.stroke * k)
+    a, b = check_cam(base, prog), check_cam(big, prog_k)
+    assert b.alpha_rise.value == pytest.approx(a.alpha_rise.value, abs=1e-12)
+    assert b.alpha_rise.delta == pytest.approx(a.alpha_rise.delta, abs=1e-9)
+    assert b.rho_pitch_min.value == pytest.approx(a.rho_pitch_min.value * k, rel=1e-9)
+
+
+@SETTINGS
+@given(prog=programs(angular=True), a=st.floats(0.02, 0.2), l_frac=st.floats(0.3, 1.5),
+       r_frac=st.floats(0.001, 0.999), rot=st.sampled_from([1, -1]))
+def test_oscillating_extremes(prog, a, l_frac, r_frac, rot):
+    l = a * l_frac
+    r0 = abs(a - l) + r_frac * (a + l - abs(a - l))
+    fol = Follower("oscillating", "roller", r0, rot, rr=0.1 * r0, a=a, l=l)
+    if fol.phi0 + prog.stroke >= math.pi:
+        return  # the spec layer rejects it (tests/cli); nothing to compute
+    p = cam_profile(fol, prog, np.linspace(0, 2 * np.pi, 361))
+    assert np.all(np.isfinite(p.work)) and np.all(np.isfinite(p.alpha))
+    try:
+        ch = check_cam(fol, prog)
+    except CamGeometryError as exc:      # a clear, classified error is acceptable
+        assert isinstance(exc, UnsolvableError) and str(exc)
+        return
+    assert 0 <= ch.alpha_rise.value < math.pi / 2 + 1e-12
+    # classical formula at the refined maximum
+    x = ch.alpha_rise.delta
+    # the rise piece holding the maximum (one-sided at a segment end)
+    k = next(k for k, (i, d0, d1, _) in enumerate(prog.pieces())
+             if prog.segments[i].kind == "rise" and d0 <= x <= d1)
+    s, s1, _, _ = prog.piece_state(k, np.array([x]))
+    th = fol.phi0 + s[0]
+    ref = math.atan((l * (1 + s1[0]) - a * math.cos(th)) / (a * math.sin(th)))
+    assert abs(ref) == pytest.approx(ch.alpha_rise.value, abs=1e-12)
+
+
+def test_base_radius_barely_above_offset():
+    prog = build_program([("rise", math.radians(90), "sine", 0.02),
+                          ("return", math.radians(270), "poly345", 0.02)], 0.02)
+    e = 0.01
+    fol = Follower("translating", "knife", e * (1 + 1e-12), 1, e=e)
+    ext = max_pressure_angle(fol, prog, "return")
+    assert math.isfinite(ext.value) and ext.value < math.pi / 2
+    # at the start of the rise s = s' = 0: α = atan2(-e, s0) -> -90° as r0 -> e
+    p = cam_profile(fol, prog, np.array([0.0]))
+    assert p.alpha[0] == pytest.approx(-math.atan2(e, fol.s0), abs=1e-15)
+    with pytest.raises(ValueError, match="offset"):
+        dataclasses.replace(fol, r0=e)
