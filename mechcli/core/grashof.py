@@ -171,13 +171,11 @@ def classify_fourbar(lengths, frame=4, crossed=False, rtol=CHANGE_POINT_RTOL):
     f0 = frame - 1
     adj_a = (f0 + 1) % 4
     adj_b = (f0 + 3) % 4
-    opp = (f0 + 2) % 4
     tol = rtol * (s + lng)
     is_short = np.abs(L - s[:, None]) <= tol[:, None]
     frame_short = is_short[rows, f0]
     a_short = is_short[rows, adj_a]
     b_short = is_short[rows, adj_b]
-    opp_short = is_short[rows, opp]
     parallel = (np.abs(L[:, 0] - L[:, 2]) <= tol) & (np.abs(L[:, 1] - L[:, 3]) <= tol)
 
     crank_mask = np.zeros((n, 4), dtype=bool)
@@ -196,7 +194,6 @@ def classify_fourbar(lengths, frame=4, crossed=False, rtol=CHANGE_POINT_RTOL):
     code[cp & grashof & ~dc & ~cr] = _CODE["change_point_double_rocker"]
     code[parallel & ~crossed] = _CODE["parallelogram"]
     code[parallel & crossed] = _CODE["antiparallelogram"]
-    del opp_short
     return FourBarClass(code=code, grashof=grashof, change_point=change,
                         crank_mask=crank_mask, longest=np.argmax(L, axis=1) + 1,
                         shortest=np.argmin(L, axis=1) + 1, excess=excess)
@@ -594,8 +591,6 @@ def length_ranges(lengths, vary, frame=4, rtol=CHANGE_POINT_RTOL):
             prev = out[-1]
             out[-1] = dataclasses.replace(prev, hi=v, hi_closed=(kind == "point"))
             continue
-        if out and kind == "open" and not out[-1].hi_closed:
-            pass
         out.append(LengthRange(type=lab[0], crank=lab[1], lo=u, hi=v,
                                lo_closed=(kind == "point"), hi_closed=(kind == "point")))
     return out

@@ -160,3 +160,21 @@ def test_mobility_rejects_bad_joints():
         count_mobility([Joint("H", (1, 2, 3))], frame=1)
     with pytest.raises(MobilityError):
         count_mobility([Joint("R", (1, 1))], frame=1)
+
+
+KIN_SPECS = sorted((__import__("tests.conftest", fromlist=["CONFIGS"]).CONFIGS / "ch1")
+                   .glob("*.toml"))
+
+
+@pytest.mark.parametrize("kin", KIN_SPECS, ids=[p.name for p in KIN_SPECS])
+def test_mobility_of_every_kin_config_equals_its_number_of_drivers(kin, tmp_path):
+    """F from the pairs of each chapter-1 linkage = the drivers the engine needs."""
+    from mechcli.spec.grashof import read_grashof_spec
+    from mechcli.spec.kin import load_kin_spec
+
+    spec = tmp_path / "mob.toml"
+    spec.write_text(f'command = "grashof"\n[mobility]\nkin = "{kin.as_posix()}"\n',
+                    encoding="utf-8")
+    p = read_grashof_spec(spec).problem
+    mob = count_mobility([Joint(j.kind, j.links, j.name) for j in p.joints], p.frame)
+    assert mob.F == len(load_kin_spec(kin, ()).linkage.drivers)
