@@ -361,7 +361,9 @@ def rrrrp_report(title, lang, r, unit):
 def mobility_results(mob):
     return {"F": mob.F, "n": mob.n, "P_L": mob.P_L, "P_H": mob.P_H,
             "local_dof": mob.local_dof, "redundant": mob.redundant,
-            "moving_links": list(mob.moving), "frame": mob.frame}
+            "moving_links": list(mob.moving), "frame": mob.frame,
+            "joints": [{"name": j.name, "kind": j.kind, "links": list(j.links),
+                        "pairs": j.pairs} for j in mob.joints]}
 
 
 def mobility_report(title, lang, mob):

@@ -295,6 +295,10 @@ def quick_spec(lengths_text, frame=None, input_link=None, offset=None, units="mm
                     scale=scale)
     m = [v * scale for v in vals]
     if len(vals) == 2:
+        for opt, val in (("--frame", frame), ("--input", input_link)):
+            if val is not None:
+                raise SpecError(where, opt, "no --frame/--input for a slider-crank "
+                                "(crank, coupler[, --offset])", repr(val))
         off = 0.0 if offset is None else float(offset) * scale
         prob = SliderCrankProblem(m[0], m[1], off, 1e-9)
         return GrashofSpec(header, "slider_crank", prob, {}, None)
@@ -313,6 +317,9 @@ def quick_spec(lengths_text, frame=None, input_link=None, offset=None, units="mm
         return GrashofSpec(header, "fourbar", FourBarProblem(tuple(m), fr, inp, False, (), 1e-9),
                            {}, None)
     if len(vals) == 5:
+        if input_link is not None:
+            raise SpecError(where, "--input", "no --input for a five-bar (its inputs are the "
+                            "two links joined to --frame)", repr(input_link))
         fr = 5 if frame is None else frame
         if not 1 <= fr <= 5:
             raise SpecError(where, "--frame", "a link number 1..5", repr(fr))

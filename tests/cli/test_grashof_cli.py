@@ -113,6 +113,9 @@ def test_bad_specs_exit_2_naming_the_key(tmp_path, text, key):
     (("--lengths", "10,50,35,30", "--input", "2"), "--input"),
     (("--lengths", "10,50,35"), "lengths"),
     (("--lengths", "1,2,3,4", "--offset", "1"), "--offset"),
+    (("--lengths", "30,60", "--frame", "4"), "--frame"),
+    (("--lengths", "10,21,19,20,5", "--input", "1"), "--input"),
+    (("--lengths", "10,21,19,20,5", "--frame", "6"), "--frame"),
 ])
 def test_bad_quick_form_exits_2(tmp_path, args, what):
     proc = run_cli("grashof", *args, "--out", tmp_path)
@@ -144,6 +147,7 @@ def test_mobility_from_a_kin_spec(tmp_path):
     r = json.loads(run_cli("grashof", CONFIGS / "ch3" / "mobility-fivebar.toml", "--json",
                            "--out", tmp_path).stdout)["results"]
     assert (r["F"], r["n"], r["P_L"]) == (2, 4, 5)
+    assert sum(j["pairs"] for j in r["joints"] if j["kind"] == "R") == 5
     spec = write(tmp_path, 'command = "grashof"\n[mobility]\nkin = "'
                  + str(CONFIGS / "ch1" / "ex1-1.toml").replace("\\", "/") + '"\n')
     r = json.loads(run_cli("grashof", spec, "--json", "--out", tmp_path).stdout)["results"]
