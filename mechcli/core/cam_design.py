@@ -17,6 +17,9 @@ from mechcli.core.cam_profile import (CamChecks, CamGeometryError, CamProfile, F
                                       size_flat_base_radius, size_oscillating_base_radius,
                                       translating_base_radius_min)
 
+#: coarse search step of the refined extrema, rad
+SEARCH_STEP = math.radians(1.0)
+
 
 @dataclasses.dataclass(frozen=True)
 class CamSizing:
@@ -112,7 +115,10 @@ def design_cam(motion, contact, r0, follower_args, segments, stroke, *, angular=
     CamDesign
     """
     program = build_program(segments, stroke, angular)
-    search = min(step, math.radians(1.0))
+    # the extrema are refined on the exact functions: their coarse search step does not
+    # depend on the sampling step (benchmarks/bench_cam.py shows the reported values do not
+    # change with it)
+    search = SEARCH_STEP
     sizing = None
     if size_base_radius:
         ar = alpha_return if limit_return else None
