@@ -170,8 +170,17 @@ def fourbar_report(title, lang, r, unit, ranges_present):
                             headers=[_label(lang, "frame", "机架"), _label(lang, "type", "类型"),
                                      _label(lang, "cranks", "曲柄")], rows=inv_rows))
     if ranges_present:
-        rows = [[k.split("_", 1)[0], _type_text(lang, k.split("_", 1)[1]), v]
-                for k, v in r.items() if k[:1] == "l" and k[1:2].isdigit() and "_" in k]
+        rows = []
+        for k, v in r.items():
+            if not (k[:1] == "l" and k[1:2].isdigit() and "_" in k):
+                continue
+            link, name = k.split("_", 1)
+            base, _, crank = name.partition("_crank")
+            text = _type_text(lang, base)
+            if crank:
+                text += _label(lang, f" (crank {crank})", f" (曲柄 {crank})")
+            rows.append([link, text, v])
+        rows.sort(key=lambda row: (row[0], row[1]))
         rep.blocks.append(Block(_label(lang, f"Length ranges [{unit}]", f"杆长范围 ({unit})"),
                                 headers=[_label(lang, "link", "杆"), _label(lang, "type", "类型"),
                                          _label(lang, "range", "范围")], rows=rows))
