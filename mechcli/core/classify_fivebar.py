@@ -42,8 +42,10 @@ class FiveBarClass:
     code : ndarray of int
         Index into :data:`FIVEBAR_TYPES` (the paper's rule, §2).
     crank_mask : ndarray of bool, shape (N, 5)
-        The cranks the paper names (inputs, plus the coupler crank of a
-        triple-crank).
+        Inputs that turn fully relative to the frame (the other input moving
+        as needed), plus the coupler crank of a triple crank.  For a class-I
+        "single crank" whose short links are the frame and a coupler both
+        inputs turn (not independently), so both are marked.
     short1, short2 : ndarray of int
         Link numbers of the shortest and second-shortest links.
     excess : ndarray

@@ -178,3 +178,48 @@ def test_mobility_of_every_kin_config_equals_its_number_of_drivers(kin, tmp_path
     p = read_grashof_spec(spec).problem
     mob = count_mobility([Joint(j.kind, j.links, j.name) for j in p.joints], p.frame)
     assert mob.F == len(load_kin_spec(kin, ()).linkage.drivers)
+
+
+def _winds(F, axis):
+    """The periodic feasible set F (n×n over θ1, θ4) holds a loop turning once in ``axis``."""
+    from scipy import ndimage
+
+    n = F.shape[0]
+    lab, _ = ndimage.label(np.tile(F, (3, 3)))
+    mid = lab[n:2 * n, n:2 * n]
+    for other in (-1, 0, 1):
+        d0, d1 = (1, other) if axis == 0 else (other, 1)
+        shifted = lab[n + d0 * n:2 * n + d0 * n, n + d1 * n:2 * n + d1 * n]
+        if np.any((mid > 0) & (mid == shifted)):
+            return True
+    return False
+
+
+def test_class_I_cranks_are_the_inputs_that_really_turn_fully():
+    """Which inputs turn fully relative to the frame (the other input moving as needed).
+
+    A feasible loop of the engine's (θ1, θ4) sweep that winds once in θ_i means
+    input i can make whole turns.  For class I this agrees with the cranks we
+    report: the short input of a single crank, both inputs of a double or triple
+    crank and, beyond the paper's wording, both inputs of a "single crank" whose
+    short link is the frame (they turn, but not independently).
+    """
+    rng = np.random.default_rng(21)
+    n = 144
+    th = np.linspace(0, 2 * np.pi, n, endpoint=False)
+    t1, t4 = np.meshgrid(th, th, indexing="ij")
+    tested, kinds = set(), set()
+    while len(tested) < 24:
+        L = rng.integers(2, 30, 5).astype(float)
+        if L.max() >= L.sum() - L.max():
+            continue
+        kl = classify_fivebar(L)
+        if kl.klass[0] != 1 or kl.excess[0] > -1.0:
+            continue
+        mo = solve(_five_bar(list(L)), {1: DriverMotion(t1), 4: DriverMotion(t4)}, order=0,
+                   on_fail="mask")
+        got = [k for k, axis in ((1, 0), (4, 1)) if _winds(mo.feasible, axis)]
+        assert got == [k for k in kl.cranks() if k in (1, 4)], (L, kl.types)
+        tested.add(tuple(L))
+        kinds.add((kl.types[0], tuple(kl.cranks())))
+    assert {"single_crank", "no_crank"} <= {t for t, _ in kinds} and len(kinds) >= 4, kinds
