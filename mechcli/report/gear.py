@@ -203,6 +203,13 @@ def present_pair(spec, pairs, run, outputs):
                "alpha_a1_deg": math.degrees(g1.alpha_a),
                "alpha_a2_deg": math.degrees(g2.alpha_a),
                "a_zero_backlash": L(first.a_zero_backlash)}
+    for i, g in enumerate((g1, g2)):
+        if g.tooth_thickness(g.ra) <= 0:
+            msg = (f"gear {i + 1} (z = {g.z}, x = {g.x:g}) has a pointed tip: the flanks meet at "
+                   f"r = {g.pointed_radius / sc:.4f} {u} below ra = {g.ra / sc:.4f} {u}")
+            if p.forbid_pointed:
+                raise GearRequirementError(msg)
+            warnings.append(msg)
     f3 = lambda v: f"{v / sc:.3f}{u}"  # noqa: E731
     blocks = []
     rows_csv = []

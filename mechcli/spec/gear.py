@@ -152,6 +152,7 @@ class PairProblem:
     designed: bool            # z1, z2 found from ratio, a', m
     require_continuous: bool
     forbid_interference: bool
+    forbid_pointed: bool
 
     def solve(self):
         from mechcli.core.gear import spur_gear
@@ -329,6 +330,7 @@ def _read_pair(sec):
     x1, x2 = _shift(sec, "x1"), _shift(sec, "x2")
     rc = sec.boolean("require_continuous", False)
     fi = sec.boolean("forbid_interference", False)
+    fp = sec.boolean("forbid_pointed", False)
     # a' must not be below the zero-backlash distance (the teeth would jam): exit 2
     from mechcli.core.gear import spur_gear
     from mechcli.core.gear_pair import centre_distance_from_pressure_angle, \
@@ -350,7 +352,7 @@ def _read_pair(sec):
             raise SpecError(sec.file, sec.key(key),
                             f"an operating pressure angle giving a' >= {a0 / sec.unit:.6g}",
                             f"{math.degrees(aw):g} (a' = {a / sec.unit:.6g})")
-    return PairProblem(z1, z2, ts, x1, x2, a_w, tuple(alpha_w), designed, rc, fi)
+    return PairProblem(z1, z2, ts, x1, x2, a_w, tuple(alpha_w), designed, rc, fi, fp)
 
 
 def _read_generation(sec):

@@ -105,6 +105,7 @@ def test_bad_specs_exit_2_naming_the_key(tmp_path, body, key, fragment):
     ("[spur]\nz = 10\nm = 10\nx = 1.0\nforbid_pointed = true\n", "pointed"),
     ("[spur]\nz = 9\nm = 10\nforbid_undercut = true\n", "undercut"),
     ("[pair]\nratio = 1.7\na_w = 78\nm = 3\n", "not whole"),
+    ("[pair]\nz1 = 10\nz2 = 30\nm = 2\nx1 = 1.0\nforbid_pointed = true\n", "pointed tip"),
 ])
 def test_unsolvable_exit_3(tmp_path, body, fragment):
     proc = run_cli("gear", _spec(tmp_path, body), "--no-plot", "--out", tmp_path / "o")
