@@ -10,6 +10,7 @@ import math
 
 import numpy as np
 
+from mechcli.core.cam_profile import RHO_CAP
 from mechcli.report.files import Outputs
 from mechcli.report.run import finish
 from mechcli.report.table import Block, Report
@@ -63,6 +64,17 @@ def _f(x, nd=4):
     return f"{x:.{nd}f}"
 
 
+def _rho_text(x, cap):
+    """A radius of curvature; ``∞`` where the curve is straight (ρ capped in core)."""
+    return ("-∞" if x < 0 else "∞") if abs(x) >= cap * (1 - 1e-12) else _f(x)
+
+
+def _angle(delta):
+    """A cam angle in degrees in [0, 360)."""
+    d = math.degrees(delta) % 360.0
+    return 0.0 if d > 360.0 - 1e-9 else d
+
+
 def results_dict(cs, design):
     """Scalar results in the spec's units (angles in degrees) for ``--json``."""
     u = cs.header.scale
@@ -80,12 +92,12 @@ def results_dict(cs, design):
     for key, ext in (("alpha_rise_max", ch.alpha_rise), ("alpha_return_max", ch.alpha_return)):
         if ext is not None:
             r[f"{key}_deg"] = deg(ext.value)
-            r[f"{key}_at_deg"] = deg(ext.delta)
+            r[f"{key}_at_deg"] = _angle(ext.delta)
     if ch.rho_pitch_min is not None:
         r["rho_pitch_min"] = ch.rho_pitch_min.value / u
-        r["rho_pitch_min_at_deg"] = deg(ch.rho_pitch_min.delta)
+        r["rho_pitch_min_at_deg"] = _angle(ch.rho_pitch_min.delta)
     r["rho_work_min"] = ch.rho_work_min.value / u
-    r["rho_work_min_at_deg"] = deg(ch.rho_work_min.delta)
+    r["rho_work_min_at_deg"] = _angle(ch.rho_work_min.delta)
     if design.rr_max is not None:
         r["rr_max"] = design.rr_max / u
     r["undercut"] = ch.undercut
@@ -200,12 +212,16 @@ def build_report(cs, design, lang="en"):
     if p.pitch is not None:
         heads += [L["x"], L["y"]]
         geo += [p.pitch[0] / u, p.pitch[1] / u]
-    heads += [L["xw"], L["yw"], L["rho"]]
-    geo += [p.work[0] / u, p.work[1] / u, p.rho_work / u]
+    if fol.contact != "knife":
+        heads += [L["xw"], L["yw"]]
+        geo += [p.work[0] / u, p.work[1] / u]
+    heads.append(L["rho"])
+    cap = RHO_CAP * fol.r0 / u
     rows = []
     for i in idx:
         rows.append([_f(deg(p.delta[i]), 1)] + [_f(c[i]) for c in motion]
-                    + [_f(deg(p.alpha[i]))] + [_f(c[i]) for c in geo])
+                    + [_f(deg(p.alpha[i]))] + [_f(c[i]) for c in geo]
+                    + [_rho_text(p.rho_work[i] / u, cap)])
     rep.blocks.append(Block(L["table"], [h.format(u=unit) for h in heads], rows))
     kv = []
     sz = design.sizing
@@ -217,12 +233,12 @@ def build_report(cs, design, lang="en"):
         kv.append([L["h"], f"{cs.stroke / u:.4f} {unit}"])
     for key, ext in (("a_rise", ch.alpha_rise), ("a_ret", ch.alpha_return)):
         if ext is not None:
-            kv.append([L[key], f"{deg(ext.value):.4f}°  ({L['at']} {deg(ext.delta):.4f}°)"])
+            kv.append([L[key], f"{deg(ext.value):.4f}°  ({L['at']} {_angle(ext.delta):.4f}°)"])
     if ch.rho_pitch_min is not None:
         kv.append([L["rho_p"], f"{ch.rho_pitch_min.value / u:.4f} {unit}  "
-                   f"({L['at']} {deg(ch.rho_pitch_min.delta):.4f}°)"])
+                   f"({L['at']} {_angle(ch.rho_pitch_min.delta):.4f}°)"])
     kv.append([L["rho_w"], f"{ch.rho_work_min.value / u:.4f} {unit}  "
-               f"({L['at']} {deg(ch.rho_work_min.delta):.4f}°)"])
+               f"({L['at']} {_angle(ch.rho_work_min.delta):.4f}°)"])
     if design.rr_max is not None:
         kv.append([L["rr_max"], f"{design.rr_max / u:.4f} {unit}"])
     kv.append([L["undercut"], L["yes"] if ch.undercut else L["no"]])
