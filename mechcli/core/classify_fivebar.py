@@ -15,8 +15,7 @@ import numpy as np
 from mechcli.core.errors import UnsolvableError
 from mechcli.core.grashof import CHANGE_POINT_RTOL, ClosureError, check_closure
 
-FIVEBAR_TYPES = ("triple_crank", "double_crank", "single_crank", "no_crank",
-                 "single_or_no_crank")
+FIVEBAR_TYPES = ("triple_crank", "double_crank", "single_crank", "no_crank")
 
 
 def fivebar_roles(frame):
@@ -27,6 +26,39 @@ def fivebar_roles(frame):
     """
     f0 = frame - 1
     return ((f0 + 1) % 5 + 1, (f0 + 4) % 5 + 1, (f0 + 2) % 5 + 1, (f0 + 3) % 5 + 1)
+
+
+def joint_revolvable(lengths, j, k, rtol=CHANGE_POINT_RTOL):
+    """Whether adjacent links *j* and *k* of a closed 5R chain turn fully relative to each other.
+
+    Parameters
+    ----------
+    lengths : ndarray, shape (N, 5)
+        l1..l5 [m].
+    j, k : int
+        Adjacent link numbers.
+
+    Returns
+    -------
+    ndarray of bool
+
+    Notes
+    -----
+    The free ends of links j and k are |l_j − l_k| .. l_j + l_k apart as the
+    joint turns; the open chain of the other three links reaches exactly the
+    distances max(0, 2 l_max' − Σ') .. Σ'.  The joint turns fully iff the first
+    interval lies inside the second (the classical revolvability argument of
+    the paper's §1 applied to one joint).  Checked against winding loops of an
+    engine sweep of both inputs in the tests.
+    """
+    L = np.asarray(lengths, dtype=float)
+    rest = [m for m in range(5) if m not in (j - 1, k - 1)]
+    others = L[:, rest]
+    total = others.sum(axis=1)
+    reach_min = np.maximum(0.0, 2 * others.max(axis=1) - total)
+    lj, lk = L[:, j - 1], L[:, k - 1]
+    tol = rtol * total
+    return (lj + lk <= total + tol) & (np.abs(lj - lk) >= reach_min - tol)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -40,12 +72,14 @@ class FiveBarClass:
     boundary : ndarray of bool
         Equality in the class-I condition within the tolerance.
     code : ndarray of int
-        Index into :data:`FIVEBAR_TYPES` (the paper's rule, §2).
+        Index into :data:`FIVEBAR_TYPES`: triple and double crank by the
+        paper's rule (§2.1, the inputs turn independently); otherwise single
+        crank if an input can turn fully, else no crank.
     crank_mask : ndarray of bool, shape (N, 5)
         Inputs that turn fully relative to the frame (the other input moving
-        as needed), plus the coupler crank of a triple crank.  For a class-I
-        "single crank" whose short links are the frame and a coupler both
-        inputs turn (not independently), so both are marked.
+        as needed, :func:`joint_revolvable`), plus the coupler crank of a
+        triple crank.  A "single crank" may have both inputs turning, though
+        not independently (class I with a short frame, and class II).
     short1, short2 : ndarray of int
         Link numbers of the shortest and second-shortest links.
     excess : ndarray
@@ -101,9 +135,10 @@ def classify_fivebar(lengths, frame=5, rtol=CHANGE_POINT_RTOL):
     triple crank (both inputs and the coupler joined to the short input, the
     paper's example 1); both short links the inputs a double crank (example 2);
     one short link the frame or an input and the other neither, a single
-    crank (the short input; an input next to a short frame); otherwise no
-    crank.  Class II (§2.2) has a single crank or none; the paper gives no
-    rule to tell which, so it is reported as ``single_or_no_crank``.
+    crank; otherwise no crank.  Class II (§2.2) has a single crank or none;
+    the paper gives no rule to tell which, so single vs no crank is decided
+    for both classes by whether an input joint is revolvable
+    (:func:`joint_revolvable`), which reproduces the paper's class-I cases.
     The independent check ``inputs_independent`` uses that B and D are
     farthest/closest apart at input angles 0 or π (the paper's eqs. 9-10).
     """
@@ -127,18 +162,17 @@ def classify_fivebar(lengths, frame=5, rtol=CHANGE_POINT_RTOL):
     short[rows, s2] = True
     fs = short[:, f0]
     s_in1, s_in2 = short[:, i1], short[:, i2]
-    n_ground = fs.astype(int) + s_in1 + s_in2
     triple = class1 & fs & (s_in1 | s_in2)
     double = class1 & s_in1 & s_in2
-    single = class1 & (n_ground == 1)
+    turn1 = joint_revolvable(L, i1 + 1, frame)
+    turn2 = joint_revolvable(L, i2 + 1, frame)
     code = np.full(n, FIVEBAR_TYPES.index("no_crank"))
-    code[single] = FIVEBAR_TYPES.index("single_crank")
+    code[turn1 | turn2] = FIVEBAR_TYPES.index("single_crank")
     code[double] = FIVEBAR_TYPES.index("double_crank")
     code[triple] = FIVEBAR_TYPES.index("triple_crank")
-    code[~class1] = FIVEBAR_TYPES.index("single_or_no_crank")
     mask = np.zeros((n, 5), dtype=bool)
-    mask[:, i1] = triple | double | (single & (s_in1 | fs))
-    mask[:, i2] = triple | double | (single & (s_in2 | fs))
+    mask[:, i1] = turn1
+    mask[:, i2] = turn2
     mask[:, c1] = triple & s_in1
     mask[:, c2] = triple & s_in2
 

@@ -17,7 +17,6 @@ ZH_TYPES = {
     "change_point_double_crank": "双曲柄机构(变点机构)",
     "change_point_double_rocker": "双摇杆机构(变点机构)",
     "triple_crank": "三曲柄机构", "single_crank": "单曲柄机构", "no_crank": "无曲柄机构",
-    "single_or_no_crank": "单曲柄或无曲柄机构",
     "oscillating": "摆动导杆机构", "rotating": "转动导杆机构",
     "boundary": "临界(变点)导杆机构", "rocker_slider": "摇杆滑块机构(无曲柄)",
     "crank_slider": "曲柄滑块机构", "crank_slider_boundary": "曲柄滑块机构(临界: a + e = b)",
