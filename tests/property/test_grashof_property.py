@@ -91,3 +91,21 @@ def test_slider_crank(a, b, e):
         assert sc.K >= 1 and math.isfinite(sc.K)
         if e == 0:
             assert math.isclose(sc.stroke, 2 * a) and sc.theta == 0
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.lists(length, min_size=5, max_size=5), st.integers(1, 5), scale)
+def test_fivebar_class_follows_the_links_not_their_numbers(L, frame, s):
+    """Renumbering the loop so that the frame is link 5 changes nothing but the labels."""
+    from mechcli.core.classify_fivebar import classify_fivebar
+
+    if not closes(L):
+        return
+    a = classify_fivebar(L, frame=frame)
+    shift = frame % 5            # new link k is old link (k + shift - 1) % 5 + 1
+    rolled = [L[(k + shift - 1) % 5] * s for k in range(1, 6)]
+    b = classify_fivebar(rolled, frame=5)
+    assert a.types == b.types and a.klass[0] == b.klass[0]
+    assert a.inputs_independent[0] == b.inputs_independent[0]
+    relabel = sorted((c - shift - 1) % 5 + 1 for c in a.cranks())
+    assert relabel == b.cranks()
