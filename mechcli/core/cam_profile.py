@@ -622,3 +622,111 @@ def size_oscillating_base_radius(fol, program, alpha_rise, alpha_return=None,
         mid = 0.5 * (lo + hi)
         lo, hi = (lo, mid) if ok(mid) else (mid, hi)
     return hi
+
+
+def _corner_normals(fol, program, dc):
+    """Pitch point and outward normals (cam frame) on both sides of a corner at *dc*."""
+    sg = fol.sigma
+    allp = program.pieces()
+    k = next(j for j, p in enumerate(allp) if abs(p[1] - dc) < 1e-12)
+    ends = []
+    for kk, x in (((k - 1) % len(allp), allp[k - 1][2]), (k, dc)):
+        P, V1, *_ = _derived(fol, *program.piece_state(kk, np.array([x])))
+        n = _rotate(sg * _J(V1) / np.sqrt(_dot(V1, V1)), np.array([-sg * dc]))
+        ends.append((_rotate(P, np.array([-sg * dc]))[:, 0], n[:, 0]))
+    return ends
+
+
+def _trim_loop(left, right):
+    """Cut the overlap of two working-curve branches meeting at a convex pitch corner.
+
+    Both branches are taken as functions r(θ) of the polar angle about the cam
+    centre near the corner; returns (points kept of *left*, of *right*, the
+    crossing point) or None when they do not cross.
+    """
+    tl = np.unwrap(np.arctan2(left[1], left[0]))
+    tr = np.unwrap(np.arctan2(right[1], right[0]))
+    tr += 2 * np.pi * np.round((tl[-1] - tr[0]) / (2 * np.pi))
+    if tl[0] > tl[-1]:  # make the angle increase along the curve
+        tl, tr = -tl, -tr
+    if not (np.all(np.diff(tl) > 0) and np.all(np.diff(tr) > 0)) or tr[0] >= tl[-1]:
+        return None
+    lo, hi = max(tl[0], tr[0]), min(tl[-1], tr[-1])
+    grid = np.sort(np.concatenate([tl[(tl >= lo) & (tl <= hi)], tr[(tr >= lo) & (tr <= hi)]]))
+    if len(grid) < 2:
+        return None
+    rl = np.interp(grid, tl, np.hypot(*left))
+    rr = np.interp(grid, tr, np.hypot(*right))
+    diff = rl - rr
+    change = np.flatnonzero(np.sign(diff[:-1]) * np.sign(diff[1:]) <= 0)
+    if not len(change):
+        return None
+    i = change[0]
+    w = diff[i] / (diff[i] - diff[i + 1]) if diff[i] != diff[i + 1] else 0.0
+    th = grid[i] + w * (grid[i + 1] - grid[i])
+    xl = np.interp(th, tl, left[0]), np.interp(th, tl, left[1])
+    return tl < th, tr > th, np.array(xl)
+
+
+def working_outline(fol, program, profile, corners, arc_step=math.radians(2.0)):
+    """The closed working curve to draw, with the roller's behaviour at pitch corners.
+
+    Where the follower velocity jumps (uniform law) the pitch curve has a corner.
+    At a concave corner the roller sits in the notch and pivots about the corner
+    point: the working curve there is an arc of radius r_r that no per-angle
+    sample holds, and it is inserted.  At a convex corner the two offset
+    branches overlap: the loop is cut at their crossing (the cam has a sharp
+    edge there).
+
+    Parameters
+    ----------
+    fol : Follower
+    program : MotionProgram
+    profile : CamProfile
+        Sampled over the whole revolution (δ from 0 to 2π).
+    corners : sequence of (float, bool)
+        ``CamChecks.corners``.
+    arc_step : float
+        Angular step of the inserted arcs, rad.
+
+    Returns
+    -------
+    ndarray, shape (2, m)
+        Closed polyline in the cam frame, m.
+    """
+    work = profile.work
+    if fol.contact != "roller" or not corners:
+        return work
+    n = work.shape[1] - 1
+    base = work[:, :-1]                      # cyclic: point n is point 0 again
+    idx = [int(np.searchsorted(profile.delta[:-1], dc - 1e-12)) % n for dc, _ in corners]
+    # start the cyclic walk in the middle of the largest gap between corners
+    cuts = sorted(idx)
+    gaps = [((cuts[(i + 1) % len(cuts)] - c) % n or n, c) for i, c in enumerate(cuts)]
+    size, c0 = max(gaps)
+    shift = (c0 + size // 2) % n
+    base = np.roll(base, -shift, axis=1)
+    order = sorted(((i - shift) % n, dc, convex) for i, (dc, convex) in zip(idx, corners))
+    window = max(2, n // (2 * len(order) + 2))
+    out, last = [], 0
+    for pos, dc, convex in order:
+        (c, n0), (_, n1) = _corner_normals(fol, program, dc)
+        if not convex:
+            a0, a1 = math.atan2(-n0[1], -n0[0]), math.atan2(-n1[1], -n1[0])
+            sweep = (a1 - a0 + math.pi) % (2 * math.pi) - math.pi
+            t = a0 + sweep * np.linspace(0, 1, max(2, int(abs(sweep) / arc_step) + 2))
+            out.extend([base[:, last:pos], c[:, None] + fol.rr * np.stack([np.cos(t),
+                                                                          np.sin(t)])])
+            last = pos
+            continue
+        lo = max(last, pos - window)
+        left, right = base[:, lo:pos], base[:, pos:pos + window]
+        cut = _trim_loop(left, right) if left.shape[1] > 1 and right.shape[1] > 1 else None
+        if cut is None:
+            continue
+        keep_l, keep_r, x = cut
+        out.extend([base[:, last:lo], left[:, keep_l], x[:, None]])
+        last = pos + int(np.argmax(keep_r))
+    out.append(base[:, last:])
+    curve = np.concatenate(out, axis=1)
+    return np.concatenate([curve, curve[:, :1]], axis=1)

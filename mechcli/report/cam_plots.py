@@ -119,6 +119,13 @@ def _follower_lines(cs, design, k):
     return lines
 
 
+def _outline(design):
+    from mechcli.core.cam_profile import working_outline
+
+    return working_outline(design.follower, design.program, design.profile,
+                           design.checks.corners)
+
+
 def plot_profile(cs, design, out, lang):
     """``profile.png``: base circle, pitch and working curves, follower at δ = 0."""
     p, fol, unit, u = design.profile, design.follower, cs.header.unit, cs.header.scale
@@ -129,7 +136,8 @@ def plot_profile(cs, design, out, lang):
                 label=_t(lang, "offset", unit))
     if p.pitch is not None and fol.contact == "roller":
         ax.plot(p.pitch[0] / u, p.pitch[1] / u, "r--", lw=1.0, label=_t(lang, "pitch", unit))
-    ax.plot(p.work[0] / u, p.work[1] / u, "b", lw=1.5, label=_t(lang, "work", unit))
+    outline = _outline(design) / u
+    ax.plot(outline[0], outline[1], "b", lw=1.5, label=_t(lang, "work", unit))
     for x, y in _follower_lines(cs, design, 0):
         ax.plot(x, y, "k", lw=1.2)
     if fol.motion == "oscillating":
@@ -207,11 +215,12 @@ def animate(cs, design, out, lang, fps=12):
     axs.set_xlim(0, 360)
     axs.set_xlabel(_t(lang, "delta", unit))
     axs.set_ylabel(_t(lang, "psi" if cs.angular else "s", unit))
+    outline = _outline(design) / u
     frames = []
     for k in idx:
         ang = fol.rotation * p.delta[k]
         c, s = math.cos(ang), math.sin(ang)
-        wx, wy = p.work / u
+        wx, wy = outline
         cam_line.set_data(c * wx - s * wy, s * wx + c * wy)
         mx, my = wx[0], wy[0]
         marker.set_data([c * mx - s * my], [s * mx + c * my])

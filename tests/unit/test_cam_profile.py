@@ -280,3 +280,28 @@ def test_corners_of_the_uniform_law():
     # the follower jumps outwards at 0 deg (concave corner) and stops at 120 (convex)
     assert [(round(math.degrees(d), 9), c) for d, c in ch.corners] == [(0.0, False),
                                                                         (120.0, True)]
+
+
+@pytest.mark.parametrize("step", [1.0, 0.1])
+def test_working_outline_at_corners_keeps_the_roller_distance(step):
+    """Arc in the concave notch, loop cut at the convex edge: every drawn point is at
+    least r_r from the pitch curve, and the notch arc is exactly r_r from the corner."""
+    from scipy.spatial import cKDTree
+
+    from mechcli.core.cam_profile import working_outline
+
+    prog = build_program([("rise", RAD(120), "uniform", 20 * MM), ("dwell", RAD(60), None, 0),
+                          ("return", RAD(90), "parabolic", 20 * MM),
+                          ("dwell", RAD(90), None, 0)], 20 * MM)
+    fol = Follower("translating", "roller", 20 * MM, 1, rr=10 * MM)
+    p = cam_profile(fol, prog, np.linspace(0, 2 * np.pi, int(round(360 / step)) + 1))
+    ch = check_cam(fol, prog)
+    out = working_outline(fol, prog, p, ch.corners)
+    dense = cam_profile(fol, prog, np.linspace(0, 2 * np.pi, 400001)).pitch
+    dist, _ = cKDTree(dense.T).query(out.T)
+    assert np.min(dist) > 10 * MM - 1e-7            # no gouging anywhere
+    assert np.max(dist) < 10 * MM + 1e-6            # and touching everywhere
+    # the untrimmed samples do gouge at the convex edge (that is why the loop is cut)
+    raw, _ = cKDTree(dense.T).query(p.work.T)
+    assert np.min(raw) < 10 * MM - 1e-5
+    np.testing.assert_allclose(out[:, 0], out[:, -1])
