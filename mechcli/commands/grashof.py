@@ -59,4 +59,7 @@ def grashof(spec_path, lengths, frame, input_link, offset, batch, units, **opts)
                                                              run.lang)[0])
         if run.plot:
             warnings += report.write_curve_png(curve, outputs, run.lang, spec.header.title)
+    if run.plot and getattr(spec.problem, "draw", False) and "theta_deg" in results:
+        warnings += report.write_limits_png(results, report.driven_lengths(spec), outputs,
+                                            run.lang, spec.header.title)
     finish(run, "grashof", rep, results, outputs, warnings)

@@ -441,6 +441,57 @@ def write_curve_png(curve, outputs, lang, title):
     return [] if used == lang else ["no CJK font installed: plot labels in English"]
 
 
+def write_limits_png(r, scale_unit, outputs, lang, title):
+    """``limits.png``: the four-bar at its two limit positions (imports matplotlib).
+
+    Parameters
+    ----------
+    r : dict
+        Four-bar results (spec units, degrees) with the limit positions.
+    scale_unit : tuple of (lengths a, b, c, d in spec units, unit name)
+    """
+    import numpy as np
+
+    from mechcli.report import plotting
+
+    (a, b, c, d), unit = scale_unit
+    used = plotting.setup(lang)
+    fig, ax = plotting.plt.subplots(figsize=(7, 5))
+    A, D = 0j, complex(d, 0)
+    for name, style in (("ext", "-"), ("fold", "--")):
+        t1 = np.radians(r[f"theta1_{name}_deg"])
+        t3 = np.radians(r[f"theta3_{name}_deg"])
+        B = a * np.exp(1j * t1)
+        C = D + c * np.exp(1j * t3)
+        pts = np.array([A, B, C, D])
+        label = _label(used, "extended" if name == "ext" else "folded",
+                       "极限位置 1 (拉直共线)" if name == "ext" else "极限位置 2 (重叠共线)")
+        ax.plot(pts.real, pts.imag, style, marker="o", label=label)
+        ax.annotate("C1" if name == "ext" else "C2", (C.real, C.imag),
+                    textcoords="offset points", xytext=(4, 4))
+    ax.plot([0, d], [0, 0], "k-", lw=3)
+    ax.annotate("A", (0, 0), textcoords="offset points", xytext=(-10, -12))
+    ax.annotate("D", (d, 0), textcoords="offset points", xytext=(4, -12))
+    ax.set_aspect("equal")
+    ax.set_xlabel(f"x [{unit}]")
+    ax.set_ylabel(f"y [{unit}]")
+    ax.legend(title=f"θ = {r['theta_deg']:.2f}°, ψ = {r['psi_deg']:.2f}°, K = {r['K']:.4f}")
+    if used == "zh" or title.isascii():
+        ax.set_title(title)
+    plotting.save_png(fig, outputs, "limits.png")
+    return [] if used == lang else ["no CJK font installed: plot labels in English"]
+
+
+def driven_lengths(spec):
+    """((a, b, c, d) in spec units, unit) of a four-bar spec: input, coupler, output, frame."""
+    from mechcli.core.grashof import driven_links
+
+    p = spec.problem
+    i, c, o = driven_links(p.frame, p.input)
+    L = [x / spec.header.scale for x in p.lengths]
+    return (L[i - 1], L[c - 1], L[o - 1], L[p.frame - 1]), spec.header.unit
+
+
 def _curve(spec, kind, p):
     import numpy as np
 

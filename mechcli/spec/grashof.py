@@ -27,6 +27,7 @@ class FourBarProblem:
     vary: tuple             # link numbers whose length ranges are wanted
     rtol: float
     curve_step: float | None = None   # [rad] step of the transmission-angle curve
+    draw: bool = False                # picture of the limit positions (limits.png)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -121,8 +122,10 @@ def _read_fourbar(sec):
         raise sec.error("vary", "a link number 1..4 or an array of them", repr(vary))
     rtol = _rtol(sec)
     step = _curve_step(sec)
+    draw = sec.boolean("draw", False)
     sec.finish()
-    return FourBarProblem(lengths, frame, inp, assembly == "crossed", tuple(vary), rtol, step)
+    return FourBarProblem(lengths, frame, inp, assembly == "crossed", tuple(vary), rtol, step,
+                          draw)
 
 
 def _read_slider(sec):

@@ -170,11 +170,13 @@ def test_transmission_curve_files(tmp_path):
     proc = run_cli("grashof", spec, "-q", "--out", tmp_path / "a")
     assert proc.returncode == 0, proc.stderr
     assert (tmp_path / "a" / "transmission.png").stat().st_size > 1000
+    assert (tmp_path / "a" / "limits.png").stat().st_size > 1000     # draw = true
     rows = (tmp_path / "a" / "transmission.csv").read_text().splitlines()
     assert rows[0] == "theta1_deg,gamma_deg" and len(rows) == 362
     assert rows[181].startswith("180,22.734")
     proc = run_cli("grashof", spec, "-q", "--no-plot", "--out", tmp_path / "b")
     assert not (tmp_path / "b" / "transmission.png").exists()
+    assert not (tmp_path / "b" / "limits.png").exists()
     proc = run_cli("grashof", spec, "--lang", "zh", "-q", "--no-plot", "--out", tmp_path / "c")
     assert proc.returncode == 0
     assert "传动角的变化规律" in (tmp_path / "c" / "report.txt").read_text(encoding="utf-8")
