@@ -35,7 +35,12 @@ class SpurGear:
     ha_star, c_star : float
         Addendum and clearance coefficients.
     x : float
-        Profile-shift coefficient (positive away from the centre).
+        Profile-shift coefficient.  External gear: positive away from the
+        centre.  Internal gear (ISO 21771 convention): positive makes the
+        ring's teeth thicker and its tip circle smaller.
+    internal : bool
+        An internal gear (ring): teeth point to the centre, tip circle
+        d - 2 ha, root circle d + 2 hf.
     """
 
     z: int
@@ -44,6 +49,12 @@ class SpurGear:
     ha_star: float = 1.0
     c_star: float = 0.25
     x: float = 0.0
+    internal: bool = False
+
+    @property
+    def sign(self):
+        """+1 for an external gear, -1 for an internal one (tips inwards)."""
+        return -1 if self.internal else 1
 
     # -- circles (m) -----------------------------------------------------
     @property
@@ -81,8 +92,8 @@ class SpurGear:
 
     @property
     def da(self):
-        """Tip diameter d + 2 ha (m), eq. (5-6)."""
-        return self.d + 2 * self.ha
+        """Tip diameter d + 2 ha (m), eq. (5-6); d - 2 ha for an internal gear."""
+        return self.d + 2 * self.sign * self.ha
 
     @property
     def ra(self):
@@ -90,8 +101,8 @@ class SpurGear:
 
     @property
     def df(self):
-        """Root diameter d - 2 hf (m), eq. (5-7)."""
-        return self.d - 2 * self.hf
+        """Root diameter d - 2 hf (m), eq. (5-7); d + 2 hf for an internal gear."""
+        return self.d - 2 * self.sign * self.hf
 
     @property
     def rf(self):
@@ -131,12 +142,14 @@ class SpurGear:
     def tooth_thickness(self, radius):
         """Arc tooth thickness at a radius >= rb (m).
 
-        s_K = s r_K / r - 2 r_K (inv alpha_K - inv alpha), alpha_K = arccos(rb / r_K).
+        s_K = s r_K / r - 2 r_K (inv alpha_K - inv alpha), alpha_K = arccos(rb / r_K)
+        (internal gear: + 2 r_K (...), its teeth widen outwards).
         Negative where the tooth would already be pointed.
         """
         rk = np.asarray(radius, dtype=float)
         ak = np.arccos(np.clip(self.rb / rk, -1.0, 1.0))
-        out = rk * (self.s / self.r - 2 * (involute_function(ak) - involute_function(self.alpha)))
+        out = rk * (self.s / self.r - 2 * self.sign
+                    * (involute_function(ak) - involute_function(self.alpha)))
         return out if np.ndim(out) else float(out)
 
     def space_width(self, radius):
@@ -149,15 +162,20 @@ class SpurGear:
         """Half the angle the tooth subtends at a radius >= rb (rad): s_K / (2 r_K)."""
         rk = np.asarray(radius, dtype=float)
         ak = np.arccos(np.clip(self.rb / rk, -1.0, 1.0))
-        return self.s / (2 * self.r) + involute_function(self.alpha) - involute_function(ak)
+        return self.s / (2 * self.r) + self.sign * (involute_function(self.alpha)
+                                                    - involute_function(ak))
 
     @property
     def pointed_radius(self):
         """Radius where the two flanks meet (tooth thickness 0) (m).
 
-        inv alpha_p = s / d + inv alpha, r_p = rb / cos alpha_p (习题 5-1).
+        inv alpha_p = s / d + inv alpha, r_p = rb / cos alpha_p (习题 5-1).  For an
+        internal gear (teeth narrowing inwards) inv alpha_p = inv alpha - s / d, and
+        rb if that is negative (never pointed above the base circle).
         """
-        theta = self.s / self.d + involute_function(self.alpha)
+        theta = involute_function(self.alpha) + self.sign * self.s / self.d
+        if theta <= 0:
+            return self.rb
         ap = float(inverse_involute(theta).alpha[0])
         return self.rb / math.cos(ap)
 
@@ -174,11 +192,11 @@ class SpurGear:
 
     @property
     def undercut(self):
-        """True if the standard rack undercuts this gear (x < x_min)."""
-        return self.x < self.x_min - 1e-12
+        """True if the standard rack undercuts this gear (x < x_min); False for internal gears."""
+        return (not self.internal) and self.x < self.x_min - 1e-12
 
 
-def spur_gear(z, m, alpha, ha_star=1.0, c_star=0.25, x=0.0):
+def spur_gear(z, m, alpha, ha_star=1.0, c_star=0.25, x=0.0, internal=False):
     """Build a :class:`SpurGear` and check that it can exist.
 
     Parameters
@@ -193,13 +211,24 @@ def spur_gear(z, m, alpha, ha_star=1.0, c_star=0.25, x=0.0):
         Addendum and clearance coefficients (>= 0).
     x : float
         Profile-shift coefficient.
+    internal : bool
+        An internal gear (ring).
 
     Raises
     ------
     GearGeometryError
-        The root circle would not be outside the centre (df <= 0).
+        The root circle would not be outside the centre (df <= 0); an
+        internal gear's tip circle inside its base circle (no involute there).
     """
-    g = SpurGear(int(z), float(m), float(alpha), float(ha_star), float(c_star), float(x))
+    g = SpurGear(int(z), float(m), float(alpha), float(ha_star), float(c_star), float(x),
+                 bool(internal))
+    if internal:
+        if g.ra < g.rb:
+            raise GearGeometryError(
+                f"internal gear z = {g.z}: tip circle da = {g.da:.6g} m is inside the base circle "
+                f"db = {g.db:.6g} m (needs z (1 - cos alpha) >= 2 (ha* + x), "
+                f"z >= {2 * (g.ha_star + g.x) / (1 - math.cos(g.alpha)):.1f})")
+        return g
     if g.df <= 0:
         raise GearGeometryError(
             f"root diameter df = {g.df / g.m:.4g} m would be <= 0 "

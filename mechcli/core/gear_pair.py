@@ -19,16 +19,18 @@ class MeshError(UnsolvableError):
 
 
 def standard_centre_distance(g1: SpurGear, g2: SpurGear):
-    """a = m (z1 + z2) / 2 (m)."""
-    return g1.m * (g1.z + g2.z) / 2
+    """a = m (z1 + z2) / 2 (m); m (z2 - z1) / 2 when gear 2 is internal."""
+    return g1.m * (g2.z + g2.sign * g1.z) / 2 if g2.internal else g1.m * (g1.z + g2.z) / 2
 
 
 def zero_backlash_pressure_angle(g1: SpurGear, g2: SpurGear):
     """Operating pressure angle of the zero-backlash mesh (rad).
 
-    inv alpha' = 2 tan(alpha) (x1 + x2) / (z1 + z2) + inv alpha (习题 5-3).
+    inv alpha' = 2 tan(alpha) (x1 + x2) / (z1 + z2) + inv alpha (习题 5-3); for an
+    internal gear 2, z2 counts negative (ISO 21771): 2 tan(alpha) (x1 + x2) / (z1 - z2).
     """
-    theta = 2 * math.tan(g1.alpha) * (g1.x + g2.x) / (g1.z + g2.z) + involute_function(g1.alpha)
+    theta = (2 * math.tan(g1.alpha) * (g1.x + g2.x) / (g1.z + g2.sign * g2.z)
+             + involute_function(g1.alpha))
     if theta <= 0:
         raise MeshError(f"x1 + x2 = {g1.x + g2.x:g} is so negative that no zero-backlash "
                         "pressure angle exists (inv alpha' <= 0)")
@@ -77,7 +79,7 @@ def design_teeth_from_ratio(ratio, a_w, m):
 
 @dataclasses.dataclass(frozen=True)
 class GearPair:
-    """Two external spur gears mounted at an operating centre distance.
+    """Two spur gears (external pair, or external pinion in a ring) at a centre distance.
 
     Attributes
     ----------
@@ -121,7 +123,7 @@ class GearPair:
         """
         t = math.tan(self.alpha_w)
         return (self.g1.z * (math.tan(self.g1.alpha_a) - t)
-                + self.g2.z * (math.tan(self.g2.alpha_a) - t)) / (2 * math.pi)
+                + self.g2.sign * self.g2.z * (math.tan(self.g2.alpha_a) - t)) / (2 * math.pi)
 
     @property
     def line_of_action(self):
@@ -143,13 +145,24 @@ class GearPair:
 
     @property
     def interference(self):
-        """True if a tip passes the other gear's tangent point N (meshes below its base circle)."""
-        n = self.line_of_action * (1 + 1e-12)
-        return any(r > n for r in self.tip_reach)
+        """True if a tip passes the other gear's tangent point N (meshes below its base circle).
+
+        Internal pair: the ring's tip must stay beyond the pinion's point N1,
+        sqrt(ra2^2 - rb2^2) >= N1N2.
+        """
+        n = self.line_of_action
+        if self.g2.internal:
+            return self.tip_reach[1] < n * (1 - 1e-12)
+        return any(r > n * (1 + 1e-12) for r in self.tip_reach)
 
     @property
     def clearances(self):
-        """Radial tip clearances (a' - ra1 - rf2, a' - ra2 - rf1) (m)."""
+        """Radial tip clearances (a' - ra1 - rf2, a' - ra2 - rf1) (m).
+
+        Internal pair: (rf2 - a' - ra1, ra2 - a' - rf1).
+        """
+        if self.g2.internal:
+            return (self.g2.rf - self.a_w - self.g1.ra, self.g2.ra - self.a_w - self.g1.rf)
         return (self.a_w - self.g1.ra - self.g2.rf, self.a_w - self.g2.ra - self.g1.rf)
 
     @property
@@ -177,7 +190,8 @@ def gear_pair(g1: SpurGear, g2: SpurGear, a_w=None, alpha_w=None):
     g1, g2 : SpurGear
         Same module and pressure angle.
     a_w : float, optional
-        Operating centre distance (m).
+        Operating centre distance (m); between the zero-backlash distance and
+        the last contact (above it for external pairs, below it for internal ones).
     alpha_w : float, optional
         Operating pressure angle (rad).
 
@@ -188,13 +202,16 @@ def gear_pair(g1: SpurGear, g2: SpurGear, a_w=None, alpha_w=None):
     Raises
     ------
     MeshError
-        Different modules or pressure angles; a' below the zero-backlash
-        distance (the teeth would jam); the tips do not reach the line of
+        Different modules or pressure angles; a' on the jamming side of the
+        zero-backlash distance; the tips do not reach the line of
         action (epsilon_alpha <= 0: the gears do not touch).
     """
     if not (math.isclose(g1.m, g2.m, rel_tol=1e-12)
             and math.isclose(g1.alpha, g2.alpha, rel_tol=1e-12)):
         raise MeshError("the two gears need the same module and pressure angle to mesh")
+    if g1.internal or (g2.internal and g2.z <= g1.z):
+        raise MeshError("an internal pair needs an external pinion (gear 1) and a ring gear 2 "
+                        "with more teeth")
     if a_w is not None and alpha_w is not None:
         raise ValueError("give a_w or alpha_w, not both")
     if a_w is None and alpha_w is None:
@@ -205,9 +222,12 @@ def gear_pair(g1: SpurGear, g2: SpurGear, a_w=None, alpha_w=None):
         alpha_w = pressure_angle_from_centre_distance(g1, g2, a_w)
     pair = GearPair(g1, g2, float(a_w), float(alpha_w))
     a0 = pair.a_zero_backlash
-    if pair.a_w < a0 * (1 - 1e-12):
+    if not g2.internal and pair.a_w < a0 * (1 - 1e-12):
         raise MeshError(f"centre distance {pair.a_w:.6g} m is below the zero-backlash distance "
                         f"{a0:.6g} m: the teeth would jam")
+    if g2.internal and pair.a_w > a0 * (1 + 1e-12):
+        raise MeshError(f"centre distance {pair.a_w:.6g} m is above the zero-backlash distance "
+                        f"{a0:.6g} m of the internal pair: the teeth would jam")
     if pair.epsilon_alpha <= 0:
         raise MeshError(f"at a' = {pair.a_w:.6g} m the tip circles do not reach the line of "
                         f"action (epsilon_alpha = {pair.epsilon_alpha:.3g}): no contact")

@@ -208,7 +208,30 @@ def gear_outline(tooth: GeneratedTooth, points=40, root="generated", arc_step=ma
         psi = np.concatenate([[psi_inv[0]], psi_inv])
     else:
         raise ValueError(f"unknown root {root!r}")
-    psi = np.maximum(psi, 0.0)
+    return _assemble(g, fr, np.maximum(psi, 0.0), arc_step)
+
+
+def ring_outline(g: SpurGear, points=40, arc_step=math.radians(1.0)):
+    """Outline of an internal gear (ring): involute flanks from the tip circle (inside)
+    out to the root circle, arcs at both; tooth 0 centred on +y.
+
+    The root form of a ring depends on its pinion-type cutter; here the
+    involute runs to the root circle (no fillet).
+
+    Parameters
+    ----------
+    g : SpurGear
+        An internal gear (``internal=True``).
+    points : int
+        Points per flank.
+    """
+    fr = _roll_grid(g.rb, g.rf, max(g.ra, g.rb), points)
+    psi = np.maximum(g.half_tooth_angle(fr), 0.0)
+    return _assemble(g, fr, psi, arc_step)
+
+
+def _assemble(g, fr, psi, arc_step):
+    """Whole outline from one flank: radii *fr* from root to tip, half-angles *psi*."""
     half_pitch = math.pi / g.z
 
     def arc(radius, s0, s1):
@@ -219,14 +242,14 @@ def gear_outline(tooth: GeneratedTooth, points=40, root="generated", arc_step=ma
     # one period: right half of a root arc, right flank up, tip arc, left flank down,
     # left half of the next root arc.  sigma = angle from the tooth centre (CCW +).
     parts_r, parts_s = [], []
-    rr, ss = arc(g.rf, -half_pitch, -psi[0])
+    rr, ss = arc(fr[0], -half_pitch, -psi[0])
     parts_r.append(rr[:-1]); parts_s.append(ss[:-1])
     parts_r.append(fr); parts_s.append(-psi)
     if psi[-1] > 0:
         rr, ss = arc(fr[-1], -psi[-1], psi[-1])
         parts_r.append(rr[1:-1]); parts_s.append(ss[1:-1])
     parts_r.append(fr[::-1]); parts_s.append(psi[::-1])
-    rr, ss = arc(g.rf, psi[0], half_pitch)
+    rr, ss = arc(fr[0], psi[0], half_pitch)
     parts_r.append(rr[1:-1]); parts_s.append(ss[1:-1])
     r1 = np.concatenate(parts_r)
     s1 = np.concatenate(parts_s)

@@ -202,7 +202,7 @@ def present_pair(spec, pairs, run, outputs):
                "s1": L(g1.s), "s2": L(g2.s), "e1": L(g1.e), "e2": L(g2.e), "c": L(g1.c),
                "alpha_a1_deg": math.degrees(g1.alpha_a),
                "alpha_a2_deg": math.degrees(g2.alpha_a),
-               "a_zero_backlash": L(first.a_zero_backlash)}
+               "a_zero_backlash": L(first.a_zero_backlash), "internal": g2.internal}
     for i, g in enumerate((g1, g2)):
         if g.tooth_thickness(g.ra) <= 0:
             msg = (f"gear {i + 1} (z = {g.z}, x = {g.x:g}) has a pointed tip: the flanks meet at "
@@ -235,7 +235,9 @@ def present_pair(spec, pairs, run, outputs):
             warnings.append(msg)
         if pr.interference:
             msg = (f"{where}: interference — a tip passes the tangent point N of the line of "
-                   f"action (N1N2 = {pr.line_of_action / sc:.3f} {u})")
+                   f"action (N1N2 = {pr.line_of_action / sc:.3f} {u})"
+                   + ("; the ring's tip meets the pinion below its base circle"
+                      if g2.internal else ""))
             if p.forbid_interference:
                 raise GearRequirementError(msg)
             warnings.append(msg)
@@ -273,8 +275,11 @@ def present_pair(spec, pairs, run, outputs):
             ("base pitches", "基圆齿距", "pb1, pb2", f"{g1.pb / sc:.3f}{u}, {g2.pb / sc:.3f}{u}"),
             ("ratio", "传动比", "i12", f"{pr.ratio:.4f}"),
         ]
-        if k == 0 and (g1.x or g2.x or p.designed):
+        if k == 0 and (g1.x or g2.x or p.designed or g2.internal):
             extra.insert(0, ("teeth", "齿数", "z1, z2", f"{g1.z}, {g2.z}"))
+        if g2.internal:
+            extra.insert(0, ("gear 2 is internal (ring)", "齿轮 2 为内齿轮", "x2 (ISO: + thickens)",
+                             f"{g2.x:g}"))
         blocks.append(_kv_block(_t(lang, "Spur gear pair geometry", "直齿圆柱齿轮几何尺寸")
                                 + ("" if len(pairs) == 1 else f" ({k + 1})"), rows, lang))
         blocks.append(_kv_block("", extra, lang))

@@ -71,40 +71,58 @@ def plot_gear(sol, spec, run, outputs):
 
 
 def plot_pair(pair, spec, run, outputs):
-    """pair.png: both gears in mesh at a' with the line of action."""
-    from mechcli.core.gear_profile import gear_outline, generated_tooth
+    """pair.png: both gears in mesh at a' with pitch and base circles and the line of action.
+
+    The pinion is centred at the origin with a tooth on +y; the pitch point is
+    (0, r1'); the wheel's centre is (0, a') — (0, -a') for a ring gear.
+    """
+    from mechcli.core.gear_profile import gear_outline, generated_tooth, ring_outline
 
     lang = plotting.setup(run.lang)
     sc, u = spec.header.scale, spec.header.unit
     g1, g2 = pair.g1, pair.g2
     fig, ax = plt.subplots(figsize=(8, 8))
     o1 = gear_outline(generated_tooth(g1), 30)
-    o2 = gear_outline(generated_tooth(g2), 30)
+    ax.fill(o1.x / sc, o1.y / sc, color="#c6dbef", zorder=0)
     ax.plot(o1.x / sc, o1.y / sc, "b-", lw=0.8)
-    rot = math.pi + math.pi / g2.z
+    if g2.internal:
+        o2, c2, rot = ring_outline(g2, 30), -pair.a_w, math.pi / g2.z
+    else:
+        o2, c2, rot = gear_outline(generated_tooth(g2), 30), pair.a_w, math.pi + math.pi / g2.z
     c, s = math.cos(rot), math.sin(rot)
-    ax.plot((c * o2.x - s * o2.y) / sc, (s * o2.x + c * o2.y + pair.a_w) / sc, "r-", lw=0.8)
+    x2, y2 = (c * o2.x - s * o2.y) / sc, (s * o2.x + c * o2.y + c2) / sc
+    if g2.internal:   # ring material between the outline and an outer rim
+        t = math.atan2(y2[0] - c2 / sc, x2[0]) - np.linspace(0, 2 * np.pi, 361)
+        rim = (g2.rf + 2 * g2.m) / sc
+        ax.fill(np.concatenate([x2, rim * np.cos(t)]),
+                np.concatenate([y2, c2 / sc + rim * np.sin(t)]), color="#fcbba1", zorder=0)
+    else:
+        ax.fill(x2, y2, color="#fcbba1", zorder=0)
+    ax.plot(x2, y2, "r-", lw=0.8)
     _circle(ax, pair.dw1 / 2 / sc, "g-.", _t(lang, "operating pitch circles", "节圆"))
-    _circle(ax, pair.dw2 / 2 / sc, "g-.", centre=(0, pair.a_w / sc))
+    _circle(ax, pair.dw2 / 2 / sc, "g-.", centre=(0, c2 / sc))
     _circle(ax, g1.rb / sc, "c--", _t(lang, "base circles", "基圆"))
-    _circle(ax, g2.rb / sc, "c--", centre=(0, pair.a_w / sc))
-    # line of action N1N2: tangent to both base circles through the pitch point
+    _circle(ax, g2.rb / sc, "c--", centre=(0, c2 / sc))
+    # line of action N1N2 through the pitch point at alpha' to the common tangent
     aw = pair.alpha_w
-    n1 = g1.rb * np.array([-math.cos(aw), math.sin(aw)])
-    n2 = np.array([0.0, pair.a_w]) + g2.rb * np.array([math.cos(aw), -math.sin(aw)])
+    foot = np.array([math.sin(aw), math.cos(aw)])
+    n1 = g1.rb * foot
+    n2 = np.array([0.0, c2]) + g2.rb * (foot if g2.internal else -foot)
     ax.plot([n1[0] / sc, n2[0] / sc], [n1[1] / sc, n2[1] / sc], "m-", lw=1.0,
-            label=_t(lang, "line of action", "啮合线"))
+            label=_t(lang, "line of action N1N2", "理论啮合线 N1N2"))
+    ax.plot([n1[0] / sc, n2[0] / sc], [n1[1] / sc, n2[1] / sc], "mo", ms=3)
     rw1 = pair.dw1 / 2
-    span = 4 * g1.p
+    span = max(4 * g1.p, 1.2 * pair.line_of_action)
     ax.set_xlim(-span / sc, span / sc)
     ax.set_ylim((rw1 - span) / sc, (rw1 + span) / sc)
     ax.set_aspect("equal")
     ax.legend(loc="lower left", fontsize=8)
     ax.set_xlabel(f"x ({u})")
     ax.set_ylabel(f"y ({u})")
-    ax.set_title(_t(lang, f"z1 = {g1.z}, z2 = {g2.z}, a' = {pair.a_w / sc:g} {u}, "
-                    f"ε_α = {pair.epsilon_alpha:.3f}",
-                    f"z1={g1.z}, z2={g2.z}, a'={pair.a_w / sc:g}{u}, 重合度 {pair.epsilon_alpha:.3f}"))
+    ax.set_title(_t(lang, f"z1 = {g1.z}, z2 = {g2.z}{' (internal)' if g2.internal else ''}, "
+                    f"a' = {pair.a_w / sc:g} {u}, ε_α = {pair.epsilon_alpha:.3f}",
+                    f"z1={g1.z}, z2={g2.z}{' (内齿轮)' if g2.internal else ''}, "
+                    f"a'={pair.a_w / sc:g}{u}, 重合度 {pair.epsilon_alpha:.3f}"))
     plotting.save_png(fig, outputs, "pair.png")
 
 

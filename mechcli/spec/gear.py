@@ -153,13 +153,14 @@ class PairProblem:
     require_continuous: bool
     forbid_interference: bool
     forbid_pointed: bool
+    internal: bool            # gear 2 is a ring gear
 
     def solve(self):
         from mechcli.core.gear import spur_gear
         from mechcli.core.gear_pair import gear_pair
         t = self.teeth
         g1 = spur_gear(self.z1, t.m, t.alpha, t.ha_star, t.c_star, self.x1)
-        g2 = spur_gear(self.z2, t.m, t.alpha, t.ha_star, t.c_star, self.x2)
+        g2 = spur_gear(self.z2, t.m, t.alpha, t.ha_star, t.c_star, self.x2, self.internal)
         pairs = [gear_pair(g1, g2, a_w=a) for a in self.a_w]
         pairs += [gear_pair(g1, g2, alpha_w=aw) for aw in self.alpha_w]
         if not pairs:
@@ -315,7 +316,11 @@ def _read_pair(sec):
         if not 0 < v < 90:
             raise sec.error("alpha_w_deg", "degrees in (0, 90)", repr(v))
         alpha_w.append(math.radians(v))
+    internal = sec.boolean("internal", False)
     designed = sec.has("ratio")
+    if designed and internal:
+        raise sec.error("ratio", "z1 and z2 for an internal pair (design from the ratio is for "
+                        "external pairs)", "ratio with internal = true")
     if designed:
         if sec.has("z1") or sec.has("z2"):
             raise sec.error("ratio", "either ratio (design) or z1 and z2, not both",
@@ -327,6 +332,9 @@ def _read_pair(sec):
         z1, z2 = design_teeth_from_ratio(ratio, a_w[0], ts.m)   # MeshError: exit 3
     else:
         z1, z2 = _teeth(sec, "z1"), _teeth(sec, "z2")
+        if internal and z2 <= z1:
+            raise sec.error("z2", f"more teeth than the pinion (z1 = {z1}) for a ring gear",
+                            repr(z2))
     x1, x2 = _shift(sec, "x1"), _shift(sec, "x2")
     rc = sec.boolean("require_continuous", False)
     fi = sec.boolean("forbid_interference", False)
@@ -336,23 +344,31 @@ def _read_pair(sec):
     from mechcli.core.gear_pair import centre_distance_from_pressure_angle, \
         zero_backlash_pressure_angle
     g1 = spur_gear(z1, ts.m, ts.alpha, ts.ha_star, ts.c_star, x1)
-    g2 = spur_gear(z2, ts.m, ts.alpha, ts.ha_star, ts.c_star, x2)
+    g2 = spur_gear(z2, ts.m, ts.alpha, ts.ha_star, ts.c_star, x2, internal)
     a0 = centre_distance_from_pressure_angle(g1, g2, zero_backlash_pressure_angle(g1, g2))
+    a_std = ts.m * (z2 - z1 if internal else z1 + z2) / 2
+    # external: a' >= a0 (smaller jams); internal: a cos(alpha) < a' <= a0 (larger jams)
     for i, a in enumerate(a_w):
-        if a < a0 * (1 - 1e-12):
-            key = "a_w" if len(a_w) == 1 else f"a_w[{i}]"
+        key = "a_w" if len(a_w) == 1 else f"a_w[{i}]"
+        if not internal and a < a0 * (1 - 1e-12):
             raise SpecError(sec.file, sec.key(key),
                             f"a centre distance >= {a0 / sec.unit:.6g} (zero backlash; "
                             "smaller jams the teeth)", f"{a / sec.unit:g}")
-    a_std = ts.m * (z1 + z2) / 2
+        if internal and not a_std * math.cos(ts.alpha) < a <= a0 * (1 + 1e-12):
+            raise SpecError(sec.file, sec.key(key),
+                            f"a centre distance in ({a_std * math.cos(ts.alpha) / sec.unit:.6g}, "
+                            f"{a0 / sec.unit:.6g}] for this internal pair (larger jams the teeth)",
+                            f"{a / sec.unit:g}")
     for i, aw in enumerate(alpha_w):
         a = a_std * math.cos(ts.alpha) / math.cos(aw)
-        if a < a0 * (1 - 1e-12):
+        if (a > a0 * (1 + 1e-12)) if internal else (a < a0 * (1 - 1e-12)):
             key = "alpha_w_deg" if len(alpha_w) == 1 else f"alpha_w_deg[{i}]"
             raise SpecError(sec.file, sec.key(key),
-                            f"an operating pressure angle giving a' >= {a0 / sec.unit:.6g}",
+                            f"an operating pressure angle giving a' {'<=' if internal else '>='} "
+                            f"{a0 / sec.unit:.6g}",
                             f"{math.degrees(aw):g} (a' = {a / sec.unit:.6g})")
-    return PairProblem(z1, z2, ts, x1, x2, a_w, tuple(alpha_w), designed, rc, fi, fp)
+    return PairProblem(z1, z2, ts, x1, x2, a_w, tuple(alpha_w), designed, rc, fi, fp,
+                       internal)
 
 
 def _read_generation(sec):

@@ -91,6 +91,9 @@ def test_book_start_outside_its_region_exits_3(tmp_path):
     ("[spur]\nz = 20\nm = 5\nalpa_deg = 20\n", "[spur] alpa_deg", "did you mean 'alpha_deg'"),
     ("[pair]\nz1 = 20\nz2 = 80\nm = 5\na_w = 245\n", "[pair] a_w", ">= 250"),
     ("[worm]\nz1 = 1\nz2 = 40\nd2 = 280\n", "[worm] q", "q or d1"),
+    ("[pair]\nz1 = 20\nz2 = 60\nm = 4\ninternal = true\na_w = 81\n", "[pair] a_w",
+     "for this internal pair"),
+    ("[pair]\nz1 = 20\nz2 = 15\nm = 4\ninternal = true\n", "[pair] z2", "more teeth"),
     ("[spur]\nz = 20\nm = 5\n[pair]\nz1 = 1\n", "", "exactly one problem table"),
     ("[spurr]\nz = 20\n", "spurr", "did you mean 'spur'"),
 ])

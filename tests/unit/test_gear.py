@@ -226,3 +226,44 @@ def test_involute_function_consistent_with_gear_thickness():
     a = math.acos(g.rb / r)
     assert g.half_tooth_angle(r) == pytest.approx(
         g.s / g.d + involute_function(A20) - involute_function(a), rel=1e-14)
+
+
+@pytest.mark.parametrize("x1, x2", [(0.0, 0.0), (0.3, 0.2), (-0.2, 0.5)])
+def test_internal_pair_zero_backlash_and_path_of_contact(x1, x2):
+    g1 = spur_gear(20, 4 * MM, A20, x=x1)
+    g2 = spur_gear(60, 4 * MM, A20, x=x2, internal=True)
+    assert g2.da < g2.d < g2.df
+    pr = gear_pair(g1, g2)
+    # the zero-backlash formula (signed z2) and the thickness formulas agree
+    assert abs(pr.backlash) < 1e-15
+    # for a ring, moving the pinion outwards closes the backlash: rate -2 tan(alpha')
+    h = 1e-7
+    closer = gear_pair(g1, g2, a_w=pr.a_w - h)
+    assert closer.backlash / h == pytest.approx(2 * math.tan(closer.alpha_w), rel=1e-5)
+    with pytest.raises(MeshError, match="jam"):
+        gear_pair(g1, g2, a_w=pr.a_w * (1 + 1e-9))
+    # epsilon from the path of contact: N1N2 + (pinion tip beyond N1) - (ring tip from N2)
+    path = (pr.a_w * math.sin(pr.alpha_w) + math.sqrt(g1.ra ** 2 - g1.rb ** 2)
+            - math.sqrt(g2.ra ** 2 - g2.rb ** 2))
+    assert pr.epsilon_alpha == pytest.approx(path / g1.pb, rel=1e-13)
+    # ring tooth + ring space = pitch, and the ring tooth widens outwards
+    r = np.linspace(g2.ra, g2.rf, 5)
+    assert_allclose(g2.tooth_thickness(r) + g2.space_width(r), 2 * np.pi * r / g2.z, rtol=1e-14)
+    assert np.all(np.diff(g2.tooth_thickness(r)) > 0)
+
+
+def test_internal_gear_needs_its_tip_outside_the_base_circle():
+    with pytest.raises(GearGeometryError, match="inside the base circle"):
+        spur_gear(30, 4 * MM, A20, internal=True)
+    spur_gear(34, 4 * MM, A20, internal=True)
+    with pytest.raises(MeshError, match="ring"):
+        gear_pair(spur_gear(40, 4 * MM, A20), spur_gear(40, 4 * MM, A20, internal=True))
+
+
+def test_ring_outline_radii():
+    from mechcli.core.gear_profile import ring_outline
+    g = spur_gear(60, 4 * MM, A20, internal=True)
+    out = ring_outline(g, 20)
+    r = np.hypot(out.x, out.y)
+    assert r.min() == pytest.approx(g.ra, rel=1e-12)
+    assert r.max() == pytest.approx(g.rf, rel=1e-12)
