@@ -107,7 +107,7 @@ def _follower_lines(cs, design, k):
             x0, y0 = fol.e / u, (fol.s0 + s) / u
             top = y0 + 0.8 * size
             if fol.contact == "roller":
-                lines.append(_circle(fol.rr / u, x0, y0, 91))
+                lines.extend(_roller(fol.rr / u, x0, y0, p.roller_angle[k]))
             lines.append((np.array([x0, x0]), np.array([y0, top])))
     else:
         th = fol.phi0 + s
@@ -115,8 +115,14 @@ def _follower_lines(cs, design, k):
         by = (fol.a - fol.l * math.cos(th)) / u
         lines.append((np.array([0.0, bx]), np.array([fol.a / u, by])))
         if fol.contact == "roller":
-            lines.append(_circle(fol.rr / u, bx, by, 91))
+            lines.extend(_roller(fol.rr / u, bx, by, p.roller_angle[k]))
     return lines
+
+
+def _roller(r, cx, cy, angle):
+    """Roller circle and a mark turning with it (the book's 滚子圆标线)."""
+    mark = (np.array([cx, cx + r * math.cos(-angle)]), np.array([cy, cy + r * math.sin(-angle)]))
+    return [_circle(r, cx, cy, 91), mark]
 
 
 def _outline(design):
@@ -195,11 +201,14 @@ def animate(cs, design, out, lang, fps=12):
     fig, (ax, axs) = plt.subplots(1, 2, figsize=(8, 4), dpi=72,
                                   gridspec_kw={"width_ratios": [1.2, 1]})
     reach = float(np.max(np.hypot(*p.work))) / u
-    if fol.motion == "oscillating":
-        reach = max(reach, (fol.a + fol.rr) / u)
-    top = reach + (0.9 * max(fol.r0, cs.stroke if not cs.angular else fol.l)) / u
-    ax.set_xlim(-1.15 * reach, 1.15 * reach)
-    ax.set_ylim(-1.15 * reach, max(top, 1.15 * reach))
+    pts = [np.concatenate([ln[0] for ln in _follower_lines(cs, design, k)]) for k in idx]
+    ys = [np.concatenate([ln[1] for ln in _follower_lines(cs, design, k)]) for k in idx]
+    xs_all, ys_all = np.concatenate(pts), np.concatenate(ys)
+    x0, x1 = min(-reach, xs_all.min()), max(reach, xs_all.max())
+    y0, y1 = min(-reach, ys_all.min()), max(reach, ys_all.max())
+    pad = 0.06 * max(x1 - x0, y1 - y0)
+    ax.set_xlim(x0 - pad, x1 + pad)
+    ax.set_ylim(y0 - pad, y1 + pad)
     ax.set_aspect("equal")
     ax.set_title(_title(cs, lang), fontsize=9)
     cam_line, = ax.plot([], [], "b", lw=1.5)
@@ -207,7 +216,7 @@ def animate(cs, design, out, lang, fps=12):
     ax.plot(base_x, base_y, color="g", lw=0.6)
     ax.plot([0], [0], "k+", ms=8)
     marker, = ax.plot([], [], "r.", ms=4)
-    foll = [ax.plot([], [], "k", lw=1.2)[0] for _ in range(2)]
+    foll = [ax.plot([], [], "k", lw=1.2)[0] for _ in range(3)]
     d = np.degrees(p.delta)
     y = np.degrees(p.s) if cs.angular else p.s / u
     axs.plot(d, y, lw=1.2)
@@ -225,7 +234,7 @@ def animate(cs, design, out, lang, fps=12):
         mx, my = wx[0], wy[0]
         marker.set_data([c * mx - s * my], [s * mx + c * my])
         lines = _follower_lines(cs, design, k)
-        for art, ln in zip(foll, lines + [(np.array([]), np.array([]))] * 2):
+        for art, ln in zip(foll, lines + [(np.array([]), np.array([]))] * 3):
             art.set_data(*ln)
         dot.set_data([d[k]], [y[k]])
         frames.append(canvas_frame(fig))
