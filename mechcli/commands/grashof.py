@@ -16,8 +16,8 @@ from mechcli.options import RunOptions, common_options
 @click.option("--offset", type=float, help="Slider offset e (quick form, slider-crank).")
 @click.option("--batch", type=click.Path(dir_okay=False), metavar="SETS.csv",
               help="Classify many four-bars: rows l1,l2,l3,l4[,frame[,input]] -> grashof.csv.")
-@click.option("--units", type=click.Choice(["mm", "cm", "m", "in"]), default="mm",
-              show_default=True, help="Length unit of --lengths and --batch.")
+@click.option("--units", type=click.Choice(["mm", "cm", "m", "in"]), default=None,
+              help="Length unit of --lengths and --batch [default: mm].")
 @common_options
 def grashof(spec_path, lengths, frame, input_link, offset, batch, units, **opts):
     """Four-bar type (Grashof) and inversions, θ, ψ, K, transmission angles and
@@ -25,6 +25,13 @@ def grashof(spec_path, lengths, frame, input_link, offset, batch, units, **opts)
     given = [x for x in (spec_path, lengths, batch) if x]
     if len(given) != 1:
         raise click.UsageError("give exactly one of SPEC.toml, --lengths or --batch")
+    quick = {"--frame": frame, "--input": input_link, "--offset": offset}
+    extra = [k for k, v in quick.items() if v is not None and not lengths] + \
+        (["--units"] if units and spec_path else [])
+    if extra:
+        raise click.UsageError(f"{', '.join(extra)}: only with "
+                               + ("--lengths" if extra != ["--units"] else "--lengths/--batch"))
+    units = units or "mm"
     stem = "grashof-batch" if batch else ("grashof" if lengths else None)
     run = RunOptions.from_click(spec_path or batch, opts, stem=stem)
     from mechcli.report import grashof as report
@@ -34,8 +41,6 @@ def grashof(spec_path, lengths, frame, input_link, offset, batch, units, **opts)
 
     outputs = Outputs(run.out_dir)
     if batch:
-        import numpy as np
-
         from mechcli.core.grashof import analyse_fourbar, closes
         bs = spec_mod.read_batch_csv(batch, units)
         ok = closes(bs.lengths)
@@ -43,7 +48,7 @@ def grashof(spec_path, lengths, frame, input_link, offset, batch, units, **opts)
         outputs.text("grashof.csv", report.fourbar_csv(an, bs.header.scale, ok))
         res = report.batch_results(an, ok)
         warns = [f"{res['cannot_close']} length sets cannot close (type cannot_close)"] \
-            if not np.all(ok) else []
+            if res["cannot_close"] else []
         finish(run, "grashof", report.batch_report(bs.header.title, run.lang, res), res,
                outputs, warns)
         return

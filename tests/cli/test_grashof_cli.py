@@ -138,9 +138,12 @@ def test_lengths_that_cannot_close_exit_3(tmp_path, args):
     assert "cannot" in one_line_error(proc)
 
 
-def test_needs_exactly_one_source(tmp_path):
+def test_needs_exactly_one_source_and_no_stray_options(tmp_path):
     assert run_cli("grashof", "--out", tmp_path).returncode == 2
     assert run_cli("grashof", EX31, "--lengths", "1,2,3,4", "--out", tmp_path).returncode == 2
+    for extra in (("--frame", "1"), ("--offset", "3"), ("--units", "cm")):
+        proc = run_cli("grashof", EX31, *extra, "--out", tmp_path)
+        assert proc.returncode == 2 and extra[0] in proc.stderr
 
 
 def test_mobility_from_a_kin_spec(tmp_path):
