@@ -300,6 +300,10 @@ def cam_profile(fol, program: MotionProgram, delta):
         return CamProfile(st.delta, s, s1, s2, s3, None, work, normal, alpha, None,
                           np.clip(rho, -cap, cap), None, sg * s1 - fol.e)
     speed = np.sqrt(_dot(V1, V1))
+    if not np.all(speed > 1e-12 * fol.r0):
+        at = math.degrees(float(np.asarray(delta, dtype=float)[np.argmin(speed)]))
+        raise CamGeometryError(f"the pitch curve has a cusp near {at:.4g} deg (the follower "
+                               "point moves with the cam): no normal, no profile")
     n_fixed = sg * _J(V1) / speed
     pitch = _rotate(P, rot)
     normal = _rotate(n_fixed, rot)

@@ -175,3 +175,39 @@ def test_ex7_2_config_text_output():
                    "/tmp/mechcli-test-ex7-2")
     assert proc.returncode == 0, proc.stderr
     assert "22.2077°" in proc.stdout and "39.2315°" in proc.stdout
+
+
+def test_oscillating_sizing_meets_the_limit(tmp_path):
+    spec = _spec(tmp_path, OSC.replace("r0 = 25\n", "") + "[limits]\nalpha_rise = 25\n"
+                 "[sizing]\nbase_radius = true\n")
+    doc = _json(run_cli("cam", spec, "--json", "--no-plot", "--out", tmp_path, "--step", "1"))
+    res = doc["results"]
+    assert 10 < res["r0_min"] < 110 and res["r0"] == pytest.approx(res["r0_min"])
+    assert res["alpha_rise_max_deg"] == pytest.approx(25.0, abs=1e-6)
+
+
+def test_flat_face_cusp_warns_then_exit_3(tmp_path):
+    text = """command = "cam"
+[follower]
+contact = "flat"
+r0 = 10
+[motion]
+h = 20
+segments = [
+  { kind = "rise", angle = 40, law = "cosine" },
+  { kind = "return", angle = 40, law = "cosine" },
+  { kind = "dwell", angle = 280 },
+]
+[sizing]
+"""
+    spec = _spec(tmp_path, text)
+    doc = _json(run_cli("cam", spec, "--json", "--no-plot", "--out", tmp_path))
+    res = doc["results"]
+    assert res["undercut"] is True and res["rho_work_min"] < 0
+    # hand calculation: max(-(s + s'')) at the end of the rise = -20 + pi^2*20/(2*(40 deg)^2)
+    assert res["r0_min"] == pytest.approx(-20 + math.pi ** 2 * 20 / (2 * math.radians(40) ** 2),
+                                          rel=1e-9)
+    assert any("cusp" in w for w in doc["warnings"])
+    proc = run_cli("cam", spec, "--no-plot", "--out", tmp_path, "--set",
+                   "limits.forbid_undercut=true")
+    assert proc.returncode == 3 and "r0 + s + s''" in proc.stderr
