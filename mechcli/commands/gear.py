@@ -20,11 +20,12 @@ def gear(spec_path, **opts):
     from mechcli.report.files import Outputs
     from mechcli.report.gear import PRESENTERS
     from mechcli.report.run import finish
-    from mechcli.spec.gear import read_gear_spec
+    from mechcli.spec.gear import enforce, read_gear_spec
 
     spec = read_gear_spec(spec_path, run.sets)
     solution = spec.problem.solve()
+    warnings = enforce(spec, solution)          # exit 3 on what the spec forbids
     outputs = Outputs(run.out_dir)
-    report, results, warnings = PRESENTERS[spec.kind](spec, solution, run, outputs)
+    report, results, more = PRESENTERS[spec.kind](spec, solution, run, outputs)
     results = {"kind": spec.kind, **results}
-    finish(run, "gear", report, results, outputs, warnings)
+    finish(run, "gear", report, results, outputs, warnings + more)

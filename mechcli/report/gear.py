@@ -1,7 +1,9 @@
 """Tables, results, CSV and pictures of ``mechcli gear`` (one function per problem kind).
 
 Every ``present_<kind>`` returns ``(report, results, warnings)`` after writing
-its CSV (and PNG/GIF when asked) into *outputs*.  Lengths are shown in the
+its CSV (and PNG/GIF when asked) into *outputs*.  The findings that a spec may
+forbid (ε < 1, interference, pointed tips, undercut) are checked before, by
+``mechcli.spec.gear.findings``.  Lengths are shown in the
 spec's unit, angles in degrees.
 """
 
@@ -11,12 +13,7 @@ import math
 
 import numpy as np
 
-from mechcli.core.errors import UnsolvableError
 from mechcli.report.table import Block, Report
-
-
-class GearRequirementError(UnsolvableError):
-    """The spec forbids what the geometry has (undercut, pointed tip, ε < 1, interference)."""
 
 
 def _t(lang, en, zh):
@@ -114,18 +111,6 @@ def present_spur(spec, sol, run, outputs):
     g, tooth, outline = sol["gear"], sol["tooth"], sol["outline"]
     warnings = []
     pointed = g.tooth_thickness(g.ra) <= 0
-    if pointed and p.forbid_pointed:
-        raise GearRequirementError(f"the tip is pointed: the flanks meet at r = "
-                                   f"{g.pointed_radius / sc:.4f} {u} < ra = {g.ra / sc:.4f} {u}")
-    if g.undercut and p.forbid_undercut:
-        raise GearRequirementError(f"z = {g.z} with x = {g.x:g} is undercut by the standard rack "
-                                   f"(z_min = {g.z_min:.2f}, x_min = {g.x_min:.4f})")
-    if pointed:
-        warnings.append(f"pointed tip: the flanks meet at r = {g.pointed_radius / sc:.4f} {u} "
-                        f"below ra = {g.ra / sc:.4f} {u}")
-    if g.undercut:
-        warnings.append(f"undercut: z = {g.z} < z_min = {g.z_min:.2f} with x = {g.x:g} < "
-                        f"x_min = {g.x_min:.4f}")
     s_a, s_b = g.tooth_thickness(g.ra), g.tooth_thickness(g.rb)
     L = lambda v: float(v / sc)  # noqa: E731
     results = {"z": g.z, "m": L(g.m), "alpha_deg": math.degrees(g.alpha), "x": g.x,
@@ -140,9 +125,6 @@ def present_spur(spec, sol, run, outputs):
                "undercut_fraction": tooth.undercut_fraction,
                "profile_points": int(outline.x.size)}
     for k, r in enumerate(p.radii):
-        if r < g.rb:
-            raise GearRequirementError(f"thickness_radii: r = {r / sc:g} {u} is inside the base "
-                                       f"circle rb = {g.rb / sc:.4f} {u} (no involute there)")
         results[f"s_r{k + 1}"] = L(g.tooth_thickness(r))
         results[f"e_r{k + 1}"] = L(g.space_width(r))
     f3 = lambda v: f"{v / sc:.3f}{u}"  # noqa: E731
@@ -203,13 +185,6 @@ def present_pair(spec, pairs, run, outputs):
                "alpha_a1_deg": math.degrees(g1.alpha_a),
                "alpha_a2_deg": math.degrees(g2.alpha_a),
                "a_zero_backlash": L(first.a_zero_backlash), "internal": g2.internal}
-    for i, g in enumerate((g1, g2)):
-        if g.tooth_thickness(g.ra) <= 0:
-            msg = (f"gear {i + 1} (z = {g.z}, x = {g.x:g}) has a pointed tip: the flanks meet at "
-                   f"r = {g.pointed_radius / sc:.4f} {u} below ra = {g.ra / sc:.4f} {u}")
-            if p.forbid_pointed:
-                raise GearRequirementError(msg)
-            warnings.append(msg)
     f3 = lambda v: f"{v / sc:.3f}{u}"  # noqa: E731
     blocks = []
     rows_csv = []
@@ -225,29 +200,6 @@ def present_pair(spec, pairs, run, outputs):
                         f"continuous{sfx}": eps >= 1})
         rows_csv.append([pr.a_w / sc, math.degrees(pr.alpha_w), pr.dw1 / sc, pr.dw2 / sc, eps,
                          pr.backlash / sc, cl[0] / sc, cl[1] / sc])
-        where = f"a' = {pr.a_w / sc:.3f} {u}"
-        if eps < 1:
-            msg = (f"{where}: contact ratio epsilon_alpha = {eps:.3f} < 1, the mesh is not "
-                   f"continuous (a' exceeds a = {pr.a / sc:.3f} {u} by "
-                   f"{(pr.a_w - pr.a) / sc:.3f} {u})")
-            if p.require_continuous:
-                raise GearRequirementError(msg)
-            warnings.append(msg)
-        if pr.interference:
-            msg = (f"{where}: interference — a tip passes the tangent point N of the line of "
-                   f"action (N1N2 = {pr.line_of_action / sc:.3f} {u})"
-                   + ("; the ring's tip meets the pinion below its base circle"
-                      if g2.internal else ""))
-            if p.forbid_interference:
-                raise GearRequirementError(msg)
-            warnings.append(msg)
-        for i, c in enumerate(cl):
-            if c < 0:
-                msg = f"{where}: tip of gear {i + 1} hits the root of the other (clearance " \
-                      f"{c / sc:.3f} {u})"
-                if p.forbid_interference:
-                    raise GearRequirementError(msg)
-                warnings.append(msg)
         rows = [
             ("standard centre distance", "标准中心距", "a", f3(pr.a)),
             ("operating centre distance", "实际中心距", "aT", f3(pr.a_w)),

@@ -12,6 +12,7 @@ from __future__ import annotations
 import dataclasses
 import math
 
+from mechcli.core.errors import UnsolvableError
 from mechcli.spec.common import Header, read_expected, read_header
 from mechcli.spec.errors import SpecError
 from mechcli.spec.reader import Section, load_spec
@@ -256,6 +257,64 @@ class GearSpec:
     expected: dict
 
 
+# -- what a spec may forbid ---------------------------------------------------------------
+class RequirementError(UnsolvableError):
+    """The spec forbids what the geometry has (ε < 1, interference, pointed tip, undercut)."""
+
+
+def findings(spec, solution):
+    """Warnings about the solution, each with whether the spec forbids it.
+
+    Returns
+    -------
+    list of (str, bool)
+        (one-line message in the spec's length unit, forbidden).
+    """
+    p, u, sc = spec.problem, spec.header.unit, spec.header.scale
+    out = []
+    if spec.kind == "spur":
+        g = solution["gear"]
+        if g.tooth_thickness(g.ra) <= 0:
+            out.append((f"pointed tip: the flanks meet at r = {g.pointed_radius / sc:.4f} {u} "
+                        f"below ra = {g.ra / sc:.4f} {u}", p.forbid_pointed))
+        if g.undercut:
+            out.append((f"undercut: z = {g.z} < z_min = {g.z_min:.2f} with x = {g.x:g} < "
+                        f"x_min = {g.x_min:.4f} (standard rack)", p.forbid_undercut))
+    elif spec.kind == "pair":
+        first = solution[0]
+        for i, g in enumerate((first.g1, first.g2)):
+            if g.tooth_thickness(g.ra) <= 0:
+                out.append((f"gear {i + 1} (z = {g.z}, x = {g.x:g}) has a pointed tip: the "
+                            f"flanks meet at r = {g.pointed_radius / sc:.4f} {u} below "
+                            f"ra = {g.ra / sc:.4f} {u}", p.forbid_pointed))
+        for pr in solution:
+            where = f"a' = {pr.a_w / sc:.3f} {u}"
+            eps = pr.epsilon_alpha
+            if eps < 1:
+                out.append((f"{where}: contact ratio epsilon_alpha = {eps:.3f} < 1, the mesh is "
+                            f"not continuous (a' differs from a = {pr.a / sc:.3f} {u} by "
+                            f"{(pr.a_w - pr.a) / sc:+.3f} {u})", p.require_continuous))
+            if pr.interference:
+                out.append((f"{where}: interference — a tip passes the tangent point N of the "
+                            f"line of action (N1N2 = {pr.line_of_action / sc:.3f} {u})"
+                            + ("; the ring's tip meets the pinion below its base circle"
+                               if pr.g2.internal else ""), p.forbid_interference))
+            for i, c in enumerate(pr.clearances):
+                if c < 0:
+                    out.append((f"{where}: tip of gear {i + 1} hits the root of the other "
+                                f"(clearance {c / sc:.3f} {u})", p.forbid_interference))
+    return out
+
+
+def enforce(spec, solution):
+    """Raise :class:`RequirementError` on the first forbidden finding; return all messages."""
+    found = findings(spec, solution)
+    for message, forbidden in found:
+        if forbidden:
+            raise RequirementError(message)
+    return [m for m, _ in found]
+
+
 # -- readers per kind -------------------------------------------------------------------
 def _read_involute(sec):
     rb = sec.length("rb")
@@ -302,6 +361,12 @@ def _read_spur(sec):
     root = sec.string("root", "generated", choices=["generated", "radial"])
     radii = _one_or_many(sec, "thickness_radii")
     radii = tuple(r * sec.unit for r in radii)
+    rb = ts.m * z * math.cos(ts.alpha) / 2
+    for i, r in enumerate(radii):
+        if r < rb:
+            key = "thickness_radii" if len(radii) == 1 else f"thickness_radii[{i}]"
+            raise SpecError(sec.file, sec.key(key), f"radii >= rb = {rb / sec.unit:.6g} "
+                            "(no involute inside the base circle)", f"{r / sec.unit:g}")
     fu = sec.boolean("forbid_undercut", False)
     fp = sec.boolean("forbid_pointed", False)
     return SpurProblem(z, ts, x, points, root, radii, fu, fp)

@@ -94,6 +94,8 @@ def test_book_start_outside_its_region_exits_3(tmp_path):
     ("[pair]\nz1 = 20\nz2 = 60\nm = 4\ninternal = true\na_w = 81\n", "[pair] a_w",
      "for this internal pair"),
     ("[pair]\nz1 = 20\nz2 = 15\nm = 4\ninternal = true\n", "[pair] z2", "more teeth"),
+    ("[spur]\nz = 20\nm = 5\nthickness_radii = [50, 40]\n", "[spur] thickness_radii[1]",
+     "radii >= rb"),
     ("[spur]\nz = 20\nm = 5\n[pair]\nz1 = 1\n", "", "exactly one problem table"),
     ("[spurr]\nz = 20\n", "spurr", "did you mean 'spur'"),
 ])
