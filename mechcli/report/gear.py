@@ -289,7 +289,7 @@ def present_generation(spec, sol, run, outputs):
             ("least shift against undercut (ha*)", "最小变位系数 (ha*)", "xmin", f"{g.x_min:.4f}"),
             ("least shift for this sharp cutter", "本刀具不根切最小变位系数", "xmin'", f"{x_rack:.4f}"),
         ], lang))
-        out = gear_outline(tooth, 60)
+        out = gear_outline(tooth, p.points)
         csv_cols[0].append(np.full(out.x.size, k + 1.0))
         csv_cols[1].append(out.x / sc)
         csv_cols[2].append(out.y / sc)

@@ -141,7 +141,7 @@ def _generation_axes(ax, tooth, phi, spec, lang, teeth, cutter=True):
             ax.fill(bx[k] / sc, by[k] / sc, color="white", zorder=0.5)
         cx, cy = cutter_positions(g, phi, teeth)
         ax.plot(cx.T / sc, cy.T / sc, "-", color="0.55", lw=0.4)
-    out = gear_outline(tooth, 60)
+    out = gear_outline(tooth, spec.problem.points)
     rot = -math.pi - math.pi / g.z   # a tooth space to -y, where the cutter is
     c, s = math.cos(rot), math.sin(rot)
     ax.plot((c * out.x - s * out.y) / sc, (s * out.x + c * out.y) / sc, "k-", lw=1.3)

@@ -180,6 +180,7 @@ class GenerationProblem:
     limit: float              # rad
     cutter_teeth: int
     animate: bool
+    points: int
 
     def solve(self):
         from mechcli.core.gear import spur_gear
@@ -452,11 +453,12 @@ def _read_generation(sec):
     limit = sec.number("limit_deg", 126.0, positive=True)
     teeth = sec.integer("cutter_teeth", 5, lo=1, hi=50)
     animate = sec.boolean("animate", False)
+    points = sec.integer("points", 60, lo=2, hi=100000)
     if limit / step > 5000:
         raise sec.error("step_deg", f"a step giving at most 5000 positions up to {limit:g}",
                         repr(step))
     return GenerationProblem(z, ts, tuple(shifts), math.radians(step), math.radians(limit),
-                             teeth, animate)
+                             teeth, animate, points)
 
 
 def _read_helical(sec):

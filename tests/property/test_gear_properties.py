@@ -93,3 +93,24 @@ def test_pair_at_the_edge_of_feasibility(z1, z2, x1, x2, alpha, stretch):
         assert "no contact" in str(exc)
         return
     assert 0 < pr.epsilon_alpha < 10 and math.isfinite(pr.backlash) and pr.backlash > 0
+
+
+@SET
+@given(st.integers(5, 120), st.integers(1, 200), shift, shift, angle, st.floats(0.0, 1.0))
+def test_internal_pair_edges(z1, extra, x1, x2, alpha, pull):
+    try:
+        g1 = spur_gear(z1, 0.002, alpha, x=x1)
+        g2 = spur_gear(z1 + extra, 0.002, alpha, x=x2, internal=True)
+        tight = gear_pair(g1, g2)
+    except (GearGeometryError, MeshError):
+        return
+    assert abs(tight.backlash) <= 1e-12 * g1.p
+    # towards the ring centre the backlash opens; epsilon stays finite or the mesh is refused
+    lo = tight.a * math.cos(alpha)
+    a_w = tight.a_w - pull * (tight.a_w - lo) * 0.999
+    try:
+        pr = gear_pair(g1, g2, a_w=a_w)
+    except MeshError as exc:
+        assert "no contact" in str(exc)
+        return
+    assert math.isfinite(pr.epsilon_alpha) and pr.backlash >= -1e-12 * g1.p
