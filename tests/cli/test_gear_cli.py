@@ -38,6 +38,27 @@ def test_example_5_4_listing_in_chinese(tmp_path):
         assert line in text
 
 
+BOOK_5_4 = [  # 【例 5-4】 四、运算结果, as printed (OCR "喷合角" is 啮合角)
+    ("标准中心距", "a = 250.000mm"), ("实际中心距", "aT = 255.000mm"),
+    ("小齿轮分度圆直径", "d1 = 100.000mm"), ("大齿轮分度圆直径", "d2 = 400.000mm"),
+    ("小齿轮基圆直径", "db1 = 93.969mm"), ("大齿轮基圆直径", "db2 = 375.877mm"),
+    ("小齿轮齿顶圆直径", "da1 = 110.000mm"), ("大齿轮齿顶圆直径", "da2 = 410.000mm"),
+    ("小齿轮齿根圆直径", "df1 = 87.500mm"), ("大齿轮齿根圆直径", "df2 = 387.500mm"),
+    ("小齿轮齿顶圆压力角", "alpha1 = 31.321°"), ("大齿轮齿顶圆压力角", "alpha2 = 23.541°"),
+    ("啮合角", "alpha = 22.888°"), ("重合度", "epsilon = 0.765"),
+]
+
+
+def test_example_5_4_listing_line_for_line(tmp_path):
+    proc = run_cli("gear", CH5 / "ex5-4.toml", "--lang", "zh", "--quiet", "--no-plot",
+                   "--out", tmp_path)
+    assert proc.returncode == 0
+    lines = (tmp_path / "report.txt").read_text(encoding="utf-8").splitlines()
+    start = lines.index("直齿圆柱齿轮几何尺寸")
+    got = [tuple(line.split(None, 1)) for line in lines[start + 1:start + 15]]
+    assert got == BOOK_5_4
+
+
 def test_require_continuous_mesh_exits_3(tmp_path):
     proc = run_cli("gear", CH5 / "ex5-4.toml", "--set", "pair.require_continuous=true",
                    "--no-plot", "--out", tmp_path)
