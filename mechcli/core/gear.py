@@ -41,6 +41,9 @@ class SpurGear:
     internal : bool
         An internal gear (ring): teeth point to the centre, tip circle
         d - 2 ha, root circle d + 2 hf.
+    tip_reduction : float
+        Addendum removed to keep the standard clearance in a shifted pair,
+        Δy m (m) (see :func:`mechcli.core.gear_pair.tip_shortened`).
     """
 
     z: int
@@ -50,6 +53,7 @@ class SpurGear:
     c_star: float = 0.25
     x: float = 0.0
     internal: bool = False
+    tip_reduction: float = 0.0
 
     @property
     def sign(self):
@@ -77,8 +81,8 @@ class SpurGear:
 
     @property
     def ha(self):
-        """Addendum (ha* + x) m (m); ha* m for the standard gear."""
-        return (self.ha_star + self.x) * self.m
+        """Addendum (ha* + x) m - Δy m (m); ha* m for the standard gear."""
+        return (self.ha_star + self.x) * self.m - self.tip_reduction
 
     @property
     def hf(self):

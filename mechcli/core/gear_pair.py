@@ -176,10 +176,42 @@ class GearPair:
                 - self.g2.tooth_thickness(rw2))
 
     @property
+    def y(self):
+        """Centre-distance modification coefficient (a' - a) / m."""
+        return (self.a_w - self.a) / self.g1.m
+
+    @property
+    def delta_y(self):
+        """Tip-shortening coefficient x1 + x2 - y (external pairs)."""
+        return self.g1.x + self.g2.x - self.y
+
+    @property
     def a_zero_backlash(self):
         """Centre distance of the zero-backlash mesh (m) (习题 5-3)."""
         return centre_distance_from_pressure_angle(
             self.g1, self.g2, zero_backlash_pressure_angle(self.g1, self.g2))
+
+
+def tip_shortened(pair):
+    """The pair with both tips shortened by Δy m to keep the standard clearance c* m.
+
+    y = (a' - a) / m, Δy = (x1 + x2) - y (表 of shifted gears; 0 for standard
+    gears at a' = a).  Only external pairs with Δy > 0 are changed.
+
+    Returns
+    -------
+    (GearPair, float)
+        The new pair and Δy.
+    """
+    g1, g2 = pair.g1, pair.g2
+    if g2.internal:
+        return pair, 0.0
+    dy = pair.delta_y
+    if dy <= 1e-12:
+        return pair, dy
+    cut = dy * g1.m
+    return (GearPair(dataclasses.replace(g1, tip_reduction=cut),
+                     dataclasses.replace(g2, tip_reduction=cut), pair.a_w, pair.alpha_w), dy)
 
 
 def gear_pair(g1: SpurGear, g2: SpurGear, a_w=None, alpha_w=None):

@@ -197,6 +197,7 @@ def present_pair(spec, pairs, run, outputs):
                         f"epsilon_alpha{sfx}": eps, f"backlash{sfx}": L(pr.backlash),
                         f"clearance1{sfx}": L(cl[0]), f"clearance2{sfx}": L(cl[1]),
                         f"interference{sfx}": pr.interference,
+                        f"y{sfx}": pr.y, f"delta_y{sfx}": pr.delta_y if not g2.internal else 0.0,
                         f"continuous{sfx}": eps >= 1})
         rows_csv.append([pr.a_w / sc, math.degrees(pr.alpha_w), pr.dw1 / sc, pr.dw2 / sc, eps,
                          pr.backlash / sc, cl[0] / sc, cl[1] / sc])
@@ -224,6 +225,9 @@ def present_pair(spec, pairs, run, outputs):
             ("backlash on the pitch circle", "齿侧间隙", "j", f3(pr.backlash)),
             ("tip clearances", "顶隙", "c1', c2'", f"{cl[0] / sc:.3f}{u}, {cl[1] / sc:.3f}{u}"),
             ("zero-backlash centre distance", "无侧隙中心距", "a0'", f3(pr.a_zero_backlash)),
+            ("centre-distance / tip-shortening coefficients", "中心距变动系数 / 齿顶高降低系数",
+             "y, Δy", f"{pr.y:.4f}, {pr.delta_y if not g2.internal else 0.0:.4f}"
+             + (" (tips shortened)" if p.tip_shortening and pr.delta_y > 1e-12 else "")),
             ("base pitches", "基圆齿距", "pb1, pb2", f"{g1.pb / sc:.3f}{u}, {g2.pb / sc:.3f}{u}"),
             ("ratio", "传动比", "i12", f"{pr.ratio:.4f}"),
         ]

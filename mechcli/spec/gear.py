@@ -155,6 +155,7 @@ class PairProblem:
     forbid_interference: bool
     forbid_pointed: bool
     internal: bool            # gear 2 is a ring gear
+    tip_shortening: bool      # shorten both tips by Δy m (shifted external pair)
 
     def solve(self):
         from mechcli.core.gear import spur_gear
@@ -166,6 +167,9 @@ class PairProblem:
         pairs += [gear_pair(g1, g2, alpha_w=aw) for aw in self.alpha_w]
         if not pairs:
             pairs = [gear_pair(g1, g2)]
+        if self.tip_shortening:
+            from mechcli.core.gear_pair import tip_shortened
+            pairs = [tip_shortened(pr)[0] for pr in pairs]
         return pairs
 
 
@@ -370,6 +374,10 @@ def _read_spur(sec):
                             "(no involute inside the base circle)", f"{r / sec.unit:g}")
     fu = sec.boolean("forbid_undercut", False)
     fp = sec.boolean("forbid_pointed", False)
+    ts_short = sec.boolean("tip_shortening", False)
+    if ts_short and (internal or len(a_w) + len(alpha_w) > 1):
+        raise sec.error("tip_shortening", "an external pair with one mounting",
+                        "internal = true" if internal else "several mountings")
     return SpurProblem(z, ts, x, points, root, radii, fu, fp)
 
 
@@ -405,6 +413,10 @@ def _read_pair(sec):
     rc = sec.boolean("require_continuous", False)
     fi = sec.boolean("forbid_interference", False)
     fp = sec.boolean("forbid_pointed", False)
+    ts_short = sec.boolean("tip_shortening", False)
+    if ts_short and (internal or len(a_w) + len(alpha_w) > 1):
+        raise sec.error("tip_shortening", "an external pair with one mounting",
+                        "internal = true" if internal else "several mountings")
     # a' must not be below the zero-backlash distance (the teeth would jam): exit 2
     from mechcli.core.gear import spur_gear
     from mechcli.core.gear_pair import centre_distance_from_pressure_angle, \
@@ -434,7 +446,7 @@ def _read_pair(sec):
                             f"{a0 / sec.unit:.6g}",
                             f"{math.degrees(aw):g} (a' = {a / sec.unit:.6g})")
     return PairProblem(z1, z2, ts, x1, x2, a_w, tuple(alpha_w), designed, rc, fi, fp,
-                       internal)
+                       internal, ts_short)
 
 
 def _read_generation(sec):

@@ -267,3 +267,19 @@ def test_ring_outline_radii():
     r = np.hypot(out.x, out.y)
     assert r.min() == pytest.approx(g.ra, rel=1e-12)
     assert r.max() == pytest.approx(g.rf, rel=1e-12)
+
+
+def test_tip_shortening_restores_the_standard_clearance():
+    from mechcli.core.gear_pair import tip_shortened
+    g1 = spur_gear(10, 10 * MM, A20, x=0.45)
+    g2 = spur_gear(12, 10 * MM, A20, x=0.31)
+    pr = gear_pair(g1, g2)
+    assert pr.delta_y > 0
+    short, dy = tip_shortened(pr)
+    assert dy == pytest.approx(pr.delta_y)
+    # a' - ra1 - rf2 = c* m once the tips lose delta_y m (independent of the shift values)
+    assert_allclose(short.clearances, [g1.c, g1.c], rtol=1e-12)
+    assert all(c < g1.c for c in pr.clearances)
+    # standard gears at a' = a: nothing to shorten
+    std = gear_pair(spur_gear(20, 5 * MM, A20), spur_gear(80, 5 * MM, A20))
+    assert tip_shortened(std)[0] is std
