@@ -91,7 +91,9 @@ def present_inverse_involute(spec, sol, run, outputs):
             [_t(lang, "in degrees, minutes, seconds", "转换成度分秒后的值"),
              _t(lang, f"α = {d} deg {mnt} min {sec} s  ({dms})", f"α = {d} 度 {mnt} 分 {sec} 秒")],
             [_t(lang, "Newton iterations", "迭代次数"),
-             f"{it} ({'book start 0.8, ε = 1e-7' if p.method == 'book' else 'auto start'})"],
+             f"{it} (" + (_t(lang, f"book start {p.start:g}, ε = {p.epsilon:g}",
+                             f"书中初值 {p.start:g}, ε = {p.epsilon:g}") if p.method == "book"
+                          else _t(lang, "auto start", "自动初值")) + ")"],
             [_t(lang, "residual inv(α) − θ", "残差"), f"{res:.3e}"],
         ]))
         if p.method == "book" and rel > 1e-6:

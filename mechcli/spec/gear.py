@@ -22,11 +22,9 @@ KINDS = ("involute", "inverse_involute", "spur", "pair", "generation", "helical"
 
 
 # -- shared readers ----------------------------------------------------------------
-def _teeth(sec: Section, name, default=None, lo=1):
-    """A tooth number: a positive integer (a float such as 20.5 or 0 is an error)."""
-    if default is None:
-        return sec.integer(name, lo=lo)
-    return sec.integer(name, default, lo=lo)
+def _teeth(sec: Section, name, lo=1, hi=10000):
+    """A tooth number: an integer in [1, 10000] (a float such as 20.5, or 0, is an error)."""
+    return sec.integer(name, lo=lo, hi=hi)
 
 
 def _pressure_angle(sec: Section, name="alpha_deg", default=20.0):

@@ -105,8 +105,8 @@ def test_book_start_outside_its_region_exits_3(tmp_path):
 
 
 @pytest.mark.parametrize("body, key, fragment", [
-    ("[spur]\nz = 20.5\nm = 5\n", "[spur] z", "an integer >= 1"),
-    ("[spur]\nz = 0\nm = 5\n", "[spur] z", "an integer >= 1"),
+    ("[spur]\nz = 20.5\nm = 5\n", "[spur] z", "an integer in [1, 10000]"),
+    ("[spur]\nz = 0\nm = 5\n", "[spur] z", "an integer in [1, 10000]"),
     ("[spur]\nz = 20\nm = -5\n", "[spur] m", "positive"),
     ("[spur]\nz = 20\nm = 5\nalpha_deg = 45\n", "[spur] alpha_deg", "(0, 45)"),
     ("[spur]\nz = 20\nm = 5\nalpa_deg = 20\n", "[spur] alpa_deg", "did you mean 'alpha_deg'"),
