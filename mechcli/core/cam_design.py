@@ -169,4 +169,5 @@ def design_cam(motion, contact, r0, follower_args, segments, stroke, *, angular=
     return CamDesign(fol, program, profile, checks, impacts, sizing, rr_max)
 
 
-__all__ = ["CamDesign", "CamSizing", "Impact", "design_cam"]
+__all__ = ["CamChecks", "CamDesign", "CamProfile", "CamSizing", "Impact", "MotionProgram",
+           "design_cam"]

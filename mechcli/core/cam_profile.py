@@ -30,7 +30,6 @@ import dataclasses
 import math
 
 import numpy as np
-from scipy.optimize import brentq
 
 from mechcli.core.cam_motion import MotionProgram
 from mechcli.core.errors import UnsolvableError
@@ -351,7 +350,7 @@ def maximize_on_pieces(program, pieces, func, step):
     Notes
     -----
     The coarse maximum is bracketed between its grid neighbours and the root
-    of dg/dδ found by Brent's method; a maximum at a piece end (one-sided,
+    of dg/dδ found by vectorized bracketing; a maximum at a piece end (one-sided,
     e.g. a kink) is taken as is.  This replaces the golden-section search of
     例 7-2 (whose tolerance is 1e-5 rad).
     """
@@ -382,11 +381,35 @@ def maximize_on_pieces(program, pieces, func, step):
     return best
 
 
+def _descending_root(f, lo, hi, n=64):
+    """Root of *f* in [lo, hi] where it changes from positive to negative.
+
+    Vectorized bracketing: each round evaluates *f* at n + 1 points and keeps
+    the first sub-interval with the sign change (a factor n per round) until the
+    bracket is a few doubles wide; the last step is a secant.  At a kink the
+    root is the kink.
+    """
+    for _ in range(20):
+        if hi - lo <= 4e-16 * max(1.0, abs(lo), abs(hi)):
+            break
+        x = np.linspace(lo, hi, n + 1)
+        y = f(x)
+        i = int(np.argmax((y[:-1] > 0) & (y[1:] <= 0)))
+        if not (y[i] > 0 >= y[i + 1]):
+            break
+        lo, hi = float(x[i]), float(x[i + 1])
+    y = f(np.array([lo, hi]))
+    ylo, yhi = float(y[0]), float(y[1])
+    if not (ylo > 0 >= yhi) or ylo == yhi:
+        return lo
+    return lo + (hi - lo) * ylo / (ylo - yhi)
+
+
 def _refine(program, k, func, grid, g, dg, i):
     """Refine the grid maximum *i* of piece *k* by a root of dg/dδ."""
 
     def slope(x):
-        return float(func(*program.piece_state(k, np.array([x])))[1][0])
+        return func(*program.piece_state(k, np.asarray(x, dtype=float)))[1]
 
     x_best, g_best = float(grid[i]), float(g[i])
     if dg[i] > 0 and i < len(grid) - 1:
@@ -398,7 +421,7 @@ def _refine(program, k, func, grid, g, dg, i):
     else:
         return x_best, g_best
     if dlo > 0 > dhi:
-        x = brentq(slope, lo, hi, xtol=1e-15, rtol=1e-15, maxiter=200)
+        x = _descending_root(slope, lo, hi)
         gx = float(func(*program.piece_state(k, np.array([x])))[0][0])
         if gx >= g_best:
             return x, gx
