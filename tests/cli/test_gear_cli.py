@@ -66,6 +66,15 @@ def test_require_continuous_mesh_exits_3(tmp_path):
     assert "epsilon_alpha = 0.765 < 1" in proc.stderr
 
 
+def test_forbidden_interference_exits_3(tmp_path):
+    ok = run_cli("gear", CH5 / "internal-pair.toml", "--json", "--no-plot", "--out", tmp_path)
+    assert ok.returncode == 0 and any("interference" in w for w in json.loads(ok.stdout)["warnings"])
+    proc = run_cli("gear", CH5 / "internal-pair.toml", "--set", "pair.forbid_interference=true",
+                   "--no-plot", "--out", tmp_path)
+    assert proc.returncode == 3
+    assert "interference" in proc.stderr and "below its base circle" in proc.stderr
+
+
 def test_table_5_1_files_and_layout(tmp_path):
     proc = run_cli("gear", CH5 / "ex5-1.toml", "--quiet", "--no-plot", "--lang", "zh",
                    "--set", "involute.digits=6", "--out", tmp_path)
