@@ -204,10 +204,10 @@ def test_example_7_2_max_pressure_angle():
 def test_refined_maximum_beats_dense_scan():
     fol = dataclasses.replace(OSC43, rotation=-1)
     ext = max_pressure_angle(fol, EX43, "return")
-    d = np.linspace(math.pi, 2 * math.pi, 2_000_001)
+    d = np.linspace(math.pi, 2 * math.pi, 200_001)
     scan = np.max(np.abs(cam_profile(fol, EX43, d).alpha))
     assert ext.value >= scan - 1e-15
-    assert ext.value - scan < 1e-11
+    assert ext.value - scan < 1e-9  # a scan of spacing h misses up to ~|α"| h²/8
 
 
 def test_flat_face_checks_hand_values():
@@ -297,11 +297,12 @@ def test_working_outline_at_corners_keeps_the_roller_distance(step):
     p = cam_profile(fol, prog, np.linspace(0, 2 * np.pi, int(round(360 / step)) + 1))
     ch = check_cam(fol, prog)
     out = working_outline(fol, prog, p, ch.corners)
-    dense = cam_profile(fol, prog, np.linspace(0, 2 * np.pi, 400001)).pitch
-    dist, _ = cKDTree(dense.T).query(out.T)
+    dense = cam_profile(fol, prog, np.linspace(0, 2 * np.pi, 200001)).pitch
+    tree = cKDTree(dense.T, balanced_tree=False, compact_nodes=False)  # fast on curves
+    dist, _ = tree.query(out.T)
     assert np.min(dist) > 10 * MM - 1e-7            # no gouging anywhere
     assert np.max(dist) < 10 * MM + 1e-6            # and touching everywhere
     # the untrimmed samples do gouge at the convex edge (that is why the loop is cut)
-    raw, _ = cKDTree(dense.T).query(p.work.T)
+    raw, _ = tree.query(p.work.T)
     assert np.min(raw) < 10 * MM - 1e-5
     np.testing.assert_allclose(out[:, 0], out[:, -1])
