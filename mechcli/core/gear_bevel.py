@@ -9,6 +9,8 @@ from __future__ import annotations
 import dataclasses
 import math
 
+from mechcli.core.errors import UnsolvableError
+
 
 @dataclasses.dataclass(frozen=True)
 class BevelPair:
@@ -93,6 +95,18 @@ class BevelPair:
 
 
 def bevel_pair(z1, z2, m, alpha, ha_star=1.0, c_star=0.2, sigma=math.pi / 2):
-    """Build a :class:`BevelPair` (习题 5-9)."""
-    return BevelPair(int(z1), int(z2), float(m), float(alpha), float(ha_star), float(c_star),
+    """Build a :class:`BevelPair` (习题 5-9).
+
+    Raises
+    ------
+    UnsolvableError
+        A pitch cone wider than 90 degrees (an internal bevel gear, not handled).
+    """
+    pair = BevelPair(int(z1), int(z2), float(m), float(alpha), float(ha_star), float(c_star),
                      float(sigma))
+    if max(pair.delta1, pair.delta2) >= math.pi / 2 - 1e-12:
+        raise UnsolvableError(
+            f"pitch-cone angles {math.degrees(pair.delta1):.3f}° and "
+            f"{math.degrees(pair.delta2):.3f}°: a cone of 90° or more is a crown or internal "
+            "bevel gear, which is not handled")
+    return pair

@@ -283,3 +283,12 @@ def test_tip_shortening_restores_the_standard_clearance():
     # standard gears at a' = a: nothing to shorten
     std = gear_pair(spur_gear(20, 5 * MM, A20), spur_gear(80, 5 * MM, A20))
     assert tip_shortened(std)[0] is std
+
+
+def test_bevel_with_a_cone_past_90_degrees_is_refused():
+    from mechcli.core.errors import UnsolvableError
+    with pytest.raises(UnsolvableError, match="crown or internal"):
+        bevel_pair(5, 7, 1 * MM, A20, sigma=math.radians(170))
+    b = bevel_pair(20, 40, 5 * MM, A20, sigma=math.radians(60))
+    assert b.delta1 + b.delta2 == pytest.approx(math.radians(60))
+    assert math.sin(b.delta1) / math.sin(b.delta2) == pytest.approx(20 / 40)
