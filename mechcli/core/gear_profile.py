@@ -129,7 +129,9 @@ def generated_tooth(g: SpurGear):
         if gap(hi) >= 0:
             raise GearGeometryError("the cutter removes the whole involute flank "
                                     f"(z = {g.z}, x = {g.x:g}): no involute is left")
-        r_form = brentq(gap, lo, hi, xtol=1e-15 * hi, rtol=4 * np.finfo(float).eps)
+        # at the threshold the crossing sits on the base circle (gap(rb) ~ 0 by rounding)
+        r_form = lo if gap(lo) <= 0 else brentq(gap, lo, hi, xtol=1e-15 * hi,
+                                                rtol=4 * np.finfo(float).eps)
         ta, tf = math.tan(math.acos(g.rb / g.ra)), math.tan(math.acos(g.rb / r_form))
         fraction = min(1.0, tf * tf / (ta * ta))
     else:
