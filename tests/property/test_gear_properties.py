@@ -114,3 +114,17 @@ def test_internal_pair_edges(z1, extra, x1, x2, alpha, pull):
         assert "no contact" in str(exc)
         return
     assert math.isfinite(pr.epsilon_alpha) and pr.backlash >= -1e-12 * g1.p
+
+
+@SET
+@given(st.integers(5, 40), angle, st.floats(-1e-6, 1e-6))
+def test_undercut_threshold_is_continuous(z, alpha, dx):
+    # the sharp cutter corner passes N exactly at x = ha* + c* - z sin^2(alpha) / 2
+    x = 1.25 - z * math.sin(alpha) ** 2 / 2 + dx
+    assume(-1.5 <= x <= 1.5)
+    try:
+        tooth = generated_tooth(spur_gear(z, 0.004, alpha, x=x))
+    except GearGeometryError:
+        return
+    assert tooth.undercut_fraction < 1e-4
+    assert abs(tooth.r_form - tooth.gear.rb) < 1e-6 * tooth.gear.rb
