@@ -61,7 +61,8 @@ LABELS = {
 
 
 def _f(x, nd=4):
-    return f"{x:.{nd}f}"
+    text = f"{x:.{nd}f}"
+    return text[1:] if text.startswith("-") and float(text) == 0 else text
 
 
 def _rho_text(x, cap):
@@ -232,7 +233,7 @@ def build_report(cs, design, lang="en"):
     else:
         kv.append([L["h"], f"{cs.stroke / u:.4f} {unit}"])
     for key, ext in (("a_rise", ch.alpha_rise), ("a_ret", ch.alpha_return)):
-        if ext is not None:
+        if ext is not None and fol.contact != "flat":
             kv.append([L[key], f"{deg(ext.value):.4f}°  ({L['at']} {_angle(ext.delta):.4f}°)"])
     if ch.rho_pitch_min is not None:
         kv.append([L["rho_p"], f"{ch.rho_pitch_min.value / u:.4f} {unit}  "
