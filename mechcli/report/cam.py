@@ -272,6 +272,6 @@ def cam_report(run, cs, design):
         if run.plot and cs.plot:
             cam_plots.plot_all(cs, design, out, used)
         if animate:
-            cam_plots.animate(cs, design, out, used)
+            cam_plots.animate(cs, design, out, used, progress=run.show_table)
     finish(run, "cam", build_report(cs, design, run.lang), results_dict(cs, design), out,
            warnings)

@@ -193,8 +193,11 @@ def plot_all(cs, design, out, lang):
     plot_checks(cs, design, out, lang)
 
 
-def animate(cs, design, out, lang, fps=12):
-    """``cam.gif``: the cam turning and the follower moving (the book's 运动仿真)."""
+def animate(cs, design, out, lang, fps=12, progress=False):
+    """``cam.gif``: the cam turning and the follower moving (the book's 运动仿真).
+
+    With *progress*, a rich progress bar on stderr counts the frames.
+    """
     p, fol, unit, u = design.profile, design.follower, cs.header.unit, cs.header.scale
     n = len(p.delta) - 1
     idx = np.unique(np.round(np.linspace(0, n, cs.frames, endpoint=False)).astype(int))
@@ -226,7 +229,14 @@ def animate(cs, design, out, lang, fps=12):
     axs.set_ylabel(_t(lang, "psi" if cs.angular else "s", unit))
     outline = _outline(design) / u
     frames = []
-    for k in idx:
+    steps = idx
+    if progress:
+        from rich.console import Console
+        from rich.progress import track
+
+        steps = track(idx, description="cam.gif", console=Console(stderr=True),
+                      transient=True)
+    for k in steps:
         ang = fol.rotation * p.delta[k]
         c, s = math.cos(ang), math.sin(ang)
         wx, wy = outline
