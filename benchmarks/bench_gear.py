@@ -83,7 +83,8 @@ def inverse():
     t0 = time.perf_counter()
     for _ in range(20):
         inverse_involute(theta)
-    print(f"inverse_auto_time_per_value: {(time.perf_counter() - t0) / 20 / theta.size * 1e9:.3g} ns")
+    per = (time.perf_counter() - t0) / 20 / theta.size
+    print(f"inverse_auto_time_per_value: {per * 1e9:.3g} ns")
 
 
 def speed(runs):
@@ -106,7 +107,8 @@ def speed(runs):
                 spec = read_gear_spec(ROOT / f"configs/ch5/{name}.toml")
                 sol = spec.problem.solve()
                 PRESENTERS[spec.kind](spec, sol, run, Outputs(tmp))
-            print(f"in_process_{name}_spec_solve_report: {(time.process_time() - t0) / 20 * 1e3:.3g} ms")
+            ms = (time.process_time() - t0) / 20 * 1e3
+            print(f"in_process_{name}_spec_solve_report: {ms:.3g} ms")
 
 
 def main():

@@ -40,8 +40,10 @@ def plot_involute(sol, spec, run, outputs):
 
 
 def _gear_axes(ax, g, sc, lang, centre=(0.0, 0.0), legend=True):
-    for r, style, en, zh in ((g.ra, "r:", "tip circle", "齿顶圆"), (g.r, "g-.", "reference circle", "分度圆"),
-                             (g.rb, "c--", "base circle", "基圆"), (g.rf, "b:", "root circle", "齿根圆")):
+    for r, style, en, zh in ((g.ra, "r:", "tip circle", "齿顶圆"),
+                             (g.r, "g-.", "reference circle", "分度圆"),
+                             (g.rb, "c--", "base circle", "基圆"),
+                             (g.rf, "b:", "root circle", "齿根圆")):
         _circle(ax, r / sc, style, _t(lang, en, zh) if legend else None, centre=centre)
 
 
@@ -152,7 +154,8 @@ def _generation_axes(ax, tooth, phi, spec, lang, teeth, cutter=True):
     ax.set_aspect("equal")
     ax.set_xlabel(f"x ({u})")
     ax.set_ylabel(f"y ({u})")
-    ax.set_title(_t(lang, f"m = {g.m / sc:g}, z = {g.z}, α = {math.degrees(g.alpha):g}°, x = {g.x:g}"
+    ax.set_title(_t(lang, f"m = {g.m / sc:g}, z = {g.z}, α = {math.degrees(g.alpha):g}°, "
+                    f"x = {g.x:g}"
                     + (f": {100 * tooth.undercut_fraction:.1f}% of the involute cut away"
                        if tooth.undercut else ": no undercut"),
                     f"m={g.m / sc:g}, z={g.z}, α={math.degrees(g.alpha):g}°, x={g.x:g}"

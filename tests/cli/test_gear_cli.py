@@ -68,7 +68,8 @@ def test_require_continuous_mesh_exits_3(tmp_path):
 
 def test_forbidden_interference_exits_3(tmp_path):
     ok = run_cli("gear", CH5 / "internal-pair.toml", "--json", "--no-plot", "--out", tmp_path)
-    assert ok.returncode == 0 and any("interference" in w for w in json.loads(ok.stdout)["warnings"])
+    assert ok.returncode == 0
+    assert any("interference" in w for w in json.loads(ok.stdout)["warnings"])
     proc = run_cli("gear", CH5 / "internal-pair.toml", "--set", "pair.forbid_interference=true",
                    "--no-plot", "--out", tmp_path)
     assert proc.returncode == 3

@@ -151,7 +151,8 @@ def test_undercut_measure_and_its_cure():
     t0 = generated_tooth(g)
     assert t0.undercut and t0.r_form > g.rb
     assert 0.04 < t0.undercut_fraction < 0.06
-    # the sharp cutter corner sits (ha* + c* - x) m inside r: no undercut once it is <= r sin^2(alpha)
+    # the sharp cutter corner sits (ha* + c* - x) m inside r:
+    # no undercut once that is <= r sin^2(alpha)
     x_cure = 1.25 - 9 * math.sin(A20) ** 2 / 2
     assert generated_tooth(spur_gear(9, 10 * MM, A20, x=x_cure - 1e-3)).undercut
     t1 = generated_tooth(spur_gear(9, 10 * MM, A20, x=x_cure + 1e-3))
@@ -206,7 +207,8 @@ def test_helical_exercises():
     # transverse base pitch equals normal base pitch / cos(beta_b) (independent identity)
     beta_b = math.atan(math.tan(hp.beta) * math.cos(hp.alpha_t))
     pbt = math.pi * hp.mt * math.cos(hp.alpha_t)
-    assert pbt == pytest.approx(math.pi * hp.mn * math.cos(hp.alpha_n) / math.cos(beta_b), rel=1e-14)
+    pbn = math.pi * hp.mn * math.cos(hp.alpha_n)
+    assert pbt == pytest.approx(pbn / math.cos(beta_b), rel=1e-14)
 
 
 def test_worm_and_bevel():
