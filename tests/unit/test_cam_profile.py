@@ -306,3 +306,40 @@ def test_working_outline_at_corners_keeps_the_roller_distance(step):
     raw, _ = tree.query(p.work.T)
     assert np.min(raw) < 10 * MM - 1e-5
     np.testing.assert_allclose(out[:, 0], out[:, -1])
+
+
+def test_errata_book_program_cam1_return_slope():
+    """# ERRATA: cam1 (例 4-1) divides the return's ds/dδ by δ'0 once too often; with that
+    slope in eq. (4-3) the working curve is off by up to 1.705 mm (at δ ≈ 206.7°)."""
+    p = cam_profile(ROLLER41, EX41, DELTA)
+    d, e, s0, rr = DELTA, 15 * MM, ROLLER41.s0, 10 * MM
+    ret = (d > RAD(160)) & (d < RAD(250))
+    s1_book = np.where(ret, p.s1 / RAD(90), p.s1)
+    dx = (s1_book - e) * np.sin(d) + (s0 + p.s) * np.cos(d)
+    dy = (s1_book - e) * np.cos(d) - (s0 + p.s) * np.sin(d)
+    n = np.hypot(dx, dy)
+    book = np.stack([p.pitch[0] + rr * dy / n, p.pitch[1] - rr * dx / n])
+    dev = np.hypot(*(book - p.work))
+    assert np.max(dev[~ret]) < 1e-15                     # rise and dwells agree
+    assert np.max(dev) == pytest.approx(1.705 * MM, abs=5e-4 * MM)
+    assert math.degrees(d[np.argmax(dev)]) == pytest.approx(206.7, abs=0.05)
+
+
+def test_errata_book_program_cam3_roller_offset():
+    """# ERRATA: cam3 (例 4-3) moves the roller along (dy, dx)/|.|, not along the normal
+    (dy, -dx)/|.|: its 'working curve' passes within 0.003 mm of the roller-centre path
+    (it should stay 8 mm away) and is up to 16 mm (2 r_r) from the exact one."""
+    from scipy.spatial import cKDTree
+
+    p = cam_profile(OSC43, EX43, DELTA)
+    a, l, d = 60 * MM, 50 * MM, DELTA
+    th = d + p.s + OSC43.phi0
+    dx = a * np.cos(d) - l * (1 + p.s1) * np.cos(th)
+    dy = -a * np.sin(d) + l * (1 + p.s1) * np.sin(th)
+    n = np.hypot(dx, dy)
+    book = np.stack([p.pitch[0] + 8 * MM * dy / n, p.pitch[1] + 8 * MM * dx / n])
+    assert np.max(np.hypot(*(book - p.work))) == pytest.approx(16 * MM, rel=1e-6)
+    dense = cam_profile(OSC43, EX43, np.linspace(0, 2 * np.pi, 200001)).pitch
+    tree = cKDTree(dense.T, balanced_tree=False, compact_nodes=False)
+    assert tree.query(book.T)[0].min() < 0.01 * MM
+    assert tree.query(p.work.T)[0].min() == pytest.approx(8 * MM, abs=1e-7)
