@@ -120,3 +120,17 @@ def test_base_radius_barely_above_offset():
     assert p.alpha[0] == pytest.approx(-math.atan2(e, fol.s0), abs=1e-15)
     with pytest.raises(ValueError, match="offset"):
         dataclasses.replace(fol, r0=e)
+
+
+@SETTINGS
+@given(prog=programs(), margin=st.one_of(st.just(0.0), st.floats(1e-6, 0.01)))
+def test_flat_face_sizing_residual(prog, margin):
+    """With r0 = r0_min the smallest r0 + s + s'' is exactly the asked margin."""
+    from mechcli.core.cam_profile import size_flat_base_radius
+
+    r0 = size_flat_base_radius(prog, margin)
+    if r0 == 0.0:   # every r0 works (only possible with margin 0 and s + s'' >= 0)
+        return
+    ch = check_cam(Follower("translating", "flat", r0, 1), prog)
+    assert ch.rho_work_min.value == pytest.approx(margin, abs=1e-12 * max(1.0, r0 / 1e-3))
+    assert not ch.undercut or margin == 0.0
