@@ -211,3 +211,32 @@ segments = [
     proc = run_cli("cam", spec, "--no-plot", "--out", tmp_path, "--set",
                    "limits.forbid_undercut=true")
     assert proc.returncode == 3 and "r0 + s + s''" in proc.stderr
+
+
+def test_units_aliases_partial_lifts_and_points(tmp_path):
+    """Same cam in metres: lengths come back in metres, angles unchanged; law aliases,
+    partial lifts and sampling.points are accepted."""
+    mm = _json(run_cli("cam", _spec(tmp_path, BASE, "mm.toml"), "--json", "--no-plot",
+                       "--out", tmp_path / "a", "--step", "1"))["results"]
+    text = (BASE.replace('units = "mm"', 'units = "m"').replace("r0 = 40", "r0 = 0.04")
+            .replace("rr = 10", "rr = 0.01").replace("e = 15", "e = 0.015")
+            .replace("h = 60", "h = 0.06").replace('"cosine"', '"harmonic"')
+            + "[sampling]\npoints = 360\n")
+    m = _json(run_cli("cam", _spec(tmp_path, text, "m.toml"), "--json", "--no-plot",
+                      "--out", tmp_path / "b"))["results"]
+    assert m["n_points"] == 360 and m["units"] == "m"
+    assert m["alpha_return_max_deg"] == pytest.approx(mm["alpha_return_max_deg"], abs=1e-9)
+    assert m["rho_work_min"] == pytest.approx(mm["rho_work_min"] / 1000, rel=1e-9)
+    two_step = BASE.replace(
+        '{ kind = "rise", angle = 100, law = "parabolic" },\n  { kind = "dwell", angle = 60 },',
+        '{ kind = "rise", angle = 50, law = "cycloidal", lift = 20 },\n'
+        '  { kind = "dwell", angle = 20 },\n'
+        '  { kind = "rise", angle = 50, law = "3-4-5", lift = 40 },\n'
+        '  { kind = "dwell", angle = 40 },')
+    res = _json(run_cli("cam", _spec(tmp_path, two_step, "two.toml"), "--json", "--no-plot",
+                        "--out", tmp_path / "c", "--points", "720"))["results"]
+    assert res["n_points"] == 720 and res["n_rigid_impacts"] == 0
+    with open(tmp_path / "c" / "cam.csv", newline="") as fh:
+        rows = {round(float(r["delta_deg"]), 6): r for r in csv.DictReader(fh)}
+    assert float(rows[60.0]["s_mm"]) == pytest.approx(20.0, abs=1e-12)
+    assert float(rows[120.0]["s_mm"]) == pytest.approx(60.0, abs=1e-12)
