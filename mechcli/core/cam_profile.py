@@ -17,9 +17,10 @@ eq. (4-1) of the book; the working curve of a roller follower is the pitch
 curve moved by ``r_r`` along the inner normal (eq. 4-2 with the normal of eq.
 4-3).  Flat-faced follower: the contact point ``P = (σ s', r₀ + s)`` gives eq.
 (4-4).  Oscillating follower with pivot ``A = (0, a)`` and arm ``l``:
-``P = A + l (−σ sin θ, −cos θ)``, ``θ = φ₀ + φ`` gives eq. (4-5); φ₀ from the
-law of cosines (eq. 4-6).  A clockwise cam is the mirror image (x → −x) of the
-counter-clockwise one.  Pressure angle: angle between the profile normal at
+``P = A + l (−κ sin θ, −cos θ)``, ``θ = φ₀ + φ``, κ = +1 for the arm on the
+left (图 4-3) gives eq. (4-5); φ₀ from the law of cosines (eq. 4-6).  A
+clockwise cam with the arm on the right is the mirror image (x → −x) of the
+counter-clockwise one with the arm on the left.  Pressure angle: angle between the profile normal at
 the contact and the velocity of the follower point (eq. 7-14 for the
 translating follower).
 """
@@ -73,6 +74,11 @@ class Follower:
         Centre distance cam–pivot of an oscillating follower, m.
     l : float
         Arm length of an oscillating follower, m.
+    arm : int or None
+        Oscillating follower: +1 when the arm reaches from the pivot to the left
+        of the line pivot–cam centre (图 4-3), −1 to the right; None (default)
+        means the side that makes the follower swing out in the cam's sense of
+        rotation (left for a ccw cam as in 图 4-3, right for a cw cam).
     """
 
     motion: str
@@ -83,12 +89,15 @@ class Follower:
     rr: float = 0.0
     a: float = 0.0
     l: float = 0.0
+    arm: int | None = None
 
     def __post_init__(self):
         if self.motion not in FOLLOWER_MOTIONS or self.contact not in FOLLOWER_CONTACTS:
             raise ValueError(f"unknown follower {self.motion}/{self.contact}")
         if self.rotation not in (1, -1):
             raise ValueError("rotation must be +1 (ccw) or -1 (cw)")
+        if self.arm not in (None, 1, -1):
+            raise ValueError("arm must be +1 (left), -1 (right) or None")
         if not self.r0 > 0:
             raise ValueError("r0 must be positive")
         if self.motion == "translating" and self.contact != "flat" and abs(self.e) >= self.r0:
@@ -102,6 +111,11 @@ class Follower:
     @property
     def sigma(self):
         return self.rotation
+
+    @property
+    def arm_side(self):
+        """+1: oscillating arm left of the line pivot–cam centre, −1: right."""
+        return self.rotation if self.arm is None else self.arm
 
     @property
     def s0(self):
@@ -163,8 +177,9 @@ def follower_point(fol, s, s1, s2, s3):
         P = np.stack([z + fol.e, fol.s0 + s])
         return P, np.stack([z, s1]), np.stack([z, s2]), np.stack([z, s3]), d, np.stack([z, z])
     th = fol.phi0 + s
-    u = np.stack([-sg * np.sin(th), -np.cos(th)])
-    up = np.stack([-sg * np.cos(th), np.sin(th)])
+    side = fol.arm_side
+    u = np.stack([-side * np.sin(th), -np.cos(th)])
+    up = np.stack([-side * np.cos(th), np.sin(th)])
     P = np.stack([z, z + fol.a]) + fol.l * u
     P1 = fol.l * up * s1
     P2 = fol.l * (-u * s1 ** 2 + up * s2)

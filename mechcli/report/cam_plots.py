@@ -111,7 +111,7 @@ def _follower_lines(cs, design, k):
             lines.append((np.array([x0, x0]), np.array([y0, top])))
     else:
         th = fol.phi0 + s
-        bx = -fol.rotation * fol.l * math.sin(th) / u
+        bx = -fol.arm_side * fol.l * math.sin(th) / u
         by = (fol.a - fol.l * math.cos(th)) / u
         lines.append((np.array([0.0, bx]), np.array([fol.a / u, by])))
         if fol.contact == "roller":

@@ -189,6 +189,8 @@ def read_cam_spec(root, step_override=None, points_override=None):
     else:
         args["a"] = fol.length("a")
         args["l"] = fol.length("l")
+        if fol.has("arm"):
+            args["arm"] = 1 if fol.string("arm", choices=["left", "right"]) == "left" else -1
         a, l = args["a"], args["l"]
         if r0 is not None and not abs(a - l) < r0 < a + l:
             raise fol.error("r0", f"|a - l| < r0 < a + l (here {abs(a - l) / root.unit:g} "

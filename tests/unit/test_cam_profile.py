@@ -106,7 +106,8 @@ def _contact_distance(fol, prog, delta_probe, n=200001):
             centre = np.array([fol.e, fol.s0 + st.s[0]])
         else:
             th = fol.phi0 + st.s[0]
-            centre = np.array([-fol.rotation * fol.l * math.sin(th), fol.a - fol.l * math.cos(th)])
+            centre = np.array([-fol.arm_side * fol.l * math.sin(th),
+                               fol.a - fol.l * math.cos(th)])
         out.append(np.min(np.hypot(xy[0] - centre[0], xy[1] - centre[1])))
     return np.array(out)
 
@@ -343,3 +344,18 @@ def test_errata_book_program_cam3_roller_offset():
     tree = cKDTree(dense.T, balanced_tree=False, compact_nodes=False)
     assert tree.query(book.T)[0].min() < 0.01 * MM
     assert tree.query(p.work.T)[0].min() == pytest.approx(8 * MM, abs=1e-7)
+
+
+@pytest.mark.parametrize("rotation, arm, sign", [(1, 1, 1), (-1, -1, 1), (-1, 1, -1),
+                                                 (1, -1, -1)])
+def test_oscillating_arm_side_classical_formulas(rotation, arm, sign):
+    """Arm swinging with the cam: tan α = (l(1 + φ') − a cos θ)/(a sin θ); against it:
+    tan α = (l(1 − φ') − a cos θ)/(a sin θ)."""
+    fol = dataclasses.replace(OSC43, rotation=rotation, arm=arm)
+    p = cam_profile(fol, EX43, DELTA)
+    a, l = fol.a, fol.l
+    th = fol.phi0 + p.s
+    ref = np.arctan((l * (1 + sign * p.s1) - a * np.cos(th)) / (a * np.sin(th)))
+    np.testing.assert_allclose(np.abs(p.alpha), np.abs(ref), atol=1e-13)
+    dist = _contact_distance(fol, EX43, np.radians([30.0, 150.0, 250.0]), n=100001)
+    np.testing.assert_allclose(dist, fol.rr, atol=1e-7)
