@@ -82,11 +82,13 @@ def test_scale_invariance(prog, scale):
 
 @SETTINGS
 @given(prog=programs(angular=True), a=st.floats(0.02, 0.2), l_frac=st.floats(0.3, 1.5),
-       r_frac=st.floats(0.001, 0.999), rot=st.sampled_from([1, -1]))
-def test_oscillating_extremes(prog, a, l_frac, r_frac, rot):
+       r_frac=st.floats(0.001, 0.999), rot=st.sampled_from([1, -1]),
+       arm=st.sampled_from([None, 1, -1]))
+def test_oscillating_extremes(prog, a, l_frac, r_frac, rot, arm):
     l = a * l_frac
     r0 = abs(a - l) + r_frac * (a + l - abs(a - l))
-    fol = Follower("oscillating", "roller", r0, rot, rr=0.1 * r0, a=a, l=l)
+    fol = Follower("oscillating", "roller", r0, rot, rr=0.1 * r0, a=a, l=l, arm=arm)
+    sign = 1 if fol.arm_side == rot else -1   # arm swinging with / against the cam
     if fol.phi0 + prog.stroke >= math.pi:
         return  # the spec layer rejects it (tests/cli); nothing to compute
     p = cam_profile(fol, prog, np.linspace(0, 2 * np.pi, 361))
@@ -104,7 +106,7 @@ def test_oscillating_extremes(prog, a, l_frac, r_frac, rot):
              if prog.segments[i].kind == "rise" and d0 <= x <= d1)
     s, s1, _, _ = prog.piece_state(k, np.array([x]))
     th = fol.phi0 + s[0]
-    ref = math.atan((l * (1 + s1[0]) - a * math.cos(th)) / (a * math.sin(th)))
+    ref = math.atan((l * (1 + sign * s1[0]) - a * math.cos(th)) / (a * math.sin(th)))
     assert abs(ref) == pytest.approx(ch.alpha_rise.value, abs=1e-12)
 
 
