@@ -170,9 +170,8 @@ def test_swing_just_below_the_geometric_limit(tmp_path):
     assert any("exceeds" in w for w in doc["warnings"])
 
 
-def test_ex7_2_config_text_output():
-    proc = run_cli("cam", CONFIGS / "ch7" / "ex7-2.toml", "--no-plot", "--out",
-                   "/tmp/mechcli-test-ex7-2")
+def test_ex7_2_config_text_output(tmp_path):
+    proc = run_cli("cam", CONFIGS / "ch7" / "ex7-2.toml", "--no-plot", "--out", tmp_path)
     assert proc.returncode == 0, proc.stderr
     assert "22.2077°" in proc.stdout and "39.2315°" in proc.stdout
 
