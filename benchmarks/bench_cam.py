@@ -13,7 +13,8 @@ lines:
   coarse search;
 * ``rho_grid`` / ``rho_refined``: the same for the smallest radius of curvature;
 * ``time``: profile + all checks, median of repeated runs (compute only: no
-  spec reading, no files).
+  spec reading, no files); then everything ``mechcli cam`` computes at the
+  default step, and the wall time of a whole command-line run.
 
 Run: ``python benchmarks/bench_cam.py``.
 """
@@ -117,6 +118,25 @@ def bench_design():
           f"time: {np.median(times) * 1e3:.2f} ms")
 
 
+def bench_cli():
+    """Wall time of a whole ``mechcli cam`` run (start-up, spec, compute, CSV, report)."""
+    import subprocess
+    import tempfile
+
+    root = Path(__file__).resolve().parent.parent
+    spec = root / "configs" / "ch4" / "ex4-1.toml"
+    times = []
+    with tempfile.TemporaryDirectory() as out:
+        for _ in range(5):
+            t0 = time.perf_counter()
+            subprocess.run([sys.executable, "-m", "mechcli", "cam", str(spec), "--json",
+                            "--no-plot", "--out", out], check=True, capture_output=True,
+                           cwd=root)
+            times.append(time.perf_counter() - t0)
+    print(f"ex4-1 cli --no-plot wall time: {np.median(times) * 1e3:.0f} ms")
+
+
 if __name__ == "__main__":
     main()
     bench_design()
+    bench_cli()
