@@ -9,6 +9,8 @@ from __future__ import annotations
 import dataclasses
 import math
 
+import numpy as np
+
 from mechcli.core.errors import UnsolvableError
 from mechcli.core.gear import SpurGear
 from mechcli.core.involute import involute_function, inverse_involute
@@ -264,3 +266,73 @@ def gear_pair(g1: SpurGear, g2: SpurGear, a_w=None, alpha_w=None):
         raise MeshError(f"at a' = {pair.a_w:.6g} m the tip circles do not reach the line of "
                         f"action (epsilon_alpha = {pair.epsilon_alpha:.3g}): no contact")
     return pair
+
+
+@dataclasses.dataclass(frozen=True)
+class MeshPositions:
+    """Both gears turned through a mesh cycle, and their points of contact.
+
+    The pinion is centred at the origin (tooth 0 on +y at phi1 = 0) and turns
+    counter-clockwise, driving with the left-hand flanks of its teeth (those
+    at polar angle tooth centre + psi); the wheel is centred at (0, a') and
+    turns clockwise.  Contact points lie on
+    the line of action N1N2, where N1 = rb1 (sin a', cos a').
+
+    Attributes
+    ----------
+    phi1 : numpy.ndarray
+        Pinion angles (rad).
+    phi2 : numpy.ndarray
+        Wheel rotation angles to draw it with (rad, counter-clockwise from
+        tooth 0 on +y, the phase that brings the driven flanks into contact).
+    contact : list of numpy.ndarray
+        For each phi1, the contact points (k x 2, m); none when the mesh is
+        interrupted (epsilon_alpha < 1).
+    n1, n2 : numpy.ndarray
+        The tangent points N1, N2 (m).
+    """
+
+    phi1: np.ndarray
+    phi2: np.ndarray
+    contact: list
+    n1: np.ndarray
+    n2: np.ndarray
+
+
+def mesh_positions(pair: GearPair, phi1):
+    """Positions of an external pair through pinion angles *phi1* (rad), with contacts.
+
+    Notes
+    -----
+    The left flank of pinion tooth k touches the line of action at the
+    distance l_k = rb1 (a' + psi_b1 + 2 pi k / z1 + phi1) from N1 (psi_b1 = the
+    tooth half-angle at the base circle); contact is real between the wheel's
+    tip (l = N1N2 - sqrt(ra2^2 - rb2^2)) and the pinion's tip (l = sqrt(ra1^2 - rb1^2)),
+    so that on average epsilon_alpha points are in contact.
+    """
+    g1, g2 = pair.g1, pair.g2
+    if g2.internal:
+        raise ValueError("mesh_positions handles external pairs")
+    phi1 = np.atleast_1d(np.asarray(phi1, dtype=float))
+    aw = pair.alpha_w
+    n1n2 = pair.line_of_action
+    psi_b1, psi_b2 = float(g1.half_tooth_angle(g1.rb)), float(g2.half_tooth_angle(g2.rb))
+    # left flank of pinion tooth k (polar angle pi/2 + psi(rho)) touches N1N2 at l_k from N1
+    l0 = g1.rb * (aw + psi_b1)
+    # the wheel's flank (its polar angle centre + psi2) then touches at N1N2 - l from N2
+    phi2 = (n1n2 - l0) / g2.rb - math.pi - psi_b2 - aw - phi1 * g1.z / g2.z
+    foot = np.array([math.sin(aw), math.cos(aw)])
+    n1 = g1.rb * foot
+    n2 = np.array([0.0, pair.a_w]) - g2.rb * foot
+    direction = (n2 - n1) / n1n2
+    lo = n1n2 - math.sqrt(g2.ra ** 2 - g2.rb ** 2)
+    hi = math.sqrt(g1.ra ** 2 - g1.rb ** 2)
+    pb = g1.pb
+    contacts = []
+    for p in phi1:
+        base = l0 + g1.rb * p
+        k = np.arange(math.ceil((lo - base) / pb - 1e-12), math.floor((hi - base) / pb + 1e-12) + 1)
+        ell = base + k * pb
+        ell = ell[(ell >= max(lo, 0.0) - 1e-12) & (ell <= min(hi, n1n2) + 1e-12)]
+        contacts.append(n1[None, :] + ell[:, None] * direction[None, :])
+    return MeshPositions(phi1, phi2, contacts, n1, n2)

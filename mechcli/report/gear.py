@@ -245,9 +245,16 @@ def present_pair(spec, pairs, run, outputs):
     names = [f"a_w_{u}", "alpha_w_deg", f"dw1_{u}", f"dw2_{u}", "epsilon_alpha",
              f"backlash_{u}", f"clearance1_{u}", f"clearance2_{u}"]
     outputs.csv("gear.csv", list(zip(names, cols)))
-    if run.plot:
+    animate = p.animate if run.animate is None else run.animate
+    if animate and g2.internal:
+        warnings.append("no mesh animation for internal pairs (pair.png only)")
+        animate = False
+    if run.plot or animate:
         from mechcli.report import gear_plot
-        gear_plot.plot_pair(first, spec, run, outputs)
+        if run.plot:
+            gear_plot.plot_pair(first, spec, run, outputs)
+        if animate:
+            gear_plot.animate_pair(first, spec, run, outputs)
     return Report(spec.header.title, blocks), results, warnings
 
 

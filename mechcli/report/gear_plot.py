@@ -87,10 +87,14 @@ def plot_pair(pair, spec, run, outputs):
     o1 = gear_outline(generated_tooth(g1), 30)
     ax.fill(o1.x / sc, o1.y / sc, color="#c6dbef", zorder=0)
     ax.plot(o1.x / sc, o1.y / sc, "b-", lw=0.8)
+    contact = np.zeros((0, 2))
     if g2.internal:
         o2, c2, rot = ring_outline(g2, 30), -pair.a_w, math.pi / g2.z
     else:
-        o2, c2, rot = gear_outline(generated_tooth(g2), 30), pair.a_w, math.pi + math.pi / g2.z
+        from mechcli.core.gear_pair import mesh_positions
+        mesh = mesh_positions(pair, [0.0])
+        o2, c2, rot = gear_outline(generated_tooth(g2), 30), pair.a_w, float(mesh.phi2[0])
+        contact = mesh.contact[0]
     c, s = math.cos(rot), math.sin(rot)
     x2, y2 = (c * o2.x - s * o2.y) / sc, (s * o2.x + c * o2.y + c2) / sc
     if g2.internal:   # ring material between the outline and an outer rim
@@ -113,6 +117,9 @@ def plot_pair(pair, spec, run, outputs):
     ax.plot([n1[0] / sc, n2[0] / sc], [n1[1] / sc, n2[1] / sc], "m-", lw=1.0,
             label=_t(lang, "line of action N1N2", "理论啮合线 N1N2"))
     ax.plot([n1[0] / sc, n2[0] / sc], [n1[1] / sc, n2[1] / sc], "mo", ms=3)
+    if contact.size:
+        ax.plot(contact[:, 0] / sc, contact[:, 1] / sc, "ko", ms=5,
+                label=_t(lang, "points of contact", "啮合点"))
     rw1 = pair.dw1 / 2
     span = max(4 * g1.p, 1.2 * pair.line_of_action)
     ax.set_xlim(-span / sc, span / sc)
@@ -126,6 +133,53 @@ def plot_pair(pair, spec, run, outputs):
                     f"z1={g1.z}, z2={g2.z}{' (内齿轮)' if g2.internal else ''}, "
                     f"a'={pair.a_w / sc:g}{u}, 重合度 {pair.epsilon_alpha:.3f}"))
     plotting.save_png(fig, outputs, "pair.png")
+
+
+def animate_pair(pair, spec, run, outputs, frames_per_pitch=20, pitches=2):
+    """pair.gif: an external pair turning through *pitches* base pitches.
+
+    The pinion drives counter-clockwise; the points of contact (black) run
+    along N1N2.  With epsilon_alpha < 1 some frames have none and say so.
+    """
+    from mechcli.core.gear_pair import mesh_positions
+    from mechcli.core.gear_profile import gear_outline, generated_tooth
+
+    lang = plotting.setup(run.lang)
+    sc = spec.header.scale
+    g1, g2 = pair.g1, pair.g2
+    n = frames_per_pitch * pitches
+    mesh = mesh_positions(pair, np.arange(n) * (2 * math.pi / g1.z) / frames_per_pitch)
+    o1 = gear_outline(generated_tooth(g1), 30)
+    o2 = gear_outline(generated_tooth(g2), 30)
+    fig, ax = plt.subplots(figsize=(5.5, 5.5))
+    rw1 = pair.dw1 / 2
+    span = max(2.5 * g1.p, 0.8 * pair.contact_length)
+    ax.set_xlim(-span / sc, span / sc)
+    ax.set_ylim((rw1 - span) / sc, (rw1 + span) / sc)
+    ax.set_aspect("equal")
+    ax.plot([mesh.n1[0] / sc, mesh.n2[0] / sc], [mesh.n1[1] / sc, mesh.n2[1] / sc], "m-", lw=1)
+    p1, = ax.fill([0], [0], facecolor="#c6dbef", edgecolor="b", lw=0.8)
+    p2, = ax.fill([0], [0], facecolor="#fcbba1", edgecolor="r", lw=0.8)
+    dots, = ax.plot([], [], "ko", ms=5)
+    title = ax.set_title("")
+    frames = []
+    for k in range(n):
+        for poly, out, ang, centre in ((p1, o1, mesh.phi1[k], 0.0),
+                                       (p2, o2, mesh.phi2[k], pair.a_w)):
+            c, s = math.cos(ang), math.sin(ang)
+            poly.set_xy(np.column_stack([c * out.x - s * out.y,
+                                         s * out.x + c * out.y + centre]) / sc)
+        pts = mesh.contact[k]
+        dots.set_data(pts[:, 0] / sc, pts[:, 1] / sc)
+        count = len(pts)
+        title.set_text(_t(lang, f"ε_α = {pair.epsilon_alpha:.3f}: {count} pair(s) in contact"
+                          + (" — NO CONTACT" if count == 0 else ""),
+                          f"重合度 {pair.epsilon_alpha:.3f}: {count} 对齿啮合"
+                          + (" — 无啮合!" if count == 0 else "")))
+        title.set_color("red" if count == 0 else "black")
+        frames.append(plotting.canvas_frame(fig))
+    plt.close(fig)
+    plotting.save_gif(frames, outputs, "pair.gif", fps=10)
 
 
 def _generation_axes(ax, tooth, phi, spec, lang, teeth, cutter=True):

@@ -154,6 +154,7 @@ class PairProblem:
     forbid_pointed: bool
     internal: bool            # gear 2 is a ring gear
     tip_shortening: bool      # shorten both tips by Δy m (shifted external pair)
+    animate: bool             # pair.gif of the first mounting (external pairs)
 
     def solve(self):
         from mechcli.core.gear import spur_gear
@@ -373,6 +374,7 @@ def _read_spur(sec):
     fu = sec.boolean("forbid_undercut", False)
     fp = sec.boolean("forbid_pointed", False)
     ts_short = sec.boolean("tip_shortening", False)
+    animate = sec.boolean("animate", False)
     if ts_short and (internal or len(a_w) + len(alpha_w) > 1):
         raise sec.error("tip_shortening", "an external pair with one mounting",
                         "internal = true" if internal else "several mountings")
@@ -412,6 +414,7 @@ def _read_pair(sec):
     fi = sec.boolean("forbid_interference", False)
     fp = sec.boolean("forbid_pointed", False)
     ts_short = sec.boolean("tip_shortening", False)
+    animate = sec.boolean("animate", False)
     if ts_short and (internal or len(a_w) + len(alpha_w) > 1):
         raise sec.error("tip_shortening", "an external pair with one mounting",
                         "internal = true" if internal else "several mountings")
@@ -444,7 +447,7 @@ def _read_pair(sec):
                             f"{a0 / sec.unit:.6g}",
                             f"{math.degrees(aw):g} (a' = {a / sec.unit:.6g})")
     return PairProblem(z1, z2, ts, x1, x2, a_w, tuple(alpha_w), designed, rc, fi, fp,
-                       internal, ts_short)
+                       internal, ts_short, animate)
 
 
 def _read_generation(sec):

@@ -76,6 +76,13 @@ def test_forbidden_interference_exits_3(tmp_path):
     assert "interference" in proc.stderr and "below its base circle" in proc.stderr
 
 
+def test_pair_animation_shows_the_gap_in_contact(tmp_path):
+    proc = run_cli("gear", CH5 / "ex5-4.toml", "--quiet", "--animate", "--out", tmp_path)
+    assert proc.returncode == 0, proc.stderr
+    assert (tmp_path / "pair.gif").read_bytes()[:6] == b"GIF89a"
+    assert (tmp_path / "pair.png").stat().st_size > 10000
+
+
 def test_table_5_1_files_and_layout(tmp_path):
     proc = run_cli("gear", CH5 / "ex5-1.toml", "--quiet", "--no-plot", "--lang", "zh",
                    "--set", "involute.digits=6", "--out", tmp_path)

@@ -294,3 +294,25 @@ def test_bevel_with_a_cone_past_90_degrees_is_refused():
     b = bevel_pair(20, 40, 5 * MM, A20, sigma=math.radians(60))
     assert b.delta1 + b.delta2 == pytest.approx(math.radians(60))
     assert math.sin(b.delta1) / math.sin(b.delta2) == pytest.approx(20 / 40)
+
+
+@pytest.mark.parametrize("a_w, eps", [(0.250, 1.6913), (0.255, 0.7650)])
+def test_mesh_kinematics_reproduces_the_contact_ratio(a_w, eps):
+    # independent of the 表 5-2 formula: turn the gears, count the points of contact
+    from mechcli.core.gear_pair import mesh_positions
+    g1, g2 = spur_gear(20, 5 * MM, A20), spur_gear(80, 5 * MM, A20)
+    pr = gear_pair(g1, g2, a_w=a_w)
+    mesh = mesh_positions(pr, np.linspace(0, 2 * math.pi / 20, 2000, endpoint=False))
+    counts = np.array([len(c) for c in mesh.contact])
+    assert counts.mean() == pytest.approx(eps, abs=1e-3)
+    assert (counts == 0).any() == (eps < 1)
+    # every contact point lies on a pinion flank and on a wheel flank (within 1e-15 m)
+    for p1, p2, pts in zip(mesh.phi1[::97], mesh.phi2[::97], mesh.contact[::97]):
+        for centre, gear, turn, pt in [((0.0, 0.0), g1, p1, q) for q in pts] + \
+                                      [((0.0, a_w), g2, p2, q) for q in pts]:
+            d = pt - np.array(centre)
+            rho = math.hypot(*d)
+            rel = (math.atan2(d[1], d[0]) - math.pi / 2 - turn
+                   - float(gear.half_tooth_angle(rho))) % (2 * math.pi / gear.z)
+            rel = min(rel, 2 * math.pi / gear.z - rel)
+            assert rel * rho < 1e-15
