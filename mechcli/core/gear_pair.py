@@ -285,18 +285,31 @@ class MeshPositions:
     phi2 : numpy.ndarray
         Wheel rotation angles to draw it with (rad, counter-clockwise from
         tooth 0 on +y, the phase that brings the driven flanks into contact).
-    contact : list of numpy.ndarray
-        For each phi1, the contact points (k x 2, m); none when the mesh is
-        interrupted (epsilon_alpha < 1).
+    points : numpy.ndarray, shape (len(phi1), K, 2)
+        Candidate points on the line of action (m), one per pinion tooth
+        slot k; only those with ``in_contact`` are real.
+    in_contact : numpy.ndarray of bool, shape (len(phi1), K)
+        Which candidates lie on the path of contact; a row without any means
+        the mesh is interrupted (epsilon_alpha < 1).
     n1, n2 : numpy.ndarray
         The tangent points N1, N2 (m).
     """
 
     phi1: np.ndarray
     phi2: np.ndarray
-    contact: list
+    points: np.ndarray
+    in_contact: np.ndarray
     n1: np.ndarray
     n2: np.ndarray
+
+    @property
+    def count(self):
+        """Number of tooth pairs in contact at each position."""
+        return self.in_contact.sum(axis=1)
+
+    def contact(self, i):
+        """The points of contact at position *i* (k x 2, m)."""
+        return self.points[i][self.in_contact[i]]
 
 
 def mesh_positions(pair: GearPair, phi1):
@@ -328,11 +341,10 @@ def mesh_positions(pair: GearPair, phi1):
     lo = n1n2 - math.sqrt(g2.ra ** 2 - g2.rb ** 2)
     hi = math.sqrt(g1.ra ** 2 - g1.rb ** 2)
     pb = g1.pb
-    contacts = []
-    for p in phi1:
-        base = l0 + g1.rb * p
-        k = np.arange(math.ceil((lo - base) / pb - 1e-12), math.floor((hi - base) / pb + 1e-12) + 1)
-        ell = base + k * pb
-        ell = ell[(ell >= max(lo, 0.0) - 1e-12) & (ell <= min(hi, n1n2) + 1e-12)]
-        contacts.append(n1[None, :] + ell[:, None] * direction[None, :])
-    return MeshPositions(phi1, phi2, contacts, n1, n2)
+    base = l0 + g1.rb * phi1
+    k = np.arange(math.floor((lo - base.max()) / pb), math.ceil((hi - base.min()) / pb) + 1)
+    ell = base[:, None] + k[None, :] * pb
+    tol = 1e-12 * pb
+    valid = (ell >= max(lo, 0.0) - tol) & (ell <= min(hi, n1n2) + tol)
+    points = n1[None, None, :] + ell[:, :, None] * direction[None, None, :]
+    return MeshPositions(phi1, phi2, points, valid, n1, n2)

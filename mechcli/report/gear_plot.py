@@ -94,7 +94,7 @@ def plot_pair(pair, spec, run, outputs):
         from mechcli.core.gear_pair import mesh_positions
         mesh = mesh_positions(pair, [0.0])
         o2, c2, rot = gear_outline(generated_tooth(g2), 30), pair.a_w, float(mesh.phi2[0])
-        contact = mesh.contact[0]
+        contact = mesh.contact(0)
     c, s = math.cos(rot), math.sin(rot)
     x2, y2 = (c * o2.x - s * o2.y) / sc, (s * o2.x + c * o2.y + c2) / sc
     if g2.internal:   # ring material between the outline and an outer rim
@@ -169,7 +169,7 @@ def animate_pair(pair, spec, run, outputs, frames_per_pitch=20, pitches=2):
             c, s = math.cos(ang), math.sin(ang)
             poly.set_xy(np.column_stack([c * out.x - s * out.y,
                                          s * out.x + c * out.y + centre]) / sc)
-        pts = mesh.contact[k]
+        pts = mesh.contact(k)
         dots.set_data(pts[:, 0] / sc, pts[:, 1] / sc)
         count = len(pts)
         title.set_text(_t(lang, f"ε_α = {pair.epsilon_alpha:.3f}: {count} pair(s) in contact"
