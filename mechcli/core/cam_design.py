@@ -57,7 +57,8 @@ class CamDesign:
     sizing : CamSizing or None
     rr_max : float or None
         Largest roller radius without undercut (= smallest convex radius of
-        curvature of the pitch curve), m; None for a flat face.
+        curvature of the pitch curve; 0 when the pitch curve has a convex
+        corner), m; None for a flat face.
     """
 
     follower: Follower
@@ -157,6 +158,14 @@ def design_cam(motion, contact, r0, follower_args, segments, stroke, *, angular=
     delta = np.linspace(0.0, 2 * math.pi, n + 1)
     profile = cam_profile(fol, program, delta)
     checks = check_cam(fol, program, search)
+    if checks.distorted and forbid_undercut:
+        where = ", ".join(f"{math.degrees(d):.4g}" for d in checks.distorted)
+        raise UndercutError(
+            f"the follower cannot reproduce the velocity jump at {where} deg: "
+            + ("the roller rolls round the cam's sharp edge at the convex corner of the "
+               "pitch curve" if contact == "roller" else
+               "the flat face would need a cusp (r0 + s + s'' has a negative impulse)")
+            + "; use a law without velocity jumps")
     if checks.undercut and forbid_undercut:
         where = math.degrees(checks.rho_work_min.delta)
         raise UndercutError(
@@ -164,7 +173,9 @@ def design_cam(motion, contact, r0, follower_args, segments, stroke, *, angular=
             + ("r0 + s + s'' <= 0" if contact == "flat" else
                f"roller radius {fol.rr * 1e3:.6g} mm >= pitch-curve radius of curvature "
                f"{checks.rho_pitch_min.value * 1e3:.6g} mm"))
-    rr_max = None if contact == "flat" else checks.rho_pitch_min.value
+    # a convex pitch corner (velocity jump) has ρ = 0: no roller reproduces it
+    rr_max = None if contact == "flat" else (
+        0.0 if any(convex for _, convex in checks.corners) else checks.rho_pitch_min.value)
     impacts = tuple(i for i in program.impacts())
     return CamDesign(fol, program, profile, checks, impacts, sizing, rr_max)
 

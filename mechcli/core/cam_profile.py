@@ -476,6 +476,11 @@ class CamChecks:
         and whether the corner is convex.
     face_width_min : float or None
         Flat face: 2 max |contact offset from the follower axis|, m.
+    distorted : tuple of float
+        Cam angles (rad) of velocity jumps the follower cannot reproduce: a
+        roller at a convex pitch-curve corner (ρ = 0 < r_r: it rolls round the
+        cam's sharp edge instead), a flat face where ds/dδ drops (r0 + s + s''
+        has a negative impulse: a cusp).  Each makes ``undercut`` true.
     """
 
     alpha_rise: Extremum | None
@@ -485,6 +490,7 @@ class CamChecks:
     undercut: bool
     corners: tuple
     face_width_min: float | None
+    distorted: tuple = ()
 
 
 def _abs_alpha_func(fol, sign):
@@ -570,7 +576,15 @@ def check_cam(fol, program, step=math.radians(1.0)):
         rho_p = Extremum(x, 1.0 / kmax)
         rho_w = Extremum(x, rho_p.value - fol.rr)
         undercut = fol.contact == "roller" and rho_p.value <= fol.rr
-    return CamChecks(a_rise, a_ret, rho_p, rho_w, bool(undercut), _corners(fol, program), face)
+    corners = _corners(fol, program)
+    if fol.contact == "roller":
+        distorted = tuple(d for d, convex in corners if convex)
+    elif fol.contact == "flat":
+        distorted = tuple(i.delta for i in program.impacts() if i.kind == "rigid" and i.jump < 0)
+    else:
+        distorted = ()
+    return CamChecks(a_rise, a_ret, rho_p, rho_w, bool(undercut or distorted), corners, face,
+                     distorted)
 
 
 # --------------------------------------------------------------------------

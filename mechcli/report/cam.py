@@ -102,6 +102,7 @@ def results_dict(cs, design):
     if design.rr_max is not None:
         r["rr_max"] = design.rr_max / u
     r["undercut"] = ch.undercut
+    r["distorted_at_deg"] = [round(_angle(d), 9) for d in ch.distorted]
     if ch.face_width_min is not None:
         r["face_width_min"] = ch.face_width_min / u
     p = design.profile
@@ -132,7 +133,20 @@ def warnings_for(cs, design, lang="en"):
     u, unit = cs.header.scale, cs.header.unit
     out = []
     deg = math.degrees
-    if ch.undercut:
+    if ch.distorted:
+        where = ", ".join(f"{deg(d):.4g}°" for d in ch.distorted)
+        if fol.contact == "roller":
+            out.append(f"motion distortion at δ = {where}: the pitch curve has a convex corner "
+                       "(velocity jump) that no roller can follow; it rolls round the cam's "
+                       "sharp edge" if not zh else
+                       f"运动失真: δ = {where} 处理论廓线有外凸尖角 (速度突变), 滚子无法实现")
+        else:
+            out.append(f"motion distortion at δ = {where}: ds/dδ drops, the flat-faced cam "
+                       "would need a cusp" if not zh else
+                       f"运动失真: δ = {where} 处类速度突降, 平底推杆凸轮廓线出现尖点")
+    rho_cut = ((fol.contact == "flat" and ch.rho_work_min.value <= 0)
+               or (fol.contact == "roller" and ch.rho_pitch_min.value <= fol.rr))
+    if rho_cut:
         where = deg(ch.rho_work_min.delta)
         if fol.contact == "flat":
             out.append(f"the working profile has a cusp near δ = {where:.4g}° "

@@ -359,3 +359,28 @@ def test_oscillating_arm_side_classical_formulas(rotation, arm, sign):
     np.testing.assert_allclose(np.abs(p.alpha), np.abs(ref), atol=1e-13)
     dist = _contact_distance(fol, EX43, np.radians([30.0, 150.0, 250.0]), n=100001)
     np.testing.assert_allclose(dist, fol.rr, atol=1e-7)
+
+
+def test_velocity_jumps_the_follower_cannot_reproduce():
+    """Roller at a convex pitch corner (ρ = 0 < r_r) and flat face where ds/dδ drops:
+    motion distortion (undercut); a knife edge follows any corner."""
+    prog = build_program([("rise", RAD(120), "uniform", 20 * MM), ("dwell", RAD(60), None, 0),
+                          ("return", RAD(90), "uniform", 20 * MM),
+                          ("dwell", RAD(90), None, 0)], 20 * MM)
+    roller = check_cam(Follower("translating", "roller", 40 * MM, 1, rr=5 * MM), prog)
+    # convex corners where the pitch curve turns inwards: end of rise, start of return
+    assert [round(math.degrees(d), 9) for d in roller.distorted] == [120.0, 180.0]
+    assert roller.undercut and roller.rho_pitch_min.value > 5 * MM
+    flat = check_cam(Follower("translating", "flat", 40 * MM, 1), prog)
+    # ds/dδ drops at the end of the rise and at the start of the return
+    assert [round(math.degrees(d), 9) for d in flat.distorted] == [120.0, 180.0]
+    knife = check_cam(Follower("translating", "knife", 40 * MM, 1), prog)
+    assert knife.distorted == () and not knife.undercut
+    d = design_cam("translating", "roller", 40 * MM, {"rr": 5 * MM, "e": 0.0, "rotation": 1},
+                   [(s.kind, s.span, s.law, abs(s.lift)) for s in prog.segments], 20 * MM,
+                   step=RAD(1))
+    assert d.rr_max == 0.0
+    with pytest.raises(UndercutError, match="velocity jump at 120, 180 deg"):
+        design_cam("translating", "roller", 40 * MM, {"rr": 5 * MM, "e": 0.0, "rotation": 1},
+                   [(s.kind, s.span, s.law, abs(s.lift)) for s in prog.segments], 20 * MM,
+                   step=RAD(1), forbid_undercut=True)
