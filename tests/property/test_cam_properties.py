@@ -135,4 +135,5 @@ def test_flat_face_sizing_residual(prog, margin):
         return
     ch = check_cam(Follower("translating", "flat", r0, 1), prog)
     assert ch.rho_work_min.value == pytest.approx(margin, abs=1e-12 * max(1.0, r0 / 1e-3))
-    assert not ch.undercut or margin == 0.0
+    # (a drop of ds/dδ is a cusp whatever r0: that is reported as distortion)
+    assert not ch.undercut or margin == 0.0 or ch.distorted
