@@ -41,7 +41,7 @@ class Sizing:
         Find the smallest base radius (pressure angle for knife/roller,
         convexity ρ ≥ rho_min for the flat face).
     limit_return : bool
-        Also keep the return within ``alpha_return`` when sizing.
+        Also keep the return within ``alpha_return`` when sizing (default true).
     rho_min : float
         Flat face: smallest allowed radius of curvature of the working curve, m.
     round_up : float
@@ -170,7 +170,7 @@ def read_cam_spec(root, step_override=None, points_override=None):
     sizing = None
     if sz is not None:
         sizing = Sizing(base_radius=sz.boolean("base_radius", True),
-                        limit_return=sz.boolean("limit_return", False),
+                        limit_return=sz.boolean("limit_return", True),
                         rho_min=sz.length("rho_min", 0.0, nonneg=True),
                         round_up=sz.length("round_up", 0.0, nonneg=True))
         sz.finish()
