@@ -137,3 +137,21 @@ def test_flat_face_sizing_residual(prog, margin):
     assert ch.rho_work_min.value == pytest.approx(margin, abs=1e-12 * max(1.0, r0 / 1e-3))
     # (a drop of ds/dδ is a cusp whatever r0: that is reported as distortion)
     assert not ch.undercut or margin == 0.0 or ch.distorted
+
+
+@SETTINGS
+@given(prog=programs(), e_frac=st.floats(-1.0, 1.0), rot=st.sampled_from([1, -1]),
+       a_rise=st.floats(15, 60), a_ret=st.floats(30, 80))
+def test_translating_sizing_residual(prog, e_frac, rot, a_rise, a_ret):
+    """At r0_min the larger of (α_rise − [α], α_return − [α]') is zero."""
+    from mechcli.core.cam_profile import translating_base_radius_min
+
+    e = e_frac * prog.stroke
+    r0 = translating_base_radius_min(prog, e, rot, math.radians(a_rise), math.radians(a_ret))
+    if r0 <= abs(e) * (1 + 1e-9):   # the offset alone would decide: s0 = 0 is not a cam
+        return
+    fol = Follower("translating", "knife", r0, rot, e=e)
+    ch = check_cam(fol, prog)
+    excess = max(ch.alpha_rise.value - math.radians(a_rise),
+                 ch.alpha_return.value - math.radians(a_ret))
+    assert excess == pytest.approx(0.0, abs=1e-10)
