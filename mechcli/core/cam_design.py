@@ -73,7 +73,7 @@ class CamDesign:
 def _round_up(value, to):
     if to <= 0:
         return value
-    return math.ceil(value / to * (1 - 1e-12)) * to
+    return max(math.ceil(value / to * (1 - 1e-12)), 1) * to
 
 
 def design_cam(motion, contact, r0, follower_args, segments, stroke, *, angular=False,
@@ -145,6 +145,11 @@ def design_cam(motion, contact, r0, follower_args, segments, stroke, *, angular=
         if sizing is None:
             raise ValueError("r0 is required unless the base radius is sized")
         r0 = _round_up(sizing.r0_min, round_up)
+        floor = abs(follower_args.get("e", 0.0)) if contact != "flat" else 0.0
+        if r0 <= floor * (1 + 1e-12):
+            raise CamGeometryError(
+                "the limits do not bound the base radius from below (any r0 > "
+                f"{floor * 1e3:.6g} mm meets them); give r0, or round_up, or stricter limits")
         if contact == "roller" and follower_args["rr"] >= r0:
             raise CamGeometryError(
                 f"the sized base radius {r0 * 1e3:.6g} mm is not larger than the roller "

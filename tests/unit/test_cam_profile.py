@@ -384,3 +384,18 @@ def test_velocity_jumps_the_follower_cannot_reproduce():
         design_cam("translating", "roller", 40 * MM, {"rr": 5 * MM, "e": 0.0, "rotation": 1},
                    [(s.kind, s.span, s.law, abs(s.lift)) for s in prog.segments], 20 * MM,
                    step=RAD(1), forbid_undercut=True)
+
+
+def test_sizing_that_does_not_bound_r0_is_a_clear_error():
+    """Long cosine rise and return: s + s'' > 0 everywhere, so any r0 > 0 gives a convex
+    flat-faced cam; without r0 there is nothing to draw -> UnsolvableError, not a crash."""
+    from mechcli.core.cam_profile import CamGeometryError
+
+    segs = [("rise", RAD(180), "cosine", 20 * MM), ("return", RAD(180), "cosine", 20 * MM)]
+    assert size_flat_base_radius(build_program(segs, 20 * MM)) == 0.0
+    with pytest.raises(CamGeometryError, match="do not bound the base radius"):
+        design_cam("translating", "flat", None, {"e": 0.0, "rotation": 1}, segs, 20 * MM,
+                   step=RAD(1), size_base_radius=True)
+    d = design_cam("translating", "flat", None, {"e": 0.0, "rotation": 1}, segs, 20 * MM,
+                   step=RAD(1), size_base_radius=True, round_up=5 * MM)
+    assert d.follower.r0 == pytest.approx(5 * MM)
