@@ -145,6 +145,13 @@ def design_cam(motion, contact, r0, follower_args, segments, stroke, *, angular=
         if sizing is None:
             raise ValueError("r0 is required unless the base radius is sized")
         r0 = _round_up(sizing.r0_min, round_up)
+        if motion == "oscillating":
+            a, l = follower_args["a"], follower_args["l"]
+            if not abs(a - l) < r0 < a + l:
+                raise CamGeometryError(
+                    f"the rounded base radius {r0 * 1e3:.6g} mm is outside |a - l| < r0 < a + l "
+                    f"({abs(a - l) * 1e3:.6g} .. {(a + l) * 1e3:.6g} mm); use a smaller "
+                    "round_up")
         floor = abs(follower_args.get("e", 0.0)) if contact != "flat" else 0.0
         if r0 <= floor * (1 + 1e-12):
             raise CamGeometryError(
