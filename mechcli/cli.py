@@ -78,6 +78,15 @@ def _err(message):
     click.echo(f"mechcli: error: {message}", err=True)
 
 
+def _json_error(args, message, code):
+    """With --json, also put the error on stdout as a JSON document for scripts."""
+    if "--json" in args:
+        import json
+        command = next((a for a in args if a in COMMANDS), None)
+        click.echo(json.dumps({"command": command, "error": message, "exit_code": int(code)},
+                              ensure_ascii=False))
+
+
 def _traceback(show):
     if show:
         import traceback
@@ -99,10 +108,14 @@ def main(argv=None):
     except SpecError as exc:
         _traceback(show_tb)
         _err(exc.format())
+        _json_error(args, exc.format(), ExitStatus.BAD_SPEC)
         code = ExitStatus.BAD_SPEC
     except (UnsolvableError, ConvergenceError) as exc:
         _traceback(show_tb)
-        _err(str(exc))
+        spec = next((a for a in args if a.lower().endswith(".toml")), None)
+        message = f"{spec}: {exc}" if spec else str(exc)
+        _err(message)
+        _json_error(args, message, ExitStatus.UNSOLVABLE)
         code = ExitStatus.UNSOLVABLE
     except click.exceptions.Exit as exc:
         code = exc.exit_code

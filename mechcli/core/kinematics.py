@@ -13,7 +13,7 @@ primary one linearly: ``q_k = phase_k + ratio_k * q_1``.
 from __future__ import annotations
 
 import dataclasses
-from typing import Callable, Dict, Tuple
+from typing import Callable, Dict, Optional, Tuple
 
 import numpy as np
 
@@ -64,14 +64,16 @@ class Quantity:
     """One output quantity as a function of the solved motion.
 
     ``kind`` is one of ``angle`` [rad], ``angvel`` [rad/s], ``angacc``
-    [rad/s^2], ``length`` [m], ``velocity`` [m/s], ``acceleration`` [m/s^2],
-    ``ratio`` [-]; ``order`` the derivative order it needs.
+    [rad/s^2], ``length`` [m], ``velocity`` [m/s], ``acceleration`` [m/s^2];
+    ``order`` the derivative order it needs; ``rate`` (optional) its exact
+    time derivative, which needs ``order + 1`` (used to locate extremes).
     """
 
     symbol: str
     kind: str
     order: int
     get: Callable[[LinkageMotion], np.ndarray]
+    rate: Optional[Callable[[LinkageMotion], np.ndarray]] = None
 
     @property
     def is_angle(self):
@@ -80,8 +82,13 @@ class Quantity:
 
 @dataclasses.dataclass(frozen=True)
 class Extreme:
+    """An extreme ``value`` at input ``at`` [rad or m]; ``bounded`` is False for a
+    velocity or acceleration found at the edge of a gap (a dead point or an
+    assembly limit), where it grows without bound."""
+
     value: float
-    at: float  # input position [rad or m]
+    at: float
+    bounded: bool = True
 
 
 @dataclasses.dataclass(frozen=True)
@@ -103,17 +110,20 @@ class SweepResult:
     q : ndarray
         Input positions analysed.
     values : dict
-        ``symbol -> ndarray`` for every requested quantity (angles unwrapped).
+        ``symbol -> ndarray`` for every requested quantity (angles unwrapped,
+        continuously across 0°/360° where the analysed arc passes it).
     extremes : dict
         ``symbol -> (max Extreme, min Extreme)``.
     excluded : list of (float, float, str)
         Input intervals left out, with the reason (``cannot assemble`` or
         ``dead point``); boundaries refined by bisection.
     toggles : list of Toggle
-        Interior near-dead positions (local minima of sin(gamma) below
+        Near-dead positions (refined minima of sin(gamma) below
         ``NEAR_TOGGLE_SIN``) and the refined ends of excluded intervals.
     motion : LinkageMotion
         Engine output at ``q`` (for drawings and animations).
+    runs : list of (int, int)
+        Index ranges of ``q`` that are continuous arcs of the input.
     """
 
     q: np.ndarray
@@ -122,6 +132,7 @@ class SweepResult:
     excluded: list
     toggles: list
     motion: LinkageMotion
+    runs: list = dataclasses.field(default_factory=list)
 
 
 def default_quantities(linkage: Linkage, order: int, tracers=()):
@@ -129,20 +140,19 @@ def default_quantities(linkage: Linkage, order: int, tracers=()):
     slide s/v/a, the transmission angle of every RRR dyad, and x, y (vx, vy, ax,
     ay) of every tracer point.
     """
+    from mechcli.core.linkage import RPR
+
     out = []
     drivers = {d.link for d in linkage.drivers}
     translating = set(linkage.translating_links)
+    blocks = {el.block for el in linkage.elements if isinstance(el, RPR)}
     rotating = []
     for el in linkage.elements:
         if isinstance(el, (Crank, SliderDriver)):
             continue
         for link in _links_of(el):
-            if link not in drivers and link not in translating and link not in rotating:
+            if link not in drivers | translating | blocks and link not in rotating:
                 rotating.append(link)
-    # a block of an RPR turns with its guide: report the guide only
-    from mechcli.core.linkage import RPR
-    blocks = {el.block for el in linkage.elements if isinstance(el, RPR)}
-    rotating = [ln for ln in rotating if ln not in blocks]
     slides = _slide_names(linkage)
     # (symbol prefix, kind, attribute) per derivative order, for links, slides, points
     table = (
@@ -153,18 +163,23 @@ def default_quantities(linkage: Linkage, order: int, tracers=()):
         (("alpha", "angacc", "alpha"), ("a", "acceleration", "a"),
          (("ax", "acceleration", "ax"), ("ay", "acceleration", "ay"))),
     )
+
+    def getter(group, key, attr):
+        return lambda m: getattr(getattr(m, group)[key], attr)
+
     for k in range(order + 1):
         (lp, lkind, lattr), (sp, skind, sattr), pts = table[k]
+        nxt = table[k + 1] if k < 2 else None
         for n in sorted(rotating):
-            out.append(Quantity(f"{lp}{n}", lkind, k,
-                                lambda m, n=n, a=lattr: getattr(m.links[n], a)))
+            out.append(Quantity(f"{lp}{n}", lkind, k, getter("links", n, lattr),
+                                getter("links", n, nxt[0][2]) if nxt else None))
         for name in slides:
-            out.append(Quantity(f"{sp}{name}", skind, k,
-                                lambda m, n=name, a=sattr: getattr(m.slides[n], a)))
+            out.append(Quantity(f"{sp}{name}", skind, k, getter("slides", name, sattr),
+                                getter("slides", name, nxt[1][2]) if nxt else None))
         for tr in tracers:
-            for pp, pkind, pattr in pts:
-                out.append(Quantity(f"{pp}{tr}", pkind, k,
-                                    lambda m, n=tr, a=pattr: getattr(m.points[n], a)))
+            for j, (pp, pkind, pattr) in enumerate(pts):
+                out.append(Quantity(f"{pp}{tr}", pkind, k, getter("points", tr, pattr),
+                                    getter("points", tr, nxt[2][j][2]) if nxt else None))
         if k == 0:
             for el in linkage.elements:
                 if isinstance(el, RRR):
@@ -219,10 +234,13 @@ def _runs(mask):
     return list(zip(edges[0::2], edges[1::2]))
 
 
-def _bisect_boundaries(linkage, sweep, order, good_lo, bad_hi, iterations=60):
-    """Refine boundaries between a regular input ``good_lo`` and a bad ``bad_hi``."""
-    a = np.asarray(good_lo, dtype=float).copy()
-    b = np.asarray(bad_hi, dtype=float).copy()
+def _bisect_boundaries(linkage, sweep, order, good, bad, iterations=64):
+    """Refine boundaries between regular inputs ``good`` and irregular ``bad``.
+
+    Returns the last regular input of every pair (to ~1e-15 relative).
+    """
+    a = np.asarray(good, dtype=float).copy()
+    b = np.asarray(bad, dtype=float).copy()
     for _ in range(iterations):
         mid = 0.5 * (a + b)
         ok = solve(linkage, sweep.inputs(mid), order=order).regular
@@ -230,90 +248,242 @@ def _bisect_boundaries(linkage, sweep, order, good_lo, bad_hi, iterations=60):
         b = np.where(ok, b, mid)
         if np.all(np.abs(b - a) <= 1e-15 * np.maximum(1.0, np.abs(a))):
             break
-    return a, b
+    return a
 
 
 def _wrap(x):
     return (x + np.pi) % (2 * np.pi) - np.pi
 
 
-def refine_extremes(linkage, sweep, order, quantities, q, values, runs, iterations=48):
-    """Refine max and min of every quantity by bisection on its derivative's sign.
+class _Domain:
+    """The analysed input domain: continuous arcs (runs) of the grid ``q``, how
+    far each run really extends (refined assembly limits), and whether the
+    last run continues into the first one through a whole turn (periodic)."""
 
-    The derivative is a central difference of the exact solution with step
-    ``h = 1e-5`` of the input range scale, so the location error is about
-    ``h^2 * f'''/f''`` (~1e-10 rad); the value is evaluated exactly there.
+    def __init__(self, q, runs, lo_ext, hi_ext, connected, period, ends=None):
+        self.q, self.runs = q, runs
+        self.ends = ends if ends is not None else (q[0], q[-1])
+        self.lo_ext, self.hi_ext = lo_ext, hi_ext  # per run: input where it really ends
+        self.connected, self.period = connected, period
+
+    def is_gap_edge(self, b):
+        """Is input ``b`` the refined edge of a gap (not an end of the sweep)?"""
+        return self.ends[0] < b < self.ends[1]
+
+    def bracket(self, r, k, wraps=True):
+        """Input interval around grid index ``k`` of run ``r`` to search for an extreme.
+
+        ``wraps``: the quantity returns to its value after a whole turn, so the
+        search may continue through 360° = 0°.
+        """
+        q = self.q
+        i0, i1 = self.runs[r]
+        connected = self.connected and wraps
+        if k > i0:
+            lo = q[k - 1]
+        elif connected and r == 0:
+            j0, j1 = self.runs[-1]
+            lo = q[j1 - 2] - self.period if j1 - j0 > 1 else q[k]
+        else:
+            lo = self.lo_ext[r]
+        if k < i1 - 1:
+            hi = q[k + 1]
+        elif connected and r == len(self.runs) - 1:
+            j0, j1 = self.runs[0]
+            hi = q[j0 + 1] + self.period if j1 - j0 > 1 else q[k]
+        else:
+            hi = self.hi_ext[r]
+        return lo, hi
+
+
+def _derivative_probe(linkage, sweep, order, getters, x, h):
+    """Sign-carrying d/dq of every target at inputs ``x``.
+
+    ``getters[j]`` is ``(get, rate, is_angle)``: with an exact time rate the
+    derivative is ``rate / dq`` (one solve); otherwise a central difference
+    with step ``h`` (one-sided where a probe leaves the regular domain).
     """
-    span = float(np.ptp(q)) if q.size > 1 else 1.0
-    h = 1e-5 * max(span, 1e-12) / (2 * np.pi) if span > 0 else 1e-7
-    targets = []  # (symbol, sign, lo, hi, q_grid, v_grid, lo_bound, hi_bound)
-    out = {}
+    T = len(getters)
+    need_fd = [j for j, g in enumerate(getters) if g[1] is None or sweep.dq == 0]
+    probe = x
+    if need_fd:
+        probe = np.concatenate([x, x - h, x + h])
+    m = solve(linkage, sweep.inputs(probe), order=min(order + 1, 2))
+    out = np.zeros(T)
+    reg = m.regular
+    for j, (get, rate, is_angle) in enumerate(getters):
+        if rate is not None and sweep.dq != 0:
+            out[j] = rate(m)[j] / sweep.dq
+            continue
+        f = get(m)
+        f0, fm, fp = f[j], f[T + j], f[2 * T + j]
+        rm, rp = reg[T + j], reg[2 * T + j]
+        if rm and rp:
+            d = fp - fm
+        elif rp:
+            d = fp - f0
+        elif rm:
+            d = f0 - fm
+        else:
+            d = 0.0
+        out[j] = _wrap(d) if is_angle else d
+    return out, m
+
+
+def refine_extremes(linkage, sweep, order, quantities, values, domain, iterations=64,
+                    max_candidates=6):
+    """Max and min of every quantity, located to ~1e-10 rad of input.
+
+    Every local extremum of the grid within each run (the run ends included,
+    searched out to the refined assembly limits) is a candidate; each is
+    refined by bisection on the sign of the exact derivative (the next-order
+    quantity of the engine), or of a central difference (h = 1e-5 rad) for
+    quantities without one; the best refined value wins, reported with the
+    input where it was evaluated.
+    """
+    q = domain.q
+    span = float(q[-1] - q[0]) if q.size > 1 else 1.0
+    rotary = any(isinstance(d, Crank) and d.link == sweep.driver for d in linkage.drivers)
+    h = 1e-5 if rotary else 1e-5 * max(abs(span), 1e-12)
+    targets = []  # (symbol index, sign, run, k)
+    for qi, qt in enumerate(quantities):
+        v = values[qt.symbol]
+        for sign in (1.0, -1.0):
+            cands = []
+            for r, (i0, i1) in enumerate(domain.runs):
+                w = sign * v[i0:i1]
+                n = w.size
+                if n == 1:
+                    cands.append((w[0], r, i0))
+                    continue
+                left = np.concatenate(([-np.inf], w[:-1]))
+                right = np.concatenate((w[1:], [-np.inf]))
+                for k in np.flatnonzero((w >= left) & (w >= right)):
+                    cands.append((w[k], r, i0 + int(k)))
+            cands.sort(key=lambda c: -c[0])
+            for _val, r, k in cands[:max_candidates]:
+                targets.append((qi, sign, r, k))
+    if not targets:
+        return {}
+    lo = np.empty(len(targets))
+    hi = np.empty(len(targets))
+    wraps = {}
     for qt in quantities:
         v = values[qt.symbol]
-        res = []
-        for sign in (1.0, -1.0):
-            best = None
-            for (i0, i1) in runs:
-                seg = sign * v[i0:i1]
-                k = i0 + int(np.argmax(seg))
-                if best is None or sign * v[k] > sign * v[best[0]]:
-                    best = (k, i0, i1)
-            k, i0, i1 = best
-            n = q.size
-            # a quantity with a net change over a whole-turn sweep (a fully turning
-            # link's unwrapped angle) is not periodic: its extremes are the ends
-            returns = abs(v[-1] - v[0]) <= 1e-9 * max(1.0, float(np.max(np.abs(v))))
-            whole = sweep.periodic and returns and len(runs) == 1 and i0 == 0 and i1 == n
-            if whole:
-                lo = q[k - 1] if k > 0 else q[0] - (q[1] - q[0])
-                hi = q[k + 1] if k < n - 1 else q[-1] + (q[1] - q[0])
-            else:
-                if k == i0 or k == i1 - 1:
-                    res.append(Extreme(float(v[k]), float(q[k])))
-                    continue
-                lo, hi = q[k - 1], q[k + 1]
-            res.append(None)
-            targets.append((qt, sign, lo, hi, float(v[k]), len(res) - 1))
-        out[qt.symbol] = res
-    if targets:
-        lo = np.array([t[2] for t in targets], dtype=float)
-        hi = np.array([t[3] for t in targets], dtype=float)
-        for _ in range(iterations):
-            mid = 0.5 * (lo + hi)
-            probe = np.concatenate([mid - h, mid + h])
-            m = solve(linkage, sweep.inputs(probe), order=order)
-            T = len(targets)
-            g = np.empty(T)
-            for j, (qt, sign, *_rest) in enumerate(targets):
-                arr = qt.get(m)
-                dv = arr[T + j] - arr[j]
-                if qt.is_angle:
-                    dv = _wrap(dv)
-                g[j] = sign * dv
-            rising = g > 0
-            lo = np.where(rising, mid, lo)
-            hi = np.where(rising, hi, mid)
-            if np.all(hi - lo <= 1e-13):
-                break
-        at = 0.5 * (lo + hi)
-        m = solve(linkage, sweep.inputs(at), order=order)
-        for j, (qt, sign, _lo, _hi, vgrid, slot) in enumerate(targets):
+        wraps[qt.symbol] = abs(v[-1] - v[0]) <= 1e-9 * max(1.0, float(np.max(np.abs(v))))
+    for j, (qi, sign, r, k) in enumerate(targets):
+        lo[j], hi[j] = domain.bracket(r, k, wraps[quantities[qi].symbol])
+    getters = [(quantities[qi].get, quantities[qi].rate, quantities[qi].is_angle)
+               for qi, *_ in targets]
+    signs = np.array([t[1] for t in targets])
+    for _ in range(iterations):
+        mid = 0.5 * (lo + hi)
+        g, _m = _derivative_probe(linkage, sweep, order, getters, mid, h)
+        rising = signs * g > 0
+        lo = np.where(rising, mid, lo)
+        hi = np.where(rising, hi, mid)
+        if np.all(hi - lo <= 1e-13 * np.maximum(1.0, np.abs(lo))):
+            break
+    at = 0.5 * (lo + hi)
+    m = solve(linkage, sweep.inputs(at), order=order)
+    best = {}
+    for j, (qi, sign, r, k) in enumerate(targets):
+        qt = quantities[qi]
+        vgrid = float(values[qt.symbol][k])
+        cand = (vgrid, float(q[k]))
+        if m.regular[j]:
             val = float(qt.get(m)[j])
             if qt.is_angle:
                 val = vgrid + float(_wrap(val - vgrid))
-            # never report a refined extreme worse than the grid's
-            if sign * val < sign * vgrid:
-                val = vgrid
-            pos = float(at[j])
-            if sweep.periodic:
-                pos = q[0] + (pos - q[0]) % (q[-1] - q[0]) if q[-1] > q[0] else pos
-            out[qt.symbol][slot] = Extreme(val, pos)
-    return {k: (v[0], v[1]) for k, v in out.items()}
+            if sign * val >= sign * vgrid:
+                cand = (val, float(at[j]))
+        key = (qt.symbol, sign)
+        if key not in best or sign * cand[0] > sign * best[key][0]:
+            best[key] = cand
+    gap_edges = [b for r in range(len(domain.runs))
+                 for b in (domain.lo_ext[r], domain.hi_ext[r]) if domain.is_gap_edge(b)]
+    out = {}
+    for qt in quantities:
+        ext = []
+        for sign in (1.0, -1.0):
+            val, pos = best[(qt.symbol, sign)]
+            bounded = qt.order == 0 or not any(
+                abs(pos - b) <= 1e-7 * max(1.0, abs(b)) for b in gap_edges)
+            if sweep.periodic and domain.connected and wraps[qt.symbol]:
+                pos = _periodic(pos, domain.ends[0], domain.period)
+            ext.append(Extreme(val, float(pos), bounded))
+        out[qt.symbol] = (ext[0], ext[1])
+    return out
+
+
+def _scan_gaps(linkage, sweep, order, q, motion, runs):
+    """Find dead points and assembly gaps the grid stepped over, and near-toggles.
+
+    Every grid minimum of a dyad's sin(gamma) below ``NEAR_TOGGLE_SIN``
+    (run ends included) is refined by bisection on the sign of its central
+    difference.  Returns ``(toggles, gaps)``: refined near-dead positions that
+    are regular, and ``(bad input, grid index left, grid index right)`` of
+    refined minima that turned out not to be regular.
+    """
+    targets = []
+    for ci, c in enumerate(motion.conditions):
+        s = c.sin_gamma
+        for (i0, i1) in runs:
+            w = s[i0:i1]
+            if w.size < 2:
+                continue
+            left = np.concatenate(([np.inf], w[:-1]))
+            right = np.concatenate((w[1:], [np.inf]))
+            cand = (w <= left) & (w <= right) & (w < NEAR_TOGGLE_SIN)
+            # a run end next to a gap is not a toggle of its own: the gap's
+            # refined edges are reported instead
+            if i0 > 0:
+                cand[0] = False
+            if i1 < q.size:
+                cand[-1] = False
+            for k in np.flatnonzero(cand):
+                k = i0 + int(k)
+                targets.append((ci, k, q[max(k - 1, i0)], q[min(k + 1, i1 - 1)]))
+    if not targets:
+        return [], []
+    lo = np.array([t[2] for t in targets], dtype=float)
+    hi = np.array([t[3] for t in targets], dtype=float)
+    h = 1e-7 * max(1.0, float(np.max(np.abs(q))))
+    T = len(targets)
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        m = solve(linkage, sweep.inputs(np.concatenate([mid - h, mid + h])), order=0)
+        g = np.array([m.conditions[ci].sin_gamma[T + j] - m.conditions[ci].sin_gamma[j]
+                      for j, (ci, *_r) in enumerate(targets)])
+        falling = g < 0
+        lo = np.where(falling, mid, lo)
+        hi = np.where(falling, hi, mid)
+        if np.all(hi - lo <= 1e-14 * np.maximum(1.0, np.abs(lo))):
+            break
+    at = 0.5 * (lo + hi)
+    m = solve(linkage, sweep.inputs(at), order=order)
+    toggles, gaps = [], []
+    for j, (ci, k, _lo, _hi) in enumerate(targets):
+        c = m.conditions[ci]
+        if m.regular[j]:
+            toggles.append(Toggle(float(at[j]), c.joint, c.kind, float(c.sin_gamma[j])))
+        else:
+            gaps.append((float(at[j]), k))
+    return toggles, gaps
+
+
+#: the extremes and dead points are searched on a grid at least this fine
+#: (rotary input [rad]; linear inputs use span / 720), whatever the output step
+SEARCH_STEP = np.radians(0.5)
 
 
 def analyse_sweep(linkage: Linkage, sweep: Sweep, quantities, order: int,
                   partial: bool = False, extremes: bool = True) -> SweepResult:
     """Solve the linkage over a sweep and summarise it.
+
+    The analysis runs on the output grid merged with a search grid of at most
+    0.5° (``SEARCH_STEP``), so extremes, gaps and dead points do not depend
+    on the output step; the output rows are a subset of that grid.
 
     Parameters
     ----------
@@ -325,8 +495,10 @@ def analyse_sweep(linkage: Linkage, sweep: Sweep, quantities, order: int,
         Highest derivative needed (0, 1, 2).
     partial : bool
         False: any position that cannot assemble (or is a dead point) raises
-        :class:`AssemblyError` naming the intervals.  True: analyse only the
-        regular positions and report the excluded intervals.
+        :class:`AssemblyError` naming the intervals -- including gaps narrower
+        than the grid step, found by refining the minima of every dyad's
+        sin(gamma).  True: analyse only the regular positions and report the
+        excluded intervals.
     extremes : bool
         Refine max/min of every quantity.
 
@@ -334,76 +506,134 @@ def analyse_sweep(linkage: Linkage, sweep: Sweep, quantities, order: int,
     -------
     SweepResult
     """
-    q = np.asarray(sweep.q, dtype=float)
-    motion = solve(linkage, sweep.inputs(q), order=order)
-    good = motion.regular
-    excluded, toggles = [], []
-    runs = [(0, q.size)]
-    if not np.all(good):
-        bad_runs = _runs(~good)
-        lo_in, hi_in, where = [], [], []
+    q_out = np.asarray(sweep.q, dtype=float)
+    rotary = any(isinstance(d, Crank) and d.link == sweep.driver for d in linkage.drivers)
+    span = float(q_out[-1] - q_out[0])
+    fine_step = SEARCH_STEP if rotary else span / 720
+    if q_out.size > 1 and np.max(np.diff(q_out)) > fine_step * (1 + 1e-9):
+        n = int(np.ceil(span / fine_step)) + 1
+        q_all = np.union1d(q_out, np.linspace(q_out[0], q_out[-1], n))
+    else:
+        q_all = q_out
+    out_idx = np.searchsorted(q_all, q_out)
+    motion = solve(linkage, sweep.inputs(q_all), order=order)
+    good = motion.regular.copy()
+    # gaps the grid stepped over: refine near-toggles on the grid's own runs
+    toggles, gaps = _scan_gaps(linkage, sweep, order, q_all, motion, _runs(good))
+    for x, k in gaps:
+        # mark the grid point at a hidden gap as bad: the boundary search
+        # below then starts from its neighbours
+        good[k] = False
+    bad_runs = _runs(~good)
+    excluded = []
+    if bad_runs:
+        goods, bads, where = [], [], []
+        hidden = {k: x for x, k in gaps}
         for (i0, i1) in bad_runs:
+            inner = [hidden[k] for k in range(i0, i1) if k in hidden]
+            first_bad = inner[0] if inner and motion.regular[i0] else q_all[i0]
+            last_bad = inner[-1] if inner and motion.regular[i1 - 1] else q_all[i1 - 1]
             if i0 > 0:
-                lo_in.append(q[i0 - 1]); hi_in.append(q[i0]); where.append((i0, "start"))
-            if i1 < q.size:
-                lo_in.append(q[i1]); hi_in.append(q[i1 - 1]); where.append((i1 - 1, "end"))
+                goods.append(q_all[i0 - 1]); bads.append(first_bad); where.append((i0, 0))
+            if i1 < q_all.size:
+                goods.append(q_all[i1]); bads.append(last_bad); where.append((i1 - 1, 1))
         bounds = {}
-        if lo_in:
-            a, _b = _bisect_boundaries(linkage, sweep, order, lo_in, hi_in)
-            for (i, side), val in zip(where, a):
-                bounds[(i, side)] = float(val)
+        if goods:
+            for w, val in zip(where, _bisect_boundaries(linkage, sweep, order, goods, bads)):
+                bounds[w] = float(val)
         for (i0, i1) in bad_runs:
-            start = bounds.get((i0, "start"), float(q[i0]))
-            stop = bounds.get((i1 - 1, "end"), float(q[i1 - 1]))
-            reason = "cannot assemble" if not np.all(motion.feasible[i0:i1]) else "dead point"
+            start = bounds.get((i0, 0), float(q_all[i0]))
+            stop = bounds.get((i1 - 1, 1), float(q_all[i1 - 1]))
+            if start > stop:
+                start, stop = stop, start
+            mid = solve(linkage, sweep.inputs(np.array([0.5 * (start + stop)])), order=0)
+            reason = "cannot assemble" if not mid.feasible[0] or not np.all(
+                motion.feasible[i0:i1]) else "dead point"
             excluded.append((start, stop, reason))
         if not partial:
             raise AssemblyError(_describe_exclusions(excluded, linkage, sweep), excluded)
-        idx = np.flatnonzero(good)
-        if idx.size < 2:
-            raise AssemblyError("fewer than two input positions can be analysed: "
-                                + _describe_exclusions(excluded, linkage, sweep), excluded)
-        q = q[idx]
-        motion = _take(motion, idx)
-        cuts = np.flatnonzero(np.diff(idx) > 1) + 1
-        edges = np.concatenate(([0], cuts, [idx.size]))
-        runs = list(zip(edges[:-1], edges[1:]))
-        for start, stop, _r in excluded:
-            for b in (start, stop):
-                if b not in (float(sweep.q[0]), float(sweep.q[-1])):
-                    m1 = solve(linkage, sweep.inputs(np.array([b])), order=0)
-                    c = min(m1.conditions, key=lambda c: float(c.sin_gamma[0]))
-                    toggles.append(Toggle(b, c.joint, c.kind, float(c.sin_gamma[0])))
+    idx = np.flatnonzero(good)
+    if idx.size < 2 or np.count_nonzero(good[out_idx]) < 2:
+        raise AssemblyError("fewer than two input positions can be analysed: "
+                            + _describe_exclusions(excluded, linkage, sweep), excluded)
+    # runs of the analysis grid, and their real extent (refined gap edges)
+    q = q_all[idx]
+    cuts = np.flatnonzero(np.diff(idx) > 1) + 1
+    edges = np.concatenate(([0], cuts, [idx.size]))
+    runs = list(zip(edges[:-1].tolist(), edges[1:].tolist()))
+    lo_ext = [_nearest_boundary(excluded, q[i0], before=True) for i0, _ in runs]
+    hi_ext = [_nearest_boundary(excluded, q[i1 - 1], before=False) for _, i1 in runs]
+    period = float(q_all[-1] - q_all[0])
+    connected = bool(sweep.periodic and idx[0] == 0 and idx[-1] == q_all.size - 1)
+    for start, stop, _r in excluded:
+        for b in (start, stop):
+            if q_all[0] < b < q_all[-1]:
+                m1 = solve(linkage, sweep.inputs(np.array([b])), order=0)
+                c = min(m1.conditions, key=lambda c: float(c.sin_gamma[0]))
+                toggles.append(Toggle(b, c.joint, c.kind, float(c.sin_gamma[0])))
+    grid_motion = _take(motion, idx) if idx.size < q_all.size else motion
     values = {}
     for qt in quantities:
-        v = np.asarray(qt.get(motion), dtype=float)
+        v = np.asarray(qt.get(grid_motion), dtype=float)
         if qt.is_angle:
-            v = _unwrap_runs(v, runs)
+            v = _unwrap_runs(v, runs, connected and len(runs) > 1)
         values[qt.symbol] = v
-    toggles.extend(_near_toggles(linkage, sweep, motion, q, runs))
-    ext = refine_extremes(linkage, sweep, order, quantities, q, values, runs) if extremes else {}
-    return SweepResult(q, values, ext, excluded, toggles, motion)
+    domain = _Domain(q, runs, lo_ext, hi_ext, connected, period, (q_all[0], q_all[-1]))
+    ext = refine_extremes(linkage, sweep, order, quantities, values, domain) if extremes else {}
+    # the output rows: the regular output positions, as a subset of the grid
+    keep = out_idx[good[out_idx]]
+    pos = np.searchsorted(idx, keep)  # positions of the kept rows within the grid's idx
+    run_of = np.repeat(np.arange(len(runs)), [b - a for a, b in runs])[pos]
+    cut_out = np.flatnonzero((np.diff(pos) > 0) & (np.diff(run_of) != 0)) + 1
+    e_out = np.concatenate(([0], cut_out, [pos.size]))
+    out_runs = list(zip(e_out[:-1].tolist(), e_out[1:].tolist()))
+    out_motion = _take(grid_motion, pos) if pos.size < idx.size else grid_motion
+    out_values = {k: v[pos] for k, v in values.items()}
+    if sweep.periodic:
+        toggles = [dataclasses.replace(t, at=_periodic(t.at, q_all[0], period))
+                   for t in toggles]
+    toggles.sort(key=lambda t: t.at)
+    return SweepResult(q_all[keep], out_values, ext, excluded, _dedupe(toggles), out_motion,
+                       out_runs)
 
 
-def _unwrap_runs(v, runs):
-    out = v.copy()
-    for (i0, i1) in runs:
-        seg = np.unwrap(v[i0:i1])
-        # first value in (-pi, pi]
-        shift = seg[0] - _wrap(seg[0])
-        out[i0:i1] = seg - shift
+def _nearest_boundary(excluded, x, before):
+    """The refined edge of the excluded interval adjacent to grid point ``x``
+    (``x`` itself where no gap is adjacent: the sweep ends there)."""
+    if before:
+        stops = [b for _a, b, _r in excluded if b <= x]
+        return max(stops) if stops else x
+    starts = [a for a, _b, _r in excluded if a >= x]
+    return min(starts) if starts else x
+
+
+def _periodic(x, q0, period):
+    """``x`` mapped into [q0, q0 + period), snapping round-off next to q0 onto q0."""
+    y = q0 + (x - q0) % period
+    if abs(y - q0) < 1e-9 or abs(y - q0 - period) < 1e-9:
+        return float(q0)
+    return float(y)
+
+
+def _dedupe(toggles):
+    out = []
+    for t in toggles:
+        if out and abs(out[-1].at - t.at) < 1e-9 and out[-1].joint == t.joint:
+            continue
+        out.append(t)
     return out
 
 
-def _near_toggles(linkage, sweep, motion, q, runs):
-    out = []
-    for c in motion.conditions:
-        s = c.sin_gamma
-        if s.size < 3 or np.min(s) >= NEAR_TOGGLE_SIN:
-            continue
-        interior = (s[1:-1] <= s[:-2]) & (s[1:-1] <= s[2:]) & (s[1:-1] < NEAR_TOGGLE_SIN)
-        for k in np.flatnonzero(interior) + 1:
-            out.append(Toggle(float(q[k]), c.joint, c.kind, float(s[k])))
+def _unwrap_runs(v, runs, connected):
+    out = v.copy()
+    for (i0, i1) in runs:
+        seg = np.unwrap(v[i0:i1])
+        out[i0:i1] = seg - (seg[0] - _wrap(seg[0]))  # first value in (-pi, pi]
+    if connected:
+        # the last run continues into the first through 360° = 0°: same pose
+        i0, i1 = runs[0]
+        j0, j1 = runs[-1]
+        out[i0:i1] += 2 * np.pi * np.round((out[j1 - 1] - out[i0]) / (2 * np.pi))
     return out
 
 

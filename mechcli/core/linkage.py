@@ -38,8 +38,11 @@ from typing import Dict, Optional, Tuple, Union
 
 import numpy as np
 
-#: relative size below which a dyad's 2x2 velocity system counts as singular
-SINGULAR_TOL = 1e-10
+#: relative size below which a dyad counts as singular (a dead point).  The
+#: closed-form positions carry a sqrt of a rounded discriminant, so sin(gamma)
+#: at an exact toggle comes out as large as ~sqrt(eps) ~ 1.5e-8: anything below
+#: 1e-7 is numerically indistinguishable from the toggle itself.
+SINGULAR_TOL = 1e-7
 #: relative tolerance for a dyad that just touches its assembly limit
 ASSEMBLY_TOL = 1e-10
 
@@ -53,9 +56,10 @@ class LinkageDefinitionError(ValueError):
         Index of the offending element in ``Linkage.elements``.
     """
 
-    def __init__(self, message, index=None):
+    def __init__(self, message, index=None, field=None):
         super().__init__(message)
         self.index = index
+        self.field = field
 
 
 # ---------------------------------------------------------------------------
@@ -241,12 +245,23 @@ class Linkage:
                     pending.remove(i)
                     progress = True
             if not progress:
-                i = pending[0]
-                np_, nl, _, _ = _needs(self.elements[i])
-                missing = [f"point '{p}'" for p in np_ if p not in made_points] + \
-                          [f"link {ln}" for ln in nl if ln not in made_links]
-                what = ", ".join(missing) if missing else "points in a closed loop of elements"
-                raise LinkageDefinitionError(f"element {i} needs {what}, which nothing defines", i)
+                # report a root cause (a reference nothing defines) before a cycle
+                for i in pending:
+                    np_, nl, _, _ = _needs(self.elements[i])
+                    for p in np_:
+                        if p not in made_points:
+                            raise LinkageDefinitionError(
+                                f"point '{p}' is not defined by any ground point, driver, dyad "
+                                "or point", i, ("point", p))
+                    for ln in nl:
+                        if ln not in made_links:
+                            raise LinkageDefinitionError(
+                                f"link {ln} is not the frame and is moved by no driver or dyad",
+                                i, ("link", ln))
+                exc = LinkageDefinitionError(
+                    f"elements {sorted(pending)} depend on each other in a closed loop", pending[0])
+                exc.cycle = sorted(pending)
+                raise exc
         object.__setattr__(self, "order", tuple(order))
 
     @property
@@ -497,11 +512,18 @@ def solve(linkage: Linkage, inputs, order: int = 2, on_fail: str = "mask") -> Li
     S: Dict[str, SlideMotion] = {}
     conds = []
 
-    def mark(ok, sing):
-        """Update the masks; return the 'bad' mask for the 2x2 solves (None if none)."""
+    def mark(ok, sing, position_singular=False):
+        """Update the masks; return the 'bad' mask for the 2x2 solves (None if none).
+
+        ``position_singular``: the singularity leaves the position itself
+        undefined (RPR: the guide's direction when the block is at its pivot),
+        so it makes the position irregular even when only positions are asked.
+        """
         nonlocal feasible, regular
         feasible &= ok
         if not vel:
+            if position_singular:
+                regular &= ok & (sing > SINGULAR_TOL)
             return None
         good = ok & (sing > SINGULAR_TOL)
         regular &= good
@@ -652,7 +674,7 @@ def solve(linkage: Linkage, inputs, order: int = 2, on_fail: str = "mask") -> Li
             # foot of the pivot (the guide's direction is then undefined)
             sing = np.abs(s) / np.maximum(np.sqrt(d2), scale)
             conds.append(DyadCondition(idx, "RPR", el.point, sing))
-            bad = mark(ok, sing)
+            bad = mark(ok, sing, position_singular=e == 0.0)
             name = el.name or f"{el.block}{el.guide}"
             wg = ag = sd = sdd = None
             if vel:
@@ -681,7 +703,7 @@ def solve(linkage: Linkage, inputs, order: int = 2, on_fail: str = "mask") -> Li
             P[el.name] = p
 
     if not vel:
-        regular = feasible.copy()
+        regular &= feasible
     if on_fail == "raise" and not np.all(regular):
         bad = int(np.size(regular) - np.count_nonzero(regular))
         raise AssemblyError(f"the linkage cannot be assembled (or is at a dead point) at "

@@ -40,7 +40,14 @@ def column_name(q, length_unit):
 
 
 def input_column(spec):
-    return "theta1_deg" if spec.input.rotary else f"s1_{spec.header.unit}"
+    n = spec.input.driver
+    return f"theta{n}_deg" if spec.input.rotary else f"s{n}_{spec.header.unit}"
+
+
+def fixed(x, digits):
+    """``x`` with ``digits`` decimals, never a negative zero."""
+    text = f"{x:.{digits}f}"
+    return text[1:] if text.startswith("-") and not text.strip("-0.") else text
 
 
 def input_factor(spec):
@@ -62,20 +69,24 @@ def scalar_results(spec, quantities, result):
     fin = input_factor(spec)
     at_unit = "deg" if spec.input.rotary else unit
     out = {"positions": int(result.q.size)}
+    unbounded = []
     for q in quantities:
         if q.symbol not in result.extremes:
             continue
         hi, lo = result.extremes[q.symbol]
         u = unit_of(q.kind, unit)
         f = factor_of(q.kind, scale)
-        out[f"{q.symbol}_max_{u}"] = hi.value * f
-        out[f"{q.symbol}_max_at_{at_unit}"] = hi.at * fin
-        out[f"{q.symbol}_min_{u}"] = lo.value * f
-        out[f"{q.symbol}_min_at_{at_unit}"] = lo.at * fin
+        for name, e in (("max", hi), ("min", lo)):
+            if e.bounded:
+                out[f"{q.symbol}_{name}_{u}"] = e.value * f
+                out[f"{q.symbol}_{name}_at_{at_unit}"] = e.at * fin
+            else:
+                unbounded.append({"quantity": f"{q.symbol}_{name}", "towards": e.at * fin})
         if q.kind == "length" and q.symbol.startswith("s"):
             out[f"{q.symbol}_stroke_{u}"] = (hi.value - lo.value) * f
         if q.kind == "angle" and q.symbol.startswith("theta"):
             out[f"{q.symbol}_swing_deg"] = (hi.value - lo.value) * f
+    out["unbounded"] = unbounded
     out["excluded"] = [[a * fin, b * fin, why] for a, b, why in result.excluded]
     out["toggles"] = [{"at": t.at * fin, "joint": t.joint, "dyad": t.kind,
                        "gamma_deg": math.degrees(math.asin(min(1.0, t.sin_gamma)))}
@@ -122,7 +133,7 @@ def build_report(spec, quantities, result, lang="en"):
     headers = [in_label] + [_label(q, unit, lang) for q in quantities]
     rows = []
     for i in table_rows(spec, result, spec.output.table_step):
-        rows.append([f"{cols[0][1][i]:.2f}"] + [f"{c[1][i]:.{digits}f}" for c in cols[1:]])
+        rows.append([fixed(cols[0][1][i], 2)] + [fixed(c[1][i], digits) for c in cols[1:]])
     report = Report(title=spec.header.title)
     step_txt = f"{spec.output.table_step * fin:g}"
     report.blocks.append(Block(
@@ -137,8 +148,13 @@ def build_report(spec, quantities, result, lang="en"):
             continue
         hi, lo = result.extremes[q.symbol]
         f = factor_of(q.kind, spec.header.scale)
-        ext_rows.append([_label(q, unit, lang), f"{hi.value * f:.{digits}f}",
-                         f"{hi.at * fin:.4f}", f"{lo.value * f:.{digits}f}", f"{lo.at * fin:.4f}"])
+        cells = [_label(q, unit, lang)]
+        for e in (hi, lo):
+            if e.bounded:
+                cells += [fixed(e.value * f, digits), fixed(e.at * fin, 4)]
+            else:
+                cells += ["无界" if zh else "unbounded", "→ " + fixed(e.at * fin, 4)]
+        ext_rows.append(cells)
     if ext_rows:
         report.blocks.append(Block(
             heading="极值 (精确到 1e-9 rad)" if zh else "Extremes (refined to 1e-9 rad)",

@@ -28,6 +28,17 @@ def _groups(quantities):
     return groups
 
 
+def _broken(result, v):
+    """Values with a NaN between runs, so a curve is not drawn across a gap.
+    (NaN only goes to matplotlib, never to an output file.)"""
+    if len(result.runs) <= 1:
+        return v
+    parts = []
+    for i0, i1 in result.runs:
+        parts += [v[i0:i1], [np.nan]]
+    return np.concatenate(parts[:-1])
+
+
 def _plot_group(ax, spec, result, qs, x, lang):
     """Angles/angular quantities on the left axis, linear ones on a twin axis (plotyy)."""
     unit, scale = spec.header.unit, spec.header.scale
@@ -41,7 +52,8 @@ def _plot_group(ax, spec, result, qs, x, lang):
     for k, (a, group) in enumerate(axes):
         for j, q in enumerate(group):
             f = factor_of(q.kind, scale)
-            h, = a.plot(x, result.values[q.symbol] * f, styles[j % 4],
+            h, = a.plot(_broken(result, x), _broken(result, result.values[q.symbol] * f),
+                        styles[j % 4],
                         color=f"C{j + 3 * k}", label=q.symbol)
             handles.append(h)
         if group:
@@ -174,11 +186,14 @@ def write(spec, quantities, result, sweep, outputs, lang, plots=True, animate=Fa
         ax = axs[1, 1]
         at = spec.output.draw_at
         m1 = solve(spec.linkage, sweep.inputs(np.array([at])), order=0)
-        if bool(m1.feasible[0]):
+        if bool(m1.regular[0]):
             d = _Drawing(ax, spec, result.motion, scale)
             d.update(m1, 0)
+        else:
+            warnings.append(f"mechanism not drawn: it cannot be assembled at draw_at = "
+                            f"{at * input_factor(spec):g}")
         for tr in spec.tracers:
-            p = result.motion.points[tr.name].p * k
+            p = _broken(result, result.motion.points[tr.name].p * k)
             ax.plot(p.real, p.imag, ":", lw=1, label=tr.name)
         _limits(ax, result.motion, k)
         ax.set_title(f"{t['mech']} θ1 = {at * input_factor(spec):g}°" if spec.input.rotary
@@ -191,8 +206,9 @@ def write(spec, quantities, result, sweep, outputs, lang, plots=True, animate=Fa
         for tr in spec.tracers:
             fig, ax = plt.subplots(figsize=(6, 5))
             p = result.motion.points[tr.name].p * k
-            ax.plot(p.real, p.imag, "-", color="C3")
             ax.plot(p.real[0], p.imag[0], "o", color="C3")
+            p = _broken(result, p)
+            ax.plot(p.real, p.imag, "-", color="C3")
             ax.set_title(f"{t['curve']} {tr.name}")
             ax.set_xlabel(unit)
             ax.set_ylabel(unit)

@@ -32,7 +32,10 @@ class SpecError(ValueError):
         where = self.file
         if self.key:
             table, _, leaf = self.key.rpartition(".")
-            where += f": [{table}] {leaf}" if table else f": {leaf}"
+            if leaf.isdigit() and table:  # an element of an array of tables
+                where += f": [{self.key}]"
+            else:
+                where += f": [{table}] {leaf}" if table else f": {leaf}"
         msg = f"{where}: expected {self.expected}, got {self.got}"
         if self.suggestion:
             msg += f" (did you mean '{self.suggestion}'?)"

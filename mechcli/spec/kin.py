@@ -22,10 +22,12 @@ from mechcli.core.linkage import (RPR, RRP, RRR, Crank, Ground, Linkage,
                                   LinkageDefinitionError, PointOnLink, SliderDriver)
 from mechcli.spec.common import Header, read_expected, read_header
 from mechcli.spec.errors import SpecError
-from mechcli.spec.reader import load_spec
+from mechcli.spec.reader import MAX_LENGTH, load_spec
 
 MECHANISMS = ("four_bar", "slider_crank", "guide_bar", "shaper", "general")
 QUANTITIES = ("position", "velocity", "acceleration")
+#: about 1.8 GB of results and temporaries at 2,000,001 positions (benchmarks/bench_kin.py)
+MAX_POSITIONS = 2_000_001
 
 
 @dataclasses.dataclass(frozen=True)
@@ -109,13 +111,13 @@ def _preset(mech, kind):
                    Crank(1, "A", "B", l1), RRR("C", "B", 2, l2, "D", 3, l3, br)], None
     if kind == "slider_crank":
         l1, l2 = mech.length("l1"), mech.length("l2")
-        e = mech.number("e", 0.0) * mech.unit
+        e = mech.coordinate("e", 0.0)
         br = _branch(mech, "branch", "right", {"right": 1, "left": -1})
         return 4, [Ground("A", 0.0, 0.0), Crank(1, "A", "B", l1),
                    RRP("C", "B", 2, l2, 3, 4, "A", 0.0, e, br, "3")], None
     if kind == "guide_bar":
         l1, l4 = mech.length("l1"), mech.length("l4")
-        e = mech.number("e", 0.0) * mech.unit
+        e = mech.coordinate("e", 0.0)
         l3 = mech.length("l3", None)
         br = _branch(mech, "branch", 1, {})
         return 4, [Ground("C", 0.0, 0.0), Ground("A", 0.0, l4), Crank(1, "A", "B", l1),
@@ -133,11 +135,14 @@ def _preset(mech, kind):
 def _general(mech):
     """Read the general form: ground, driver, dyad tables."""
     frame = mech.integer("frame", lo=1)
-    elements = []
+    elements, paths = [], []
     ground = mech.table("ground")
     for name in ground.keys():
         xy = ground.numbers(name, size=2)
+        if max(abs(xy[0]), abs(xy[1])) * mech.unit > MAX_LENGTH:
+            raise ground.error(name, f"coordinates within ±{MAX_LENGTH:g} m", repr(xy))
         elements.append(Ground(name, xy[0] * mech.unit, xy[1] * mech.unit))
+        paths.append(ground.key(name))
     ground.finish()
     followers = {}
     drivers = mech.tables("driver")
@@ -150,6 +155,7 @@ def _general(mech):
             elements.append(SliderDriver(link, d.string("origin"), d.string("point"),
                                          math.radians(d.number("angle", 0.0)),
                                          d.string("name", None)))
+        paths.append(d.path)
         if i > 0:
             followers[link] = (d.number("ratio", 1.0),
                                math.radians(d.number("phase", 0.0)) if kind == "crank"
@@ -175,43 +181,65 @@ def _general(mech):
                                 dy.length("length"), dy.integer("slider", lo=1),
                                 dy.integer("guide_link", lo=1), dy.string("guide_point"),
                                 math.radians(dy.number("guide_angle", 0.0)),
-                                dy.number("offset", 0.0) * mech.unit, br, dy.string("name", None)))
+                                dy.coordinate("offset", 0.0), br, dy.string("name", None)))
         else:
             elements.append(RPR(dy.string("point"), dy.integer("block", lo=1), dy.string("pivot"),
-                                dy.integer("guide", lo=1), dy.number("offset", 0.0) * mech.unit,
+                                dy.integer("guide", lo=1), dy.coordinate("offset", 0.0),
                                 br, dy.string("name", None)))
+        paths.append(dy.path)
         dy.finish()
-    return frame, elements, followers
+    return frame, elements, followers, paths
 
 
-def _points(mech, elements):
+def _points(mech, elements, paths):
     """``[[mechanism.point]]``: points fixed on links; traced unless ``trace = false``."""
     tracers = []
     for pt in mech.tables("point", []):
         name = pt.string("name")
         link = pt.integer("link", lo=1)
         origin = pt.string("from")
-        along = pt.number("along", 0.0) * mech.unit
-        normal = pt.number("normal", 0.0) * mech.unit
+        along = pt.coordinate("along", 0.0)
+        normal = pt.coordinate("normal", 0.0)
         elements.append(PointOnLink(name, link, origin, along, normal))
+        paths.append(pt.path)
         if pt.boolean("trace", True):
             tracers.append(Tracer(name, link))
         pt.finish()
     return tracers
 
 
-def _build_linkage(mech, frame, elements):
+#: engine field -> spec key, for pointing an error at the right key
+_SPEC_KEY = {"point_a": "points", "point_b": "points", "link_a": "links", "link_b": "links",
+             "origin": "from", "joint": "joint", "point": "point", "pivot": "pivot",
+             "guide_point": "guide_point", "guide_link": "guide_link", "link": "link",
+             "guide": "guide", "block": "block", "slider": "slider", "name": "name"}
+
+
+def _build_linkage(mech, frame, elements, paths):
     try:
         return Linkage(frame=frame, elements=tuple(elements))
     except LinkageDefinitionError as exc:
         key = "mechanism"
         if exc.index is not None:
-            el = elements[exc.index]
-            key = {PointOnLink: "mechanism.point", Crank: "mechanism.driver",
-                   SliderDriver: "mechanism.driver", Ground: "mechanism.ground"}.get(
-                       type(el), "mechanism.dyad")
+            el, key = elements[exc.index], paths[exc.index]
+            if exc.field is not None and key != "mechanism":
+                _kind, value = exc.field
+                for f in dataclasses.fields(el):
+                    if getattr(el, f.name) == value and f.name in _SPEC_KEY:
+                        if isinstance(el, PointOnLink) and f.name == "origin":
+                            key += ".from"
+                        elif isinstance(el, SliderDriver) and f.name == "origin":
+                            key += ".origin"
+                        else:
+                            key += "." + _SPEC_KEY[f.name]
+                        break
+        msg = str(exc)
+        cycle = getattr(exc, "cycle", None)
+        if cycle:
+            msg = ("a closed loop of definitions between "
+                   + ", ".join(f"[{paths[i]}]" for i in cycle))
         raise SpecError(mech.file, key, "a linkage whose elements can be solved in order",
-                        str(exc)) from None
+                        msg) from None
 
 
 def _input(sec, linkage, followers):
@@ -222,16 +250,16 @@ def _input(sec, linkage, followers):
         if has_w and has_n:
             raise SpecError(sec.file, sec.key("n1"), "either omega1 or n1, not both", "both")
         if has_n:
-            omega = sec.number("n1") * 2 * math.pi / 60.0
+            omega = sec.number("n1", lo=-1e7, hi=1e7) * 2 * math.pi / 60.0
         else:
-            omega = sec.number("omega1", 1.0)
-        alpha = sec.number("alpha1", 0.0)
+            omega = sec.number("omega1", 1.0, lo=-1e6, hi=1e6)
+        alpha = sec.number("alpha1", 0.0, lo=-1e12, hi=1e12)
         start = math.radians(sec.number("start", 0.0, lo=-36000.0, hi=36000.0))
         stop = math.radians(sec.number("stop", 360.0, lo=-36000.0, hi=36000.0))
         unit = math.pi / 180
     else:
-        omega = sec.number("v1", 1.0) * sec.unit
-        alpha = sec.number("a1", 0.0) * sec.unit
+        omega = sec.number("v1", 1.0, lo=-1e9, hi=1e9) * sec.unit
+        alpha = sec.number("a1", 0.0, lo=-1e15, hi=1e15) * sec.unit
         start = sec.number("start") * sec.unit
         stop = sec.number("stop") * sec.unit
         unit = sec.unit
@@ -241,13 +269,14 @@ def _input(sec, linkage, followers):
     if sec.has("step") and sec.has("count"):
         raise SpecError(sec.file, sec.key("count"), "either step or count, not both", "both")
     if sec.has("count"):
-        count = sec.integer("count", lo=2, hi=20_000_001)
+        count = sec.integer("count", lo=2, hi=MAX_POSITIONS)
     else:
         step = sec.number("step", 1.0, positive=True) * unit
         count = int(round((stop - start) / step)) + 1
-        if count > 20_000_001:
-            raise SpecError(sec.file, sec.key("step"), "a step giving at most 20,000,001 positions",
-                            f"{count} positions")
+        if count > MAX_POSITIONS:
+            raise SpecError(sec.file, sec.key("step"),
+                            f"a step giving at most {MAX_POSITIONS:,} positions",
+                            f"{count:,} positions")
         if abs(start + (count - 1) * step - stop) > 1e-9 * max(1.0, abs(stop)):
             raise SpecError(sec.file, sec.key("step"),
                             "a step that divides stop - start into whole steps",
@@ -273,8 +302,7 @@ def _output(sec, inp):
     plots = sec.boolean("plots", True)
     animate = sec.boolean("animate", False)
     frames = sec.integer("frames", 72, lo=2, hi=3600)
-    draw_at = sec.number("draw_at", inp.start / unit, lo=inp.start / unit,
-                         hi=inp.stop / unit) * unit
+    draw_at = sec.number("draw_at", inp.start / unit, lo=-36000.0, hi=36000.0) * unit
     digits = sec.integer("digits", 4, lo=1, hi=12)
     sec.finish()
     return OutputSpec(order, table_step, plots, animate, frames, draw_at, digits)
@@ -295,12 +323,13 @@ def load_kin_spec(path, overrides=()) -> KinSpec:
     followers = {}
     guide_length = None
     if kind == "general":
-        frame, elements, followers = _general(mech)
+        frame, elements, followers, paths = _general(mech)
     else:
         frame, elements, guide_length = _preset(mech, kind)
-    tracers = _points(mech, elements)
+        paths = ["mechanism"] * len(elements)
+    tracers = _points(mech, elements, paths)
     mech.finish()
-    linkage = _build_linkage(mech, frame, elements)
+    linkage = _build_linkage(mech, frame, elements, paths)
     if not linkage.drivers:
         raise SpecError(root.file, "mechanism.driver", "at least one driver", "none")
     inp = _input(root.table("input") if root.has("input") else _empty(root, "input"),

@@ -22,6 +22,8 @@ from mechcli.spec.errors import SpecError, closest
 
 REQUIRED = object()
 
+#: the lengths mechcli accepts [m]: 1 nm to 1,000 km
+MIN_LENGTH, MAX_LENGTH = 1e-9, 1e6
 #: metres per declared length unit
 LENGTH_UNITS = {"mm": 1e-3, "cm": 1e-2, "m": 1.0, "in": 0.0254}
 
@@ -199,9 +201,26 @@ class Section:
         return value
 
     def length(self, name, default=REQUIRED, *, positive=True, nonneg=False):
-        """A length in the spec's unit, returned in metres."""
+        """A length in the spec's unit, returned in metres.
+
+        Lengths must lie within [MIN_LENGTH, MAX_LENGTH] metres (zero allowed
+        with ``nonneg``): far outside, squares of lengths under- or overflow.
+        """
         value = self.number(name, default, positive=positive and not nonneg, nonneg=nonneg,
                             expected=None)
+        if value is None or (value is default and default is not REQUIRED):
+            return value
+        metres = value * self.unit
+        if metres != 0 and not MIN_LENGTH <= abs(metres) <= MAX_LENGTH:
+            raise self.error(name, f"a length between {MIN_LENGTH:g} m and {MAX_LENGTH:g} m",
+                             f"{value:g} ({metres:g} m)")
+        return metres
+
+    def coordinate(self, name, default=REQUIRED):
+        """A signed length or coordinate in the spec's unit, returned in metres
+        (|value| at most MAX_LENGTH metres)."""
+        lim = MAX_LENGTH / self.unit
+        value = self.number(name, default, lo=-lim, hi=lim)
         if value is None or (value is default and default is not REQUIRED):
             return value
         return value * self.unit

@@ -160,10 +160,12 @@ def test_unknown_command_suggests(tmp_path):
 
 
 @pytest.mark.parametrize("override, fragment", [
-    ("output.draw_at=400", "[output] draw_at: expected a number in [0, 360], got 400"),
+    ("output.draw_at=4e5", "[output] draw_at: expected a number in [-36000, 36000], got 400000"),
+    ("mechanism.l1=1e300", "[mechanism] l1: expected a length between 1e-09 m and 1e+06 m"),
+    ("input.omega1=1e160", "[input] omega1: expected a number in [-1e+06, 1e+06]"),
     ("input.start=1e9", "[input] start: expected a number in [-36000, 36000]"),
     ("input.stop=-10", "[input] stop: expected a value above start (0), got -10"),
-    ("input.count=1", "[input] count: expected an integer in [2, 20000001], got 1"),
+    ("input.count=1", "[input] count: expected an integer in [2, 2000001], got 1"),
 ])
 def test_out_of_range_angles_and_counts_exit_2(tmp_path, override, fragment):
     spec = write(tmp_path, GOOD.replace("step = 5\n", ""))

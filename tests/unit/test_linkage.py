@@ -175,10 +175,13 @@ def test_infeasible_positions_are_masked_not_nan():
 
 
 def test_bad_topology_is_reported_with_the_element():
-    with pytest.raises(LinkageDefinitionError, match="needs point 'X'") as exc:
+    with pytest.raises(LinkageDefinitionError, match="point 'X' is not defined") as exc:
         Linkage(4, (Ground("A", 0, 0), Crank(1, "A", "B", 1.0),
                     RRR("C", "B", 2, 1.0, "X", 3, 1.0)))
-    assert exc.value.index == 2
+    assert exc.value.index == 2 and exc.value.field == ("point", "X")
+    with pytest.raises(LinkageDefinitionError, match="link 9 is not the frame") as exc:
+        Linkage(4, (Ground("A", 0, 0), Crank(1, "A", "B", 1.0), PointOnLink("P", 9, "B", 1.0)))
+    assert exc.value.index == 2 and exc.value.field == ("link", 9)
     with pytest.raises(LinkageDefinitionError, match="defined twice"):
         Linkage(4, (Ground("A", 0, 0), Ground("A", 1, 0)))
 
