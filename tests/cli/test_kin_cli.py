@@ -131,7 +131,11 @@ def test_unassemblable_linkage_exit_3_with_intervals(tmp_path):
     assert proc.returncode == 3
     line = one_line_error(proc)
     assert "cannot assemble for input angle" in line and "partial = true" in line
+    assert line.startswith(f"mechcli: error: {spec}: ")
     assert not (tmp_path / "out").exists()
+    proc = run_cli("kin", spec, "--json", "--out", tmp_path / "out")
+    doc = json.loads(proc.stdout)
+    assert proc.returncode == 3 and doc["exit_code"] == 3 and "cannot assemble" in doc["error"]
 
 
 def test_partial_analysis_reports_feasible_ranges(tmp_path):
