@@ -155,3 +155,30 @@ def test_translating_sizing_residual(prog, e_frac, rot, a_rise, a_ret):
     excess = max(ch.alpha_rise.value - math.radians(a_rise),
                  ch.alpha_return.value - math.radians(a_ret))
     assert excess == pytest.approx(0.0, abs=1e-10)
+
+
+@SETTINGS
+@given(prog=programs(), data=st.data())
+def test_design_never_crashes(prog, data):
+    """Any follower, sizing on or off, undercut forbidden or not: a finite design or an
+    UnsolvableError (exit 3), never another exception or a warning."""
+    from mechcli.core.cam_design import design_cam
+
+    contact = data.draw(st.sampled_from(["knife", "roller", "flat"]))
+    r0 = prog.stroke * data.draw(st.floats(0.02, 5.0))
+    args = {"rotation": data.draw(st.sampled_from([1, -1])),
+            "e": data.draw(st.floats(-0.99, 0.99)) * r0}
+    if contact == "roller":
+        args["rr"] = data.draw(st.floats(0.01, 0.99)) * r0
+    size = data.draw(st.booleans())
+    segs = [(s.kind, s.span, s.law, abs(s.lift)) for s in prog.segments]
+    try:
+        d = design_cam("translating", contact, None if size and data.draw(st.booleans()) else r0,
+                       args, segs, prog.stroke, step=math.radians(2.0),
+                       size_base_radius=size, round_up=data.draw(st.sampled_from([0.0, 1e-3])),
+                       forbid_undercut=data.draw(st.booleans()))
+    except UnsolvableError as exc:
+        assert str(exc)
+        return
+    for arr in (d.profile.work, d.profile.alpha, d.profile.rho_work):
+        assert np.all(np.isfinite(arr))
