@@ -422,8 +422,8 @@ def _scan_gaps(linkage, sweep, order, q, motion, runs):
     Every grid minimum of a dyad's sin(gamma) below ``NEAR_TOGGLE_SIN``
     (run ends included) is refined by bisection on the sign of its central
     difference.  Returns ``(toggles, gaps)``: refined near-dead positions that
-    are regular, and ``(bad input, grid index left, grid index right)`` of
-    refined minima that turned out not to be regular.
+    are regular, and ``(input, grid index)`` of refined minima that turned out
+    not to be regular (a gap or dead point between grid points).
     """
     targets = []
     for ci, c in enumerate(motion.conditions):
