@@ -17,6 +17,9 @@ from mechcli.spec.common import Header, read_expected, read_header
 from mechcli.spec.errors import SpecError
 from mechcli.spec.reader import Section, load_spec
 
+#: most points of an involute curve or table (larger is a mistyped step, not a wish)
+MAX_POINTS = 1_000_000
+
 KINDS = ("involute", "inverse_involute", "spur", "pair", "generation", "helical", "worm",
          "bevel")
 
@@ -334,6 +337,12 @@ def _read_involute(sec):
         raise sec.error("table_to_deg", f"a number >= table_from_deg = {t0:g}", repr(t1))
     if t1 + ts * (cols - 1) >= 90:
         raise sec.error("table_to_deg", "a last row that stays below 90 degrees", repr(t1))
+    if amax / step > MAX_POINTS:
+        raise sec.error("curve_step_deg", f"a step giving at most {MAX_POINTS} curve points "
+                        f"up to {amax:g} degrees", repr(step))
+    if (t1 - t0) / ts + cols > MAX_POINTS:
+        raise sec.error("table_step_deg", f"a step giving at most {MAX_POINTS} table values",
+                        repr(ts))
     digits = sec.integer("digits", 4, lo=1, hi=15)
     return InvoluteProblem(rb, math.radians(amax), math.radians(step), t0, t1, ts, cols, digits)
 
@@ -373,11 +382,6 @@ def _read_spur(sec):
                             "(no involute inside the base circle)", f"{r / sec.unit:g}")
     fu = sec.boolean("forbid_undercut", False)
     fp = sec.boolean("forbid_pointed", False)
-    ts_short = sec.boolean("tip_shortening", False)
-    animate = sec.boolean("animate", False)
-    if ts_short and (internal or len(a_w) + len(alpha_w) > 1):
-        raise sec.error("tip_shortening", "an external pair with one mounting",
-                        "internal = true" if internal else "several mountings")
     return SpurProblem(z, ts, x, points, root, radii, fu, fp)
 
 
