@@ -9,9 +9,11 @@ Prints ``name: value unit`` lines:
   ``auto`` start and for the book's start (0.8, |f| < 1e-7, 【例 5-2】), and the
   book start's failure region;
 * process CPU time of ``mechcli gear`` for the pair of 【例 5-4】 and the
-  210-value table of 【例 5-1】 without pictures, next to ``python -c "import
-  numpy"`` (the floor every numpy command pays), and the in-process time of
-  spec -> solve -> report.
+  210-value table of 【例 5-1】 (and the inverse involute, a helical pair)
+  without pictures, with ``--json`` and ``-q``, next to ``python -c "import
+  numpy"`` and ``mechcli --version`` (the start-up floor); these scalar kinds
+  import neither numpy nor rich.  Then the in-process time of spec -> solve ->
+  report.
 
 Run: ``python benchmarks/bench_gear.py [--runs N]``
 """
@@ -20,6 +22,7 @@ from __future__ import annotations
 
 import argparse
 import math
+import os
 import resource
 import subprocess
 import sys
@@ -38,11 +41,11 @@ from mechcli.core.gear_profile import flank_chordal_deviation  # noqa: E402
 from mechcli.core.involute import inverse_involute  # noqa: E402
 
 
-def _child_cpu(argv, runs):
+def _child_cpu(argv, runs, env=None):
     best = math.inf
     for _ in range(runs):
         r0 = resource.getrusage(resource.RUSAGE_CHILDREN)
-        subprocess.run(argv, cwd=ROOT, check=True, capture_output=True)
+        subprocess.run(argv, cwd=ROOT, check=True, capture_output=True, env=env)
         r1 = resource.getrusage(resource.RUSAGE_CHILDREN)
         best = min(best, (r1.ru_utime - r0.ru_utime) + (r1.ru_stime - r0.ru_stime))
     return best
@@ -89,12 +92,30 @@ def inverse():
 
 def speed(runs):
     with tempfile.TemporaryDirectory() as tmp:
+        # an installed package has its bytecode cached; PYTHONDONTWRITEBYTECODE=1 (as in
+        # some sandboxes) recompiles every module on every start: measure both
+        nocache = {**os.environ, "PYTHONDONTWRITEBYTECODE": "1"}
+        t = _child_cpu([sys.executable, "-m", "mechcli", "gear", "configs/ch5/ex5-4.toml",
+                        "--no-plot", "-q", "--out", tmp], runs, nocache)
+        print(f"process_cpu_ex5-4_no_plot_q_without_bytecode_cache: {t:.3f} s")
+        cached = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"}
+        cached["PYTHONPYCACHEPREFIX"] = str(Path(tmp) / "pycache")
+        os.environ.clear()
+        os.environ.update(cached)
         base = _child_cpu([sys.executable, "-c", "import numpy"], runs)
         print(f"process_cpu_import_numpy: {base:.3f} s")
-        for name in ("ex5-4", "ex5-1"):
+        t = _child_cpu([sys.executable, "-m", "mechcli", "--version"], runs)
+        print(f"process_cpu_mechcli_version: {t:.3f} s")
+        for name in ("ex5-4", "ex5-1", "ex5-2", "exercise5-7"):
+            for flag in ("--json", "-q"):
+                t = _child_cpu([sys.executable, "-m", "mechcli", "gear",
+                                f"configs/ch5/{name}.toml", "--no-plot", flag, "--out", tmp],
+                               runs)
+                print(f"process_cpu_{name}_no_plot_{flag.strip('-')}: {t:.3f} s")
+        for name in ("ex5-3", "gear-cut"):  # profile kinds: numpy (and scipy) on purpose
             t = _child_cpu([sys.executable, "-m", "mechcli", "gear", f"configs/ch5/{name}.toml",
-                            "--no-plot", "--json", "--out", tmp], runs)
-            print(f"process_cpu_{name}_no_plot: {t:.3f} s")
+                            "--no-plot", "-q", "--out", tmp], runs)
+            print(f"process_cpu_{name}_no_plot_q: {t:.3f} s")
         from mechcli.options import RunOptions
         from mechcli.report.files import Outputs
         from mechcli.report.gear import PRESENTERS

@@ -3,6 +3,9 @@
 Lengths in metres, angles in radians.  The gear is the one cut by a standard
 rack cutter (module m, pressure angle alpha, addendum ha* m, clearance c* m)
 shifted by x m.
+
+The geometry of one float radius is pure ``math`` (no numpy import: the pair
+path starts fast); arrays of radii go through numpy.
 """
 
 from __future__ import annotations
@@ -10,10 +13,8 @@ from __future__ import annotations
 import dataclasses
 import math
 
-import numpy as np
-
 from mechcli.core.errors import UnsolvableError
-from mechcli.core.involute import involute_function, inverse_involute
+from mechcli.core.involute import involute_function, inverse_involute_scalar
 
 
 class GearGeometryError(UnsolvableError):
@@ -150,6 +151,11 @@ class SpurGear:
         (internal gear: + 2 r_K (...), its teeth widen outwards).
         Negative where the tooth would already be pointed.
         """
+        if isinstance(radius, (int, float)):
+            ak = math.acos(min(max(self.rb / radius, -1.0), 1.0))
+            return radius * (self.s / self.r - 2 * self.sign
+                             * (involute_function(ak) - involute_function(self.alpha)))
+        import numpy as np
         rk = np.asarray(radius, dtype=float)
         ak = np.arccos(np.clip(self.rb / rk, -1.0, 1.0))
         out = rk * (self.s / self.r - 2 * self.sign
@@ -158,14 +164,20 @@ class SpurGear:
 
     def space_width(self, radius):
         """Arc space width 2 pi r_K / z - s_K at a radius >= rb (m)."""
+        if isinstance(radius, (int, float)):
+            return 2 * math.pi * radius / self.z - self.tooth_thickness(radius)
+        import numpy as np
         rk = np.asarray(radius, dtype=float)
         out = 2 * np.pi * rk / self.z - self.tooth_thickness(rk)
         return out if np.ndim(out) else float(out)
 
     def half_tooth_angle(self, radius):
         """Half the angle the tooth subtends at a radius >= rb (rad): s_K / (2 r_K)."""
-        rk = np.asarray(radius, dtype=float)
-        ak = np.arccos(np.clip(self.rb / rk, -1.0, 1.0))
+        if isinstance(radius, (int, float)):
+            ak = math.acos(min(max(self.rb / radius, -1.0), 1.0))
+        else:
+            import numpy as np
+            ak = np.arccos(np.clip(self.rb / np.asarray(radius, dtype=float), -1.0, 1.0))
         return self.s / (2 * self.r) + self.sign * (involute_function(self.alpha)
                                                     - involute_function(ak))
 
@@ -180,7 +192,7 @@ class SpurGear:
         theta = involute_function(self.alpha) + self.sign * self.s / self.d
         if theta <= 0:
             return self.rb
-        ap = float(inverse_involute(theta).alpha[0])
+        ap = inverse_involute_scalar(theta)[0]
         return self.rb / math.cos(ap)
 
     # -- undercut ----------------------------------------------------------
@@ -235,6 +247,6 @@ def spur_gear(z, m, alpha, ha_star=1.0, c_star=0.25, x=0.0, internal=False):
         return g
     if g.df <= 0:
         raise GearGeometryError(
-            f"root diameter df = {g.df / g.m:.4g} m would be <= 0 "
+            f"root diameter df = {g.df:.4g} m would be <= 0 "
             f"(z = {g.z}, x = {g.x:g}): too few teeth for this shift")
     return g

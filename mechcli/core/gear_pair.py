@@ -1,7 +1,8 @@
 """A pair of external involute spur gears: centre distance, operating pressure
 angle, pitch circles, backlash, clearance and the contact ratio (表 5-2, 【例 5-4】).
 
-Lengths in metres, angles in radians.
+Lengths in metres, angles in radians.  Only :func:`mesh_positions` (arrays)
+imports numpy.
 """
 
 from __future__ import annotations
@@ -9,11 +10,9 @@ from __future__ import annotations
 import dataclasses
 import math
 
-import numpy as np
-
 from mechcli.core.errors import UnsolvableError
 from mechcli.core.gear import SpurGear
-from mechcli.core.involute import involute_function, inverse_involute
+from mechcli.core.involute import involute_function, inverse_involute_scalar
 
 
 class MeshError(UnsolvableError):
@@ -36,7 +35,7 @@ def zero_backlash_pressure_angle(g1: SpurGear, g2: SpurGear):
     if theta <= 0:
         raise MeshError(f"x1 + x2 = {g1.x + g2.x:g} is so negative that no zero-backlash "
                         "pressure angle exists (inv alpha' <= 0)")
-    return float(inverse_involute(theta).alpha[0])
+    return inverse_involute_scalar(theta)[0]
 
 
 def centre_distance_from_pressure_angle(g1, g2, alpha_w):
@@ -323,6 +322,7 @@ def mesh_positions(pair: GearPair, phi1):
     tip (l = N1N2 - sqrt(ra2^2 - rb2^2)) and the pinion's tip (l = sqrt(ra1^2 - rb1^2)),
     so that on average epsilon_alpha points are in contact.
     """
+    import numpy as np
     g1, g2 = pair.g1, pair.g2
     if g2.internal:
         raise ValueError("mesh_positions handles external pairs")

@@ -7,19 +7,22 @@ cancelling difference ``tan a - a`` for small angles), and
 value that is already within about 1e-3 of the root, so that Newton's method
 needs 2 to 4 steps.  The book's own method (Newton from 0.8 with the absolute
 stop |f| < 1e-7, 【例 5-2】) is available as ``method="book"``.
+
+numpy is imported only by the array functions: a Python float goes through
+``math`` (``involute_function``, ``inverse_involute_scalar``, ``involute_point``,
+``involute_table_rows``), so that the scalar gear geometry starts fast.
 """
 
 from __future__ import annotations
 
 import dataclasses
-
-import numpy as np
+import math
 
 from mechcli.core.errors import ConvergenceError
 
 #: Taylor coefficients c_n of tan(a) - a = sum c_n a^(2n+1), n = 1, 2, ...
 #: (c_n = (-1)^n 2^(2n+2) (2^(2n+2) - 1) B_(2n+2) / (2n+2)!).
-_TAN_MINUS_X = np.array([
+_TAN_MINUS_X = (
     0.3333333333333333, 0.13333333333333333, 0.05396825396825397,
     0.021869488536155203, 0.008863235529902197, 0.003592128036572481,
     0.0014558343870513183, 0.000590027440945586, 0.00023912911424355248,
@@ -27,7 +30,7 @@ _TAN_MINUS_X = np.array([
     6.451689215655431e-06, 2.6147711512907546e-06, 1.0597268320104654e-06,
     4.294911078273806e-07, 1.7406618963571648e-07, 7.054636946400968e-08,
     2.859136662305254e-08, 1.1587644432798853e-08, 4.6962953982309016e-09,
-    1.903336833931276e-09])
+    1.903336833931276e-09)
 
 #: below this angle (rad) the series is used (22 terms: truncation < 1e-19 relative)
 _SERIES_LIMIT = 0.5
@@ -55,6 +58,9 @@ def involute_function(alpha):
     Eq. (5-1).  For alpha < 0.5 the difference is summed as its Taylor series
     a^3/3 + 2a^5/15 + ... so that no digits cancel (theta = 1e-12 needs it).
     """
+    if isinstance(alpha, (int, float)):
+        return _involute_scalar(float(alpha))
+    import numpy as np
     a = np.asarray(alpha, dtype=float)
     small = np.abs(a) < _SERIES_LIMIT
     a2 = a * a
@@ -67,12 +73,24 @@ def involute_function(alpha):
     return out if out.ndim else float(out)
 
 
+def _involute_scalar(a):
+    """inv(a) of one float, the same series/difference as the array path (math only)."""
+    if abs(a) < _SERIES_LIMIT:
+        a2 = a * a
+        series = 0.0
+        for c in reversed(_TAN_MINUS_X):
+            series = series * a2 + c
+        return series * a2 * a
+    return math.tan(a) - a
+
+
 #: theta below which the series start is used, above it the fixed-point start
 _START_SWITCH = 0.5
 
 
 def _start(theta):
     """A starting angle within ~1e-3 relative of inv^-1(theta) for every theta >= 0."""
+    import numpy as np
     y = np.cbrt(3.0 * np.minimum(theta, _START_SWITCH))
     y2 = y * y
     # series reversion of y^3 = 3 inv(a): a = y - 2y^3/15 + 3y^5/175 - 2y^7/1575 - ...
@@ -86,9 +104,25 @@ def _start(theta):
     return np.where(theta < _START_SWITCH, small, large)
 
 
+def _start_scalar(theta):
+    """:func:`_start` for one float (math only)."""
+    if theta < _START_SWITCH:
+        y = math.cbrt(3.0 * theta)
+        y2 = y * y
+        return y * (1.0 + y2 * (-2.0 / 15.0 + y2 * (3.0 / 175.0 + y2 * (
+            -2.0 / 1575.0 + y2 * (-16.0 / 202125.0 + y2 * (362.0 / 9384375.0))))))
+    t = theta + math.pi / 2.0
+    for _ in range(4):
+        t = theta + math.atan(t)
+    return math.atan(t)
+
+
 @dataclasses.dataclass(frozen=True)
 class InverseInvolute:
     """Result of :func:`inverse_involute`.
+
+    Attributes are numpy arrays from :func:`inverse_involute`; tuples of
+    Python numbers when built from :func:`inverse_involute_scalar` values.
 
     Attributes
     ----------
@@ -115,9 +149,11 @@ class InverseInvolute:
 
     @property
     def relative_residual(self):
-        """|inv(alpha) - theta| / theta (0 where theta = 0)."""
-        den = np.where(self.theta > 0, self.theta, 1.0)
-        return np.abs(self.residual) / den
+        """|inv(alpha) - theta| / theta (0 where theta = 0), an array."""
+        import numpy as np
+        theta = np.asarray(self.theta, dtype=float)
+        den = np.where(theta > 0, theta, 1.0)
+        return np.abs(np.asarray(self.residual, dtype=float)) / den
 
 
 def inverse_involute(theta, method="auto", *, start=BOOK_START, epsilon=BOOK_EPSILON,
@@ -161,6 +197,7 @@ def inverse_involute(theta, method="auto", *, start=BOOK_START, epsilon=BOOK_EPS
     ``benchmarks/bench_gear.py``).  Like the book's ``while`` loop, the book
     method takes one more step after the test |f| < epsilon has passed.
     """
+    import numpy as np
     th = np.asarray(theta, dtype=float)
     th = np.atleast_1d(th)
     if np.any(~np.isfinite(th)) or np.any(th < 0):
@@ -213,6 +250,61 @@ def inverse_involute(theta, method="auto", *, start=BOOK_START, epsilon=BOOK_EPS
                            method=method, start=a0)
 
 
+def inverse_involute_scalar(theta, method="auto", *, start=BOOK_START, epsilon=BOOK_EPSILON,
+                            max_iter=100):
+    """:func:`inverse_involute` of one float, with ``math`` only (no numpy import).
+
+    The same start, iteration and stopping rules step for step.
+
+    Returns
+    -------
+    (float, int, float)
+        alpha (rad), Newton steps, and the starting angle (rad).
+
+    Raises
+    ------
+    ValueError, ConvergenceError
+        As :func:`inverse_involute`.
+    """
+    th = float(theta)
+    if not math.isfinite(th) or th < 0:
+        raise ValueError("inverse_involute needs finite theta >= 0")
+    if method == "auto":
+        a0 = _start_scalar(th)
+    elif method == "book":
+        a0 = float(start)
+    else:
+        raise ValueError(f"unknown method {method!r}")
+    if th == 0:
+        return 0.0, 0, a0
+    a, top = a0, math.nextafter(math.pi / 2, 0)
+    for k in range(1, max_iter + 1):
+        if method == "book" and not 0 < a < math.pi / 2:
+            raise ConvergenceError(
+                f"book Newton start {start:g} left (0, pi/2) for theta = {th:.6g} "
+                "(its first step passes pi/2 for theta > 1.0468); use method = \"auto\"")
+        f = _involute_scalar(a) - th
+        tan_a = math.tan(a)
+        new = a - f / (tan_a * tan_a)
+        if method == "auto":
+            new = min(max(new, 0.5 * a), top)
+            done = abs(new - a) <= 4.0 * math.ulp(a)
+        else:
+            done = abs(f) < epsilon
+        a = new
+        if done:
+            return a, k, a0
+    raise ConvergenceError(f"inverse involute did not converge in {max_iter} iterations "
+                           f"(theta = {th:.6g}, method {method})")
+
+
+def involute_point(r_b, alpha):
+    """:func:`involute_curve` at one pressure angle (floats, math only): (r, theta, x, y)."""
+    r = r_b / math.cos(alpha)
+    th = _involute_scalar(float(alpha))
+    return r, th, r * math.sin(th), r * math.cos(th)
+
+
 def involute_curve(r_b, alpha):
     """Points of the involute of a base circle, polar and Cartesian (eq. 5-1, 5-2).
 
@@ -230,6 +322,7 @@ def involute_curve(r_b, alpha):
         (rad), and x = r_K sin(theta_K), y = r_K cos(theta_K) (m) with the
         polar axis OA along +y (图 5-1).
     """
+    import numpy as np
     a = np.asarray(alpha, dtype=float)
     r = r_b / np.cos(a)
     th = np.asarray(involute_function(a))
@@ -262,11 +355,18 @@ def involute_table(start_deg=10.0, stop_deg=30.0, step_deg=0.1, columns=10):
     【例 5-1】(2).  Angles are built as row + k * step from integers, so that
     20.3 is the decimal 20.3 and not an accumulated sum.
     """
+    import numpy as np
+    rows, ang, inv = involute_table_rows(start_deg, stop_deg, step_deg, columns)
+    return np.array(rows), np.array(ang), np.array(inv)
+
+
+def involute_table_rows(start_deg=10.0, stop_deg=30.0, step_deg=0.1, columns=10):
+    """:func:`involute_table` as lists (math only): rows, angles (deg) and values per row."""
     row_step = step_deg * columns
     n = int(round((stop_deg - start_deg) / row_step)) + 1
-    rows = start_deg + row_step * np.arange(n)
-    ang = rows[:, None] + step_deg * np.arange(columns)[None, :]
-    return rows, ang, np.asarray(involute_function(np.radians(ang)))
+    rows = [start_deg + row_step * i for i in range(n)]
+    ang = [[row + step_deg * k for k in range(columns)] for row in rows]
+    return rows, ang, [[_involute_scalar(math.radians(a)) for a in line] for line in ang]
 
 
 def degrees_minutes_seconds(angle, seconds_digits=0, rounding="truncate"):
@@ -288,12 +388,12 @@ def degrees_minutes_seconds(angle, seconds_digits=0, rounding="truncate"):
     (int, int, float)
         Degrees, minutes, seconds.
     """
-    total = float(np.degrees(angle)) * 3600.0
+    total = math.degrees(float(angle)) * 3600.0
     q = 10.0 ** seconds_digits
     if rounding == "truncate":
-        total = np.floor(total * q * (1 + 1e-15)) / q
+        total = math.floor(total * q * (1 + 1e-15)) / q
     elif rounding == "round":
-        total = np.round(total * q) / q
+        total = round(total * q) / q
     else:
         raise ValueError(f"unknown rounding {rounding!r}")
     deg = int(total // 3600)

@@ -5,15 +5,38 @@ its CSV (and PNG/GIF when asked) into *outputs*.  The findings that a spec may
 forbid (ε < 1, interference, pointed tips, undercut) are checked before, by
 ``mechcli.spec.gear.findings``.  Lengths are shown in the
 spec's unit, angles in degrees.
+
+The scalar kinds (involute table, inverse involute, pair, helical, worm,
+bevel) never import numpy: their CSV text comes from :func:`csv_text`; only
+the profile kinds (spur, generation) and the pictures use numpy.
 """
 
 from __future__ import annotations
 
 import math
 
-import numpy as np
-
+from mechcli.report.files import OutputError, format_number
 from mechcli.report.table import Block, Report
+
+
+def csv_text(columns, digits=10):
+    """CSV text of named columns ``[(header, sequence of numbers), ...]`` without numpy.
+
+    The rules of :func:`mechcli.report.files.write_csv`: equal column lengths,
+    every value finite (:class:`OutputError` otherwise), ``%.{digits}g`` cells.
+    """
+    headers = [h for h, _ in columns]
+    cols = [[float(v) for v in col] for _, col in columns]
+    n = len(cols[0]) if cols else 0
+    for h, col in zip(headers, cols):
+        if len(col) != n:
+            raise OutputError(f"column {h} has {len(col)} values, expected {n}")
+        for i, v in enumerate(col):
+            if not math.isfinite(v):
+                raise OutputError(f"refusing to write non-finite {h} in row {i + 1}")
+    lines = [",".join(headers)]
+    lines.extend(",".join(format_number(v, digits) for v in row) for row in zip(*cols))
+    return "\n".join(lines) + "\n"
 
 
 def _t(lang, en, zh):
@@ -34,8 +57,10 @@ def present_involute(spec, sol, run, outputs):
     p, u, sc = spec.problem, spec.header.unit, spec.header.scale
     lang = run.lang
     rows, ang, inv = sol["table"]
+    ang_flat = [a for line in ang for a in line]
+    inv_flat = [v for line in inv for v in line]
     results = {}
-    for a, v in zip(ang.ravel(), inv.ravel()):
+    for a, v in zip(ang_flat, inv_flat):
         whole, tenth = divmod(int(round(a * 10)), 10)
         key = f"inv_{whole}_{tenth}" if abs(a * 10 - round(a * 10)) < 1e-6 \
             else "inv_" + f"{a:.6g}".replace(".", "_")
@@ -44,9 +69,11 @@ def present_involute(spec, sol, run, outputs):
     results.update({"rb": p.rb / sc, "alpha_max_deg": math.degrees(p.alpha_max),
                     "theta_max_rad": float(th[-1]), "r_max": float(r[-1] / sc),
                     "x_max": float(x[-1] / sc), "y_max": float(y[-1] / sc)})
-    outputs.csv("involute.csv", [("alpha_deg", ang.ravel()), ("inv_alpha_rad", inv.ravel())])
-    outputs.csv("curve.csv", [("alpha_K_deg", np.degrees(sol["alpha"])), (f"r_K_{u}", r / sc),
-                              ("theta_K_rad", th), (f"x_{u}", x / sc), (f"y_{u}", y / sc)])
+    outputs.text("involute.csv", csv_text([("alpha_deg", ang_flat), ("inv_alpha_rad", inv_flat)]))
+    outputs.text("curve.csv", csv_text([
+        ("alpha_K_deg", [math.degrees(a) for a in sol["alpha"]]),
+        (f"r_K_{u}", [v / sc for v in r]), ("theta_K_rad", th),
+        (f"x_{u}", [v / sc for v in x]), (f"y_{u}", [v / sc for v in y])]))
     cols = [f"{k * p.table_step_deg:.1f}" for k in range(p.columns)]
     table = Block(_t(lang, "Table 5-1  involute function inv(alpha) = tan(alpha) - alpha",
                      "表 5-1 渐开线函数值"),
@@ -63,8 +90,11 @@ def present_involute(spec, sol, run, outputs):
     ], lang)
     report = Report(spec.header.title, [table, curve])
     if run.plot:
+        import numpy as np
+
         from mechcli.report import gear_plot
-        gear_plot.plot_involute(sol, spec, run, outputs)
+        curve = tuple(np.asarray(c) for c in sol["curve"])
+        gear_plot.plot_involute({**sol, "curve": curve}, spec, run, outputs)
     return report, results, []
 
 
@@ -100,10 +130,10 @@ def present_inverse_involute(spec, sol, run, outputs):
             warnings.append(f"theta = {th:g}: the book's absolute stop |f| < {p.epsilon:g} "
                             f"leaves a relative error of {rel:.2g} in inv(alpha); "
                             "use method = \"auto\"")
-    outputs.csv("involute.csv", [("theta_rad", sol.theta), ("alpha_rad", sol.alpha),
-                                 ("alpha_deg", np.degrees(sol.alpha)),
-                                 ("iterations", sol.iterations), ("residual_rad", sol.residual)],
-                digits=17)
+    outputs.text("involute.csv", csv_text([
+        ("theta_rad", sol.theta), ("alpha_rad", sol.alpha),
+        ("alpha_deg", [math.degrees(a) for a in sol.alpha]),
+        ("iterations", sol.iterations), ("residual_rad", sol.residual)], digits=17))
     return Report(spec.header.title, blocks), results, warnings
 
 
@@ -244,7 +274,7 @@ def present_pair(spec, pairs, run, outputs):
     cols = list(zip(*rows_csv))
     names = [f"a_w_{u}", "alpha_w_deg", f"dw1_{u}", f"dw2_{u}", "epsilon_alpha",
              f"backlash_{u}", f"clearance1_{u}", f"clearance2_{u}"]
-    outputs.csv("gear.csv", list(zip(names, cols)))
+    outputs.text("gear.csv", csv_text(list(zip(names, cols))))
     animate = p.animate if run.animate is None else run.animate
     if animate and g2.internal:
         warnings.append("no mesh animation for internal pairs (pair.png only)")
@@ -260,6 +290,8 @@ def present_pair(spec, pairs, run, outputs):
 
 # -- generation (gear_cut) ------------------------------------------------------------
 def present_generation(spec, sol, run, outputs):
+    import numpy as np
+
     from mechcli.core.gear_profile import gear_outline
     p, u, sc, lang = spec.problem, spec.header.unit, spec.header.scale, run.lang
     L = lambda v: float(v / sc)  # noqa: E731
@@ -409,7 +441,7 @@ def _simple(spec, run, outputs, heading, results, rows, warnings):
     u = spec.header.unit
     cols = [(key if un in ("", "°") else f"{key}_{u}", [results[key]])
             for _, _, _, key, un in rows]
-    outputs.csv("gear.csv", cols)
+    outputs.text("gear.csv", csv_text(cols))
     return Report(spec.header.title, [block]), results, warnings
 
 

@@ -89,14 +89,12 @@ class InvoluteProblem:
     digits: int
 
     def solve(self):
-        import numpy as np
-
-        from mechcli.core.involute import involute_curve, involute_table
+        from mechcli.core.involute import involute_point, involute_table_rows
         n = int(round(self.alpha_max / self.curve_step)) + 1
-        alpha = np.linspace(0.0, self.alpha_max, n)
-        curve = involute_curve(self.rb, alpha)
-        table = involute_table(self.table_from_deg, self.table_to_deg, self.table_step_deg,
-                               self.columns)
+        alpha = [self.alpha_max * i / (n - 1) for i in range(n)] if n > 1 else [0.0]
+        curve = tuple(map(list, zip(*(involute_point(self.rb, a) for a in alpha))))
+        table = involute_table_rows(self.table_from_deg, self.table_to_deg,
+                                    self.table_step_deg, self.columns)
         return {"alpha": alpha, "curve": curve, "table": table}
 
 
@@ -113,9 +111,17 @@ class InverseInvoluteProblem:
     dms_seconds_digits: int
 
     def solve(self):
-        from mechcli.core.involute import inverse_involute
-        return inverse_involute(list(self.theta), self.method, start=self.start,
-                                epsilon=self.epsilon, max_iter=self.max_iter)
+        from mechcli.core.involute import (InverseInvolute, involute_function,
+                                           inverse_involute_scalar)
+        found = [inverse_involute_scalar(t, self.method, start=self.start,
+                                         epsilon=self.epsilon, max_iter=self.max_iter)
+                 for t in self.theta]
+        alpha = tuple(f[0] for f in found)
+        return InverseInvolute(theta=tuple(self.theta), alpha=alpha,
+                               iterations=tuple(f[1] for f in found),
+                               residual=tuple(involute_function(a) - t
+                                              for a, t in zip(alpha, self.theta)),
+                               method=self.method, start=tuple(f[2] for f in found))
 
 
 @dataclasses.dataclass(frozen=True)
