@@ -203,8 +203,11 @@ class SpurGear:
 
     @property
     def x_min(self):
-        """Least profile shift against undercut, ha* (z_min - z) / z_min."""
-        return self.ha_star * (self.z_min - self.z) / self.z_min
+        """Least profile shift against undercut, ha* (z_min - z) / z_min.
+
+        Computed as ha* - z sin^2(alpha) / 2 (the same, and defined for ha* = 0).
+        """
+        return self.ha_star - self.z * math.sin(self.alpha) ** 2 / 2
 
     @property
     def undercut(self):
@@ -233,8 +236,8 @@ def spur_gear(z, m, alpha, ha_star=1.0, c_star=0.25, x=0.0, internal=False):
     Raises
     ------
     GearGeometryError
-        The root circle would not be outside the centre (df <= 0); an
-        internal gear's tip circle inside its base circle (no involute there).
+        The root circle would not be outside the centre (df <= 0); the tip
+        circle inside the base circle (no involute there).
     """
     g = SpurGear(int(z), float(m), float(alpha), float(ha_star), float(c_star), float(x),
                  bool(internal))
@@ -245,6 +248,10 @@ def spur_gear(z, m, alpha, ha_star=1.0, c_star=0.25, x=0.0, internal=False):
                 f"db = {g.db:.6g} m (needs z (1 - cos alpha) >= 2 (ha* + x), "
                 f"z >= {2 * (g.ha_star + g.x) / (1 - math.cos(g.alpha)):.1f})")
         return g
+    if g.ra < g.rb:
+        raise GearGeometryError(
+            f"tip circle da = {g.da:.6g} m is inside the base circle db = {g.db:.6g} m "
+            f"(z = {g.z}, x = {g.x:g}): the teeth have no involute")
     if g.df <= 0:
         raise GearGeometryError(
             f"root diameter df = {g.df:.4g} m would be <= 0 "

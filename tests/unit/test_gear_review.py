@@ -1,0 +1,39 @@
+"""Regression tests from the independent review of ``mechcli gear`` (issue 5)."""
+
+import math
+
+import pytest
+
+from mechcli.core.gear import GearGeometryError, spur_gear
+from tests.conftest import run_cli
+
+
+def _spec(tmp_path, body):
+    path = tmp_path / "g.toml"
+    path.write_text('command = "gear"\nunits = "mm"\n' + body, encoding="utf-8")
+    return path
+
+
+def test_x_min_without_addendum():
+    # x_min = ha* - z sin^2(alpha) / 2; ha* = 0 divided by z_min = 0 (ZeroDivisionError, exit 1)
+    g = spur_gear(20, 1e-3, math.radians(20), ha_star=0.0)
+    assert g.x_min == pytest.approx(-10 * math.sin(math.radians(20)) ** 2, rel=1e-15)
+    g = spur_gear(12, 1e-3, math.radians(20))
+    assert g.x_min == pytest.approx((17.0973 - 12) / 17.0973, abs=1e-5)   # (zmin - z)/zmin
+
+
+def test_spur_without_addendum_runs(tmp_path):
+    proc = run_cli("gear", _spec(tmp_path, "[spur]\nz = 20\nm = 1\nha_star = 0\nc_star = 0\n"),
+                   "--no-plot", "-q", "--out", tmp_path / "o")
+    assert proc.returncode == 0, proc.stderr
+
+
+def test_tip_circle_inside_base_circle_is_unsolvable(tmp_path):
+    # z = 7, x = -1.5, alpha = 30: ra = 3.0 m < rb = 3.03 m; the pair died in acos (exit 1)
+    with pytest.raises(GearGeometryError, match="inside the base circle"):
+        spur_gear(7, 1.0, math.radians(30), x=-1.5)
+    proc = run_cli("gear", _spec(tmp_path, "[pair]\nz1 = 7\nz2 = 40\nm = 1\nalpha_deg = 30\n"
+                                           "x1 = -1.5\nx2 = 1.5\n"),
+                   "--no-plot", "-q", "--out", tmp_path / "o")
+    assert proc.returncode == 3, proc.stderr
+    assert "inside the base circle" in proc.stderr
