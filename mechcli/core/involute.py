@@ -156,6 +156,14 @@ class InverseInvolute:
         return np.abs(np.asarray(self.residual, dtype=float)) / den
 
 
+def _left_message(start, theta):
+    why = ("its first step passes pi/2 for theta > 1.0468" if start == BOOK_START else
+           "the start itself is outside" if not 0 < start < math.pi / 2 else
+           "a Newton step passed a bound")
+    return (f"book Newton start {start:g} left (0, pi/2) for theta = {theta:.6g} ({why}); "
+            "use method = \"auto\"")
+
+
 def inverse_involute(theta, method="auto", *, start=BOOK_START, epsilon=BOOK_EPSILON,
                      max_iter=100):
     """Pressure angle alpha with inv(alpha) = theta (Newton's method, eq. 5-3, 5-4).
@@ -218,9 +226,7 @@ def inverse_involute(theta, method="auto", *, start=BOOK_START, epsilon=BOOK_EPS
         aa = a[active]
         if method == "book" and np.any((aa <= 0) | (aa >= np.pi / 2)):
             bad = th[active][(aa <= 0) | (aa >= np.pi / 2)]
-            raise ConvergenceError(
-                f"book Newton start {start:g} left (0, pi/2) for theta = {bad[0]:.6g} "
-                "(its first step passes pi/2 for theta > 1.0468); use method = \"auto\"")
+            raise ConvergenceError(_left_message(start, bad[0]))
         f = involute_function(aa) - th[active]
         tan_a = np.tan(aa)
         df = tan_a * tan_a
@@ -280,9 +286,7 @@ def inverse_involute_scalar(theta, method="auto", *, start=BOOK_START, epsilon=B
     a, top = a0, math.nextafter(math.pi / 2, 0)
     for k in range(1, max_iter + 1):
         if method == "book" and not 0 < a < math.pi / 2:
-            raise ConvergenceError(
-                f"book Newton start {start:g} left (0, pi/2) for theta = {th:.6g} "
-                "(its first step passes pi/2 for theta > 1.0468); use method = \"auto\"")
+            raise ConvergenceError(_left_message(start, th))
         f = _involute_scalar(a) - th
         tan_a = math.tan(a)
         new = a - f / (tan_a * tan_a)

@@ -364,7 +364,9 @@ def _read_inverse(sec):
             key = "theta" if not isinstance(raw, list) else f"theta[{i}]"
             raise SpecError(sec.file, sec.key(key), "a number >= 0", repr(t))
     method = sec.string("method", "auto", choices=["auto", "book"])
-    start = sec.number("book_start", 0.8, positive=True)
+    start = sec.number("book_start", 0.8, expected="an angle in radians in (0, pi/2)")
+    if not 0 < start < math.pi / 2:
+        raise sec.error("book_start", "an angle in radians in (0, pi/2)", repr(start))
     eps = sec.number("book_epsilon", 1e-7, positive=True)
     max_iter = sec.integer("max_iter", 100, lo=1)
     rounding = sec.string("dms_rounding", "truncate", choices=["truncate", "round"])

@@ -37,3 +37,24 @@ def test_tip_circle_inside_base_circle_is_unsolvable(tmp_path):
                    "--no-plot", "-q", "--out", tmp_path / "o")
     assert proc.returncode == 3, proc.stderr
     assert "inside the base circle" in proc.stderr
+
+
+@pytest.mark.parametrize("start", ["1.6", "0", "-0.5"])
+def test_book_start_outside_the_quadrant_is_a_spec_error(tmp_path, start):
+    # was exit 3 with "its first step passes pi/2 for theta > 1.0468" (true only for 0.8)
+    body = f'[inverse_involute]\ntheta = 0.02\nmethod = "book"\nbook_start = {start}\n'
+    proc = run_cli("gear", _spec(tmp_path, body), "--no-plot", "-q", "--out", tmp_path / "o")
+    assert proc.returncode == 2, proc.stderr
+    assert "book_start" in proc.stderr
+
+
+def test_book_start_failure_message_only_claims_the_limit_for_0_8():
+    from mechcli.core.errors import ConvergenceError
+    from mechcli.core.involute import inverse_involute, inverse_involute_scalar
+    with pytest.raises(ConvergenceError, match="theta > 1.0468"):
+        inverse_involute_scalar(1.05, "book")
+    with pytest.raises(ConvergenceError, match=r"theta > 1.0468"):
+        inverse_involute([0.5, 1.05], "book")
+    with pytest.raises(ConvergenceError) as err:
+        inverse_involute_scalar(0.02, "book", start=1.6)
+    assert "1.0468" not in str(err.value)
