@@ -205,6 +205,12 @@ class RRRRPCrank:
         Slider positions x >= 0 [m] between which link 1 turns fully with the
         slider held still (AD between l1 + |l2 − l3| and l2 + l3 − l1);
         mirrored for x <= 0.  Both 0 when there are none.
+    has_inner : bool
+        Link 1 also turns fully with the slider held inside the crank circle,
+        |x| <= ``slider_inner_hi`` (AD <= l1 − |l2 − l3| and l1 + AD <= l2 + l3:
+        B circles around D).
+    slider_inner_hi : float
+        That bound [m] (0 when ``has_inner`` is False).
     """
 
     l1: float
@@ -215,9 +221,11 @@ class RRRRPCrank:
     boundary: bool
     slider_lo: float
     slider_hi: float
+    has_inner: bool = False
+    slider_inner_hi: float = 0.0
 
 
-def rrrrp_crank(l1, l2, l3, e=0.0, rtol=CHANGE_POINT_RTOL):
+def rrrrp_crank(l1, l2, l3, e=0.0, rtol=CHANGE_POINT_RTOL, unit=""):
     """Crank condition of the RRRRP five-bar (the paper's §4), with slider offset.
 
     Parameters
@@ -226,6 +234,8 @@ def rrrrp_crank(l1, l2, l3, e=0.0, rtol=CHANGE_POINT_RTOL):
         Crank, second and third link lengths [m].
     e : float
         Offset of the slider path from the crank pivot A [m].
+    unit : str
+        Name of the lengths' unit, only for the error message.
 
     Returns
     -------
@@ -238,12 +248,15 @@ def rrrrp_crank(l1, l2, l3, e=0.0, rtol=CHANGE_POINT_RTOL):
     a + e <= b) is l1 + |e| <= |l2 − l3|, the paper's eq. (20) for e = 0.  Any
     other angle between 2 and 3 makes BD longer, so the condition holds for
     all of them.  With the slider held at x, link 1 turns iff B–D distances
-    |AD − l1| .. AD + l1 stay within |l2 − l3| .. l2 + l3.
+    |AD − l1| .. AD + l1 stay within |l2 − l3| .. l2 + l3: either
+    l1 + |l2 − l3| <= AD <= l2 + l3 − l1 (D outside the crank circle) or
+    AD <= min(l1 − |l2 − l3|, l2 + l3 − l1) (D inside it), AD >= |e|.
     """
     l1, l2, l3, e = float(l1), float(l2), float(l3), abs(float(e))
     if e >= l1 + l2 + l3:
-        raise ClosureError(f"the RRRRP chain cannot reach its slider path: offset {e:.6g} >= "
-                           f"l1 + l2 + l3 = {l1 + l2 + l3:.6g}")
+        u = f" {unit}" if unit else ""
+        raise ClosureError(f"the RRRRP chain cannot reach its slider path: offset {e:.6g}{u} >= "
+                           f"l1 + l2 + l3 = {l1 + l2 + l3:.6g}{u}")
     fold = abs(l2 - l3)
     slack = fold - (l1 + e)
     boundary = abs(slack) <= rtol * (l1 + l2 + l3)
@@ -253,7 +266,11 @@ def rrrrp_crank(l1, l2, l3, e=0.0, rtol=CHANGE_POINT_RTOL):
         s_hi = float(np.sqrt(max(ad_hi ** 2 - e ** 2, 0.0)))
     else:
         s_lo = s_hi = 0.0
-    return RRRRPCrank(l1, l2, l3, e, bool(slack >= 0 or boundary), bool(boundary), s_lo, s_hi)
+    in_hi = min(l1 - fold, l2 + l3 - l1)
+    has_inner = in_hi >= e
+    s_in = float(np.sqrt(max(in_hi ** 2 - e ** 2, 0.0))) if has_inner else 0.0
+    return RRRRPCrank(l1, l2, l3, e, bool(slack >= 0 or boundary), bool(boundary), s_lo, s_hi,
+                      bool(has_inner), s_in)
 
 
 __all__ = ["FIVEBAR_TYPES", "FiveBarClass", "classify_fivebar", "fivebar_roles",

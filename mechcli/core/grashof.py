@@ -52,13 +52,15 @@ def _lengths_array(lengths, n):
     return arr
 
 
-def check_closure(lengths):
+def check_closure(lengths, unit=""):
     """Raise :class:`ClosureError` if some link is at least as long as all the others.
 
     Parameters
     ----------
     lengths : array_like, shape (n,) or (N, n)
-        Link lengths of one closed chain (or a batch) [m].
+        Link lengths of one closed chain (or a batch) [m, or any unit].
+    unit : str
+        Name of the lengths' unit, only for the message (e.g. ``"mm"``).
 
     Notes
     -----
@@ -74,9 +76,10 @@ def check_closure(lengths):
     if bad.size:
         i = int(bad[0])
         k = int(np.argmax(arr[i])) + 1
+        u = f" {unit}" if unit else ""
         raise ClosureError(
-            f"the chain cannot close: link {k} ({arr[i, k - 1]:.6g}) is not shorter than "
-            f"the sum of the other links ({rest[i]:.6g})"
+            f"the chain cannot close: link {k} ({arr[i, k - 1]:.6g}{u}) is not shorter than "
+            f"the sum of the other links ({rest[i]:.6g}{u})"
             + (f" (length set {i + 1})" if arr.shape[0] > 1 else ""))
     return True
 
@@ -636,7 +639,7 @@ class SliderCrank:
     alpha_max_at: float
 
 
-def analyse_slider_crank(a, b, e=0.0, rtol=CHANGE_POINT_RTOL):
+def analyse_slider_crank(a, b, e=0.0, rtol=CHANGE_POINT_RTOL, unit=""):
     """Crank condition, stroke, θ, K and pressure angle of an offset slider-crank.
 
     Parameters
@@ -645,6 +648,8 @@ def analyse_slider_crank(a, b, e=0.0, rtol=CHANGE_POINT_RTOL):
         Crank and coupler lengths [m].
     e : float
         Offset of the slider path from the crank pivot [m] (path y = e).
+    unit : str
+        Name of the lengths' unit, only for the error message.
 
     Returns
     -------
@@ -667,8 +672,9 @@ def analyse_slider_crank(a, b, e=0.0, rtol=CHANGE_POINT_RTOL):
     """
     a, b, e = float(a), float(b), float(e)
     if abs(e) >= a + b:
-        raise ClosureError(f"the slider-crank cannot close: offset |e| = {abs(e):.6g} is not "
-                           f"shorter than crank + coupler = {a + b:.6g}")
+        u = f" {unit}" if unit else ""
+        raise ClosureError(f"the slider-crank cannot close: offset |e| = {abs(e):.6g}{u} is not "
+                           f"shorter than crank + coupler = {a + b:.6g}{u}")
     slack = b - (a + abs(e))
     boundary = abs(slack) <= rtol * (a + b)
     exists = slack >= 0 or boundary

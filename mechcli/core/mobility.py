@@ -96,7 +96,7 @@ def count_mobility(joints, frame, local_dof=0, redundant=0):
     ------
     MobilityError
         A lower pair with fewer than 2 links, a higher pair not joining
-        exactly 2, or a link joined to itself.
+        exactly 2, a link joined to itself, or a frame that no joint names.
 
     Notes
     -----
@@ -116,6 +116,9 @@ def count_mobility(joints, frame, local_dof=0, redundant=0):
         if len(j.links) < 2:
             raise MobilityError(f"joint {j.name or j.kind} must join at least 2 links")
         links.update(j.links)
+    if frame not in links:
+        raise MobilityError(f"the frame {frame} is not joined by any joint "
+                            f"(links: {sorted(links)})")
     moving = tuple(sorted(links - {frame}))
     p_l = sum(j.pairs for j in joints if j.kind in LOWER)
     p_h = sum(j.pairs for j in joints if j.kind in HIGHER)

@@ -349,9 +349,12 @@ def fivebar_report(title, lang, r):
 
 
 def rrrrp_results(rc, scale):
-    return {"crank": 1 if rc.crank_any_fold else None, "crank_any_fold": rc.crank_any_fold,
-            "boundary": rc.boundary, "slider_lo": rc.slider_lo / scale,
-            "slider_hi": rc.slider_hi / scale}
+    r = {"crank": 1 if rc.crank_any_fold else None, "crank_any_fold": rc.crank_any_fold,
+         "boundary": rc.boundary, "slider_lo": rc.slider_lo / scale,
+         "slider_hi": rc.slider_hi / scale}
+    if rc.has_inner:
+        r["slider_inner_hi"] = rc.slider_inner_hi / scale
+    return r
 
 
 def rrrrp_report(title, lang, r, unit):
@@ -362,6 +365,10 @@ def rrrrp_report(title, lang, r, unit):
             [_label(lang, f"slider positions where link 1 turns [{unit}]",
                     f"杆 1 可整周转动的滑块位置 ({unit})"),
              f"±[{_f(r['slider_lo'])}, {_f(r['slider_hi'])}]" if r["slider_hi"] > 0 else "-"]]
+    if "slider_inner_hi" in r:
+        rows.append([_label(lang, f"... slider inside the crank circle [{unit}]",
+                            f"... 滑块在曲柄圆内 ({unit})"),
+                     f"[{_f(-r['slider_inner_hi'])}, {_f(r['slider_inner_hi'])}]"])
     rep.blocks.append(Block("RRRRP", rows=rows))
     return rep
 
@@ -537,6 +544,10 @@ def _build(spec, lang):
 
     p, unit, scale, title = spec.problem, spec.header.unit, spec.header.scale, spec.header.title
     warnings = []
+    if spec.kind in ("fourbar", "fivebar"):
+        # closure checked on the lengths as the user wrote them: the message quotes them
+        import numpy as np
+        gf.check_closure(np.asarray(p.lengths) / scale, unit)
     if spec.kind == "fourbar":
         an = gf.analyse_fourbar(p.lengths, p.frame, p.input, p.crossed, p.rtol)
         invs = gf.classify_inversions(p.lengths, p.rtol)
@@ -548,8 +559,10 @@ def _build(spec, lang):
         return (r, fourbar_report(title, lang, r, unit, bool(ranges)), fourbar_csv(an, scale),
                 warnings)
     if spec.kind == "slider_crank":
-        sc = gf.analyse_slider_crank(p.crank, p.coupler, p.offset, p.rtol)
-        r = slider_results(sc, scale)
+        # in the spec's unit (scale-free results; messages quote the user's numbers)
+        sc = gf.analyse_slider_crank(p.crank / scale, p.coupler / scale, p.offset / scale,
+                                     p.rtol, unit)
+        r = slider_results(sc, 1.0)
         if sc.boundary:
             warnings.append("a + |e| = b: the crank just exists (pressure angle reaches 90°)")
         return r, slider_report(title, lang, r, unit), None, warnings
@@ -564,7 +577,8 @@ def _build(spec, lang):
         return r, fivebar_report(title, lang, r), None, warnings
     if spec.kind == "rrrrp":
         from mechcli.core.classify_fivebar import rrrrp_crank
-        r = rrrrp_results(rrrrp_crank(p.l1, p.l2, p.l3, p.offset, p.rtol), scale)
+        r = rrrrp_results(rrrrp_crank(p.l1 / scale, p.l2 / scale, p.l3 / scale,
+                                      p.offset / scale, p.rtol, unit), 1.0)
         return r, rrrrp_report(title, lang, r, unit), None, warnings
     from mechcli.core.mobility import Joint, count_mobility
     mob = count_mobility([Joint(j.kind, j.links, j.name) for j in p.joints], p.frame,

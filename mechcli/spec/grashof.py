@@ -192,6 +192,9 @@ def _read_mobility(sec, spec_dir):
         joints.append(JointSpec(kind, tuple(links), name))
     if not joints:
         raise sec.error("joint", "at least one [[mobility.joint]]", "none")
+    used = sorted({ln for j in joints for ln in j.links})
+    if frame not in used:
+        raise sec.error("frame", f"a link named by a joint: {used}", repr(frame))
     sec.finish()
     return MobilityProblem(tuple(joints), frame, local, redundant, "joints")
 
@@ -283,7 +286,9 @@ def quick_spec(lengths_text, frame=None, input_link=None, offset=None, units="mm
     (crank, coupler), four a four-bar, five a 5R five-bar.
     """
     where = "--lengths"
-    parts = [p.strip() for p in str(lengths_text).split(",") if p.strip()]
+    parts = [p.strip() for p in str(lengths_text).split(",")]
+    if parts == [""]:
+        parts = []
     vals = []
     for i, p in enumerate(parts):
         try:
@@ -356,26 +361,39 @@ def read_batch_csv(path, units="mm"):
 
     file = str(path)
     try:
-        text = Path(path).read_text(encoding="utf-8")
+        # utf-8-sig: spreadsheets save CSV with a byte-order mark
+        text = Path(path).read_text(encoding="utf-8-sig")
     except FileNotFoundError:
         raise SpecError(file, "", "an existing CSV file", "no such file") from None
     except (OSError, UnicodeDecodeError) as exc:
         raise SpecError(file, "", "a readable UTF-8 CSV file", str(exc)) from None
-    lines = [ln for ln in text.splitlines() if ln.strip() and not ln.lstrip().startswith("#")]
-    if lines and any(c.isalpha() for c in lines[0].replace("e", "").replace("E", "")):
-        head = [h.strip().lower() for h in lines[0].split(",")]
+    # (file line number, text) of the lines that hold data: error messages name file lines
+    numbered = [(k, ln) for k, ln in enumerate(text.splitlines(), start=1)
+                if ln.strip() and not ln.lstrip().startswith("#")]
+
+    def is_number(cell):
+        try:
+            float(cell)
+        except ValueError:
+            return False
+        return True
+
+    # a header line starts with a name (l1); a data row starts with a number
+    first = numbered[0][1].split(",")[0].strip() if numbered else ""
+    if first[:1].isalpha() and not is_number(first):
+        head = [h.strip().lower() for h in numbered[0][1].split(",")]
         if head[:4] != ["l1", "l2", "l3", "l4"] or head[4:] not in ([], ["frame"],
                                                                     ["frame", "input"]):
-            raise SpecError(file, "header", "l1,l2,l3,l4[,frame[,input]]", repr(lines[0]))
-        lines = lines[1:]
-        start = 2
-    else:
-        start = 1
-    if not lines:
+            raise SpecError(file, "header", "l1,l2,l3,l4[,frame[,input]]",
+                            repr(numbered[0][1]))
+        numbered = numbered[1:]
+    if not numbered:
         raise SpecError(file, "", "at least one row of lengths", "none")
+    rows = [k for k, _ in numbered]
+    lines = [ln for _, ln in numbered]
     ncol = lines[0].count(",") + 1
     if ncol not in (4, 5, 6):
-        raise SpecError(file, f"row {start}", "4 to 6 comma-separated columns "
+        raise SpecError(file, f"row {rows[0]}", "4 to 6 comma-separated columns "
                         "(l1,l2,l3,l4[,frame[,input]])", f"{ncol} columns")
     try:
         data = np.array([ln.split(",") for ln in lines], dtype=float)
@@ -383,26 +401,24 @@ def read_batch_csv(path, units="mm"):
         for i, ln in enumerate(lines):
             cells = ln.split(",")
             if len(cells) != ncol:
-                raise SpecError(file, f"row {i + start}", f"{ncol} columns",
+                raise SpecError(file, f"row {rows[i]}", f"{ncol} columns",
                                 f"{len(cells)}") from None
             for j, c in enumerate(cells):
-                try:
-                    float(c)
-                except ValueError:
-                    raise SpecError(file, f"row {i + start}", "numbers",
+                if not is_number(c):
+                    raise SpecError(file, f"row {rows[i]}", "numbers",
                                     f"{c.strip()!r} in column {j + 1}") from None
         raise
     L = data[:, :4]
     bad = ~(np.isfinite(L) & (L > 0))
     if bad.any():
         i, j = map(int, np.argwhere(bad)[0])
-        raise SpecError(file, f"row {i + start}", f"a positive length l{j + 1}",
+        raise SpecError(file, f"row {rows[i]}", f"a positive length l{j + 1}",
                         repr(float(L[i, j])))
     frame = data[:, 4] if ncol >= 5 else np.full(len(L), 4.0)
     fr_ok = np.isin(frame, (1, 2, 3, 4))
     if not fr_ok.all():
         i = int(np.flatnonzero(~fr_ok)[0])
-        raise SpecError(file, f"row {i + start}", "a frame link number 1..4",
+        raise SpecError(file, f"row {rows[i]}", "a frame link number 1..4",
                         repr(float(frame[i])))
     frame = frame.astype(int)
     nb1, nb2 = frame % 4 + 1, (frame + 2) % 4 + 1
@@ -411,7 +427,7 @@ def read_batch_csv(path, units="mm"):
         ok = (inp == nb1) | (inp == nb2)
         if not ok.all():
             i = int(np.flatnonzero(~ok)[0])
-            raise SpecError(file, f"row {i + start}",
+            raise SpecError(file, f"row {rows[i]}",
                             f"an input link joined to the frame {frame[i]}: {nb1[i]} or {nb2[i]}",
                             repr(float(inp[i])))
         inp = inp.astype(int)
