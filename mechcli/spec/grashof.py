@@ -149,7 +149,9 @@ def _read_fivebar(sec):
     frame = _link_number(sec, "frame", 5, 5)
     nb = sorted(((frame % 5) + 1, ((frame + 3) % 5) + 1))
     inputs = sec.raw("inputs", list(nb))
-    if not isinstance(inputs, list) or sorted(inputs) != nb:
+    if not isinstance(inputs, list) or not all(
+            isinstance(v, int) and not isinstance(v, bool) for v in inputs) \
+            or sorted(inputs) != nb:
         raise sec.error("inputs", f"the two links joined to the frame {frame}: {nb}",
                         repr(inputs))
     prob = FiveBarProblem(lengths, frame, tuple(nb), _rtol(sec))

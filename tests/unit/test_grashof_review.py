@@ -71,6 +71,15 @@ def test_cannot_close_message_is_in_the_spec_unit(lengths, offset, text):
     assert text in str(exc.value)
 
 
+@pytest.mark.parametrize("inputs", ['[1, "a"]', "[1.0, 4.0]", "[true, 4]"])
+def test_fivebar_inputs_that_are_not_link_numbers(tmp_path, inputs):
+    """``inputs = [1, "a"]`` crashed with a TypeError (exit 1) in sorted()."""
+    with pytest.raises(SpecError) as exc:
+        read_grashof_spec(write(tmp_path, 'command = "grashof"\n[fivebar]\n'
+                                f"lengths = [10, 21, 19, 20, 5]\ninputs = {inputs}\n"))
+    assert exc.value.key.endswith("inputs")
+
+
 # ------------------------------------------------------------------ batch CSV
 def test_batch_row_numbers_are_file_lines(tmp_path):
     """Blank and comment lines shifted the row number of the error message."""
