@@ -721,7 +721,7 @@ class GuideBar:
     gamma_max: float
 
 
-def analyse_guide_bar(a, d, e=0.0, rtol=CHANGE_POINT_RTOL):
+def analyse_guide_bar(a, d, e=0.0, rtol=CHANGE_POINT_RTOL, unit=""):
     """Oscillating or rotating guide, θ = ψ, K and transmission angle.
 
     Parameters
@@ -732,10 +732,17 @@ def analyse_guide_bar(a, d, e=0.0, rtol=CHANGE_POINT_RTOL):
         Frame length AC (crank pivot to guide pivot) [m].
     e : float
         Offset of the guide line from its pivot C [m] (0: the guide passes through C).
+    unit : str
+        Name of the lengths' unit, only for the error message.
 
     Returns
     -------
     GuideBar
+
+    Raises
+    ------
+    ClosureError
+        e >= a + d: the guide line never comes near enough to the crank pin B.
 
     Notes
     -----
@@ -749,6 +756,10 @@ def analyse_guide_bar(a, d, e=0.0, rtol=CHANGE_POINT_RTOL):
     |d − a| and d + a.  Slides fill-in 1: ψ = 30° gives K = 1.4.
     """
     a, d, e = float(a), float(d), abs(float(e))
+    if e >= a + d:
+        u = f" {unit}" if unit else ""
+        raise ClosureError(f"the guide-bar cannot close: guide offset {e:.6g}{u} is not shorter "
+                           f"than crank + frame = {a + d:.6g}{u} (the guide never reaches B)")
     tol = rtol * (a + d)
     if a + e < d - tol:
         kind = "oscillating"

@@ -567,8 +567,9 @@ def _build(spec, lang):
             warnings.append("a + |e| = b: the crank just exists (pressure angle reaches 90°)")
         return r, slider_report(title, lang, r, unit), None, warnings
     if spec.kind == "guide_bar":
-        gb = gf.analyse_guide_bar(p.crank, p.frame, p.offset, p.rtol)
-        r = guide_results(gb, scale)
+        gb = gf.analyse_guide_bar(p.crank / scale, p.frame / scale, p.offset / scale, p.rtol,
+                                  unit)
+        r = guide_results(gb, 1.0)
         return r, guide_report(title, lang, r), None, warnings
     if spec.kind == "fivebar":
         from mechcli.core.classify_fivebar import classify_fivebar

@@ -80,6 +80,17 @@ def test_fivebar_inputs_that_are_not_link_numbers(tmp_path, inputs):
     assert exc.value.key.endswith("inputs")
 
 
+def test_guide_bar_whose_guide_never_reaches_the_crank_pin_cannot_close(tmp_path):
+    """a = 10, d = 20, e = 40: CB <= 30 < e, no position exists; it was reported as 'no_crank'."""
+    with pytest.raises(gf.ClosureError, match="guide-bar cannot close"):
+        gf.analyse_guide_bar(10.0, 20.0, 40.0)
+    spec = read_grashof_spec(write(tmp_path, 'command = "grashof"\n[guide_bar]\n'
+                                   "crank = 10\nframe = 20\noffset = 40\n"))
+    with pytest.raises(gf.ClosureError, match="40 mm"):
+        report.build(spec, "en")
+    assert gf.analyse_guide_bar(10.0, 20.0, 29.0).kind == "no_crank"
+
+
 # ------------------------------------------------------------------ batch CSV
 def test_batch_row_numbers_are_file_lines(tmp_path):
     """Blank and comment lines shifted the row number of the error message."""
