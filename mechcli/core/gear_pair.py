@@ -153,7 +153,7 @@ class GearPair:
         """
         n = self.line_of_action
         if self.g2.internal:
-            return self.tip_reach[1] < n * (1 - 1e-12)
+            return self.tip_reach[0] < n * (1 - 1e-12)   # N2B1: the ring's tip
         return any(r > n * (1 + 1e-12) for r in self.tip_reach)
 
     @property

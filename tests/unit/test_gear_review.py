@@ -58,3 +58,18 @@ def test_book_start_failure_message_only_claims_the_limit_for_0_8():
     with pytest.raises(ConvergenceError) as err:
         inverse_involute_scalar(0.02, "book", start=1.6)
     assert "1.0468" not in str(err.value)
+
+
+@pytest.mark.parametrize("z1, z2, expected", [(20, 100, False), (20, 60, True), (17, 80, True)])
+def test_internal_interference_uses_the_ring_tip(z1, z2, expected):
+    # The ring's tip circle cuts the line of action sqrt(ra2^2 - rb2^2) from N2; it meets the
+    # pinion above its base circle iff that reaches N1 (N1N2 = a' sin a').  The pinion's tip
+    # reach was tested instead: z2 = 100 (27.817 > 27.362 mm, no interference) was flagged.
+    from mechcli.core.gear_pair import gear_pair
+    alpha = math.radians(20)
+    g1 = spur_gear(z1, 2.0, alpha)
+    g2 = spur_gear(z2, 2.0, alpha, internal=True)
+    pair = gear_pair(g1, g2, a_w=z2 - z1)
+    reach2 = math.sqrt(g2.ra ** 2 - g2.rb ** 2)
+    assert (reach2 < (z2 - z1) * math.sin(alpha)) is expected
+    assert pair.interference is expected
