@@ -38,6 +38,23 @@ def zero_backlash_pressure_angle(g1: SpurGear, g2: SpurGear):
     return inverse_involute_scalar(theta)[0]
 
 
+def zero_backlash_distance(g1: SpurGear, g2: SpurGear):
+    """Centre distance of the zero-backlash mesh (m), the bound below which the teeth jam.
+
+    None for an external pair whose teeth are so thin (x1 + x2 strongly
+    negative) that even at a' = rb1 + rb2 there is backlash: no a' jams.
+
+    Raises
+    ------
+    MeshError
+        An internal pair without a zero-backlash mounting.
+    """
+    if not g2.internal and (2 * math.tan(g1.alpha) * (g1.x + g2.x) / (g1.z + g2.z)
+                            + involute_function(g1.alpha)) <= 0:
+        return None
+    return centre_distance_from_pressure_angle(g1, g2, zero_backlash_pressure_angle(g1, g2))
+
+
 def centre_distance_from_pressure_angle(g1, g2, alpha_w):
     """a' = a cos(alpha) / cos(alpha') (m)."""
     return standard_centre_distance(g1, g2) * math.cos(g1.alpha) / math.cos(alpha_w)
@@ -188,9 +205,9 @@ class GearPair:
 
     @property
     def a_zero_backlash(self):
-        """Centre distance of the zero-backlash mesh (m) (习题 5-3)."""
-        return centre_distance_from_pressure_angle(
-            self.g1, self.g2, zero_backlash_pressure_angle(self.g1, self.g2))
+        """Centre distance of the zero-backlash mesh (m) (习题 5-3); None if no a' jams
+        (see :func:`zero_backlash_distance`)."""
+        return zero_backlash_distance(self.g1, self.g2)
 
 
 def tip_shortened(pair):
@@ -255,7 +272,7 @@ def gear_pair(g1: SpurGear, g2: SpurGear, a_w=None, alpha_w=None):
         alpha_w = pressure_angle_from_centre_distance(g1, g2, a_w)
     pair = GearPair(g1, g2, float(a_w), float(alpha_w))
     a0 = pair.a_zero_backlash
-    if not g2.internal and pair.a_w < a0 * (1 - 1e-12):
+    if a0 is not None and not g2.internal and pair.a_w < a0 * (1 - 1e-12):
         raise MeshError(f"centre distance {pair.a_w:.6g} m is below the zero-backlash distance "
                         f"{a0:.6g} m: the teeth would jam")
     if g2.internal and pair.a_w > a0 * (1 + 1e-12):

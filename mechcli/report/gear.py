@@ -216,7 +216,10 @@ def present_pair(spec, pairs, run, outputs):
                "s1": L(g1.s), "s2": L(g2.s), "e1": L(g1.e), "e2": L(g2.e), "c": L(g1.c),
                "alpha_a1_deg": math.degrees(g1.alpha_a),
                "alpha_a2_deg": math.degrees(g2.alpha_a),
-               "a_zero_backlash": L(first.a_zero_backlash), "internal": g2.internal}
+               "internal": g2.internal}
+    a0 = first.a_zero_backlash
+    if a0 is not None:   # None: teeth so thin that no a' jams
+        results["a_zero_backlash"] = L(a0)
     f3 = lambda v: f"{v / sc:.3f}{u}"  # noqa: E731
     blocks = []
     rows_csv = []
@@ -256,7 +259,9 @@ def present_pair(spec, pairs, run, outputs):
              f"{pr.dw1 / sc:.3f}{u}, {pr.dw2 / sc:.3f}{u}"),
             ("backlash on the pitch circle", "齿侧间隙", "j", f3(pr.backlash)),
             ("tip clearances", "顶隙", "c1', c2'", f"{cl[0] / sc:.3f}{u}, {cl[1] / sc:.3f}{u}"),
-            ("zero-backlash centre distance", "无侧隙中心距", "a0'", f3(pr.a_zero_backlash)),
+            ("zero-backlash centre distance", "无侧隙中心距", "a0'",
+             f3(a0) if a0 is not None else _t(lang, "none (backlash at every a')",
+                                              "无 (任何中心距均有侧隙)")),
             ("centre-distance / tip-shortening coefficients", "中心距变动系数 / 齿顶高降低系数",
              "y, Δy", f"{pr.y:.4f}, {pr.delta_y if not g2.internal else 0.0:.4f}"
              + (" (tips shortened)" if p.tip_shortening and pr.delta_y > 1e-12 else "")),

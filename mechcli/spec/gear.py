@@ -432,19 +432,22 @@ def _read_pair(sec):
                         "internal = true" if internal else "several mountings")
     # a' must not be below the zero-backlash distance (the teeth would jam): exit 2
     from mechcli.core.gear import spur_gear
-    from mechcli.core.gear_pair import centre_distance_from_pressure_angle, \
-        zero_backlash_pressure_angle
+    from mechcli.core.gear_pair import zero_backlash_distance
     g1 = spur_gear(z1, ts.m, ts.alpha, ts.ha_star, ts.c_star, x1)
     g2 = spur_gear(z2, ts.m, ts.alpha, ts.ha_star, ts.c_star, x2, internal)
-    a0 = centre_distance_from_pressure_angle(g1, g2, zero_backlash_pressure_angle(g1, g2))
+    a0 = zero_backlash_distance(g1, g2)
     a_std = ts.m * (z2 - z1 if internal else z1 + z2) / 2
+    bound = "zero backlash; smaller jams the teeth"
+    if a0 is None:  # thin teeth never jam: only the base circles bound a' (rb1 + rb2 < a')
+        a0 = a_std * math.cos(ts.alpha) * (1 + 1e-9)
+        bound = "the base circles rb1 + rb2; these thin teeth never jam"
     # external: a' >= a0 (smaller jams); internal: a cos(alpha) < a' <= a0 (larger jams)
     for i, a in enumerate(a_w):
         key = "a_w" if len(a_w) == 1 else f"a_w[{i}]"
         if not internal and a < a0 * (1 - 1e-12):
             raise SpecError(sec.file, sec.key(key),
-                            f"a centre distance >= {a0 / sec.unit:.6g} (zero backlash; "
-                            "smaller jams the teeth)", f"{a / sec.unit:g}")
+                            f"a centre distance >= {a0 / sec.unit:.6g} ({bound})",
+                            f"{a / sec.unit:g}")
         if internal and not a_std * math.cos(ts.alpha) < a <= a0 * (1 + 1e-12):
             raise SpecError(sec.file, sec.key(key),
                             f"a centre distance in ({a_std * math.cos(ts.alpha) / sec.unit:.6g}, "

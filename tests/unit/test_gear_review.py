@@ -73,3 +73,31 @@ def test_internal_interference_uses_the_ring_tip(z1, z2, expected):
     reach2 = math.sqrt(g2.ra ** 2 - g2.rb ** 2)
     assert (reach2 < (z2 - z1) * math.sin(alpha)) is expected
     assert pair.interference is expected
+
+
+def test_thin_teeth_without_zero_backlash_mount_at_a_given_distance(tmp_path):
+    # z = 12 + 30, x1 = x2 = -0.5: inv alpha' = 2 tan 20° (-1)/42 + inv 20° < 0, so no a' gives
+    # zero backlash and no a' jams.  A given a' = 20 mm (> rb1 + rb2 = 19.73) was refused
+    # (exit 3, "no zero-backlash pressure angle exists"); independent: j = 2 pi r1'/z1 - s1' - s2'.
+    from mechcli.core.gear_pair import gear_pair, zero_backlash_distance
+    alpha = math.radians(20)
+    g1 = spur_gear(12, 1.0, alpha, x=-0.5)
+    g2 = spur_gear(30, 1.0, alpha, x=-0.5)
+    assert zero_backlash_distance(g1, g2) is None
+    pair = gear_pair(g1, g2, a_w=20.0)
+    aw = math.acos(21 * math.cos(alpha) / 20)
+    inv = math.tan(aw) - aw - (math.tan(alpha) - alpha)
+    r1, r2 = g1.rb / math.cos(aw), g2.rb / math.cos(aw)
+    s1 = r1 * (g1.s / g1.r - 2 * inv)
+    s2 = r2 * (g2.s / g2.r - 2 * inv)
+    assert pair.backlash == pytest.approx(2 * math.pi * r1 / 12 - s1 - s2, rel=1e-12)
+    assert pair.backlash > 0
+    body = "[pair]\nz1 = 12\nz2 = 30\nm = 1\nx1 = -0.5\nx2 = -0.5\n"
+    proc = run_cli("gear", _spec(tmp_path, body + "a_w = 20\n"), "--json", "--no-plot",
+                   "--out", tmp_path / "o")
+    assert proc.returncode == 0, proc.stderr
+    proc = run_cli("gear", _spec(tmp_path, body + "a_w = 19.7\n"), "--no-plot", "-q",
+                   "--out", tmp_path / "o")
+    assert proc.returncode == 2 and "a_w" in proc.stderr and "base circles" in proc.stderr
+    proc = run_cli("gear", _spec(tmp_path, body), "--no-plot", "-q", "--out", tmp_path / "o")
+    assert proc.returncode == 3 and "zero-backlash" in proc.stderr
