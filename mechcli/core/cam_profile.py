@@ -632,6 +632,10 @@ def translating_base_radius_min(program, e, rotation, alpha_rise, alpha_return=N
     From eq. (7-14): ``tan α = |s' − σe|/(s0 + s) ≤ tan[α]`` gives
     ``s0 ≥ max(|s' − σe|/tan[α] − s)`` and ``r0 = sqrt(s0² + e²)`` (习题 4-2).
     """
+    for limit in (alpha_rise, alpha_return):
+        if limit is not None and not 0 < limit < math.pi / 2:
+            raise ValueError(f"the allowed pressure angle must be in (0, 90) deg, got "
+                             f"{math.degrees(limit):g}")
     need = _translating_s0_needed(program, e, rotation, "rise", math.tan(alpha_rise), step)
     if alpha_return is not None:
         need = max(need, _translating_s0_needed(program, e, rotation, "return",

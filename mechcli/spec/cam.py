@@ -227,8 +227,12 @@ def read_cam_spec(root, step_override=None, points_override=None):
     lim = root.table("limits", None)
     a_rise_default = 45.0 if angular else 30.0
     if lim is not None:
-        limits = Limits(math.radians(lim.number("alpha_rise", a_rise_default, lo=0, hi=89.999)),
-                        math.radians(lim.number("alpha_return", 70.0, lo=0, hi=89.999)),
+        # [α] = 0 admits no cam (and tan 0 would divide the sizing by zero)
+        want = "an allowed pressure angle in (0, 89.999] deg"
+        limits = Limits(math.radians(lim.number("alpha_rise", a_rise_default, positive=True,
+                                                hi=89.999, expected=want)),
+                        math.radians(lim.number("alpha_return", 70.0, positive=True,
+                                                hi=89.999, expected=want)),
                         lim.boolean("forbid_undercut", False))
         lim.finish()
     else:
