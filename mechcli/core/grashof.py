@@ -202,13 +202,16 @@ def classify_fourbar(lengths, frame=4, crossed=False, rtol=CHANGE_POINT_RTOL):
                         shortest=np.argmin(L, axis=1) + 1, excess=excess)
 
 
-def classify_inversions(lengths, rtol=CHANGE_POINT_RTOL):
+def classify_inversions(lengths, rtol=CHANGE_POINT_RTOL, crossed=False):
     """The type of the chain for each of the four choices of frame.
 
     Parameters
     ----------
     lengths : array_like, shape (4,) or (N, 4)
         l1..l4 [m].
+    crossed : bool or array of bool
+        Crossed assembly: a parallelogram chain is an antiparallelogram whichever
+        link is the frame.
 
     Returns
     -------
@@ -220,7 +223,7 @@ def classify_inversions(lengths, rtol=CHANGE_POINT_RTOL):
     Kinematic inversion (slides §2-1 "倒置法"): a Grashof chain gives two
     crank-rockers, one double crank and one double rocker.
     """
-    return [classify_fourbar(lengths, frame=k, rtol=rtol) for k in (1, 2, 3, 4)]
+    return [classify_fourbar(lengths, frame=k, crossed=crossed, rtol=rtol) for k in (1, 2, 3, 4)]
 
 
 def driven_links(frame, input_link):

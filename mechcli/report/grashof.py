@@ -550,7 +550,7 @@ def _build(spec, lang):
         gf.check_closure(np.asarray(p.lengths) / scale, unit)
     if spec.kind == "fourbar":
         an = gf.analyse_fourbar(p.lengths, p.frame, p.input, p.crossed, p.rtol)
-        invs = gf.classify_inversions(p.lengths, p.rtol)
+        invs = gf.classify_inversions(p.lengths, p.rtol, p.crossed)
         ranges = {k: gf.length_ranges(p.lengths, k, p.frame, p.rtol) for k in p.vary}
         r = fourbar_results(p, an, invs, ranges, scale)
         if r["change_point"]:

@@ -46,6 +46,20 @@ def test_mobility_frame_that_no_joint_names_is_an_error(tmp_path):
     assert report.build(spec, "en")[0]["F"] == 1
 
 
+def test_inversions_of_a_crossed_parallelogram_chain(tmp_path):
+    """assembly = "crossed": the type said antiparallelogram, its own inversion row
+    (frame 4) said parallelogram."""
+    spec = read_grashof_spec(write(tmp_path, 'command = "grashof"\n[fourbar]\n'
+                                   'lengths = [20, 30, 20, 30]\nassembly = "crossed"\n'))
+    r = report.build(spec, "en")[0]
+    assert r["type"] == "antiparallelogram"
+    assert [r[f"inversion_frame{k}"] for k in (1, 2, 3, 4)] == ["antiparallelogram"] * 4
+    spec = read_grashof_spec(write(tmp_path, 'command = "grashof"\n[fourbar]\n'
+                                   'lengths = [20, 30, 20, 30]\n'))
+    r = report.build(spec, "en")[0]
+    assert [r[f"inversion_frame{k}"] for k in (1, 2, 3, 4)] == ["parallelogram"] * 4
+
+
 # ------------------------------------------------------------------ quick form
 def test_quick_form_empty_length_field_is_an_error():
     """``--lengths 100,,150,170,110`` was read as the four-bar 100,150,170,110."""
