@@ -92,7 +92,8 @@ def _segments(motion_sec, stroke, angular, file):
     unit_word = "deg" if angular else "length"
     for sec in secs:
         kind = sec.string("kind", choices=["rise", "dwell", "return"])
-        span = sec.number("angle", positive=True)
+        # a dwell may last 0 deg (the book's 远休止角 0°, 习题 4-1/4-4): it is dropped
+        span = sec.number("angle", nonneg=kind == "dwell", positive=kind != "dwell")
         if kind == "dwell":
             law, lift = None, 0.0
         else:
@@ -115,7 +116,8 @@ def _segments(motion_sec, stroke, angular, file):
             level = 0.0 if abs(new) <= tol else new
         sec.finish()
         total += span
-        out.append((kind, math.radians(span), law, lift))
+        if span > 0:
+            out.append((kind, math.radians(span), law, lift))
     if abs(total - 360.0) > 1e-6:
         raise SpecError(file, motion_sec.key("segments"), "segment angles summing to 360 deg",
                         f"{total:g} deg")

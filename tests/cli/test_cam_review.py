@@ -42,3 +42,39 @@ def test_sizing_core_rejects_a_zero_limit():
         translating_base_radius_min(prog, 0.0, 1, 0.0)
     with pytest.raises(ValueError, match="allowed pressure angle"):
         translating_base_radius_min(prog, 0.0, 1, math.radians(30), 0.0)
+
+
+PROGRAM = """command = "cam"
+[follower]
+contact = "knife"
+r0 = 30
+[cam]
+rotation = "cw"
+[motion]
+h = 20
+segments = [
+  { kind = "rise", angle = 120, law = "cosine" },%s
+  { kind = "return", angle = 120, law = "cosine" },
+  { kind = "dwell", angle = 120 },
+]
+"""
+
+
+def test_zero_degree_dwell_as_the_book_writes_it(tmp_path):
+    # 习题 4-1 gives 远休止角 δ01 = 0°: a 0° dwell used to be rejected (exit 2); it is dropped
+    import json
+
+    spec = tmp_path / "zero.toml"
+    spec.write_text(PROGRAM % "\n  { kind = \"dwell\", angle = 0 },", encoding="utf-8")
+    proc = run_cli("cam", spec, "--no-plot", "--json", "--out", tmp_path / "a")
+    assert proc.returncode == 0, proc.stderr
+    res = json.loads(proc.stdout)["results"]
+    # the hand values of configs/ch4/exercise4-1.toml (cos x = 0.25)
+    assert res["alpha_rise_max_deg"] == pytest.approx(21.1713, abs=5e-5)
+    assert res["alpha_return_max_at_deg"] == pytest.approx(189.6517, abs=5e-5)
+    assert res["n_soft_impacts"] == 2
+    # a rise of 0 deg is still an error
+    spec.write_text(PROGRAM.replace("angle = 120, law = \"cosine\" },%s",
+                                    "angle = 0, law = \"cosine\" },%s") % "", encoding="utf-8")
+    proc = run_cli("cam", spec, "--no-plot", "--out", tmp_path / "b")
+    assert proc.returncode == 2 and "angle" in proc.stderr, proc.stderr
