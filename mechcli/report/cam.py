@@ -161,7 +161,8 @@ def warnings_for(cs, design, lang="en"):
                        f"{ch.rho_pitch_min.value / u:.4g} {unit} (δ = {where:.4g}°)")
     for name, ext, lim in (("rise", ch.alpha_rise, cs.limits.alpha_rise),
                            ("return", ch.alpha_return, cs.limits.alpha_return)):
-        if ext is not None and ext.value > lim:
+        # a sized cam meets [α] with equality: do not warn on round-off (1e-9 rad)
+        if ext is not None and ext.value > lim + 1e-9:
             out.append(f"max pressure angle in the {name} {deg(ext.value):.4f}° exceeds "
                        f"[α] = {deg(lim):g}°" if not zh else
                        f"{'推' if name == 'rise' else '回'}程最大压力角 {deg(ext.value):.4f}° "

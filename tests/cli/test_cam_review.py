@@ -78,3 +78,47 @@ def test_zero_degree_dwell_as_the_book_writes_it(tmp_path):
                                     "angle = 0, law = \"cosine\" },%s") % "", encoding="utf-8")
     proc = run_cli("cam", spec, "--no-plot", "--out", tmp_path / "b")
     assert proc.returncode == 2 and "angle" in proc.stderr, proc.stderr
+
+
+EX72_SIZED = """command = "cam"
+[follower]
+contact = "knife"
+[motion]
+h = 20
+segments = [
+  { kind = "rise", angle = 90, law = "cosine" },
+  { kind = "dwell", angle = 90 },
+  { kind = "return", angle = 90, law = "cosine" },
+  { kind = "dwell", angle = 90 },
+]
+[sizing]
+base_radius = true
+"""
+
+
+# 例 7-2's cam sized for [α]: tan α = (πh/2β) sin x/(s0 + h/2 (1 - cos x)) is largest where
+# cos x = (h/2)/(s0 + h/2); the smallest s0 (= r0, e = 0) solves max tan α = tan[α]
+@pytest.mark.parametrize("alpha", [30.0, 35.0])
+def test_sized_cam_at_the_limit_gives_no_pressure_angle_warning(tmp_path, alpha):
+    # the sized cam meets [α] with equality; round-off (30.000000000000004°) used to print
+    # "max pressure angle in the rise 30.0000° exceeds [α] = 30°"
+    import json
+
+    from scipy.optimize import brentq
+
+    spec = tmp_path / "s.toml"
+    spec.write_text(EX72_SIZED + f"[limits]\nalpha_rise = {alpha}\nalpha_return = {alpha}\n",
+                    encoding="utf-8")
+    proc = run_cli("cam", spec, "--no-plot", "--json", "--out", tmp_path)
+    assert proc.returncode == 0, proc.stderr
+    doc = json.loads(proc.stdout)
+    h, beta, t = 20.0, math.pi / 2, math.tan(math.radians(alpha))
+
+    def excess(s0):
+        c = (h / 2) / (s0 + h / 2)
+        return math.pi * h / (2 * beta) * math.sqrt(1 - c * c) / (s0 + h / 2 * (1 - c)) - t
+
+    assert doc["results"]["r0_min"] == pytest.approx(brentq(excess, 1.0, 1e3, xtol=1e-13),
+                                                     rel=1e-9)
+    assert doc["results"]["alpha_rise_max_deg"] == pytest.approx(alpha, abs=1e-9)
+    assert not [w for w in doc["warnings"] if "exceeds" in w], doc["warnings"]
