@@ -522,8 +522,10 @@ def solve(linkage: Linkage, inputs, order: int = 2, on_fail: str = "mask") -> Li
         nonlocal feasible, regular
         feasible &= ok
         if not vel:
-            if position_singular:
+            if position_singular is True:
                 regular &= ok & (sing > SINGULAR_TOL)
+            elif position_singular is not None and position_singular is not False:
+                regular &= ok & ~position_singular
             return None
         good = ok & (sing > SINGULAR_TOL)
         regular &= good
@@ -574,7 +576,13 @@ def solve(linkage: Linkage, inputs, order: int = 2, on_fail: str = "mask") -> Li
             d2 = dx * dx + dy * dy
             dist = np.sqrt(d2)
             ok = dist > ASSEMBLY_TOL * scale
+            coincide = None
             if not ok.all():
+                # the known points coincide: with equal lengths (a kite's folded
+                # position) the joint may be anywhere on the circle -- a dead
+                # point, not a failure to assemble
+                if abs(la - lb) <= ASSEMBLY_TOL * max(la, lb):
+                    coincide = ~ok
                 dist = np.where(ok, dist, 1.0)
             inv = 1.0 / dist
             along = (la * la - lb * lb + d2) * (0.5 * inv)
@@ -589,9 +597,12 @@ def solve(linkage: Linkage, inputs, order: int = 2, on_fail: str = "mask") -> Li
             nab = 1.0 / (la * lb)
             cross = rax * rby - ray * rbx
             sing = np.abs(cross) * nab
+            if coincide is not None:
+                ok = ok | coincide
+                sing = np.where(coincide, 0.0, sing)
             conds.append(DyadCondition(idx, "RRR", el.joint, sing,
                                        (rax * rbx + ray * rby) * nab))
-            bad = mark(ok, sing)
+            bad = mark(ok, sing, position_singular=coincide)
             q = _Pt(qx, qy)
             wa = wb = aa = ab = None
             if vel:

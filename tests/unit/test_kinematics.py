@@ -118,3 +118,13 @@ def test_rotating_link_extremes_are_the_sweep_ends():
     res = run(fourbar(100, 300, 250, 200), 0, 360, 5.0, order=0)
     lo_hi = dense_extremes(fourbar(100, 300, 250, 200), "theta3", order=0)
     assert res.extremes["theta3"][0].value == pytest.approx(lo_hi[0], abs=1e-9)
+
+
+def test_kite_folded_position_is_a_dead_point_not_an_assembly_failure():
+    # l1 = l4, l2 = l3: at theta1 = 0, B lands on D and C is indeterminate
+    lk = fourbar(100, 150, 150, 100)
+    for order in (0, 2):
+        m = solve(lk, {1: DriverMotion(np.array([0.0, 0.1]), 1.0)}, order=order)
+        assert m.feasible.all() and list(m.regular) == [False, True]
+    with pytest.raises(AssemblyError, match="dead point for input angle 0"):
+        run(lk, 0, 360, 1.0)
