@@ -17,6 +17,21 @@ def run_cli(*args, cwd=None):
                           capture_output=True, text=True, cwd=cwd or ROOT, timeout=300)
 
 
+def write_spec(tmp_path, text, name="spec.toml", encoding="utf-8"):
+    """Write a spec file for a test and return its path."""
+    p = tmp_path / name
+    p.write_text(text, encoding=encoding)
+    return p
+
+
+def one_line_error(proc):
+    """The single stderr line of a failed run (no traceback, nothing else)."""
+    lines = [ln for ln in proc.stderr.splitlines() if ln.strip()]
+    assert len(lines) == 1, proc.stderr
+    assert "Traceback" not in proc.stderr
+    return lines[0]
+
+
 @pytest.fixture
 def cli():
     return run_cli

@@ -6,22 +6,9 @@ import sys
 
 import pytest
 
-from tests.conftest import CONFIGS, ROOT, run_cli
+from tests.conftest import CONFIGS, ROOT, run_cli, one_line_error, write_spec as write
 
 EX31 = CONFIGS / "ch3" / "ex3-1.toml"
-
-
-def write(tmp_path, text, name="spec.toml"):
-    p = tmp_path / name
-    p.write_text(text, encoding="utf-8")
-    return p
-
-
-def one_line_error(proc):
-    lines = [ln for ln in proc.stderr.splitlines() if ln.strip()]
-    assert len(lines) == 1, proc.stderr
-    assert "Traceback" not in proc.stderr
-    return lines[0]
 
 
 def test_ex3_1_report_in_the_books_format(tmp_path):

@@ -5,7 +5,7 @@ import json
 
 import pytest
 
-from tests.conftest import CONFIGS, run_cli
+from tests.conftest import CONFIGS, run_cli, one_line_error, write_spec as write
 
 EX11 = CONFIGS / "ch1" / "ex1-1.toml"
 
@@ -22,19 +22,6 @@ l4 = 200
 omega1 = 10
 step = 5
 """
-
-
-def write(tmp_path, text, name="spec.toml"):
-    p = tmp_path / name
-    p.write_text(text, encoding="utf-8")
-    return p
-
-
-def one_line_error(proc):
-    lines = [ln for ln in proc.stderr.splitlines() if ln.strip()]
-    assert len(lines) == 1, proc.stderr
-    assert "Traceback" not in proc.stderr
-    return lines[0]
 
 
 def test_version_and_help():
