@@ -130,7 +130,10 @@ def _segments(motion_sec, stroke, angular, file):
         raise SpecError(file, motion_sec.key("segments"),
                         "rises that reach the stroke " + ("psi" if angular else "h"),
                         "a largest displacement below it")
-    return tuple(out)
+    # within the 1e-6 deg accepted above, stretch the spans to exactly 360 deg (the core
+    # checks the sum to 1e-9 rad)
+    return tuple((kind, span * (2 * math.pi / sum(o[1] for o in out)), law, lift)
+                 for kind, span, law, lift in out)
 
 
 def _levels(segs):

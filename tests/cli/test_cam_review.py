@@ -122,3 +122,25 @@ def test_sized_cam_at_the_limit_gives_no_pressure_angle_warning(tmp_path, alpha)
                                                      rel=1e-9)
     assert doc["results"]["alpha_rise_max_deg"] == pytest.approx(alpha, abs=1e-9)
     assert not [w for w in doc["warnings"] if "exceeds" in w], doc["warnings"]
+
+
+@pytest.mark.parametrize("extra", [5e-7, -9e-7])
+def test_segment_sum_within_the_spec_tolerance_runs(tmp_path, extra):
+    # the spec accepts sums within 1e-6 deg of 360 but the core checked 1e-9 rad (5.7e-8 deg):
+    # 360.0000005 deg used to end in "internal error: ValueError" (exit 1)
+    import json
+
+    spec = tmp_path / "s.toml"
+    spec.write_text(PROGRAM.replace("angle = 120, law = \"cosine\" },%s",
+                                    f"angle = {120 + extra!r}, law = \"cosine\" }},%s") % "",
+                    encoding="utf-8")
+    proc = run_cli("cam", spec, "--no-plot", "--json", "--out", tmp_path)
+    assert proc.returncode == 0, proc.stderr
+    res = json.loads(proc.stdout)["results"]
+    assert res["alpha_rise_max_deg"] == pytest.approx(21.1713, abs=5e-5)
+    # one more micro-degree over the tolerance is still a spec error
+    spec.write_text(PROGRAM.replace("angle = 120, law = \"cosine\" },%s",
+                                    "angle = 120.000002, law = \"cosine\" },%s") % "",
+                    encoding="utf-8")
+    proc = run_cli("cam", spec, "--no-plot", "--out", tmp_path)
+    assert proc.returncode == 2 and "360" in proc.stderr, proc.stderr
