@@ -113,6 +113,12 @@ def _segments(motion_sec, stroke, angular, file):
                                 "(return lift = rise lift)",
                                 f"a return of {_show(lift, angular, sec.unit)} from "
                                 f"{_show(level, angular, sec.unit)}")
+            # a lift within the tolerance of reaching 0 or the stroke reaches it exactly (the
+            # core allows no excursion outside [0, stroke])
+            if abs(new) <= tol and kind == "return":
+                lift, new = level, 0.0
+            elif abs(new - stroke) <= tol and kind == "rise":
+                lift, new = stroke - level, stroke
             level = 0.0 if abs(new) <= tol else new
         sec.finish()
         total += span

@@ -144,3 +144,22 @@ def test_segment_sum_within_the_spec_tolerance_runs(tmp_path, extra):
                     encoding="utf-8")
     proc = run_cli("cam", spec, "--no-plot", "--out", tmp_path)
     assert proc.returncode == 2 and "360" in proc.stderr, proc.stderr
+
+
+@pytest.mark.parametrize("rise, ret", [("20.00000001", "20.00000001"), ("20", "20.00000001"),
+                                       ("20", "19.99999999")])
+def test_lift_within_the_spec_tolerance_runs(tmp_path, rise, ret):
+    # the spec accepts lifts within 1e-9 h of the stroke, the core allowed 1e-12 h: a return
+    # of 20.00000001 after a rise of h = 20 used to be "internal error: ValueError" (exit 1)
+    import json
+
+    spec = tmp_path / "s.toml"
+    spec.write_text(PROGRAM.replace("law = \"cosine\" },%s", f"law = \"cosine\", lift = {rise} }},")
+                    .replace("{ kind = \"return\", angle = 120, law = \"cosine\" }",
+                             f"{{ kind = \"return\", angle = 120, law = \"cosine\", lift = {ret} }}"),
+                    encoding="utf-8")
+    proc = run_cli("cam", spec, "--no-plot", "--json", "--out", tmp_path)
+    assert proc.returncode == 0, proc.stderr
+    res = json.loads(proc.stdout)["results"]
+    assert res["alpha_rise_max_deg"] == pytest.approx(21.1713, abs=5e-5)
+    assert res["alpha_return_max_deg"] == pytest.approx(21.1713, abs=5e-5)
