@@ -195,6 +195,21 @@ class SpurGear:
         ap = inverse_involute_scalar(theta)[0]
         return self.rb / math.cos(ap)
 
+    @property
+    def r_tip_effective(self):
+        """Where the tooth really ends (m): the tip circle, or the pointed radius
+        if the flanks meet before it (external: below ra; internal: above ra)."""
+        rp = self.pointed_radius
+        if self.sign > 0:
+            return min(self.ra, rp)
+        return max(self.ra, rp) if rp > self.rb else self.ra
+
+    @property
+    def alpha_a_effective(self):
+        """Pressure angle at :attr:`r_tip_effective` (rad); equals ``alpha_a``
+        unless the tip is pointed below the tip circle."""
+        return math.acos(min(1.0, self.rb / self.r_tip_effective))
+
     # -- undercut ----------------------------------------------------------
     @property
     def z_min(self):

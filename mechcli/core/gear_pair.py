@@ -140,8 +140,11 @@ class GearPair:
             [z1 (tan aa1 - tan a') + z2 (tan aa2 - tan a')] / (2 pi)
         """
         t = math.tan(self.alpha_w)
-        return (self.g1.z * (math.tan(self.g1.alpha_a) - t)
-                + self.g2.sign * self.g2.z * (math.tan(self.g2.alpha_a) - t)) / (2 * math.pi)
+        # a pointed tooth ends where its flanks meet, below the tip circle: the
+        # contact stops there (alpha_a_effective), not at ra
+        return (self.g1.z * (math.tan(self.g1.alpha_a_effective) - t)
+                + self.g2.sign * self.g2.z * (math.tan(self.g2.alpha_a_effective) - t)
+                ) / (2 * math.pi)
 
     @property
     def line_of_action(self):
@@ -157,8 +160,8 @@ class GearPair:
     def tip_reach(self):
         """(N2B1, N1B2): how far each tip circle cuts the line of action from the
         other gear's tangent point (m); above N1N2 means interference."""
-        r1 = math.sqrt(self.g1.ra ** 2 - self.g1.rb ** 2)
-        r2 = math.sqrt(self.g2.ra ** 2 - self.g2.rb ** 2)
+        r1 = math.sqrt(max(self.g1.r_tip_effective ** 2 - self.g1.rb ** 2, 0.0))
+        r2 = math.sqrt(max(self.g2.r_tip_effective ** 2 - self.g2.rb ** 2, 0.0))
         return r2, r1
 
     @property
@@ -355,8 +358,8 @@ def mesh_positions(pair: GearPair, phi1):
     n1 = g1.rb * foot
     n2 = np.array([0.0, pair.a_w]) - g2.rb * foot
     direction = (n2 - n1) / n1n2
-    lo = n1n2 - math.sqrt(g2.ra ** 2 - g2.rb ** 2)
-    hi = math.sqrt(g1.ra ** 2 - g1.rb ** 2)
+    lo = n1n2 - math.sqrt(max(g2.r_tip_effective ** 2 - g2.rb ** 2, 0.0))
+    hi = math.sqrt(max(g1.r_tip_effective ** 2 - g1.rb ** 2, 0.0))
     pb = g1.pb
     base = l0 + g1.rb * phi1
     k = np.arange(math.floor((lo - base.max()) / pb), math.ceil((hi - base.min()) / pb) + 1)

@@ -101,3 +101,23 @@ def test_thin_teeth_without_zero_backlash_mount_at_a_given_distance(tmp_path):
     assert proc.returncode == 2 and "a_w" in proc.stderr and "base circles" in proc.stderr
     proc = run_cli("gear", _spec(tmp_path, body), "--no-plot", "-q", "--out", tmp_path / "o")
     assert proc.returncode == 3 and "zero-backlash" in proc.stderr
+
+
+def test_contact_ratio_stops_where_a_pointed_tooth_ends():
+    """z1 = 5, x1 = 1, alpha = 14.5°: the pinion's flanks meet at 4.0855 mm, below
+    its tip circle ra = 4.5 mm; the contact (and epsilon_alpha) must stop there."""
+    import math
+
+    from mechcli.core.gear import spur_gear
+    from mechcli.core.gear_pair import gear_pair
+
+    g1 = spur_gear(5, 1.0, math.radians(14.5), x=1.0)
+    g2 = spur_gear(40, 1.0, math.radians(14.5))
+    assert g1.pointed_radius < g1.ra
+    pair = gear_pair(g1, g2)
+    t = math.tan(pair.alpha_w)
+    tan_p = math.sqrt(g1.pointed_radius ** 2 - g1.rb ** 2) / g1.rb
+    expected = (5 * (tan_p - t) + 40 * (math.tan(g2.alpha_a) - t)) / (2 * math.pi)
+    assert pair.epsilon_alpha == pytest.approx(expected, rel=1e-12)
+    naive = (5 * (math.tan(g1.alpha_a) - t) + 40 * (math.tan(g2.alpha_a) - t)) / (2 * math.pi)
+    assert pair.epsilon_alpha < naive - 0.05
