@@ -267,7 +267,13 @@ def _input(sec, linkage, followers):
         raise SpecError(sec.file, sec.key("stop"), f"a value above start ({start / unit:g})",
                         f"{stop / unit:g}")
     if sec.has("step") and sec.has("count"):
-        raise SpecError(sec.file, sec.key("count"), "either step or count, not both", "both")
+        # a --set of one of them replaces the other one from the file
+        if sec.is_overridden("count") and not sec.is_overridden("step"):
+            sec.data = {k: v for k, v in sec.data.items() if k != "step"}
+        elif sec.is_overridden("step") and not sec.is_overridden("count"):
+            sec.data = {k: v for k, v in sec.data.items() if k != "count"}
+        else:
+            raise SpecError(sec.file, sec.key("count"), "either step or count, not both", "both")
     if sec.has("count"):
         count = sec.integer("count", lo=2, hi=MAX_POSITIONS)
     else:
@@ -343,4 +349,6 @@ def load_kin_spec(path, overrides=()) -> KinSpec:
 
 def _empty(root, name):
     from mechcli.spec.reader import Section
-    return Section({}, root.file, name, root.unit)
+    sec = Section({}, root.file, name, root.unit)
+    sec.overridden = root.overridden
+    return sec

@@ -116,10 +116,14 @@ def load_spec(path, overrides=()):
         raise SpecError(file, "", "UTF-8 text", "undecodable bytes") from None
     except tomllib.TOMLDecodeError as exc:
         raise SpecError(file, "", "valid TOML", f"a syntax error: {exc}") from None
+    overridden = set()
     for text in overrides:
         key, value = parse_override(file, text)
         apply_override(file, data, key, value)
-    return Section(data, file, "")
+        overridden.add(key)
+    root = Section(data, file, "")
+    root.overridden = frozenset(overridden)
+    return root
 
 
 class Section:
@@ -147,6 +151,7 @@ class Section:
         self.unit = unit
         self._known = set()
         self._declared = set()
+        self.overridden = frozenset()  # dotted keys set by --set (shared by sub-tables)
 
     def declare(self, *names):
         """Name keys that a later accessor will read (so a missing key is not
@@ -298,7 +303,13 @@ class Section:
             return value
         if not isinstance(value, dict):
             raise self.error(name, "a table", _describe(value))
-        return Section(value, self.file, self.key(name), self.unit)
+        sub = Section(value, self.file, self.key(name), self.unit)
+        sub.overridden = self.overridden
+        return sub
+
+    def is_overridden(self, name):
+        """Was this key given by ``--set`` (rather than the file)?"""
+        return self.key(name) in self.overridden
 
     def tables(self, name, default=REQUIRED):
         """An array of tables, as a list of :class:`Section`."""
@@ -309,8 +320,11 @@ class Section:
             value = [value]
         if not isinstance(value, list) or not all(isinstance(v, dict) for v in value):
             raise self.error(name, "an array of tables ([[...]])", _describe(value))
-        return [Section(v, self.file, f"{self.key(name)}.{i}", self.unit)
-                for i, v in enumerate(value)]
+        out = [Section(v, self.file, f"{self.key(name)}.{i}", self.unit)
+               for i, v in enumerate(value)]
+        for sub in out:
+            sub.overridden = self.overridden
+        return out
 
     def raw(self, name, default=REQUIRED):
         """The untyped value (the caller validates it)."""

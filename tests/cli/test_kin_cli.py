@@ -163,3 +163,12 @@ def test_out_of_range_angles_and_counts_exit_2(tmp_path, override, fragment):
     proc = run_cli("kin", spec, "--set", override, "--out", tmp_path / "o")
     assert proc.returncode == 2
     assert fragment in one_line_error(proc)
+
+
+def test_set_count_replaces_the_files_step(tmp_path):
+    proc = run_cli("kin", EX11, "--json", "--no-plot", "--set", "input.count=721", "--out", tmp_path)
+    assert proc.returncode == 0, proc.stderr
+    assert json.loads(proc.stdout)["results"]["positions"] == 721
+    spec = write(tmp_path, GOOD.replace("step = 5", "step = 5\ncount = 10"))
+    proc = run_cli("kin", spec, "--out", tmp_path)
+    assert proc.returncode == 2 and "either step or count, not both" in one_line_error(proc)
