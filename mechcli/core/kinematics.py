@@ -234,21 +234,33 @@ def _runs(mask):
     return list(zip(edges[0::2], edges[1::2]))
 
 
-def _bisect_boundaries(linkage, sweep, order, good, bad, iterations=64):
+def _bisect(lo, hi, keep_lo, rtol, iterations=64):
+    """Vectorized bisection: ``keep_lo(mid)`` is a mask, True where the sought
+    point lies beyond ``mid`` (so ``lo`` moves to ``mid``), else ``hi`` does.
+
+    ``lo`` and ``hi`` may be in either order; returns the final (lo, hi).
+    """
+    lo = np.asarray(lo, dtype=float).copy()
+    hi = np.asarray(hi, dtype=float).copy()
+    for _ in range(iterations):
+        mid = 0.5 * (lo + hi)
+        go = keep_lo(mid)
+        lo = np.where(go, mid, lo)
+        hi = np.where(go, hi, mid)
+        if np.all(np.abs(hi - lo) <= rtol * np.maximum(1.0, np.abs(lo))):
+            break
+    return lo, hi
+
+
+def _bisect_boundaries(linkage, sweep, order, good, bad):
     """Refine boundaries between regular inputs ``good`` and irregular ``bad``.
 
     Returns the last regular input of every pair (to ~1e-15 relative).
     """
-    a = np.asarray(good, dtype=float).copy()
-    b = np.asarray(bad, dtype=float).copy()
-    for _ in range(iterations):
-        mid = 0.5 * (a + b)
-        ok = solve(linkage, sweep.inputs(mid), order=order).regular
-        a = np.where(ok, mid, a)
-        b = np.where(ok, b, mid)
-        if np.all(np.abs(b - a) <= 1e-15 * np.maximum(1.0, np.abs(a))):
-            break
-    return a
+    def regular(mid):
+        return solve(linkage, sweep.inputs(mid), order=order).regular
+
+    return _bisect(good, bad, regular, 1e-15)[0]
 
 
 def _wrap(x):
@@ -376,14 +388,11 @@ def refine_extremes(linkage, sweep, order, quantities, values, domain, iteration
     getters = [(quantities[qi].get, quantities[qi].rate, quantities[qi].is_angle)
                for qi, *_ in targets]
     signs = np.array([t[1] for t in targets])
-    for _ in range(iterations):
-        mid = 0.5 * (lo + hi)
-        g, _m = _derivative_probe(linkage, sweep, order, getters, mid, h)
-        rising = signs * g > 0
-        lo = np.where(rising, mid, lo)
-        hi = np.where(rising, hi, mid)
-        if np.all(hi - lo <= 1e-13 * np.maximum(1.0, np.abs(lo))):
-            break
+
+    def rising(mid):
+        return signs * _derivative_probe(linkage, sweep, order, getters, mid, h)[0] > 0
+
+    lo, hi = _bisect(lo, hi, rising, 1e-13, iterations)
     at = 0.5 * (lo + hi)
     m = solve(linkage, sweep.inputs(at), order=order)
     best = {}
@@ -450,16 +459,13 @@ def _scan_gaps(linkage, sweep, order, q, motion, runs):
     hi = np.array([t[3] for t in targets], dtype=float)
     h = 1e-7 * max(1.0, float(np.max(np.abs(q))))
     T = len(targets)
-    for _ in range(60):
-        mid = 0.5 * (lo + hi)
+
+    def falling(mid):
         m = solve(linkage, sweep.inputs(np.concatenate([mid - h, mid + h])), order=0)
-        g = np.array([m.conditions[ci].sin_gamma[T + j] - m.conditions[ci].sin_gamma[j]
-                      for j, (ci, *_r) in enumerate(targets)])
-        falling = g < 0
-        lo = np.where(falling, mid, lo)
-        hi = np.where(falling, hi, mid)
-        if np.all(hi - lo <= 1e-14 * np.maximum(1.0, np.abs(lo))):
-            break
+        return np.array([m.conditions[ci].sin_gamma[T + j] - m.conditions[ci].sin_gamma[j]
+                         for j, (ci, *_r) in enumerate(targets)]) < 0
+
+    lo, hi = _bisect(lo, hi, falling, 1e-14, 60)
     at = 0.5 * (lo + hi)
     m = solve(linkage, sweep.inputs(at), order=order)
     toggles, gaps = [], []

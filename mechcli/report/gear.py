@@ -284,13 +284,20 @@ def present_pair(spec, pairs, run, outputs):
     if animate and g2.internal:
         warnings.append("no mesh animation for internal pairs (pair.png only)")
         animate = False
-    if run.plot or animate:
-        from mechcli.report import gear_plot
-        if run.plot:
-            gear_plot.plot_pair(first, spec, run, outputs)
-        if animate:
-            gear_plot.animate_pair(first, spec, run, outputs)
+    _pictures(run, animate, "pair", first, spec, outputs)
     return Report(spec.header.title, blocks), results, warnings
+
+
+def _pictures(run, animate, kind, solution, spec, outputs):
+    """``<kind>.png`` unless --no-plot, and the GIF when asked (gear_plot's
+    ``plot_<kind>`` / ``animate_<kind>``; matplotlib imported only here)."""
+    if not (run.plot or animate):
+        return
+    from mechcli.report import gear_plot
+    if run.plot:
+        getattr(gear_plot, f"plot_{kind}")(solution, spec, run, outputs)
+    if animate:
+        getattr(gear_plot, f"animate_{kind}")(solution, spec, run, outputs)
 
 
 # -- generation (gear_cut) ------------------------------------------------------------
@@ -348,13 +355,8 @@ def present_generation(spec, sol, run, outputs):
                              (f"x_{u}", np.concatenate(csv_cols[1])),
                              (f"y_{u}", np.concatenate(csv_cols[2]))])
     results["positions"] = int(sol["plan"].phi.size)
-    animate = p.animate if run.animate is None else run.animate
-    if run.plot or animate:
-        from mechcli.report import gear_plot
-        if run.plot:
-            gear_plot.plot_generation(sol, spec, run, outputs)
-        if animate:
-            gear_plot.animate_generation(sol, spec, run, outputs)
+    _pictures(run, p.animate if run.animate is None else run.animate, "generation", sol, spec,
+              outputs)
     return Report(spec.header.title, blocks), results, warnings
 
 
