@@ -18,6 +18,8 @@ from mechcli import __version__
 #: subcommand -> (module, attribute, one-line help).  Register only what works.
 COMMANDS = {
     "kin": ("mechcli.commands.kin", "kin", "Kinematics of a planar linkage (chapter 1)."),
+    "force": ("mechcli.commands.force", "force",
+              "Kinetostatics: pair reactions and balancing torque (chapter 2)."),
     "gear": ("mechcli.commands.gear", "gear",
              "Involute gears: function, geometry, pairs, generation (chapter 5)."),
     "grashof": ("mechcli.commands.grashof", "grashof",

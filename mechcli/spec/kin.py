@@ -314,16 +314,12 @@ def _output(sec, inp):
     return OutputSpec(order, table_step, plots, animate, frames, draw_at, digits)
 
 
-def load_kin_spec(path, overrides=()) -> KinSpec:
-    """Read and validate a ``mechcli kin`` spec.
+def read_mechanism(root):
+    """Read ``[mechanism]`` (a preset or the general form) into a linkage.
 
-    Raises
-    ------
-    SpecError
-        With the file, key, expectation and what was found.
+    Returns ``(kind, linkage, tracers, followers, guide_length)``; shared by
+    every command that runs the linkage engine (``kin``, ``force``).
     """
-    root = load_spec(path, overrides)
-    header = read_header(root, "kin", default_unit="mm")
     mech = root.table("mechanism")
     kind = mech.string("type", choices=list(MECHANISMS))
     followers = {}
@@ -338,13 +334,32 @@ def load_kin_spec(path, overrides=()) -> KinSpec:
     linkage = _build_linkage(mech, frame, elements, paths)
     if not linkage.drivers:
         raise SpecError(root.file, "mechanism.driver", "at least one driver", "none")
-    inp = _input(root.table("input") if root.has("input") else _empty(root, "input"),
-                 linkage, followers)
+    return kind, linkage, tuple(tracers), followers, guide_length
+
+
+def read_input(root, linkage, followers):
+    """Read ``[input]`` (the primary driver's program) for *linkage*."""
+    return _input(root.table("input") if root.has("input") else _empty(root, "input"),
+                  linkage, followers)
+
+
+def load_kin_spec(path, overrides=()) -> KinSpec:
+    """Read and validate a ``mechcli kin`` spec.
+
+    Raises
+    ------
+    SpecError
+        With the file, key, expectation and what was found.
+    """
+    root = load_spec(path, overrides)
+    header = read_header(root, "kin", default_unit="mm")
+    kind, linkage, tracers, followers, guide_length = read_mechanism(root)
+    inp = read_input(root, linkage, followers)
     out_sec = root.table("output") if root.has("output") else _empty(root, "output")
     output = _output(out_sec, inp)
     expected = read_expected(root)
     root.finish()
-    return KinSpec(header, kind, linkage, tuple(tracers), inp, output, expected, guide_length)
+    return KinSpec(header, kind, linkage, tracers, inp, output, expected, guide_length)
 
 
 def _empty(root, name):

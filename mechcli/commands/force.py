@@ -1,0 +1,38 @@
+"""``mechcli force``: kinetostatic analysis of a planar linkage (chapter 2)."""
+
+from __future__ import annotations
+
+import click
+
+from mechcli.options import RunOptions, common_options
+
+
+@click.command("force")
+@click.argument("spec_path", metavar="SPEC.toml")
+@common_options
+def force(spec_path, **opts):
+    """Kinetostatics (动态静力分析) of any linkage of `kin`: pair reactions, the
+    balancing torque, shaking force and moment, checked by the power balance."""
+    run = RunOptions.from_click(spec_path, opts)
+    from mechcli.core.force_analysis import analyse_forces
+    from mechcli.core.kinematics import Sweep
+    from mechcli.report import force as report
+    from mechcli.report.files import Outputs
+    from mechcli.report.run import finish
+    from mechcli.spec.force import load_force_spec
+
+    spec = load_force_spec(spec_path, run.sets)
+    inp = spec.input
+    sweep = Sweep(inp.driver, inp.q, inp.omega, inp.alpha, inp.followers, inp.periodic)
+    result = analyse_forces(spec.linkage, spec.topology, sweep, spec.bodies, spec.gravity,
+                            spec.loads, partial=inp.partial)
+    outputs = Outputs(run.out_dir)
+    outputs.csv("force.csv", report.columns(spec, result))
+    warnings = report.warnings(spec, result)
+    animate = spec.output.animate if run.animate is None else run.animate
+    if (run.plot and spec.output.plots) or animate:
+        from mechcli.report import force_plots
+        warnings += force_plots.write(spec, result, sweep, outputs, run.lang,
+                                      plots=run.plot and spec.output.plots, animate=animate)
+    finish(run, "force", report.build_report(spec, result, run.lang),
+           report.scalar_results(spec, result), outputs, warnings)

@@ -1,0 +1,280 @@
+"""Kinetostatics over a sweep of the input: reactions, balancing torque,
+extremes (refined), where the conditional loads act, mean and RMS.
+
+The kinematics (gaps, dead points, excluded intervals) come from
+:func:`mechcli.core.kinematics.analyse_sweep`; the forces from
+:func:`mechcli.core.kinetostatics.solve_forces`.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from typing import Dict, List, Tuple
+
+import numpy as np
+
+from mechcli.core.kinematics import SEARCH_STEP, Sweep, _bisect, analyse_sweep
+from mechcli.core.kinetostatics import COND_FLAG, ForceResult, solve_forces
+from mechcli.core.linkage import Crank, solve
+
+
+@dataclasses.dataclass(frozen=True)
+class ForceExtreme:
+    value: float
+    at: float
+
+
+@dataclasses.dataclass(frozen=True)
+class ForceSweep:
+    """Result of :func:`analyse_forces`.
+
+    ``q`` the analysed output positions, ``kin`` the kinematic sweep result,
+    ``forces`` the :class:`ForceResult` at ``q``; ``series`` every reported
+    quantity by symbol (balancing, pair components and magnitudes, frame
+    force/moment, power); ``extremes`` symbol -> (max, min) refined;
+    ``active`` load name -> list of (start, stop) input intervals; ``mean``,
+    ``rms`` of each balancing quantity over the analysed range; ``band``
+    load name -> absolute slide limits used.
+    """
+
+    q: np.ndarray
+    kin: object
+    forces: ForceResult
+    series: Dict[str, np.ndarray]
+    extremes: Dict[str, Tuple[ForceExtreme, ForceExtreme]]
+    active: Dict[str, List[Tuple[float, float]]]
+    active_mask: Dict[str, np.ndarray]
+    mean: Dict[str, float]
+    rms: Dict[str, float]
+    band: Dict[str, Tuple[float, float]]
+    flagged: List[Tuple[float, float]]
+
+
+def balancing_symbol(linkage, link):
+    drivers = linkage.drivers
+    d = next(x for x in drivers if x.link == link)
+    base = "Mb" if isinstance(d, Crank) else "Fb"
+    return base if len(drivers) == 1 else f"{base}{link}"
+
+
+def series_of(linkage, fr: ForceResult):
+    """Every reported quantity by symbol (SI units), in report order."""
+    out = {}
+    for d in linkage.drivers:
+        out[balancing_symbol(linkage, d.link)] = fr.balancing[d.link]
+    for pf in fr.pairs:
+        lab = pf.pair.label
+        out[f"FR{lab}x"] = pf.fx
+        out[f"FR{lab}y"] = pf.fy
+        out[f"FR{lab}"] = pf.magnitude
+        if pf.pair.kind == "P":
+            out[f"MR{lab}"] = pf.couple
+    fx, fy = fr.frame_force
+    out["Fshx"], out["Fshy"], out["Fsh"] = fx, fy, np.hypot(fx, fy)
+    out["Msh"] = fr.frame_moment
+    out["P"] = fr.input_power
+    return out
+
+
+def extreme_symbols(linkage, fr: ForceResult):
+    """Symbols whose max (and min, for signed ones) are reported."""
+    out = [(balancing_symbol(linkage, d.link), True) for d in linkage.drivers]
+    for pf in fr.pairs:
+        out.append((f"FR{pf.pair.label}", False))
+        if pf.pair.kind == "P":
+            out.append((f"MR{pf.pair.label}", True))
+    out += [("Fsh", False), ("Msh", True)]
+    return out
+
+
+class _Pipeline:
+    """Kinematics + loads + kinetostatics at arbitrary input positions."""
+
+    def __init__(self, linkage, topo, sweep, bodies, gravity, programs):
+        self.linkage, self.topo, self.sweep = linkage, topo, sweep
+        self.bodies, self.gravity, self.programs = bodies, gravity, programs
+        self.unit_sweep = dataclasses.replace(sweep, dq=1.0, ddq=0.0)
+
+    def __call__(self, q, motion=None, condition=False):
+        q = np.asarray(q, dtype=float)
+        if motion is None:
+            motion = solve(self.linkage, self.sweep.inputs(q), order=2)
+        unit = solve(self.linkage, self.unit_sweep.inputs(q), order=1)
+        loads, masks = [], {}
+        for p in self.programs:
+            ld, on = p.evaluate(q, motion)
+            loads.append(ld)
+            masks[p.load.name] = on
+        fr = solve_forces(self.topo, motion, self.bodies, loads, self.gravity, unit,
+                          condition=condition)
+        return fr, masks, motion
+
+
+def analyse_forces(linkage, topo, sweep: Sweep, bodies, gravity, programs, partial=False,
+                   iterations=48):
+    """Solve the kinetostatics over the sweep and summarise it (see :class:`ForceSweep`)."""
+    slides = [p.slide for p in programs if p.band is not None]
+    kin = analyse_sweep(linkage, sweep, slides, 2, partial=partial, extremes=bool(slides))
+    band = {}
+    progs = []
+    for p in programs:
+        if p.band is not None:
+            hi, lo = kin.extremes[p.slide.symbol]
+            p = p.with_band_limits(lo.value, hi.value)
+            band[p.load.name] = p.band_limits
+        progs.append(p)
+    pipe = _Pipeline(linkage, topo, sweep, bodies, gravity, progs)
+    q = kin.q
+    fr, masks, _ = pipe(q, kin.motion, condition=True)
+    series = series_of(linkage, fr)
+    syms = extreme_symbols(linkage, fr)
+
+    # search grid: the output grid, or a <= 0.5 deg grid inside the analysed runs
+    rotary = isinstance(next(d for d in linkage.drivers if d.link == sweep.driver), Crank)
+    step = float(np.max(np.diff(q))) if q.size > 1 else 0.0
+    fine = SEARCH_STEP if rotary else (q[-1] - q[0]) / 720
+    if step > fine * (1 + 1e-9):
+        parts = []
+        for a, b in kin.runs:
+            lo, hi = q[a], q[b - 1]
+            n = max(2, int(np.ceil((hi - lo) / fine)) + 1)
+            parts.append(np.linspace(lo, hi, n))
+        qs = np.concatenate(parts)
+        runs, k0 = [], 0
+        for prt in parts:
+            runs.append((k0, k0 + prt.size))
+            k0 += prt.size
+        frs, _m, _ = pipe(qs)
+        s_series = series_of(linkage, frs)
+    else:
+        qs, runs, s_series = q, kin.runs, series
+    periodic = bool(sweep.periodic and len(kin.excluded) == 0)
+    extremes = {}
+    targets = []
+    for sym, signed in syms:
+        v = s_series[sym]
+        for which in ((1.0, -1.0) if signed else (1.0,)):
+            k = int(np.argmax(which * v))
+            targets.append((sym, which, k))
+    lo_b, hi_b = [], []
+    for sym, which, k in targets:
+        run = next((a, b) for a, b in runs if a <= k < b)
+        a = qs[k - 1] if k > run[0] else (qs[k] - (qs[1] - qs[0]) if periodic else qs[k])
+        b = qs[k + 1] if k < run[1] - 1 else (qs[k] + (qs[1] - qs[0]) if periodic else qs[k])
+        lo_b.append(a)
+        hi_b.append(b)
+    best = {}
+    if targets:
+        lo_b, hi_b = np.array(lo_b), np.array(hi_b)
+        signs = np.array([t[1] for t in targets])
+
+        def values(x):
+            f, _m, _ = pipe(x)
+            ser = series_of(linkage, f)
+            return np.array([ser[t[0]][i] for i, t in enumerate(targets)]) * signs
+
+        gr = (np.sqrt(5) - 1) / 2
+        c = hi_b - gr * (hi_b - lo_b)
+        d = lo_b + gr * (hi_b - lo_b)
+        fc, fd = values(c), values(d)
+        for _ in range(iterations):
+            left = fc > fd  # the maximum lies in [lo, d]
+            hi_b = np.where(left, d, hi_b)
+            lo_b = np.where(left, lo_b, c)
+            new_c = hi_b - gr * (hi_b - lo_b)
+            new_d = lo_b + gr * (hi_b - lo_b)
+            x = np.where(left, new_c, new_d)
+            fx = values(x)
+            c_old, fc_old, d_old, fd_old = c, fc, d, fd
+            c = np.where(left, new_c, d_old)
+            fc = np.where(left, fx, fd_old)
+            d = np.where(left, c_old, new_d)
+            fd = np.where(left, fc_old, fx)
+            if np.all(np.abs(hi_b - lo_b) < 1e-10 * np.maximum(1.0, np.abs(lo_b))):
+                break
+        for i, (sym, which, k) in enumerate(targets):
+            cand = [(s_series[sym][k] * which, qs[k]), (fc[i], c[i]), (fd[i], d[i])]
+            val, at = max(cand)
+            best[(sym, which)] = ForceExtreme(float(val * which), float(at))
+    for sym, signed in syms:
+        hi = best[(sym, 1.0)]
+        lo = best[(sym, -1.0)] if signed else ForceExtreme(
+            float(np.min(s_series[sym])), float(qs[int(np.argmin(s_series[sym]))]))
+        extremes[sym] = (hi, lo)
+
+    # where the conditional loads act: grid edges refined by bisection
+    active = {}
+    for p in progs:
+        if not p.conditional:
+            continue
+        on_q = masks[p.load.name]
+
+        def state(x, p=p):
+            m = solve(linkage, sweep.inputs(x), order=2)
+            return p.active(x, m)
+
+        mask = state(qs) if qs is not q else on_q
+        intervals = []
+        for a, b in runs:
+            m = mask[a:b]
+            if not m.any():
+                continue
+            edges = np.flatnonzero(np.diff(m.astype(np.int8))) + a
+            starts = [qs[a]] if m[0] else []
+            stops = []
+            for e in edges:
+                if mask[e]:   # on -> off between e and e+1
+                    lo, hi = _bisect(qs[e], qs[e + 1], lambda x: state(x), 1e-14)
+                    stops.append(float(lo))
+                else:         # off -> on
+                    lo, hi = _bisect(qs[e], qs[e + 1], lambda x: ~state(x), 1e-14)
+                    starts.append(float(hi))
+            if m[-1]:
+                stops.append(qs[b - 1])
+            intervals += [(float(s), float(t)) for s, t in zip(starts, stops)]
+        active[p.load.name] = intervals
+
+    # mean and RMS over the analysed range: 4-point Gauss-Legendre on every grid
+    # interval, split where a conditional load switches (exact for the jumps)
+    cuts = [e for iv in active.values() for pair in iv for e in pair]
+    nodes, weights = np.polynomial.legendre.leggauss(4)
+    xs, ws = [], []
+    span = 0.0
+    for a, b in runs:
+        if b - a < 2:
+            continue
+        br = np.union1d(qs[a:b], [c for c in cuts if qs[a] < c < qs[b - 1]])
+        lo_e, hi_e = br[:-1], br[1:]
+        half = 0.5 * (hi_e - lo_e)
+        mid = 0.5 * (hi_e + lo_e)
+        xs.append((mid[:, None] + half[:, None] * nodes[None, :]).ravel())
+        ws.append((half[:, None] * weights[None, :]).ravel())
+        span += qs[b - 1] - qs[a]
+    mean, rms = {}, {}
+    if xs:
+        xg, wg = np.concatenate(xs), np.concatenate(ws)
+        fg, _m, _ = pipe(xg)
+        gser = series_of(linkage, fg)
+    for d in linkage.drivers:
+        sym = balancing_symbol(linkage, d.link)
+        if xs and span > 0:
+            v = gser[sym]
+            mean[sym] = float(np.dot(wg, v) / span)
+            rms[sym] = float(np.sqrt(np.dot(wg, v * v) / span))
+        else:
+            v = series[sym]
+            mean[sym] = float(np.mean(v))
+            rms[sym] = float(np.sqrt(np.mean(v * v)))
+    flagged = []
+    bad = fr.cond > COND_FLAG
+    if bad.any():
+        for a, b in _true_runs(bad):
+            flagged.append((float(q[a]), float(q[b - 1])))
+    return ForceSweep(q, kin, fr, series, extremes, active,
+                      {k: v for k, v in masks.items()}, mean, rms, band, flagged)
+
+
+def _true_runs(mask):
+    m = np.concatenate(([False], mask, [False])).astype(np.int8)
+    e = np.flatnonzero(np.diff(m))
+    return list(zip(e[0::2], e[1::2]))

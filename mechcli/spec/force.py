@@ -1,0 +1,267 @@
+"""``mechcli force`` problem files -> :class:`ForceSpec` (SI units, radians).
+
+The mechanism and the input program are read exactly as for ``mechcli kin``
+(:func:`mechcli.spec.kin.read_mechanism`, :func:`~mechcli.spec.kin.read_input`);
+this module adds the inertia of the links, gravity and the external loads::
+
+    [gravity]
+    g = 9.8                    # m/s^2, along -y (0 or no table: none)
+
+    [[link]]
+    number = 3
+    mass = 20                  # kg (> 0)
+    J = 0.12                   # kg m^2 about the centre of mass (default 0)
+    com = "mid"                # "mid" (default), a point name, or [along, normal]
+    com_from = "C"             # origin of [along, normal] (default: the link's first point)
+
+    [[load]]
+    name = "cutting"
+    link = 5
+    force = [5880, 0]          # N; or magnitude = …, angle = … (deg), relative = true|false
+    torque = -100              # N m (instead of, or with, a force)
+    at = "E"                   # point name or [along, normal]; default the centre of mass
+    at_from = "E"
+    factor = { at = [0, 180, 360], value = [1, 0.5, 1] }  # tabulated against the input
+    when = { window = [90, 210], velocity = "vE", sign = "negative",
+             band = [0.05, 0.95], slide = "E" }
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from typing import Optional, Tuple
+
+import numpy as np
+
+from mechcli.core.kinetostatics import Body, ForceModelError, LoadProgram, topology
+from mechcli.spec.common import Header, read_expected, read_header
+from mechcli.spec.errors import SpecError, closest
+from mechcli.spec.kin import InputSpec, _empty, read_input, read_mechanism
+from mechcli.spec.reader import load_spec
+
+
+@dataclasses.dataclass(frozen=True)
+class ForceOutput:
+    table_step: float  # input units
+    plots: bool
+    animate: bool
+    frames: int
+    draw_at: float
+    digits: int
+
+
+@dataclasses.dataclass(frozen=True)
+class ForceSpec:
+    header: Header
+    mechanism: str
+    linkage: object
+    topology: object
+    tracers: tuple
+    input: InputSpec
+    bodies: dict
+    gravity: Tuple[float, float]
+    loads: Tuple[LoadProgram, ...]
+    output: ForceOutput
+    expected: dict
+    guide_length: Optional[float] = None
+
+
+def _link_number(sec, key, topo, frame):
+    n = sec.integer(key, lo=1)
+    if n == frame:
+        raise sec.error(key, "a moving link (the frame carries no inertia or loads)",
+                        f"{n} (the frame)")
+    if n not in topo.links:
+        raise sec.error(key, "a moving link: one of " + ", ".join(map(str, topo.links)),
+                        str(n))
+    return n
+
+
+def _place(sec, key, from_key, topo, link, allow_mid):
+    """A point fixed on ``link``: ``(origin, along, normal)``; along None = midpoint."""
+    raw = sec.raw(key, "mid" if allow_mid else None)
+    origin = sec.string(from_key, None)
+    if origin is not None and link not in topo.members.get(origin, ()):
+        on = sorted(p for p, ls in topo.members.items() if link in ls)
+        raise sec.error(from_key, f"a point on link {link} ({', '.join(on)})", f"'{origin}'")
+    if raw is None:
+        return None
+    if isinstance(raw, str):
+        if raw == "mid" and allow_mid:
+            if origin is not None:
+                raise sec.error(from_key, f"no {from_key} with {key} = \"mid\"", f"'{origin}'")
+            return topo.frames[link][0], None, None
+        if link not in topo.members.get(raw, ()):
+            on = sorted(p for p, ls in topo.members.items() if link in ls)
+            hint = closest(raw, on)
+            raise SpecError(sec.file, sec.key(key),
+                            f"a point on link {link} ({', '.join(on)})"
+                            + (', "mid"' if allow_mid else "") + " or [along, normal]",
+                            f"'{raw}'", hint)
+        return raw, 0.0, 0.0
+    xy = sec.numbers(key, size=2)
+    return origin or topo.frames[link][0], xy[0] * sec.unit, xy[1] * sec.unit
+
+
+def _bodies(root, topo, frame):
+    bodies = {}
+    for t in root.tables("link", []):
+        n = _link_number(t, "number", topo, frame)
+        if n in bodies:
+            raise t.error("number", "each link once", f"link {n} again")
+        mass = t.number("mass", expected="a positive mass [kg]")
+        if not mass > 0:
+            raise t.error("mass", "a positive mass [kg]", f"{mass:g}")
+        J = t.number("J", 0.0, nonneg=True)
+        place = _place(t, "com", "com_from", topo, n, allow_mid=True)
+        origin, along, normal = place
+        if along is None:  # the default midpoint
+            bodies[n] = Body(n, mass, J)
+        else:
+            bodies[n] = Body(n, mass, J, origin, along, normal)
+        t.finish()
+    return bodies
+
+
+def _velocity_symbols(quantities):
+    return {q.symbol: q for q in quantities if q.order == 1}
+
+
+def _loads(root, topo, frame, inp, quantities):
+    from mechcli.core.kinetostatics import Load
+
+    by_symbol = {q.symbol: q for q in quantities}
+    velocities = sorted(s for s, q in by_symbol.items() if q.order == 1 and q.kind in
+                        ("angvel", "velocity"))
+    slides = sorted(s[1:] for s, q in by_symbol.items() if q.kind == "length"
+                    and q.symbol.startswith("s"))
+    unit = math.pi / 180 if inp.rotary else root.unit
+    out, names = [], set()
+    for i, t in enumerate(root.tables("load", [])):
+        name = t.string("name", f"load{i + 1}")
+        if name in names:
+            raise t.error("name", "a name not used by another load", f"'{name}'")
+        names.add(name)
+        link = _link_number(t, "link", topo, frame)
+        fx = fy = 0.0
+        has_force = t.has("force") or t.has("magnitude")
+        if t.has("force") and t.has("magnitude"):
+            raise t.error("magnitude", "either force or magnitude, not both", "both")
+        if t.has("force"):
+            fx, fy = t.numbers("force", size=2)
+        elif t.has("magnitude"):
+            mag = t.number("magnitude", nonneg=True)
+            ang = math.radians(t.number("angle"))
+            fx, fy = mag * math.cos(ang), mag * math.sin(ang)
+        relative = t.boolean("relative", False)
+        torque = t.number("torque", 0.0)
+        if not has_force and not t.has("torque"):
+            raise t.error("force", "a force (force = [fx, fy] or magnitude/angle) or a torque",
+                          "neither")
+        origin, along, normal = None, 0.0, 0.0
+        if t.has("at") or t.has("at_from"):
+            if not has_force:
+                raise t.error("at", "no point of action for a pure torque", "a point")
+            origin, along, normal = _place(t, "at", "at_from", topo, link, allow_mid=False) \
+                or (t.string("at_from"), 0.0, 0.0)
+        table = None
+        if t.has("factor"):
+            ft = t.table("factor")
+            xs = ft.numbers("at")
+            ys = ft.numbers("value")
+            if len(xs) != len(ys) or len(xs) < 2:
+                raise ft.error("value", f"as many values as 'at' points (at least 2)",
+                               f"{len(ys)} values for {len(xs)} points")
+            if any(b <= a for a, b in zip(xs, xs[1:])):
+                raise ft.error("at", "increasing input positions", repr(xs))
+            ft.finish()
+            table = (np.asarray(xs) * unit, np.asarray(ys, dtype=float))
+        window = velocity = band = slide = None
+        sign = 0
+        if t.has("when"):
+            w = t.table("when")
+            if w.has("window"):
+                lo, hi = w.numbers("window", size=2)
+                window = (lo * unit, hi * unit)
+            if w.has("velocity"):
+                sym = w.string("velocity")
+                if sym not in by_symbol or by_symbol[sym].order != 1:
+                    raise SpecError(w.file, w.key("velocity"),
+                                    "a velocity of this linkage: " + ", ".join(velocities),
+                                    f"'{sym}'", closest(sym, velocities))
+                velocity = by_symbol[sym]
+                sign = {"positive": 1, "negative": -1}[
+                    w.string("sign", choices=["positive", "negative"])]
+            elif w.has("sign"):
+                raise w.error("sign", "a velocity to take the sign of (when.velocity)",
+                              "a sign alone")
+            if w.has("band"):
+                lo, hi = w.numbers("band", size=2)
+                if not 0.0 <= lo < hi <= 1.0:
+                    raise w.error("band", "[lo, hi] with 0 <= lo < hi <= 1 (fractions of "
+                                  "the stroke)", repr([lo, hi]))
+                default_slide = None
+                if velocity is not None and velocity.kind == "velocity" \
+                        and ("s" + velocity.symbol[1:]) in by_symbol:
+                    default_slide = velocity.symbol[1:]
+                sname = w.string("slide", default_slide)
+                if sname is None or "s" + sname not in by_symbol:
+                    raise SpecError(w.file, w.key("slide"),
+                                    "a slide of this linkage: " + ", ".join(slides),
+                                    repr(sname), closest(str(sname), slides))
+                slide = by_symbol["s" + sname]
+                band = (lo, hi)
+            elif w.has("slide"):
+                raise w.error("slide", "a band to go with the slide (when.band)", "a slide alone")
+            w.finish()
+        t.finish()
+        load = Load(name, link, fx, fy, torque, origin, along, normal, relative)
+        out.append(LoadProgram(load, window, inp.rotary, velocity, sign, slide, band, table))
+    return tuple(out)
+
+
+def _output(sec, inp):
+    unit = math.pi / 180 if inp.rotary else sec.unit
+    span = (inp.stop - inp.start) / unit
+    table_step = sec.number("table_step", 30.0 if inp.rotary else span / 10,
+                            positive=True) * unit
+    plots = sec.boolean("plots", True)
+    animate = sec.boolean("animate", False)
+    frames = sec.integer("frames", 72, lo=2, hi=3600)
+    draw_at = sec.number("draw_at", inp.start / unit, lo=-36000.0, hi=36000.0) * unit
+    digits = sec.integer("digits", 2, lo=0, hi=12)
+    sec.finish()
+    return ForceOutput(table_step, plots, animate, frames, draw_at, digits)
+
+
+def load_force_spec(path, overrides=()) -> ForceSpec:
+    """Read and validate a ``mechcli force`` spec (exit 2 on any error)."""
+    from mechcli.core.kinematics import default_quantities
+
+    root = load_spec(path, overrides)
+    header = read_header(root, "force", default_unit="mm")
+    kind, linkage, tracers, followers, guide_length = read_mechanism(root)
+    try:
+        topo = topology(linkage)
+    except ForceModelError as exc:
+        raise SpecError(root.file, "mechanism", "a linkage whose pairs can carry forces",
+                        str(exc)) from None
+    inp = read_input(root, linkage, followers)
+    grav = (0.0, 0.0)
+    if root.has("gravity"):
+        g = root.table("gravity")
+        gval = g.number("g", 9.81, nonneg=True)
+        ang = math.radians(g.number("angle", -90.0))
+        g.finish()
+        grav = (gval * math.cos(ang), gval * math.sin(ang))
+        if abs(grav[0]) < 1e-15 * max(gval, 1.0):
+            grav = (0.0, grav[1])
+    bodies = _bodies(root, topo, linkage.frame)
+    quantities = default_quantities(linkage, 2, [p for p in linkage.point_names])
+    loads = _loads(root, topo, linkage.frame, inp, quantities)
+    out = _output(root.table("output") if root.has("output") else _empty(root, "output"), inp)
+    expected = read_expected(root)
+    root.finish()
+    return ForceSpec(header, kind, linkage, topo, tracers, inp, bodies, grav, loads, out,
+                     expected, guide_length)
