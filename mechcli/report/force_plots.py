@@ -1,8 +1,274 @@
-"""PNG diagrams and GIF animation for ``mechcli force`` (imports matplotlib)."""
+"""Pictures of ``mechcli force``: pair reactions and the balancing torque against the
+input (图 2-5, 2-7, 2-9, 2-11), hodographs of the pin forces, the shaking force and
+moment transmitted to the frame, and the GIF of the mechanism with its reactions.
+
+Imports matplotlib: import this module only when a PNG or GIF is written.
+"""
 
 from __future__ import annotations
 
+import math
+
+import numpy as np
+
+from mechcli.core.force_analysis import balancing_symbol
+from mechcli.report import plotting
+from mechcli.report.force import input_factor
+from mechcli.report.kin_plots import _broken, _Drawing, _extent, _limits
+
+_TEXT = {
+    "en": {"pair": "Reaction F_R{lab}", "Mb": "Balancing torque {sym}",
+           "Fb": "Balancing force {sym}", "hodo": "Hodograph of F_R{lab}",
+           "crank": "crank angle θ{n} / °", "slide": "slide s{n} / {u}",
+           "shake_f": "Shaking force (force on the frame)",
+           "shake_m": "Shaking moment Msh (about the origin)", "power": "Input power P",
+           "active": "load '{name}' acts", "anim": "Pair reactions",
+           "at": "θ{n} = {v:.0f}°", "at_s": "s{n} = {v:.4g} {u}"},
+    "zh": {"pair": "运动副反力 F_R{lab} 曲线图", "Mb": "平衡力矩 {sym} 曲线图",
+           "Fb": "平衡力 {sym} 曲线图", "hodo": "F_R{lab} 矢端曲线",
+           "crank": "曲柄转角 θ{n}/°", "slide": "滑块位移 s{n}/{u}",
+           "shake_f": "机架总反力 (摆动力) 曲线图", "shake_m": "机架总力矩 (摆动力矩) Msh 曲线图",
+           "power": "输入功率 P 曲线图", "active": "载荷 {name} 作用区间",
+           "anim": "运动副反力", "at": "θ{n} = {v:.0f}°", "at_s": "s{n} = {v:.4g} {u}"},
+}
+
+
+def _t(t, key, **kw):
+    return plotting.text(t[key].format(**kw))
+
+
+def _input_label(spec, t):
+    n = spec.input.driver
+    if spec.input.rotary:
+        return _t(t, "crank", n=n)
+    return _t(t, "slide", n=n, u=spec.header.unit)
+
+
+def _grid(n, ncols):
+    import matplotlib.pyplot as plt
+
+    rows = max(1, math.ceil(n / ncols))
+    fig, axs = plt.subplots(rows, ncols, figsize=(5.5 * ncols, 3.4 * rows), squeeze=False)
+    for ax in axs.flat[n:]:
+        ax.set_visible(False)
+    return fig, list(axs.flat[:n])
+
+
+def _shade_loads(ax, spec, result, t):
+    """Shade the input intervals where a conditional load acts."""
+    fin = input_factor(spec)
+    for k, (name, intervals) in enumerate(result.active.items()):
+        for m, (a, b) in enumerate(intervals):
+            ax.axvspan(a * fin, b * fin, color=f"C{(k + 4) % 10}", alpha=0.15, lw=0,
+                       label=_t(t, "active", name=name) if m == 0 else None)
+
+
+def plot_reactions(spec, result, outputs, t):
+    """``force.png``: one panel per pair (x solid, y dashed) and per balancing quantity."""
+    fin = input_factor(spec)
+    kin = result.kin
+    x = _broken(kin, result.q * fin)
+    xlabel = _input_label(spec, t)
+    pairs = result.forces.pairs
+    drivers = [d.link for d in spec.linkage.drivers]
+    fig, axs = _grid(len(pairs) + len(drivers), 2)
+    for ax, pf in zip(axs, pairs):
+        lab = pf.pair.label
+        ax.plot(x, _broken(kin, pf.fx), "-", color="C0", lw=1.3, label=f"FR{lab}x")
+        ax.plot(x, _broken(kin, pf.fy), "--", color="C3", lw=1.3, label=f"FR{lab}y")
+        ax.axhline(0, color="0.5", lw=0.6)
+        ax.set_ylabel("F / N")
+        handles, labels = ax.get_legend_handles_labels()
+        if pf.pair.kind == "P":
+            tw = ax.twinx()
+            tw.grid(False)
+            h, = tw.plot(x, _broken(kin, pf.couple), ":", color="C2", lw=1.3, label=f"MR{lab}")
+            tw.set_ylabel(f"MR{lab} / N·m")
+            handles.append(h)
+            labels.append(h.get_label())
+        ax.legend(handles, labels, fontsize=7, loc="best")
+        ax.set_title(_t(t, "pair", lab=lab) + f"  ({pf.pair.kind}, {pf.pair.point})", fontsize=10)
+        ax.set_xlabel(xlabel)
+    for ax, link in zip(axs[len(pairs):], drivers):
+        sym = balancing_symbol(spec.linkage, link)
+        v = result.forces.balancing[link]
+        ax.plot(x, _broken(kin, v), "-", color="C1", lw=1.5, label=sym)
+        ax.axhline(0, color="0.5", lw=0.6)
+        _shade_loads(ax, spec, result, t)
+        key = "Mb" if sym.startswith("Mb") else "Fb"
+        ax.set_title(_t(t, key, sym=sym), fontsize=10)
+        ax.set_ylabel(f"{sym} / " + ("N·m" if key == "Mb" else "N"))
+        ax.set_xlabel(xlabel)
+        ax.legend(fontsize=7, loc="best")
+    fig.suptitle(plotting.text(spec.header.title))
+    fig.tight_layout()
+    plotting.save_png(fig, outputs, "force.png")
+
+
+def plot_hodographs(spec, result, outputs, t):
+    """``hodograph.png``: the path of the tip of each revolute pair's force vector."""
+    kin = result.kin
+    pins = [pf for pf in result.forces.pairs if pf.pair.kind == "R"]
+    if not pins:
+        return
+    ncols = min(3, len(pins))
+    fig, axs = _grid(len(pins), ncols)
+    fig.set_size_inches(4.2 * ncols, 4.0 * math.ceil(len(pins) / ncols))
+    for k, (ax, pf) in enumerate(zip(axs, pins)):
+        lab = pf.pair.label
+        ax.plot(_broken(kin, pf.fx), _broken(kin, pf.fy), "-", color=f"C{k % 10}", lw=1.2)
+        ax.plot([pf.fx[0]], [pf.fy[0]], "o", color=f"C{k % 10}", ms=4)
+        ax.plot([0], [0], "+", color="k", ms=10, mew=1.5)
+        ax.axhline(0, color="0.6", lw=0.5)
+        ax.axvline(0, color="0.6", lw=0.5)
+        ax.set_aspect("equal", adjustable="datalim")
+        ax.set_title(_t(t, "hodo", lab=lab) + f"  ({pf.pair.point})", fontsize=10)
+        ax.set_xlabel(f"FR{lab}x / N")
+        ax.set_ylabel(f"FR{lab}y / N")
+    fig.suptitle(plotting.text(spec.header.title))
+    fig.tight_layout()
+    plotting.save_png(fig, outputs, "hodograph.png")
+
+
+def plot_frame(spec, result, outputs, t):
+    """``frame.png``: shaking force (x, y, magnitude), shaking moment and input power."""
+    import matplotlib.pyplot as plt
+
+    fin = input_factor(spec)
+    kin, s = result.kin, result.series
+    x = _broken(kin, result.q * fin)
+    fig, axs = plt.subplots(3, 1, figsize=(9, 9), sharex=True)
+    ax = axs[0]
+    ax.plot(x, _broken(kin, s["Fshx"]), "-", color="C0", lw=1.2, label="Fshx")
+    ax.plot(x, _broken(kin, s["Fshy"]), "--", color="C3", lw=1.2, label="Fshy")
+    ax.plot(x, _broken(kin, s["Fsh"]), "-", color="k", lw=1.6, label="|Fsh|")
+    ax.set_ylabel("F / N")
+    ax.set_title(_t(t, "shake_f"), fontsize=10)
+    ax.legend(fontsize=7, loc="best")
+    ax = axs[1]
+    ax.plot(x, _broken(kin, s["Msh"]), "-", color="C2", lw=1.4, label="Msh")
+    ax.set_ylabel("Msh / N·m")
+    ax.set_title(_t(t, "shake_m"), fontsize=10)
+    ax = axs[2]
+    ax.plot(x, _broken(kin, s["P"]), "-", color="C1", lw=1.4, label="P")
+    _shade_loads(ax, spec, result, t)
+    ax.legend(fontsize=7, loc="best")
+    ax.set_ylabel("P / W")
+    ax.set_title(_t(t, "power"), fontsize=10)
+    ax.set_xlabel(_input_label(spec, t))
+    for ax in axs:
+        ax.axhline(0, color="0.5", lw=0.6)
+    fig.suptitle(plotting.text(spec.header.title))
+    fig.tight_layout()
+    plotting.save_png(fig, outputs, "frame.png")
+
+
+def _frame_indices(result, frames, periodic):
+    """``frames`` indices spread over the analysed positions (no repeated closing
+    position of a full turn), keeping only positions with finite forces."""
+    q = result.q
+    n = q.size
+    if periodic and n > 1 and math.isclose(q[-1] - q[0], 2 * math.pi, rel_tol=1e-9):
+        n -= 1
+    idx = np.unique(np.round(np.linspace(0, n - 1, max(1, min(frames, n)))).astype(int))
+    ok = np.ones(q.size, dtype=bool)
+    for pf in result.forces.pairs:
+        ok &= np.isfinite(pf.fx) & np.isfinite(pf.fy)
+    for pm in result.kin.motion.points.values():
+        ok &= np.isfinite(pm.p)
+    return idx[ok[idx]]
+
+
+def animate_reactions(spec, result, sweep, outputs, t):
+    """``force.gif``: the mechanism with the pair reactions F_Rij (force of link i on
+    link j) drawn as arrows at the pair points, scaled to the largest magnitude."""
+    import matplotlib.pyplot as plt
+    from matplotlib.lines import Line2D
+
+    motion = result.kin.motion
+    k = 1 / spec.header.scale
+    idx = _frame_indices(result, spec.output.frames, sweep.periodic)
+    if idx.size == 0:
+        return ["force.gif not written: no position with finite reactions"]
+    pairs = result.forces.pairs
+    fx = np.array([pf.fx[idx] for pf in pairs])
+    fy = np.array([pf.fy[idx] for pf in pairs])
+    peak = float(np.max(np.hypot(fx, fy))) if fx.size else 0.0
+    length = 0.25 * _extent(motion) * k
+    f = length / peak if peak > 0 else 0.0
+
+    fig, ax = plt.subplots(figsize=(6.4, 5.2), dpi=80)
+    d = _Drawing(ax, spec, motion, spec.header.scale)
+    for tr in spec.tracers:
+        p = _broken(result.kin, motion.points[tr.name].p * k)
+        ax.plot(p.real, p.imag, ":", lw=1, color="C3")
+    _limits(ax, motion, k, pad=0.3)
+    ax.set_title(_t(t, "anim") + "\n" + plotting.text(spec.header.title), fontsize=9)
+    ax.set_xlabel(spec.header.unit)
+    ax.set_ylabel(spec.header.unit)
+    colors = [f"C{(j + 1) % 10}" for j in range(len(pairs))]
+    p0 = np.array([motion.points[pf.pair.point].p[idx[0]] * k for pf in pairs])
+    quiv = ax.quiver(p0.real, p0.imag, np.zeros(len(pairs)), np.zeros(len(pairs)),
+                     color=colors, angles="xy", scale_units="xy", scale=1, width=0.006,
+                     zorder=5)
+    handles = [Line2D([], [], color=c, lw=2, label=f"F_R{pf.pair.label}")
+               for c, pf in zip(colors, pairs)]
+    fig.subplots_adjust(left=0.1, right=0.76, bottom=0.1, top=0.92)
+    fig.legend(handles=handles, fontsize=7, loc="upper left", bbox_to_anchor=(0.77, 0.92),
+               title=f"{length:.3g} {spec.header.unit} : {peak:.4g} N", title_fontsize=7)
+    label = ax.text(0.02, 0.96, "", transform=ax.transAxes, fontsize=9, va="top")
+    artists = d.bar_lines + d.guide_lines + d.block_lines + [d.joints, quiv, label]
+    for a in artists:
+        a.set_animated(True)
+    fig.canvas.draw()
+    background = fig.canvas.copy_from_bbox(fig.bbox)
+    n_in = spec.input.driver
+    fin = input_factor(spec)
+    frames = []
+    for j, i in enumerate(idx):
+        d.update(motion, i)
+        pts = np.array([motion.points[pf.pair.point].p[i] * k for pf in pairs])
+        quiv.set_offsets(np.column_stack([pts.real, pts.imag]))
+        quiv.set_UVC(fx[:, j] * f, fy[:, j] * f)
+        v = result.q[i] * fin
+        label.set_text(t["at"].format(n=n_in, v=v) if spec.input.rotary else
+                       t["at_s"].format(n=n_in, v=v, u=spec.header.unit))
+        fig.canvas.restore_region(background)
+        for a in artists:
+            ax.draw_artist(a)
+        frames.append(np.asarray(fig.canvas.buffer_rgba()).copy())
+    plt.close(fig)
+    plotting.save_gif(frames, outputs, "force.gif")
+    return []
+
 
 def write(spec, result, sweep, outputs, lang, plots=True, animate=False):
-    """Write the force PNGs (and the GIF); return warnings."""
-    return []
+    """Write ``force.png``, ``hodograph.png``, ``frame.png`` and, if asked, ``force.gif``.
+
+    Parameters
+    ----------
+    spec : ForceSpec
+    result : ForceSweep
+        Forces in N, torques in N·m, power in W (SI); drawn in those units against
+        the input in degrees (crank) or spec length units (slider driver).
+    sweep : Sweep
+    outputs : Outputs
+    lang : {"en", "zh"}
+
+    Returns
+    -------
+    list of str
+        Warnings (no CJK font for ``--lang zh``, no drawable position).
+    """
+    warnings = []
+    used = plotting.setup(lang)
+    if used != lang:
+        warnings.append("no CJK font installed: plot labels are in English")
+    t = _TEXT[used]
+    if plots:
+        plot_reactions(spec, result, outputs, t)
+        plot_hodographs(spec, result, outputs, t)
+        plot_frame(spec, result, outputs, t)
+    if animate:
+        warnings += animate_reactions(spec, result, sweep, outputs, t)
+    return warnings
