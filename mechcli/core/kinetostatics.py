@@ -745,8 +745,12 @@ class LoadProgram:
             return 1.0
         xs, ys = self.table
         if self.rotary:
+            # periodic: close the table over one turn (the last point joins the first)
             period = 2 * np.pi
-            return np.interp(np.mod(q - xs[0], period) + xs[0], xs, ys, period=None)
+            if xs[-1] - xs[0] < period * (1 - 1e-12):
+                xs = np.append(xs, xs[0] + period)
+                ys = np.append(ys, ys[0])
+            return np.interp(np.mod(q - xs[0], period) + xs[0], xs, ys)
         return np.interp(q, xs, ys)
 
     def evaluate(self, q, motion):

@@ -106,8 +106,9 @@ def build_report(spec, res, lang="en"):
     digits = spec.output.digits
     fin = input_factor(spec)
     at_u = "°" if spec.input.rotary else spec.header.unit
-    in_label = ("曲柄转角 θ1/°" if zh else "theta1/°") if spec.input.rotary else \
-        f"s1/{spec.header.unit}"
+    n_in = spec.input.driver
+    in_label = (f"曲柄转角 θ{n_in}/°" if zh else f"theta{n_in}/°") if spec.input.rotary else \
+        f"s{n_in}/{spec.header.unit}"
     shown = [s for s in res.series if s not in ("P",) and not s.startswith("Fsh")
              and s != "Msh"]
     headers = [in_label] + [f"{s}/{_PRETTY[_unit(s)]}" for s in shown]

@@ -37,8 +37,26 @@ import numpy as np
 from mechcli.core.kinetostatics import Body, ForceModelError, LoadProgram, topology
 from mechcli.spec.common import Header, read_expected, read_header
 from mechcli.spec.errors import SpecError, closest
+from mechcli.spec.reader import MAX_LENGTH
 from mechcli.spec.kin import InputSpec, _empty, read_input, read_mechanism
 from mechcli.spec.reader import load_spec
+
+
+#: bounds on the inertia and load data: large enough for any machine, small
+#: enough that no product or square in the solve and the RMS overflows to inf
+MAX_MASS = 1e9        # kg
+MAX_INERTIA = 1e12    # kg m^2
+MAX_FORCE = 1e12      # N (and N m for torques)
+MAX_G = 1e6           # m/s^2
+MAX_FACTOR = 1e6
+
+
+def _bounded(sec, key, values, lim, what):
+    for i, v in enumerate(values):
+        if abs(v) > lim:
+            raise sec.error(key, f"{what} within ±{lim:g}", repr(list(values)) if
+                            len(values) > 1 else f"{v:g}")
+    return values
 
 
 @dataclasses.dataclass(frozen=True)
@@ -101,6 +119,7 @@ def _place(sec, key, from_key, topo, link, allow_mid):
                             f"'{raw}'", hint)
         return raw, 0.0, 0.0
     xy = sec.numbers(key, size=2)
+    _bounded(sec, key, xy, MAX_LENGTH / sec.unit, "offsets")
     return origin or topo.frames[link][0], xy[0] * sec.unit, xy[1] * sec.unit
 
 
@@ -111,9 +130,9 @@ def _bodies(root, topo, frame):
         if n in bodies:
             raise t.error("number", "each link once", f"link {n} again")
         mass = t.number("mass", expected="a positive mass [kg]")
-        if not mass > 0:
-            raise t.error("mass", "a positive mass [kg]", f"{mass:g}")
-        J = t.number("J", 0.0, nonneg=True)
+        if not 0 < mass <= MAX_MASS:
+            raise t.error("mass", f"a positive mass [kg] up to {MAX_MASS:g}", f"{mass:g}")
+        J = t.number("J", 0.0, nonneg=True, hi=MAX_INERTIA)
         place = _place(t, "com", "com_from", topo, n, allow_mid=True)
         origin, along, normal = place
         if along is None:  # the default midpoint
@@ -149,32 +168,36 @@ def _loads(root, topo, frame, inp, quantities):
         if t.has("force") and t.has("magnitude"):
             raise t.error("magnitude", "either force or magnitude, not both", "both")
         if t.has("force"):
-            fx, fy = t.numbers("force", size=2)
+            fx, fy = _bounded(t, "force", t.numbers("force", size=2), MAX_FORCE,
+                              "components [N]")
         elif t.has("magnitude"):
-            mag = t.number("magnitude", nonneg=True)
+            mag = t.number("magnitude", nonneg=True, hi=MAX_FORCE)
             ang = math.radians(t.number("angle"))
             fx, fy = mag * math.cos(ang), mag * math.sin(ang)
         relative = t.boolean("relative", False)
-        torque = t.number("torque", 0.0)
+        torque = t.number("torque", 0.0, lo=-MAX_FORCE, hi=MAX_FORCE)
         if not has_force and not t.has("torque"):
             raise t.error("force", "a force (force = [fx, fy] or magnitude/angle) or a torque",
                           "neither")
         origin, along, normal = None, 0.0, 0.0
         if t.has("at") or t.has("at_from"):
             if not has_force:
-                raise t.error("at", "no point of action for a pure torque", "a point")
+                raise t.error("at" if t.has("at") else "at_from", "no point of action for a pure torque", "a point")
             origin, along, normal = _place(t, "at", "at_from", topo, link, allow_mid=False) \
                 or (t.string("at_from"), 0.0, 0.0)
         table = None
         if t.has("factor"):
             ft = t.table("factor")
             xs = ft.numbers("at")
-            ys = ft.numbers("value")
+            ys = _bounded(ft, "value", ft.numbers("value"), MAX_FACTOR, "factors")
             if len(xs) != len(ys) or len(xs) < 2:
                 raise ft.error("value", f"as many values as 'at' points (at least 2)",
                                f"{len(ys)} values for {len(xs)} points")
             if any(b <= a for a, b in zip(xs, xs[1:])):
                 raise ft.error("at", "increasing input positions", repr(xs))
+            if inp.rotary and xs[-1] - xs[0] > 360.0:
+                raise ft.error("at", "input angles spanning at most 360° (the table is "
+                               "periodic)", repr(xs))
             ft.finish()
             table = (np.asarray(xs) * unit, np.asarray(ys, dtype=float))
         window = velocity = band = slide = None
@@ -183,6 +206,10 @@ def _loads(root, topo, frame, inp, quantities):
             w = t.table("when")
             if w.has("window"):
                 lo, hi = w.numbers("window", size=2)
+                if (lo >= hi) if not inp.rotary else (lo == hi):
+                    raise w.error("window", "[lo, hi] with lo < hi" if not inp.rotary else
+                                  "[lo, hi] with lo != hi (lo > hi wraps through 360°)",
+                                  repr([lo, hi]))
                 window = (lo * unit, hi * unit)
             if w.has("velocity"):
                 sym = w.string("velocity")
@@ -208,7 +235,9 @@ def _loads(root, topo, frame, inp, quantities):
                 sname = w.string("slide", default_slide)
                 if sname is None or "s" + sname not in by_symbol:
                     raise SpecError(w.file, w.key("slide"),
-                                    "a slide of this linkage: " + ", ".join(slides),
+                                    ("a slide of this linkage: " + ", ".join(slides)) if slides
+                                    else "a band only on a linkage with a slide (an RRP or "
+                                    "RPR dyad); limit the input with when.window instead",
                                     repr(sname), closest(str(sname), slides))
                 slide = by_symbol["s" + sname]
                 band = (lo, hi)
@@ -251,7 +280,7 @@ def load_force_spec(path, overrides=()) -> ForceSpec:
     grav = (0.0, 0.0)
     if root.has("gravity"):
         g = root.table("gravity")
-        gval = g.number("g", 9.81, nonneg=True)
+        gval = g.number("g", 9.81, nonneg=True, hi=MAX_G)
         ang = math.radians(g.number("angle", -90.0))
         g.finish()
         grav = (gval * math.cos(ang), gval * math.sin(ang))
