@@ -37,9 +37,8 @@ import numpy as np
 from mechcli.core.kinetostatics import Body, ForceModelError, LoadProgram, topology
 from mechcli.spec.common import Header, read_expected, read_header
 from mechcli.spec.errors import SpecError, closest
-from mechcli.spec.reader import MAX_LENGTH
 from mechcli.spec.kin import InputSpec, _empty, read_input, read_mechanism
-from mechcli.spec.reader import load_spec
+from mechcli.spec.reader import MAX_LENGTH, load_spec
 
 
 #: bounds on the inertia and load data: large enough for any machine, small
@@ -52,7 +51,7 @@ MAX_FACTOR = 1e6
 
 
 def _bounded(sec, key, values, lim, what):
-    for i, v in enumerate(values):
+    for v in values:
         if abs(v) > lim:
             raise sec.error(key, f"{what} within ±{lim:g}", repr(list(values)) if
                             len(values) > 1 else f"{v:g}")
@@ -182,7 +181,8 @@ def _loads(root, topo, frame, inp, quantities):
         origin, along, normal = None, 0.0, 0.0
         if t.has("at") or t.has("at_from"):
             if not has_force:
-                raise t.error("at" if t.has("at") else "at_from", "no point of action for a pure torque", "a point")
+                raise t.error("at" if t.has("at") else "at_from",
+                              "no point of action for a pure torque", "a point")
             origin, along, normal = _place(t, "at", "at_from", topo, link, allow_mid=False) \
                 or (t.string("at_from"), 0.0, 0.0)
         table = None
