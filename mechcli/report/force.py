@@ -56,10 +56,10 @@ def scalar_results(spec, res):
     out = {"positions": int(res.q.size)}
     for sym, (hi, lo) in res.extremes.items():
         u = _unit(sym)
-        out[f"{sym}_max_{u}"] = hi.value
+        out[f"{sym}_max_{u}"] = hi.value + 0.0  # never -0.0
         out[f"{sym}_max_at_{at_u}"] = hi.at * fin
         if not sym.startswith("FR") and sym != "Fsh":
-            out[f"{sym}_min_{u}"] = lo.value
+            out[f"{sym}_min_{u}"] = lo.value + 0.0
             out[f"{sym}_min_at_{at_u}"] = lo.at * fin
     for sym in res.mean:
         u = _unit(sym)
