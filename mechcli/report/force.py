@@ -8,7 +8,7 @@ import numpy as np
 
 from mechcli.core.force_analysis import balancing_symbol
 from mechcli.core.kinetostatics import COND_FLAG
-from mechcli.report.kin import fixed, table_rows
+from mechcli.report.kin import fixed, input_factor, table_rows
 from mechcli.report.table import Block, Report
 
 
@@ -26,10 +26,6 @@ _PRETTY = {"N_m": "N·m", "N": "N", "W": "W"}
 def input_column(spec):
     n = spec.input.driver
     return f"theta{n}_deg" if spec.input.rotary else f"s{n}_{spec.header.unit}"
-
-
-def input_factor(spec):
-    return 180 / math.pi if spec.input.rotary else 1 / spec.header.scale
 
 
 def columns(spec, res):
