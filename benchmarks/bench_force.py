@@ -20,21 +20,13 @@ import numpy as np
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
+from benchmarks.bench_kin import best_of  # noqa: E402
 from mechcli._alloc import keep_heap_warm  # noqa: E402
 from mechcli.core.force_analysis import _Pipeline, analyse_forces  # noqa: E402
 from mechcli.core.kinematics import Sweep  # noqa: E402
 from mechcli.core.kinetostatics import solve_forces  # noqa: E402
 from mechcli.core.linkage import solve  # noqa: E402
 from mechcli.spec.force import load_force_spec  # noqa: E402
-
-
-def best_of(fn, repeat):
-    times = []
-    for _ in range(repeat):
-        t = time.perf_counter()
-        fn()
-        times.append(time.perf_counter() - t)
-    return min(times)
 
 
 def main(quick=False):
