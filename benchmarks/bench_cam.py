@@ -30,8 +30,8 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
-from mechcli.core.cam_motion import build_program  # noqa: E402
-from mechcli.core.cam_profile import Follower, cam_profile, check_cam  # noqa: E402
+from mechcli.core.cam.motion import build_program  # noqa: E402
+from mechcli.core.cam.profile import Follower, cam_profile, check_cam  # noqa: E402
 
 RAD = math.radians
 MM = 1e-3
@@ -101,7 +101,7 @@ def main():
 
 def bench_design():
     """Everything ``mechcli cam`` computes for 例 4-1 at the default step, with sizing."""
-    from mechcli.core.cam_design import design_cam
+    from mechcli.core.cam.design import design_cam
     from mechcli.spec.cam import DEFAULT_STEP_DEG
 
     segs = [(s.kind, s.span, s.law, abs(s.lift)) for s in CASES["ex4-1"][1].segments]

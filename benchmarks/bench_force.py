@@ -22,9 +22,9 @@ sys.path.insert(0, str(ROOT))
 
 from benchmarks.bench_kin import best_of  # noqa: E402
 from mechcli._alloc import keep_heap_warm  # noqa: E402
-from mechcli.core.force_analysis import _Pipeline, analyse_forces  # noqa: E402
-from mechcli.core.kinematics import Sweep  # noqa: E402
-from mechcli.core.kinetostatics import solve_forces  # noqa: E402
+from mechcli.core.linkage.force_analysis import _Pipeline, analyse_forces  # noqa: E402
+from mechcli.core.linkage.kinematics import Sweep  # noqa: E402
+from mechcli.core.linkage.kinetostatics import solve_forces  # noqa: E402
 from mechcli.core.linkage import solve  # noqa: E402
 from mechcli.spec.force import load_force_spec  # noqa: E402
 

@@ -36,9 +36,9 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
 from mechcli.core.errors import ConvergenceError  # noqa: E402
-from mechcli.core.gear import spur_gear  # noqa: E402
-from mechcli.core.gear_profile import flank_chordal_deviation  # noqa: E402
-from mechcli.core.involute import inverse_involute  # noqa: E402
+from mechcli.core.gear.spur import spur_gear  # noqa: E402
+from mechcli.core.gear.profile import flank_chordal_deviation  # noqa: E402
+from mechcli.core.gear.involute import inverse_involute  # noqa: E402
 
 
 def _child_cpu(argv, runs, env=None):

@@ -49,7 +49,7 @@ def main():
 
     import numpy as np
 
-    from mechcli.core.grashof import analyse_fourbar, closes
+    from mechcli.core.grashof.fourbar import analyse_fourbar, closes
     from mechcli.report.grashof import fourbar_csv
 
     rng = np.random.default_rng(0)

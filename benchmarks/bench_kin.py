@@ -24,7 +24,7 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
 from mechcli._alloc import keep_heap_warm  # noqa: E402
-from mechcli.core.kinematics import Sweep, analyse_sweep, default_quantities  # noqa: E402
+from mechcli.core.linkage.kinematics import Sweep, analyse_sweep, default_quantities  # noqa: E402
 from mechcli.core.linkage import RRR, Crank, DriverMotion, Ground, Linkage, solve  # noqa: E402
 
 

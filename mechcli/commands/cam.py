@@ -19,7 +19,7 @@ from mechcli.options import RunOptions, common_options
 def cam(spec, step, points, **opts):
     """Design and check a disc cam from SPEC.toml (chapter 4, 例 7-2)."""
     run = RunOptions.from_click(spec, opts)
-    from mechcli.core.cam_design import design_cam
+    from mechcli.core.cam.design import design_cam
     from mechcli.report.cam import cam_report
     from mechcli.spec.cam import read_cam_spec
     from mechcli.spec.reader import load_spec

@@ -14,8 +14,8 @@ def force(spec_path, **opts):
     """Kinetostatics (动态静力分析) of any linkage of `kin`: pair reactions, the
     balancing torque, shaking force and moment, checked by the power balance."""
     run = RunOptions.from_click(spec_path, opts)
-    from mechcli.core.force_analysis import analyse_forces
-    from mechcli.core.kinematics import Sweep
+    from mechcli.core.linkage.force_analysis import analyse_forces
+    from mechcli.core.linkage.kinematics import Sweep
     from mechcli.report import force as report
     from mechcli.report.files import Outputs
     from mechcli.report.run import finish

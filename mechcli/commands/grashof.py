@@ -41,7 +41,7 @@ def grashof(spec_path, lengths, frame, input_link, offset, batch, units, **opts)
 
     outputs = Outputs(run.out_dir)
     if batch:
-        from mechcli.core.grashof import analyse_fourbar, closes
+        from mechcli.core.grashof.fourbar import analyse_fourbar, closes
         bs = spec_mod.read_batch_csv(batch, units)
         ok = closes(bs.lengths)
         an = analyse_fourbar(bs.lengths, bs.frame, bs.input, require_closure=False)

@@ -14,7 +14,7 @@ def kin(spec_path, **opts):
     """Kinematics of a planar linkage (chapter 1): four-bar, slider-crank,
     guide-bar, shaper or any linkage of drivers and RRR/RRP/RPR dyads."""
     run = RunOptions.from_click(spec_path, opts)
-    from mechcli.core.kinematics import Sweep, analyse_sweep, default_quantities
+    from mechcli.core.linkage.kinematics import Sweep, analyse_sweep, default_quantities
     from mechcli.report import kin as report
     from mechcli.report.files import Outputs
     from mechcli.report.run import finish

@@ -10,7 +10,7 @@ import math
 
 import numpy as np
 
-from mechcli.core.cam_profile import RHO_CAP
+from mechcli.core.cam.profile import RHO_CAP
 from mechcli.report.files import Outputs
 from mechcli.report.run import finish
 from mechcli.report.table import Block, Report

@@ -126,7 +126,7 @@ def _roller(r, cx, cy, angle):
 
 
 def _outline(design):
-    from mechcli.core.cam_profile import working_outline
+    from mechcli.core.cam.profile import working_outline
 
     return working_outline(design.follower, design.program, design.profile,
                            design.checks.corners)

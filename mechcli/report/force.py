@@ -6,8 +6,8 @@ import math
 
 import numpy as np
 
-from mechcli.core.force_analysis import balancing_symbol
-from mechcli.core.kinetostatics import COND_FLAG
+from mechcli.core.linkage.force_analysis import balancing_symbol
+from mechcli.core.linkage.kinetostatics import COND_FLAG
 from mechcli.report.kin import fixed, input_factor, table_rows
 from mechcli.report.table import Block, Report
 

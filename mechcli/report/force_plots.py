@@ -11,7 +11,7 @@ import math
 
 import numpy as np
 
-from mechcli.core.force_analysis import balancing_symbol
+from mechcli.core.linkage.force_analysis import balancing_symbol
 from mechcli.report import plotting
 from mechcli.report.force import input_factor
 from mechcli.report.kin_plots import _broken, _Drawing, _extent, _limits

@@ -100,7 +100,7 @@ def present_involute(spec, sol, run, outputs):
 
 # -- inverse involute (【例 5-2】) -----------------------------------------------------
 def present_inverse_involute(spec, sol, run, outputs):
-    from mechcli.core.involute import degrees_minutes_seconds, format_dms
+    from mechcli.core.gear.involute import degrees_minutes_seconds, format_dms
     p, lang = spec.problem, run.lang
     results, warnings, blocks = {}, [], []
     for k, (th, a, it, res) in enumerate(zip(sol.theta, sol.alpha, sol.iterations,
@@ -304,7 +304,7 @@ def _pictures(run, animate, kind, solution, spec, outputs):
 def present_generation(spec, sol, run, outputs):
     import numpy as np
 
-    from mechcli.core.gear_profile import gear_outline
+    from mechcli.core.gear.profile import gear_outline
     p, u, sc, lang = spec.problem, spec.header.unit, spec.header.scale, run.lang
     L = lambda v: float(v / sc)  # noqa: E731
     results, warnings, blocks, csv_cols = {}, [], [], [[], [], []]

@@ -78,7 +78,7 @@ def plot_pair(pair, spec, run, outputs):
     The pinion is centred at the origin with a tooth on +y; the pitch point is
     (0, r1'); the wheel's centre is (0, a') — (0, -a') for a ring gear.
     """
-    from mechcli.core.gear_profile import gear_outline, generated_tooth, ring_outline
+    from mechcli.core.gear.profile import gear_outline, generated_tooth, ring_outline
 
     lang = plotting.setup(run.lang)
     sc, u = spec.header.scale, spec.header.unit
@@ -91,7 +91,7 @@ def plot_pair(pair, spec, run, outputs):
     if g2.internal:
         o2, c2, rot = ring_outline(g2, 30), -pair.a_w, math.pi / g2.z
     else:
-        from mechcli.core.gear_pair import mesh_positions
+        from mechcli.core.gear.pair import mesh_positions
         mesh = mesh_positions(pair, [0.0])
         o2, c2, rot = gear_outline(generated_tooth(g2), 30), pair.a_w, float(mesh.phi2[0])
         contact = mesh.contact(0)
@@ -141,8 +141,8 @@ def animate_pair(pair, spec, run, outputs, frames_per_pitch=20, pitches=2):
     The pinion drives counter-clockwise; the points of contact (black) run
     along N1N2.  With epsilon_alpha < 1 some frames have none and say so.
     """
-    from mechcli.core.gear_pair import mesh_positions
-    from mechcli.core.gear_profile import gear_outline, generated_tooth
+    from mechcli.core.gear.pair import mesh_positions
+    from mechcli.core.gear.profile import gear_outline, generated_tooth
 
     lang = plotting.setup(run.lang)
     sc = spec.header.scale
@@ -183,8 +183,8 @@ def animate_pair(pair, spec, run, outputs, frames_per_pitch=20, pitches=2):
 
 
 def _generation_axes(ax, tooth, phi, spec, lang, teeth, cutter=True):
-    from mechcli.core.gear_generation import cutter_positions
-    from mechcli.core.gear_profile import gear_outline
+    from mechcli.core.gear.generation import cutter_positions
+    from mechcli.core.gear.profile import gear_outline
 
     sc, u = spec.header.scale, spec.header.unit
     g = tooth.gear
@@ -241,7 +241,7 @@ def animate_generation(sol, spec, run, outputs):
     gear being cut; the last frame is the finished gear with the analytic
     outline (black) drawn on top.
     """
-    from mechcli.core.gear_generation import cutter_positions
+    from mechcli.core.gear.generation import cutter_positions
 
     lang = plotting.setup(run.lang)
     tooth = sol["teeth"][0]

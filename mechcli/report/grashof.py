@@ -200,7 +200,7 @@ def fourbar_csv(an, scale, closes_mask=None):
     ok = np.ones(n, dtype=bool) if closes_mask is None else closes_mask
     L = an.lengths / scale
     types = np.array(kl.code)
-    from mechcli.core.grashof import TYPES
+    from mechcli.core.grashof.fourbar import TYPES
     tnames = np.array(TYPES + ("cannot_close",))
     types = np.where(ok, types, len(TYPES))
     cm = kl.crank_mask
@@ -230,7 +230,7 @@ def fourbar_csv(an, scale, closes_mask=None):
 def batch_results(an, closes_mask):
     import numpy as np
 
-    from mechcli.core.grashof import TYPES
+    from mechcli.core.grashof.fourbar import TYPES
     counts = {}
     codes = an.klass.code[closes_mask]
     for i, name in enumerate(TYPES):
@@ -491,7 +491,7 @@ def write_limits_png(r, scale_unit, outputs, lang, title):
 
 def driven_lengths(spec):
     """((a, b, c, d) in spec units, unit) of a four-bar spec: input, coupler, output, frame."""
-    from mechcli.core.grashof import driven_links
+    from mechcli.core.grashof.fourbar import driven_links
 
     p = spec.problem
     i, c, o = driven_links(p.frame, p.input)
@@ -502,7 +502,7 @@ def driven_lengths(spec):
 def _curve(spec, kind, p):
     import numpy as np
 
-    from mechcli.core import grashof as gf
+    from mechcli.core.grashof import fourbar as gf
 
     step = getattr(p, "curve_step", None)
     if step is None:
@@ -540,7 +540,7 @@ def build(spec, lang):
 
 
 def _build(spec, lang):
-    from mechcli.core import grashof as gf
+    from mechcli.core.grashof import fourbar as gf
 
     p, unit, scale, title = spec.problem, spec.header.unit, spec.header.scale, spec.header.title
     warnings = []
@@ -572,16 +572,16 @@ def _build(spec, lang):
         r = guide_results(gb, 1.0)
         return r, guide_report(title, lang, r), None, warnings
     if spec.kind == "fivebar":
-        from mechcli.core.classify_fivebar import classify_fivebar
+        from mechcli.core.grashof.fivebar import classify_fivebar
         kl = classify_fivebar(p.lengths, p.frame, p.rtol)
         r = fivebar_results(p, kl, scale)
         return r, fivebar_report(title, lang, r), None, warnings
     if spec.kind == "rrrrp":
-        from mechcli.core.classify_fivebar import rrrrp_crank
+        from mechcli.core.grashof.fivebar import rrrrp_crank
         r = rrrrp_results(rrrrp_crank(p.l1 / scale, p.l2 / scale, p.l3 / scale,
                                       p.offset / scale, p.rtol, unit), 1.0)
         return r, rrrrp_report(title, lang, r, unit), None, warnings
-    from mechcli.core.mobility import Joint, count_mobility
+    from mechcli.core.grashof.mobility import Joint, count_mobility
     mob = count_mobility([Joint(j.kind, j.links, j.name) for j in p.joints], p.frame,
                          p.local_dof, p.redundant)
     return mobility_results(mob), mobility_report(title, lang, mob), None, warnings

@@ -34,7 +34,7 @@ from typing import Optional, Tuple
 
 import numpy as np
 
-from mechcli.core.kinetostatics import Body, ForceModelError, LoadProgram, topology
+from mechcli.core.linkage.kinetostatics import Body, ForceModelError, LoadProgram, topology
 from mechcli.spec.common import Header, read_expected, read_header
 from mechcli.spec.errors import SpecError, closest
 from mechcli.spec.kin import InputSpec, _empty, read_input, read_mechanism
@@ -147,7 +147,7 @@ def _velocity_symbols(quantities):
 
 
 def _loads(root, topo, frame, inp, quantities):
-    from mechcli.core.kinetostatics import Load
+    from mechcli.core.linkage.kinetostatics import Load
 
     by_symbol = {q.symbol: q for q in quantities}
     velocities = sorted(s for s, q in by_symbol.items() if q.order == 1 and q.kind in
@@ -266,7 +266,7 @@ def _output(sec, inp):
 
 def load_force_spec(path, overrides=()) -> ForceSpec:
     """Read and validate a ``mechcli force`` spec (exit 2 on any error)."""
-    from mechcli.core.kinematics import default_quantities
+    from mechcli.core.linkage.kinematics import default_quantities
 
     root = load_spec(path, overrides)
     header = read_header(root, "force", default_unit="mm")

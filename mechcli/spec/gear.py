@@ -89,7 +89,7 @@ class InvoluteProblem:
     digits: int
 
     def solve(self):
-        from mechcli.core.involute import involute_point, involute_table_rows
+        from mechcli.core.gear.involute import involute_point, involute_table_rows
         n = int(round(self.alpha_max / self.curve_step)) + 1
         alpha = [self.alpha_max * i / (n - 1) for i in range(n)] if n > 1 else [0.0]
         curve = tuple(map(list, zip(*(involute_point(self.rb, a) for a in alpha))))
@@ -111,7 +111,7 @@ class InverseInvoluteProblem:
     dms_seconds_digits: int
 
     def solve(self):
-        from mechcli.core.involute import (InverseInvolute, involute_function,
+        from mechcli.core.gear.involute import (InverseInvolute, involute_function,
                                            inverse_involute_scalar)
         found = [inverse_involute_scalar(t, self.method, start=self.start,
                                          epsilon=self.epsilon, max_iter=self.max_iter)
@@ -138,8 +138,8 @@ class SpurProblem:
     forbid_pointed: bool
 
     def solve(self):
-        from mechcli.core.gear import spur_gear
-        from mechcli.core.gear_profile import gear_outline, generated_tooth
+        from mechcli.core.gear.spur import spur_gear
+        from mechcli.core.gear.profile import gear_outline, generated_tooth
         t = self.teeth
         g = spur_gear(self.z, t.m, t.alpha, t.ha_star, t.c_star, self.x)
         tooth = generated_tooth(g)
@@ -166,8 +166,8 @@ class PairProblem:
     animate: bool             # pair.gif of the first mounting (external pairs)
 
     def solve(self):
-        from mechcli.core.gear import spur_gear
-        from mechcli.core.gear_pair import gear_pair
+        from mechcli.core.gear.spur import spur_gear
+        from mechcli.core.gear.pair import gear_pair
         t = self.teeth
         g1 = spur_gear(self.z1, t.m, t.alpha, t.ha_star, t.c_star, self.x1)
         g2 = spur_gear(self.z2, t.m, t.alpha, t.ha_star, t.c_star, self.x2, self.internal)
@@ -176,7 +176,7 @@ class PairProblem:
         if not pairs:
             pairs = [gear_pair(g1, g2)]
         if self.tip_shortening:
-            from mechcli.core.gear_pair import tip_shortened
+            from mechcli.core.gear.pair import tip_shortened
             pairs = [tip_shortened(pr)[0] for pr in pairs]
         return pairs
 
@@ -195,9 +195,9 @@ class GenerationProblem:
     points: int
 
     def solve(self):
-        from mechcli.core.gear import spur_gear
-        from mechcli.core.gear_generation import generation_plan
-        from mechcli.core.gear_profile import generated_tooth
+        from mechcli.core.gear.spur import spur_gear
+        from mechcli.core.gear.generation import generation_plan
+        from mechcli.core.gear.profile import generated_tooth
         t = self.teeth
         gears = [spur_gear(self.z, t.m, t.alpha, t.ha_star, t.c_star, x) for x in self.shifts]
         return {"teeth": [generated_tooth(g) for g in gears],
@@ -219,7 +219,7 @@ class HelicalProblem:
     b: float | None           # face width (m)
 
     def solve(self):
-        from mechcli.core.gear_helical import helical_pair
+        from mechcli.core.gear.helical import helical_pair
         return helical_pair(self.z1, self.z2, self.mn, self.alpha_n, self.han_star,
                             self.cn_star, beta=self.beta, a_w=self.a_w, b=self.b)
 
@@ -239,7 +239,7 @@ class WormProblem:
     c_star: float
 
     def solve(self):
-        from mechcli.core.gear_worm import worm_drive
+        from mechcli.core.gear.worm import worm_drive
         return worm_drive(self.z1, self.z2, m=self.m, d2=self.d2, q=self.q, d1=self.d1,
                           alpha=self.alpha, ha_star=self.ha_star, c_star=self.c_star)
 
@@ -257,7 +257,7 @@ class BevelProblem:
     sigma: float              # shaft angle (rad)
 
     def solve(self):
-        from mechcli.core.gear_bevel import bevel_pair
+        from mechcli.core.gear.bevel import bevel_pair
         return bevel_pair(self.z1, self.z2, self.m, self.alpha, self.ha_star, self.c_star,
                           self.sigma)
 
@@ -394,7 +394,7 @@ def _read_spur(sec):
 
 
 def _read_pair(sec):
-    from mechcli.core.gear_pair import design_teeth_from_ratio
+    from mechcli.core.gear.pair import design_teeth_from_ratio
     ts = _tooth_system(sec)
     a_w = tuple(a * sec.unit for a in _one_or_many(sec, "a_w"))
     alpha_w = []
@@ -431,8 +431,8 @@ def _read_pair(sec):
         raise sec.error("tip_shortening", "an external pair with one mounting",
                         "internal = true" if internal else "several mountings")
     # a' must not be below the zero-backlash distance (the teeth would jam): exit 2
-    from mechcli.core.gear import spur_gear
-    from mechcli.core.gear_pair import zero_backlash_distance
+    from mechcli.core.gear.spur import spur_gear
+    from mechcli.core.gear.pair import zero_backlash_distance
     g1 = spur_gear(z1, ts.m, ts.alpha, ts.ha_star, ts.c_star, x1)
     g2 = spur_gear(z2, ts.m, ts.alpha, ts.ha_star, ts.c_star, x2, internal)
     a0 = zero_backlash_distance(g1, g2)

@@ -8,10 +8,10 @@ import numpy as np
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
-from mechcli.core.gear import GearGeometryError, spur_gear
-from mechcli.core.gear_pair import MeshError, gear_pair
-from mechcli.core.gear_profile import gear_outline, generated_tooth
-from mechcli.core.involute import involute_function, inverse_involute
+from mechcli.core.gear.spur import GearGeometryError, spur_gear
+from mechcli.core.gear.pair import MeshError, gear_pair
+from mechcli.core.gear.profile import gear_outline, generated_tooth
+from mechcli.core.gear.involute import involute_function, inverse_involute
 
 teeth = st.integers(5, 400)
 shift = st.floats(-1.0, 1.0)

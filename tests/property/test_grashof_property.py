@@ -6,7 +6,7 @@ import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from mechcli.core import grashof as gf
+from mechcli.core.grashof import fourbar as gf
 
 length = st.floats(1.0, 100.0, allow_nan=False)
 scale = st.sampled_from([1e-3, 1e-1, 1.0, 1e3, 1e6])
@@ -97,7 +97,7 @@ def test_slider_crank(a, b, e):
 @given(st.lists(length, min_size=5, max_size=5), st.integers(1, 5), scale)
 def test_fivebar_class_follows_the_links_not_their_numbers(L, frame, s):
     """Renumbering the loop so that the frame is link 5 changes nothing but the labels."""
-    from mechcli.core.classify_fivebar import classify_fivebar
+    from mechcli.core.grashof.fivebar import classify_fivebar
 
     if not closes(L):
         return

@@ -8,7 +8,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from mechcli.core.errors import AssemblyError
-from mechcli.core.kinematics import Sweep, analyse_sweep, default_quantities
+from mechcli.core.linkage.kinematics import Sweep, analyse_sweep, default_quantities
 from mechcli.core.linkage import RPR, RRR, Crank, DriverMotion, Ground, Linkage, solve
 
 SETTINGS = settings(max_examples=40, deadline=None,

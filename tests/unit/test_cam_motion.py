@@ -5,7 +5,7 @@ import math
 import numpy as np
 import pytest
 
-from mechcli.core.cam_motion import LAWS, build_program, law_pieces, law_values
+from mechcli.core.cam.motion import LAWS, build_program, law_pieces, law_values
 
 RAD = math.radians
 

@@ -7,9 +7,9 @@ import math
 import numpy as np
 import pytest
 
-from mechcli.core.cam_design import design_cam
-from mechcli.core.cam_motion import build_program
-from mechcli.core.cam_profile import (Follower, UndercutError, cam_profile, check_cam,
+from mechcli.core.cam.design import design_cam
+from mechcli.core.cam.motion import build_program
+from mechcli.core.cam.profile import (Follower, UndercutError, cam_profile, check_cam,
                                       curvature_and_rate, max_pressure_angle,
                                       pressure_angle_and_rate, size_flat_base_radius,
                                       size_oscillating_base_radius,
@@ -289,7 +289,7 @@ def test_working_outline_at_corners_keeps_the_roller_distance(step):
     least r_r from the pitch curve, and the notch arc is exactly r_r from the corner."""
     from scipy.spatial import cKDTree
 
-    from mechcli.core.cam_profile import working_outline
+    from mechcli.core.cam.profile import working_outline
 
     prog = build_program([("rise", RAD(120), "uniform", 20 * MM), ("dwell", RAD(60), None, 0),
                           ("return", RAD(90), "parabolic", 20 * MM),
@@ -389,7 +389,7 @@ def test_velocity_jumps_the_follower_cannot_reproduce():
 def test_sizing_that_does_not_bound_r0_is_a_clear_error():
     """Long cosine rise and return: s + s'' > 0 everywhere, so any r0 > 0 gives a convex
     flat-faced cam; without r0 there is nothing to draw -> UnsolvableError, not a crash."""
-    from mechcli.core.cam_profile import CamGeometryError
+    from mechcli.core.cam.profile import CamGeometryError
 
     segs = [("rise", RAD(180), "cosine", 20 * MM), ("return", RAD(180), "cosine", 20 * MM)]
     assert size_flat_base_radius(build_program(segs, 20 * MM)) == 0.0

@@ -5,7 +5,7 @@ import math
 import numpy as np
 import pytest
 
-from mechcli.core.kinetostatics import Load, LoadProgram
+from mechcli.core.linkage.kinetostatics import Load, LoadProgram
 from mechcli.spec.errors import SpecError
 from mechcli.spec.force import load_force_spec
 from tests.conftest import CONFIGS, one_line_error, run_cli, write_spec
@@ -104,8 +104,8 @@ when = { band = [0.1, 0.9] }
 
 
 def test_report_input_column_names_the_driver(tmp_path):
-    from mechcli.core.kinematics import Sweep
-    from mechcli.core.force_analysis import analyse_forces
+    from mechcli.core.linkage.kinematics import Sweep
+    from mechcli.core.linkage.force_analysis import analyse_forces
     from mechcli.report.force import build_report, input_column
 
     spec = load_force_spec(write_spec(tmp_path, SLIDER_DRIVEN))

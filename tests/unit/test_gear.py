@@ -6,17 +6,17 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
-from mechcli.core.gear import GearGeometryError, spur_gear
-from mechcli.core.gear_bevel import bevel_pair
-from mechcli.core.gear_generation import (cutter_positions, generation_plan,
+from mechcli.core.gear.spur import GearGeometryError, spur_gear
+from mechcli.core.gear.bevel import bevel_pair
+from mechcli.core.gear.generation import (cutter_positions, generation_plan,
                                           swept_half_space)
-from mechcli.core.gear_helical import helical_pair
-from mechcli.core.gear_pair import (MeshError, design_teeth_from_ratio, gear_pair,
+from mechcli.core.gear.helical import helical_pair
+from mechcli.core.gear.pair import (MeshError, design_teeth_from_ratio, gear_pair,
                                     zero_backlash_pressure_angle)
-from mechcli.core.gear_profile import (flank_chordal_deviation, gear_outline,
+from mechcli.core.gear.profile import (flank_chordal_deviation, gear_outline,
                                        generated_tooth)
-from mechcli.core.gear_worm import worm_drive
-from mechcli.core.involute import involute_function
+from mechcli.core.gear.worm import worm_drive
+from mechcli.core.gear.involute import involute_function
 
 A20 = math.radians(20)
 MM = 1e-3
@@ -263,7 +263,7 @@ def test_internal_gear_needs_its_tip_outside_the_base_circle():
 
 
 def test_ring_outline_radii():
-    from mechcli.core.gear_profile import ring_outline
+    from mechcli.core.gear.profile import ring_outline
     g = spur_gear(60, 4 * MM, A20, internal=True)
     out = ring_outline(g, 20)
     r = np.hypot(out.x, out.y)
@@ -272,7 +272,7 @@ def test_ring_outline_radii():
 
 
 def test_tip_shortening_restores_the_standard_clearance():
-    from mechcli.core.gear_pair import tip_shortened
+    from mechcli.core.gear.pair import tip_shortened
     g1 = spur_gear(10, 10 * MM, A20, x=0.45)
     g2 = spur_gear(12, 10 * MM, A20, x=0.31)
     pr = gear_pair(g1, g2)
@@ -299,7 +299,7 @@ def test_bevel_with_a_cone_past_90_degrees_is_refused():
 @pytest.mark.parametrize("a_w, eps", [(0.250, 1.6913), (0.255, 0.7650)])
 def test_mesh_kinematics_reproduces_the_contact_ratio(a_w, eps):
     # independent of the 表 5-2 formula: turn the gears, count the points of contact
-    from mechcli.core.gear_pair import mesh_positions
+    from mechcli.core.gear.pair import mesh_positions
     g1, g2 = spur_gear(20, 5 * MM, A20), spur_gear(80, 5 * MM, A20)
     pr = gear_pair(g1, g2, a_w=a_w)
     mesh = mesh_positions(pr, np.linspace(0, 2 * math.pi / 20, 2000, endpoint=False))

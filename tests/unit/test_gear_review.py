@@ -4,7 +4,7 @@ import math
 
 import pytest
 
-from mechcli.core.gear import GearGeometryError, spur_gear
+from mechcli.core.gear.spur import GearGeometryError, spur_gear
 from tests.conftest import run_cli
 
 
@@ -50,7 +50,7 @@ def test_book_start_outside_the_quadrant_is_a_spec_error(tmp_path, start):
 
 def test_book_start_failure_message_only_claims_the_limit_for_0_8():
     from mechcli.core.errors import ConvergenceError
-    from mechcli.core.involute import inverse_involute, inverse_involute_scalar
+    from mechcli.core.gear.involute import inverse_involute, inverse_involute_scalar
     with pytest.raises(ConvergenceError, match="theta > 1.0468"):
         inverse_involute_scalar(1.05, "book")
     with pytest.raises(ConvergenceError, match=r"theta > 1.0468"):
@@ -65,7 +65,7 @@ def test_internal_interference_uses_the_ring_tip(z1, z2, expected):
     # The ring's tip circle cuts the line of action sqrt(ra2^2 - rb2^2) from N2; it meets the
     # pinion above its base circle iff that reaches N1 (N1N2 = a' sin a').  The pinion's tip
     # reach was tested instead: z2 = 100 (27.817 > 27.362 mm, no interference) was flagged.
-    from mechcli.core.gear_pair import gear_pair
+    from mechcli.core.gear.pair import gear_pair
     alpha = math.radians(20)
     g1 = spur_gear(z1, 2.0, alpha)
     g2 = spur_gear(z2, 2.0, alpha, internal=True)
@@ -79,7 +79,7 @@ def test_thin_teeth_without_zero_backlash_mount_at_a_given_distance(tmp_path):
     # z = 12 + 30, x1 = x2 = -0.5: inv alpha' = 2 tan 20° (-1)/42 + inv 20° < 0, so no a' gives
     # zero backlash and no a' jams.  A given a' = 20 mm (> rb1 + rb2 = 19.73) was refused
     # (exit 3, "no zero-backlash pressure angle exists"); independent: j = 2 pi r1'/z1 - s1' - s2'.
-    from mechcli.core.gear_pair import gear_pair, zero_backlash_distance
+    from mechcli.core.gear.pair import gear_pair, zero_backlash_distance
     alpha = math.radians(20)
     g1 = spur_gear(12, 1.0, alpha, x=-0.5)
     g2 = spur_gear(30, 1.0, alpha, x=-0.5)
@@ -108,8 +108,8 @@ def test_contact_ratio_stops_where_a_pointed_tooth_ends():
     its tip circle ra = 4.5 mm; the contact (and epsilon_alpha) must stop there."""
     import math
 
-    from mechcli.core.gear import spur_gear
-    from mechcli.core.gear_pair import gear_pair
+    from mechcli.core.gear.spur import spur_gear
+    from mechcli.core.gear.pair import gear_pair
 
     g1 = spur_gear(5, 1.0, math.radians(14.5), x=1.0)
     g2 = spur_gear(40, 1.0, math.radians(14.5))

@@ -9,8 +9,8 @@ import sys
 import numpy as np
 import pytest
 
-from mechcli.core.gear import spur_gear
-from mechcli.core.involute import (involute_function, involute_point, involute_table,
+from mechcli.core.gear.spur import spur_gear
+from mechcli.core.gear.involute import (involute_function, involute_point, involute_table,
                                    involute_table_rows, inverse_involute,
                                    inverse_involute_scalar)
 from mechcli.report.files import OutputError

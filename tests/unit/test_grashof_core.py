@@ -1,4 +1,4 @@
-"""mechcli.core.grashof: book and slides values, and cross-checks against the linkage engine.
+"""mechcli.core.grashof.fourbar: book and slides values, and cross-checks against the linkage engine.
 
 The closed forms (limit positions, θ, ψ, K, γ) are checked against an
 independent dense sweep of the linkage engine (``mechcli.core.linkage``):
@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
-from mechcli.core import grashof as gf
+from mechcli.core.grashof import fourbar as gf
 from mechcli.core.linkage import RPR, RRP, RRR, Crank, DriverMotion, Ground, Linkage, solve
 
 DEG = math.pi / 180

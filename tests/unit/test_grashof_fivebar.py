@@ -11,10 +11,10 @@ sees the extreme configurations exactly.
 import numpy as np
 import pytest
 
-from mechcli.core.classify_fivebar import classify_fivebar, fivebar_roles, rrrrp_crank
+from mechcli.core.grashof.fivebar import classify_fivebar, fivebar_roles, rrrrp_crank
 from mechcli.core.errors import UnsolvableError
 from mechcli.core.linkage import RRP, RRR, Crank, DriverMotion, Ground, Linkage, solve
-from mechcli.core.mobility import Joint, MobilityError, count_mobility
+from mechcli.core.grashof.mobility import Joint, MobilityError, count_mobility
 
 
 def _five_bar(L, frame=5):

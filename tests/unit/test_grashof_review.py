@@ -4,9 +4,9 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
-from mechcli.core import grashof as gf
-from mechcli.core.classify_fivebar import rrrrp_crank
-from mechcli.core.mobility import Joint, MobilityError, count_mobility
+from mechcli.core.grashof import fourbar as gf
+from mechcli.core.grashof.fivebar import rrrrp_crank
+from mechcli.core.grashof.mobility import Joint, MobilityError, count_mobility
 from mechcli.report import grashof as report
 from mechcli.spec.errors import SpecError
 from mechcli.spec.grashof import quick_spec, read_batch_csv, read_grashof_spec

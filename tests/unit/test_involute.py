@@ -7,7 +7,7 @@ import pytest
 from numpy.testing import assert_allclose
 
 from mechcli.core.errors import ConvergenceError
-from mechcli.core.involute import (degrees_minutes_seconds, format_dms, involute_curve,
+from mechcli.core.gear.involute import (degrees_minutes_seconds, format_dms, involute_curve,
                                    involute_function, involute_table, inverse_involute)
 
 

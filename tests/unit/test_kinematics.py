@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from mechcli.core.errors import AssemblyError
-from mechcli.core.kinematics import Sweep, analyse_sweep, default_quantities
+from mechcli.core.linkage.kinematics import Sweep, analyse_sweep, default_quantities
 from mechcli.core.linkage import RRR, Crank, DriverMotion, Ground, Linkage, solve
 from mechcli.spec.kin import load_kin_spec
 from tests.conftest import CONFIGS

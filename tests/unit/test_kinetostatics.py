@@ -10,9 +10,9 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from mechcli.core.force_analysis import analyse_forces
-from mechcli.core.kinematics import Sweep
-from mechcli.core.kinetostatics import (Body, Load, LoadProgram, solve_forces,
+from mechcli.core.linkage.force_analysis import analyse_forces
+from mechcli.core.linkage.kinematics import Sweep
+from mechcli.core.linkage.kinetostatics import (Body, Load, LoadProgram, solve_forces,
                                         topology)
 from mechcli.core.linkage import (RPR, RRP, RRR, Crank, Ground, Linkage, PointOnLink,
                                   SliderDriver, solve)

@@ -11,8 +11,8 @@ import dataclasses
 import math
 
 from mechcli.core.errors import UnsolvableError
-from mechcli.core.gear import SpurGear
-from mechcli.core.involute import involute_function, inverse_involute_scalar
+from mechcli.core.gear.spur import SpurGear
+from mechcli.core.gear.involute import involute_function, inverse_involute_scalar
 
 
 class MeshError(UnsolvableError):

@@ -25,7 +25,7 @@ import math
 import numpy as np
 from scipy.optimize import brentq
 
-from mechcli.core.gear import GearGeometryError, SpurGear
+from mechcli.core.gear.spur import GearGeometryError, SpurGear
 
 
 def rack_corner(g: SpurGear):

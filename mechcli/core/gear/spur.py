@@ -14,7 +14,7 @@ import dataclasses
 import math
 
 from mechcli.core.errors import UnsolvableError
-from mechcli.core.involute import involute_function, inverse_involute_scalar
+from mechcli.core.gear.involute import involute_function, inverse_involute_scalar
 
 
 class GearGeometryError(UnsolvableError):
@@ -44,7 +44,7 @@ class SpurGear:
         d - 2 ha, root circle d + 2 hf.
     tip_reduction : float
         Addendum removed to keep the standard clearance in a shifted pair,
-        Δy m (m) (see :func:`mechcli.core.gear_pair.tip_shortened`).
+        Δy m (m) (see :func:`mechcli.core.gear.pair.tip_shortened`).
     """
 
     z: int

@@ -32,7 +32,7 @@ import math
 
 import numpy as np
 
-from mechcli.core.cam_motion import MotionProgram
+from mechcli.core.cam.motion import MotionProgram
 from mechcli.core.errors import UnsolvableError
 
 FOLLOWER_MOTIONS = ("translating", "oscillating")

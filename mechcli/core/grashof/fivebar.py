@@ -13,7 +13,7 @@ import dataclasses
 import numpy as np
 
 from mechcli.core.errors import UnsolvableError
-from mechcli.core.grashof import CHANGE_POINT_RTOL, ClosureError, check_closure
+from mechcli.core.grashof.fourbar import CHANGE_POINT_RTOL, ClosureError, check_closure
 
 FIVEBAR_TYPES = ("triple_crank", "double_crank", "single_crank", "no_crank")
 

@@ -687,7 +687,7 @@ class LoadProgram:
 
     ``window`` (lo, hi) of the primary input [rad or m] (periodic in 2*pi when
     ``rotary``; lo > hi wraps through 0); ``velocity`` a
-    :class:`~mechcli.core.kinematics.Quantity` whose sign must be ``sign``;
+    :class:`~mechcli.core.linkage.kinematics.Quantity` whose sign must be ``sign``;
     ``slide`` a slide quantity that must lie within ``band`` (absolute limits
     [m], see :meth:`with_band_limits`; fractions of the stroke until then);
     ``table`` (xs, ys) a factor tabulated against the input (linear, periodic

@@ -15,7 +15,7 @@ import math
 
 import numpy as np
 
-from mechcli.core.gear import SpurGear
+from mechcli.core.gear.spur import SpurGear
 
 
 def rack_outline(g: SpurGear, teeth=5):
@@ -74,7 +74,7 @@ def swept_half_space(g: SpurGear, rho, phi):
     right flank and the tip of the central cutter tooth (closed-form
     line-circle intersections); the largest polar angle from the space centre
     over all positions is returned.  This is the numerical envelope that the
-    analytic profile of :mod:`mechcli.core.gear_profile` is checked against.
+    analytic profile of :mod:`mechcli.core.gear.profile` is checked against.
 
     Parameters
     ----------

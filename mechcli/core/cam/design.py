@@ -1,7 +1,7 @@
 """One cam problem end to end: size (if asked), sample the profile, check it.
 
 This is what ``mechcli cam`` calls; it only combines
-:mod:`mechcli.core.cam_motion` and :mod:`mechcli.core.cam_profile`.
+:mod:`mechcli.core.cam.motion` and :mod:`mechcli.core.cam.profile`.
 """
 
 from __future__ import annotations
@@ -11,8 +11,8 @@ import math
 
 import numpy as np
 
-from mechcli.core.cam_motion import Impact, MotionProgram, build_program
-from mechcli.core.cam_profile import (CamChecks, CamGeometryError, CamProfile, Follower,
+from mechcli.core.cam.motion import Impact, MotionProgram, build_program
+from mechcli.core.cam.profile import (CamChecks, CamGeometryError, CamProfile, Follower,
                                       UndercutError, cam_profile, check_cam,
                                       size_flat_base_radius, size_oscillating_base_radius,
                                       translating_base_radius_min)

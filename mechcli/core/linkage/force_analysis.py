@@ -2,8 +2,8 @@
 extremes (refined), where the conditional loads act, mean and RMS.
 
 The kinematics (gaps, dead points, excluded intervals) come from
-:func:`mechcli.core.kinematics.analyse_sweep`; the forces from
-:func:`mechcli.core.kinetostatics.solve_forces`.
+:func:`mechcli.core.linkage.kinematics.analyse_sweep`; the forces from
+:func:`mechcli.core.linkage.kinetostatics.solve_forces`.
 """
 
 from __future__ import annotations
@@ -13,8 +13,8 @@ from typing import Dict, List, Tuple
 
 import numpy as np
 
-from mechcli.core.kinematics import SEARCH_STEP, Sweep, _bisect, analyse_sweep
-from mechcli.core.kinetostatics import COND_FLAG, ForceResult, solve_forces
+from mechcli.core.linkage.kinematics import SEARCH_STEP, Sweep, _bisect, analyse_sweep
+from mechcli.core.linkage.kinetostatics import COND_FLAG, ForceResult, solve_forces
 from mechcli.core.linkage import Crank, solve
 
 
