@@ -31,7 +31,8 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
 from mechcli.core.cam.motion import build_program  # noqa: E402
-from mechcli.core.cam.profile import Follower, cam_profile, check_cam  # noqa: E402
+from mechcli.core.cam.checks import check_cam  # noqa: E402
+from mechcli.core.cam.geometry import Follower, cam_profile  # noqa: E402
 
 RAD = math.radians
 MM = 1e-3

@@ -10,7 +10,7 @@ import math
 
 import numpy as np
 
-from mechcli.core.cam.profile import RHO_CAP
+from mechcli.core.cam.geometry import RHO_CAP
 from mechcli.report.files import Outputs
 from mechcli.report.run import finish
 from mechcli.report.table import Block, Report
@@ -175,6 +175,49 @@ def warnings_for(cs, design, lang="en"):
     return out
 
 
+def error_message(exc, cs):
+    """The message of a cam core error (:class:`mechcli.core.cam.geometry.CamError`)
+    in the spec's length unit, degrees and spec keys."""
+    v, unit, u, deg = exc.values, cs.header.unit, cs.header.scale, math.degrees
+
+    def length(key):
+        return f"{v[key] / u:.6g} {unit}"
+
+    reason = exc.reason
+    if reason == "pitch_cusp":
+        return (f"the pitch curve has a cusp near {deg(v['at']):.4g} deg (the follower point "
+                "moves with the cam): no normal, no profile")
+    if reason == "no_convex_pitch":
+        return "the pitch curve has no convex part (check r0 and e)"
+    if reason == "no_base_radius":
+        return "no base radius between |a - l| and a + l meets the pressure-angle limit"
+    if reason == "rounded_base_radius":
+        return (f"the rounded base radius {length('r0')} is outside |a - l| < r0 < a + l "
+                f"({v['lo'] / u:.6g} .. {length('hi')}); use a smaller round_up")
+    if reason == "unbounded_base_radius":
+        return (f"the limits do not bound the base radius from below (any r0 > "
+                f"{length('floor')} meets them); give r0, or round_up, or stricter limits")
+    if reason == "roller_too_large":
+        return (f"the sized base radius {length('r0')} is not larger than the roller radius "
+                f"{length('rr')}; give r0 or a smaller roller")
+    if reason == "arm_past_centre_line":
+        return (f"phi0 + psi = {deg(v['angle']):.6g} deg reaches 180 deg: the arm would pass "
+                "the line through the pivot and the cam centre")
+    if reason == "distorted":
+        where = ", ".join(f"{deg(d):.4g}" for d in v["at"])
+        return (f"the follower cannot reproduce the velocity jump at {where} deg: "
+                + ("the roller rolls round the cam's sharp edge at the convex corner of the "
+                   "pitch curve" if v["contact"] == "roller" else
+                   "the flat face would need a cusp (r0 + s + s'' has a negative impulse)")
+                + "; use a law without velocity jumps")
+    if reason == "undercut":
+        return (f"the working profile is undercut (cusp) near {deg(v['at']):.4g} deg: "
+                + ("r0 + s + s'' <= 0" if v["contact"] == "flat" else
+                   f"roller radius {length('rr')} >= pitch-curve radius of curvature "
+                   f"{length('rho')}"))
+    return str(exc)
+
+
 def csv_columns(cs, design):
     """``(header, values)`` columns of ``cam.csv`` (spec units, degrees)."""
     p, unit, u = design.profile, cs.header.unit, cs.header.scale
@@ -279,9 +322,9 @@ def cam_report(run, cs, design):
     warnings = warnings_for(cs, design, run.lang)
     animate = cs.animate if run.animate is None else run.animate
     if (run.plot and cs.plot) or animate:
-        from mechcli.report import cam_plots
+        from mechcli.report import cam_plots, plotting
 
-        used = cam_plots.setup(run.lang)
+        used = plotting.setup(run.lang)
         if used != run.lang:
             warnings.append("no CJK font installed: plot labels in English")
         if run.plot and cs.plot:

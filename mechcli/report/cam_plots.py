@@ -10,7 +10,7 @@ import math
 
 import numpy as np
 
-from mechcli.report.plotting import canvas_frame, plt, save_gif, save_png, setup  # noqa: F401
+from mechcli.report.plotting import canvas_frame, plt, save_gif, save_png
 
 TEXT = {
     "en": {"delta": "cam angle δ (°)", "s": "s ({u})", "psi": "ψ (°)",
@@ -20,18 +20,16 @@ TEXT = {
            "vpsit": "ω (rad/s)", "apsit": "ε (rad/s²)", "jpsit": "dε/dt (rad/s³)",
            "base": "base circle", "pitch": "pitch curve", "work": "working curve",
            "offset": "offset circle", "alpha": "pressure angle α (°)",
-           "limit": "[α]", "rho": "radius of curvature ({u})", "rho_p": "pitch curve",
-           "rho_w": "working curve", "motion": "Follower motion", "impact_r": "rigid impact",
-           "impact_s": "soft impact", "x": "x ({u})", "y": "y ({u})"},
+           "rho": "radius of curvature ({u})", "rho_p": "pitch curve",
+           "rho_w": "working curve", "x": "x ({u})", "y": "y ({u})"},
     "zh": {"delta": "凸轮转角 δ/(°)", "s": "位移 s/{u}", "psi": "摆角 ψ/(°)",
            "v": "类速度 ds/dδ/({u}/rad)", "a": "类加速度/({u}/rad²)", "j": "类跃度/({u}/rad³)",
            "vt": "速度 v/({u}/s)", "at": "加速度 a/({u}/s²)", "jt": "跃度 j/({u}/s³)",
            "vpsi": "类角速度 dψ/dδ", "apsi": "类角加速度/(1/rad)", "jpsi": "类角跃度/(1/rad²)",
            "vpsit": "角速度/(rad/s)", "apsit": "角加速度/(rad/s²)", "jpsit": "角跃度/(rad/s³)",
            "base": "基圆", "pitch": "理论廓线", "work": "实际廓线", "offset": "偏距圆",
-           "alpha": "压力角 α/(°)", "limit": "许用压力角", "rho": "曲率半径/{u}",
-           "rho_p": "理论廓线", "rho_w": "实际廓线", "motion": "推杆运动线图",
-           "impact_r": "刚性冲击", "impact_s": "柔性冲击", "x": "x/{u}", "y": "y/{u}"},
+           "alpha": "压力角 α/(°)", "rho": "曲率半径/{u}",
+           "rho_p": "理论廓线", "rho_w": "实际廓线", "x": "x/{u}", "y": "y/{u}"},
 }
 
 
@@ -126,7 +124,7 @@ def _roller(r, cx, cy, angle):
 
 
 def _outline(design):
-    from mechcli.core.cam.profile import working_outline
+    from mechcli.core.cam.geometry import working_outline
 
     return working_outline(design.follower, design.program, design.profile,
                            design.checks.corners)

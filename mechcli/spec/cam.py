@@ -59,7 +59,7 @@ class CamSpec:
     """A validated cam problem (SI units, radians).
 
     ``follower_args`` are the keyword arguments of
-    :class:`mechcli.core.cam.profile.Follower` except ``r0`` when it is to be
+    :class:`mechcli.core.cam.geometry.Follower` except ``r0`` when it is to be
     sized (``r0`` is None then).  ``segments`` are ``(kind, span, law, lift)``.
     """
 

@@ -239,3 +239,69 @@ def test_units_aliases_partial_lifts_and_points(tmp_path):
         rows = {round(float(r["delta_deg"]), 6): r for r in csv.DictReader(fh)}
     assert float(rows[60.0]["s_mm"]) == pytest.approx(20.0, abs=1e-12)
     assert float(rows[120.0]["s_mm"]) == pytest.approx(60.0, abs=1e-12)
+
+
+@pytest.mark.parametrize("reason, values, message", [
+    ("pitch_cusp", {"at": math.radians(30)},
+     "the pitch curve has a cusp near 30 deg (the follower point moves with the cam): "
+     "no normal, no profile"),
+    ("no_convex_pitch", {}, "the pitch curve has no convex part (check r0 and e)"),
+    ("no_base_radius", {"lo": 0.01, "hi": 0.11},
+     "no base radius between |a - l| and a + l meets the pressure-angle limit"),
+    ("rounded_base_radius", {"r0": 0.2, "lo": 0.01, "hi": 0.11},
+     "the rounded base radius 200 mm is outside |a - l| < r0 < a + l (10 .. 110 mm); "
+     "use a smaller round_up"),
+    ("unbounded_base_radius", {"floor": 0.015},
+     "the limits do not bound the base radius from below (any r0 > 15 mm meets them); "
+     "give r0, or round_up, or stricter limits"),
+    ("roller_too_large", {"r0": 0.0138423, "rr": 0.08},
+     "the sized base radius 13.8423 mm is not larger than the roller radius 80 mm; "
+     "give r0 or a smaller roller"),
+    ("arm_past_centre_line", {"angle": math.radians(185)},
+     "phi0 + psi = 185 deg reaches 180 deg: the arm would pass the line through the pivot "
+     "and the cam centre"),
+    ("distorted", {"at": (math.radians(120), math.radians(180)), "contact": "flat"},
+     "the follower cannot reproduce the velocity jump at 120, 180 deg: the flat face would "
+     "need a cusp (r0 + s + s'' has a negative impulse); use a law without velocity jumps"),
+    ("undercut", {"at": math.radians(40), "contact": "roller", "rr": 0.035, "rho": 0.0141343},
+     "the working profile is undercut (cusp) near 40 deg: roller radius 35 mm >= pitch-curve "
+     "radius of curvature 14.1343 mm"),
+])
+def test_cam_core_errors_are_worded_in_spec_units_and_keys(reason, values, message):
+    """The core raises numbers (SI, rad); the report words them as the CLI always did
+    (the messages of the mm specs these numbers come from, before the wording moved)."""
+    from types import SimpleNamespace
+
+    from mechcli.core.cam.geometry import CamGeometryError
+    from mechcli.report.cam import error_message
+
+    exc = CamGeometryError("core text", reason, **values)
+    assert "mm" not in str(exc) and "deg" not in str(exc)
+    cs = SimpleNamespace(header=SimpleNamespace(unit="mm", scale=1e-3))
+    assert error_message(exc, cs) == message
+    if reason == "roller_too_large":  # a spec in metres gets metres
+        metres = SimpleNamespace(header=SimpleNamespace(unit="m", scale=1.0))
+        assert "radius 0.0138423 m is not larger than the roller radius 0.08 m" in (
+            error_message(exc, metres))
+
+
+def test_core_error_reaches_the_cli_worded(tmp_path):
+    """A forbidden undercut: exit 3 with the report's wording, not the core's."""
+    text = BASE.replace("rr = 10", "rr = 35").replace("e = 15", "e = 0") + (
+        "[limits]\nforbid_undercut = true\n")
+    text = text.replace(
+        """segments = [
+  { kind = "rise", angle = 100, law = "parabolic" },
+  { kind = "dwell", angle = 60 },
+  { kind = "return", angle = 90, law = "cosine" },
+  { kind = "dwell", angle = 110 },
+]""", """segments = [
+  { kind = "rise", angle = 40, law = "cosine" },
+  { kind = "return", angle = 40, law = "cosine" },
+  { kind = "dwell", angle = 280 },
+]""")
+    proc = run_cli("cam", _spec(tmp_path, text), "--no-plot", "--out", tmp_path)
+    assert proc.returncode == 3, proc.stderr
+    # the message the CLI printed for this spec before the wording left the core
+    assert ("the working profile is undercut (cusp) near 40 deg: roller radius 35 mm >= "
+            "pitch-curve radius of curvature 14.1343 mm") in proc.stderr

@@ -5,7 +5,7 @@ import math
 import pytest
 
 from mechcli.core.cam.motion import build_program
-from mechcli.core.cam.profile import translating_base_radius_min
+from mechcli.core.cam.sizing import translating_base_radius_min
 from tests.conftest import run_cli
 
 SIZED = """command = "cam"

@@ -9,8 +9,8 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from mechcli.core.cam.motion import LAWS, build_program
-from mechcli.core.cam.profile import (CamGeometryError, Follower, cam_profile, check_cam,
-                                      max_pressure_angle)
+from mechcli.core.cam.checks import check_cam, max_pressure_angle
+from mechcli.core.cam.geometry import CamGeometryError, Follower, cam_profile
 from mechcli.core.errors import UnsolvableError
 
 SETTINGS = settings(max_examples=40, deadline=None,
@@ -128,7 +128,7 @@ def test_base_radius_barely_above_offset():
 @given(prog=programs(), margin=st.one_of(st.just(0.0), st.floats(1e-6, 0.01)))
 def test_flat_face_sizing_residual(prog, margin):
     """With r0 = r0_min the smallest r0 + s + s'' is exactly the asked margin."""
-    from mechcli.core.cam.profile import size_flat_base_radius
+    from mechcli.core.cam.sizing import size_flat_base_radius
 
     r0 = size_flat_base_radius(prog, margin)
     if r0 == 0.0:   # every r0 works (only possible with margin 0 and s + s'' >= 0)
@@ -144,7 +144,7 @@ def test_flat_face_sizing_residual(prog, margin):
        a_rise=st.floats(15, 60), a_ret=st.floats(30, 80))
 def test_translating_sizing_residual(prog, e_frac, rot, a_rise, a_ret):
     """At r0_min the larger of (α_rise − [α], α_return − [α]') is zero."""
-    from mechcli.core.cam.profile import translating_base_radius_min
+    from mechcli.core.cam.sizing import translating_base_radius_min
 
     e = e_frac * prog.stroke
     r0 = translating_base_radius_min(prog, e, rot, math.radians(a_rise), math.radians(a_ret))

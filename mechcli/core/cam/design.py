@@ -1,7 +1,8 @@
 """One cam problem end to end: size (if asked), sample the profile, check it.
 
 This is what ``mechcli cam`` calls; it only combines
-:mod:`mechcli.core.cam.motion` and :mod:`mechcli.core.cam.profile`.
+:mod:`mechcli.core.cam.motion`, :mod:`mechcli.core.cam.geometry`,
+:mod:`mechcli.core.cam.checks` and :mod:`mechcli.core.cam.sizing`.
 """
 
 from __future__ import annotations
@@ -12,10 +13,11 @@ import math
 import numpy as np
 
 from mechcli.core.cam.motion import Impact, MotionProgram, build_program
-from mechcli.core.cam.profile import (CamChecks, CamGeometryError, CamProfile, Follower,
-                                      UndercutError, cam_profile, check_cam,
-                                      size_flat_base_radius, size_oscillating_base_radius,
-                                      translating_base_radius_min)
+from mechcli.core.cam.checks import CamChecks, check_cam
+from mechcli.core.cam.geometry import (CamGeometryError, CamProfile, Follower, UndercutError,
+                                       cam_profile)
+from mechcli.core.cam.sizing import (size_flat_base_radius, size_oscillating_base_radius,
+                                     translating_base_radius_min)
 
 #: coarse search step of the refined extrema, rad
 SEARCH_STEP = math.radians(1.0)
@@ -114,6 +116,19 @@ def design_cam(motion, contact, r0, follower_args, segments, stroke, *, angular=
     Returns
     -------
     CamDesign
+
+    Raises
+    ------
+    CamGeometryError
+        ``reason`` (``values``, m and rad): ``rounded_base_radius`` (``r0``, ``lo``,
+        ``hi``: the rounded r0 leaves |a − l| < r0 < a + l), ``unbounded_base_radius``
+        (``floor``: the limits hold for any r0 above it), ``roller_too_large`` (``r0``,
+        ``rr``), ``arm_past_centre_line`` (``angle`` = φ₀ + ψ ≥ π), and those of
+        :func:`cam_profile`, :func:`check_cam` and the sizing functions.
+    UndercutError
+        With *forbid_undercut*: ``distorted`` (``at``: cam angles of the velocity jumps,
+        ``contact``) or ``undercut`` (``at``, ``contact``, ``rr``, ``rho``: the pitch
+        curve's smallest radius of curvature, None for a flat face).
     """
     program = build_program(segments, stroke, angular)
     # the extrema are refined on the exact functions: their coarse search step does not
@@ -149,42 +164,38 @@ def design_cam(motion, contact, r0, follower_args, segments, stroke, *, angular=
             a, l = follower_args["a"], follower_args["l"]
             if not abs(a - l) < r0 < a + l:
                 raise CamGeometryError(
-                    f"the rounded base radius {r0 * 1e3:.6g} mm is outside |a - l| < r0 < a + l "
-                    f"({abs(a - l) * 1e3:.6g} .. {(a + l) * 1e3:.6g} mm); use a smaller "
-                    "round_up")
+                    f"the rounded base radius {r0!r} is outside ({abs(a - l)!r}, {a + l!r}) "
+                    "that the arm allows", "rounded_base_radius", r0=r0, lo=abs(a - l),
+                    hi=a + l)
         floor = abs(follower_args.get("e", 0.0)) if contact != "flat" else 0.0
         if r0 <= floor * (1 + 1e-12):
             raise CamGeometryError(
-                "the limits do not bound the base radius from below (any r0 > "
-                f"{floor * 1e3:.6g} mm meets them); give r0, or round_up, or stricter limits")
+                "the limits do not bound the base radius from below (any base radius > "
+                f"{floor!r} meets them)", "unbounded_base_radius", floor=floor)
         if contact == "roller" and follower_args["rr"] >= r0:
             raise CamGeometryError(
-                f"the sized base radius {r0 * 1e3:.6g} mm is not larger than the roller "
-                f"radius {follower_args['rr'] * 1e3:.6g} mm; give r0 or a smaller roller")
+                f"the sized base radius {r0!r} is not larger than the roller radius "
+                f"{follower_args['rr']!r}", "roller_too_large", r0=r0, rr=follower_args["rr"])
     fol = Follower(motion, contact, r0, **follower_args)
     if angular and fol.phi0 + stroke >= math.pi:
         raise CamGeometryError(
-            f"phi0 + psi = {math.degrees(fol.phi0 + stroke):.6g} deg reaches 180 deg: "
-            "the arm would pass the line through the pivot and the cam centre")
+            f"the arm angle phi0 + psi = {fol.phi0 + stroke!r} reaches pi: the arm would pass "
+            "the line through the pivot and the cam centre", "arm_past_centre_line",
+            angle=fol.phi0 + stroke)
     n = max(int(round(2 * math.pi / step)), 36)
     delta = np.linspace(0.0, 2 * math.pi, n + 1)
     profile = cam_profile(fol, program, delta)
     checks = check_cam(fol, program, search)
     if checks.distorted and forbid_undercut:
-        where = ", ".join(f"{math.degrees(d):.4g}" for d in checks.distorted)
         raise UndercutError(
-            f"the follower cannot reproduce the velocity jump at {where} deg: "
-            + ("the roller rolls round the cam's sharp edge at the convex corner of the "
-               "pitch curve" if contact == "roller" else
-               "the flat face would need a cusp (r0 + s + s'' has a negative impulse)")
-            + "; use a law without velocity jumps")
+            "the follower cannot reproduce the velocity jumps at delta = "
+            f"{list(checks.distorted)!r}", "distorted", at=checks.distorted, contact=contact)
     if checks.undercut and forbid_undercut:
-        where = math.degrees(checks.rho_work_min.delta)
+        at = checks.rho_work_min.delta
+        rho = None if contact == "flat" else checks.rho_pitch_min.value
         raise UndercutError(
-            f"the working profile is undercut (cusp) near {where:.4g} deg: "
-            + ("r0 + s + s'' <= 0" if contact == "flat" else
-               f"roller radius {fol.rr * 1e3:.6g} mm >= pitch-curve radius of curvature "
-               f"{checks.rho_pitch_min.value * 1e3:.6g} mm"))
+            f"the working profile is undercut (cusp) near delta = {at!r}", "undercut",
+            at=at, contact=contact, rr=fol.rr, rho=rho)
     # a convex pitch corner (velocity jump) has ρ = 0: no roller reproduces it
     rr_max = None if contact == "flat" else (
         0.0 if any(convex for _, convex in checks.corners) else checks.rho_pitch_min.value)

@@ -1,4 +1,10 @@
-"""Disc-cam profiles by the inversion method (反转法), with exact normals.
+"""Disc-cam geometry by the inversion method (反转法), with exact normals.
+
+The follower, the pitch and working profiles, their normals, curvature and
+pressure angle per cam angle, the corners of the pitch curve and the working
+outline drawn round them.  The refined extrema over the cycle are in
+:mod:`mechcli.core.cam.checks`, the base-circle sizing in
+:mod:`mechcli.core.cam.sizing`.
 
 Every follower is described in the *fixed* frame (cam centre O at the origin,
 follower guide along +y): a reference point ``P(δ)`` (roller centre / knife
@@ -34,6 +40,7 @@ import numpy as np
 
 from mechcli.core.cam.motion import MotionProgram
 from mechcli.core.errors import UnsolvableError
+from mechcli.core.refine import sign_changes
 
 FOLLOWER_MOTIONS = ("translating", "oscillating")
 FOLLOWER_CONTACTS = ("knife", "roller", "flat")
@@ -42,11 +49,31 @@ FOLLOWER_CONTACTS = ("knife", "roller", "flat")
 RHO_CAP = 1e6
 
 
-class UndercutError(UnsolvableError):
+class CamError(UnsolvableError):
+    """A cam problem without solution, described by numbers.
+
+    The message names the failure in words of the mechanism and SI numbers
+    only; the command's report layer words it in the spec's units and keys.
+
+    Attributes
+    ----------
+    reason : str
+        What failed (one word, e.g. ``"pitch_cusp"``; see the raising function).
+    values : dict
+        The numbers of the failure, SI units and radians.
+    """
+
+    def __init__(self, message, reason, **values):
+        super().__init__(message)
+        self.reason = reason
+        self.values = values
+
+
+class UndercutError(CamError):
     """The working profile has a cusp or loop (undercut) and the spec forbids it."""
 
 
-class CamGeometryError(UnsolvableError):
+class CamGeometryError(CamError):
     """The follower cannot be placed as asked (e.g. swing past the geometric limit)."""
 
 
@@ -299,6 +326,12 @@ def cam_profile(fol, program: MotionProgram, delta):
     Returns
     -------
     CamProfile
+
+    Raises
+    ------
+    CamGeometryError
+        ``reason = "pitch_cusp"``, ``at`` the cam angle (rad): the follower
+        point moves with the cam, the pitch curve has no normal there.
     """
     st = program.evaluate(delta)
     s, s1, s2, s3 = st.s, st.s1, st.s2, st.s3
@@ -315,9 +348,10 @@ def cam_profile(fol, program: MotionProgram, delta):
                           np.clip(rho, -cap, cap), None, sg * s1 - fol.e)
     speed = np.sqrt(_dot(V1, V1))
     if not np.all(speed > 1e-12 * fol.r0):
-        at = math.degrees(float(np.asarray(delta, dtype=float)[np.argmin(speed)]))
-        raise CamGeometryError(f"the pitch curve has a cusp near {at:.4g} deg (the follower "
-                               "point moves with the cam): no normal, no profile")
+        at = float(np.asarray(delta, dtype=float)[np.argmin(speed)])
+        raise CamGeometryError(f"the pitch curve has a cusp near delta = {at!r} (the follower "
+                               "point moves with the cam): no normal, no profile",
+                               "pitch_cusp", at=at)
     n_fixed = sg * _J(V1) / speed
     pitch = _rotate(P, rot)
     normal = _rotate(n_fixed, rot)
@@ -336,190 +370,21 @@ def cam_profile(fol, program: MotionProgram, delta):
                       roller, None)
 
 
-# --------------------------------------------------------------------------
-# extrema refined on the exact functions
 
-def _piece_grid(d0, d1, step):
-    n = max(17, int(math.ceil((d1 - d0) / step)) + 1)
-    return np.linspace(d0, d1, n)
-
-
-def maximize_on_pieces(program, pieces, func, step):
-    """Maximum of a piecewise-smooth function of δ, refined to ~1e-13 rad.
+def pitch_corners(fol, program):
+    """Corners of the pitch curve where the follower velocity jumps.
 
     Parameters
     ----------
+    fol : Follower
     program : MotionProgram
-    pieces : sequence of int
-        Indices into ``program.pieces()`` to search.
-    func : callable
-        ``func(s, s1, s2, s3) -> (g, dg/dδ)`` on arrays.
-    step : float
-        Coarse sampling step, rad (each piece gets at least 17 samples).
 
     Returns
     -------
-    (float, float) or None
-        ``(delta_at_max, g_max)``; None if *pieces* is empty.
-
-    Notes
-    -----
-    The coarse maximum is bracketed between its grid neighbours and the root
-    of dg/dδ found by vectorized bracketing; a maximum at a piece end (one-sided,
-    e.g. a kink) is taken as is.  This replaces the golden-section search of
-    例 7-2 (whose tolerance is 1e-5 rad).
+    tuple of (float, bool)
+        Cam angle (rad) of every rigid impact and whether the pitch curve is
+        convex there; empty for a flat-faced follower.
     """
-    allp = program.pieces()
-    sampled = []
-    for k in pieces:
-        _, d0, d1, _ = allp[k]
-        grid = _piece_grid(d0, d1, step)
-        g, dg = func(*program.piece_state(k, grid))
-        sampled.append((k, grid, g, dg))
-    if not sampled:
-        return None
-    top = max(float(np.max(g)) for _, _, g, _ in sampled)
-    best = (None, -math.inf)
-    for k, grid, g, dg in sampled:
-        h = grid[1] - grid[0]
-        # no point of this piece can exceed a grid value by more than h max|g'|
-        reach = h * float(np.max(np.abs(dg)))
-        if float(np.max(g)) + reach < top:
-            continue
-        inner = np.ones(len(g), dtype=bool)
-        inner[1:] &= g[1:] >= g[:-1]
-        inner[:-1] &= g[:-1] >= g[1:]
-        for i in np.flatnonzero(inner & (g + reach >= top)):
-            cand = _refine(program, k, func, grid, g, dg, int(i))
-            if cand[1] > best[1]:
-                best = cand
-    return best
-
-
-def _descending_root(f, lo, hi, n=64):
-    """Root of *f* in [lo, hi] where it changes from positive to negative.
-
-    Vectorized bracketing: each round evaluates *f* at n + 1 points and keeps
-    the first sub-interval with the sign change (a factor n per round) until the
-    bracket is a few doubles wide; the last step is a secant.  At a kink the
-    root is the kink.
-    """
-    for _ in range(20):
-        if hi - lo <= 4e-16 * max(1.0, abs(lo), abs(hi)):
-            break
-        x = np.linspace(lo, hi, n + 1)
-        y = f(x)
-        i = int(np.argmax((y[:-1] > 0) & (y[1:] <= 0)))
-        if not (y[i] > 0 >= y[i + 1]):
-            break
-        lo, hi = float(x[i]), float(x[i + 1])
-    y = f(np.array([lo, hi]))
-    ylo, yhi = float(y[0]), float(y[1])
-    if not (ylo > 0 >= yhi) or ylo == yhi:
-        return lo
-    return lo + (hi - lo) * ylo / (ylo - yhi)
-
-
-def _refine(program, k, func, grid, g, dg, i):
-    """Refine the grid maximum *i* of piece *k* by a root of dg/dδ."""
-
-    def slope(x):
-        return func(*program.piece_state(k, np.asarray(x, dtype=float)))[1]
-
-    x_best, g_best = float(grid[i]), float(g[i])
-    if dg[i] > 0 and i < len(grid) - 1:
-        lo, hi = x_best, float(grid[i + 1])
-        dlo, dhi = float(dg[i]), float(dg[i + 1])
-    elif dg[i] < 0 and i > 0:
-        lo, hi = float(grid[i - 1]), x_best
-        dlo, dhi = float(dg[i - 1]), float(dg[i])
-    else:
-        return x_best, g_best
-    if dlo > 0 > dhi:
-        x = _descending_root(slope, lo, hi)
-        gx = float(func(*program.piece_state(k, np.array([x])))[0][0])
-        if gx >= g_best:
-            return x, gx
-    return x_best, g_best
-
-
-def _phase_pieces(program, kind):
-    return [k for k, (i, *_rest) in enumerate(program.pieces())
-            if program.segments[i].kind == kind]
-
-
-@dataclasses.dataclass(frozen=True)
-class Extremum:
-    """A refined extreme value: where (cam angle, rad) and how much."""
-
-    delta: float
-    value: float
-
-
-@dataclasses.dataclass(frozen=True)
-class CamChecks:
-    """Pressure angle, curvature and undercut checks over the cycle.
-
-    Attributes
-    ----------
-    alpha_rise, alpha_return : Extremum or None
-        Largest |α| in the rise (return) segments, rad (None if none).
-    rho_pitch_min : Extremum or None
-        Smallest radius of curvature of the convex pitch curve, m.
-    rho_work_min : Extremum
-        Smallest radius of curvature of the working curve (convex side), m;
-        ≤ 0 means a cusp (undercut).
-    undercut : bool
-        Roller: r_r ≥ ρ_pitch,min; flat face: r0 + s + s'' ≤ 0 somewhere.
-    corners : tuple of (float, bool)
-        Cam angles (rad) where the pitch curve has a corner (velocity jump)
-        and whether the corner is convex.
-    face_width_min : float or None
-        Flat face: 2 max |contact offset from the follower axis|, m.
-    distorted : tuple of float
-        Cam angles (rad) of velocity jumps the follower cannot reproduce: a
-        roller at a convex pitch-curve corner (ρ = 0 < r_r: it rolls round the
-        cam's sharp edge instead), a flat face where ds/dδ drops (r0 + s + s''
-        has a negative impulse: a cusp).  Each makes ``undercut`` true.
-    """
-
-    alpha_rise: Extremum | None
-    alpha_return: Extremum | None
-    rho_pitch_min: Extremum | None
-    rho_work_min: Extremum
-    undercut: bool
-    corners: tuple
-    face_width_min: float | None
-    distorted: tuple = ()
-
-
-def _abs_alpha_func(fol, sign):
-    def func(s, s1, s2, s3):
-        a, da = pressure_angle_and_rate(fol, s, s1, s2, s3)
-        return sign * a, sign * da
-    return func
-
-
-def max_pressure_angle(fol, program, kind, step=math.radians(1.0)):
-    """Largest |α| over the *kind* (``rise``/``return``) segments.
-
-    Returns
-    -------
-    Extremum or None
-        Cam angle (rad) and |α| (rad), refined to ~1e-13 rad of cam angle.
-        Notes: 例 7-2 (r0 = 40, e = 0, h = 20, 90° cosine rise:
-        22.2077° at 39.2315°).
-    """
-    pieces = _phase_pieces(program, kind)
-    if not pieces or fol.contact == "flat":
-        return None if not pieces else Extremum(program.pieces()[pieces[0]][1], 0.0)
-    hits = [maximize_on_pieces(program, pieces, _abs_alpha_func(fol, sgn), step)
-            for sgn in (1.0, -1.0)]
-    x, g = max(hits, key=lambda h: h[1])
-    return Extremum(x, g)
-
-
-def _corners(fol, program):
     out = []
     if fol.contact == "flat":
         return ()
@@ -536,152 +401,6 @@ def _corners(fol, program):
         out.append((imp.delta, convex))
     return tuple(out)
 
-
-def check_cam(fol, program, step=math.radians(1.0)):
-    """Pressure-angle maxima, curvature minima and undercut of a cam.
-
-    Parameters
-    ----------
-    fol : Follower
-    program : MotionProgram
-    step : float
-        Coarse search step, rad (the maxima are refined independently of it).
-
-    Returns
-    -------
-    CamChecks
-    """
-    a_rise = max_pressure_angle(fol, program, "rise", step)
-    a_ret = max_pressure_angle(fol, program, "return", step)
-    allk = range(len(program.pieces()))
-    hit = maximize_on_pieces(
-        program, allk, lambda *st: curvature_and_rate(fol, *st), step)
-    x, kmax = hit
-    face = None
-    if fol.contact == "flat":
-        rho_p = None
-        rho_w = Extremum(x, -kmax)
-        undercut = rho_w.value <= 0
-        vals = []
-        for sgn in (1.0, -1.0):
-            h = maximize_on_pieces(program, allk,
-                                   lambda s, s1, s2, s3, sgn=sgn:
-                                   (sgn * (fol.sigma * s1 - fol.e),
-                                    sgn * fol.sigma * s2), step)
-            vals.append(h[1])
-        face = 2 * max(vals)
-    else:
-        if kmax <= 0:
-            raise CamGeometryError("the pitch curve has no convex part (check r0 and e)")
-        rho_p = Extremum(x, 1.0 / kmax)
-        rho_w = Extremum(x, rho_p.value - fol.rr)
-        undercut = fol.contact == "roller" and rho_p.value <= fol.rr
-    corners = _corners(fol, program)
-    if fol.contact == "roller":
-        distorted = tuple(d for d, convex in corners if convex)
-    elif fol.contact == "flat":
-        distorted = tuple(i.delta for i in program.impacts() if i.kind == "rigid" and i.jump < 0)
-    else:
-        distorted = ()
-    return CamChecks(a_rise, a_ret, rho_p, rho_w, bool(undercut or distorted), corners, face,
-                     distorted)
-
-
-# --------------------------------------------------------------------------
-# sizing
-
-def _translating_s0_needed(program, e, sigma, kind, tan_allow, step):
-    """Smallest s0 keeping |α| ≤ [α] on the *kind* segments (translating)."""
-    pieces = _phase_pieces(program, kind)
-    if not pieces:
-        return -math.inf
-
-    best = -math.inf
-    for sgn in (1.0, -1.0):
-        def func(s, s1, s2, s3, sgn=sgn):
-            return sgn * (s1 - sigma * e) / tan_allow - s, sgn * s2 / tan_allow - s1
-        best = max(best, maximize_on_pieces(program, pieces, func, step)[1])
-    return best
-
-
-def translating_base_radius_min(program, e, rotation, alpha_rise, alpha_return=None,
-                                step=math.radians(1.0)):
-    """Smallest base radius of a translating knife/roller follower for [α].
-
-    Parameters
-    ----------
-    program : MotionProgram
-    e : float
-        Signed offset, m (positive: guide right of the cam centre).
-    rotation : int
-        +1 counter-clockwise cam, −1 clockwise.
-    alpha_rise : float
-        Allowed pressure angle in the rise, rad.
-    alpha_return : float, optional
-        Allowed pressure angle in the return, rad (None: not limited).
-    step : float
-        Coarse search step, rad.
-
-    Returns
-    -------
-    float
-        ``r0_min``, m.
-
-    Notes
-    -----
-    From eq. (7-14): ``tan α = |s' − σe|/(s0 + s) ≤ tan[α]`` gives
-    ``s0 ≥ max(|s' − σe|/tan[α] − s)`` and ``r0 = sqrt(s0² + e²)`` (习题 4-2).
-    """
-    for limit in (alpha_rise, alpha_return):
-        if limit is not None and not 0 < limit < math.pi / 2:
-            raise ValueError(f"the allowed pressure angle must be in (0, 90) deg, got "
-                             f"{math.degrees(limit):g}")
-    need = _translating_s0_needed(program, e, rotation, "rise", math.tan(alpha_rise), step)
-    if alpha_return is not None:
-        need = max(need, _translating_s0_needed(program, e, rotation, "return",
-                                                math.tan(alpha_return), step))
-    return math.hypot(max(need, 0.0), e)
-
-
-def size_flat_base_radius(program, rho_min=0.0, step=math.radians(1.0)):
-    """Smallest base radius of a flat-faced cam with ρ = r0 + s + s'' ≥ ρ_min (m)."""
-    allk = range(len(program.pieces()))
-    hit = maximize_on_pieces(program, allk, lambda s, s1, s2, s3: (-(s + s2), -(s1 + s3)), step)
-    return max(hit[1] + rho_min, 0.0)
-
-
-def size_oscillating_base_radius(fol, program, alpha_rise, alpha_return=None,
-                                 step=math.radians(1.0), rtol=1e-12):
-    """Smallest base radius of an oscillating follower for [α] (bisection on r0).
-
-    Searches r0 in (|a − l|, a + l) for the smallest value whose pressure-angle
-    maxima stay within the limits; raises :class:`CamGeometryError` if none.
-    """
-    lo_lim, hi_lim = abs(fol.a - fol.l), fol.a + fol.l
-    psi = max(seg.s_start + max(seg.lift, 0) for seg in program.segments)
-
-    def ok(r0):
-        f = dataclasses.replace(fol, r0=r0)
-        if f.phi0 + psi >= math.pi:
-            return False
-        ar = max_pressure_angle(f, program, "rise", step)
-        good = ar is None or ar.value <= alpha_rise
-        if alpha_return is not None:
-            at = max_pressure_angle(f, program, "return", step)
-            good = good and (at is None or at.value <= alpha_return)
-        return good
-
-    grid = np.linspace(lo_lim, hi_lim, 202)[1:-1]
-    first = next((i for i, r in enumerate(grid) if ok(float(r))), None)
-    if first is None:
-        raise CamGeometryError("no base radius between |a - l| and a + l meets the "
-                               "pressure-angle limit")
-    lo = lo_lim if first == 0 else float(grid[first - 1])
-    hi = float(grid[first])
-    while hi - lo > rtol * hi:
-        mid = 0.5 * (lo + hi)
-        lo, hi = (lo, mid) if ok(mid) else (mid, hi)
-    return hi
 
 
 def _corner_normals(fol, program, dc):
@@ -718,7 +437,7 @@ def _trim_loop(left, right):
     rl = np.interp(grid, tl, np.hypot(*left))
     rr = np.interp(grid, tr, np.hypot(*right))
     diff = rl - rr
-    change = np.flatnonzero(np.sign(diff[:-1]) * np.sign(diff[1:]) <= 0)
+    change = sign_changes(diff)
     if not len(change):
         return None
     i = change[0]
@@ -745,7 +464,7 @@ def working_outline(fol, program, profile, corners, arc_step=math.radians(2.0)):
     profile : CamProfile
         Sampled over the whole revolution (δ from 0 to 2π).
     corners : sequence of (float, bool)
-        ``CamChecks.corners``.
+        :func:`pitch_corners` (``CamChecks.corners``).
     arc_step : float
         Angular step of the inserted arcs, rad.
 

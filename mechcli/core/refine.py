@@ -1,0 +1,308 @@
+"""Shared numerics of the core: refining what a sampling grid only brackets.
+
+Every solver that samples a function on a grid and then needs the exact
+position of a root, an extremum or a switching point, or an exact integral
+over the grid, uses these kernels instead of its own copy:
+
+* :func:`bisect` -- vectorised bisection of many brackets at once,
+* :func:`golden_section_max` -- vectorised golden-section search,
+* :func:`sign_changes` and :func:`descending_root` -- root bracketing on a
+  grid and its refinement,
+* :func:`maximize_piecewise` -- the maximum of a piecewise-smooth function
+  from its value and slope,
+* :func:`true_runs` -- the runs of a boolean mask,
+* :func:`gauss_legendre` and :func:`mean_rms` -- Gauss–Legendre mean and RMS
+  over grid intervals.
+
+Pure numpy; imports nothing of mechcli.  The arguments carry no units: the
+caller's variable and values are used as given.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+#: (√5 − 1)/2: the golden-section ratio that keeps one interior point per step
+GOLDEN = (np.sqrt(5) - 1) / 2
+
+
+def bisect(lo, hi, keep_lo, rtol, iterations=64):
+    """Vectorised bisection of many brackets at once.
+
+    Parameters
+    ----------
+    lo, hi : array_like
+        Bracket ends (same shape), in either order.
+    keep_lo : callable
+        ``keep_lo(mid) -> bool array``: True where the sought point lies beyond
+        ``mid`` (seen from ``lo``), so ``lo`` moves to ``mid``; elsewhere ``hi``
+        moves to ``mid``.
+    rtol : float
+        Stop when every bracket satisfies ``|hi − lo| <= rtol · max(1, |lo|)``.
+    iterations : int, optional
+        Most halvings.
+
+    Returns
+    -------
+    lo, hi : ndarray
+        The final brackets (``lo`` keeps the side ``keep_lo`` is True on).
+    """
+    lo = np.asarray(lo, dtype=float).copy()
+    hi = np.asarray(hi, dtype=float).copy()
+    for _ in range(iterations):
+        mid = 0.5 * (lo + hi)
+        go = keep_lo(mid)
+        lo = np.where(go, mid, lo)
+        hi = np.where(go, hi, mid)
+        if np.all(np.abs(hi - lo) <= rtol * np.maximum(1.0, np.abs(lo))):
+            break
+    return lo, hi
+
+
+def golden_section_max(f, lo, hi, iterations=48, rtol=1e-10):
+    """Vectorised golden-section search for the maxima of unimodal functions.
+
+    Parameters
+    ----------
+    f : callable
+        ``f(x) -> ndarray``: element ``i`` is the ``i``-th function at ``x[i]``.
+    lo, hi : ndarray
+        Brackets, ``lo <= hi``, one per function.
+    iterations : int, optional
+        Most steps (each shrinks every bracket by the factor :data:`GOLDEN`).
+    rtol : float, optional
+        Stop when every bracket is shorter than ``rtol · max(1, |lo|)``.
+
+    Returns
+    -------
+    x, fx : ndarray
+        The better of the two final interior points of each bracket and its
+        value (on a tie, the larger ``x``).
+
+    Notes
+    -----
+    One evaluation of *f* per step for all brackets together: the interior
+    point that survives a step is reused.
+    """
+    lo = np.asarray(lo, dtype=float)
+    hi = np.asarray(hi, dtype=float)
+    c = hi - GOLDEN * (hi - lo)
+    d = lo + GOLDEN * (hi - lo)
+    fc, fd = f(c), f(d)
+    for _ in range(iterations):
+        left = fc > fd  # the maximum lies in [lo, d]
+        hi = np.where(left, d, hi)
+        lo = np.where(left, lo, c)
+        new_c = hi - GOLDEN * (hi - lo)
+        new_d = lo + GOLDEN * (hi - lo)
+        fx = f(np.where(left, new_c, new_d))
+        c_old, fc_old, d_old, fd_old = c, fc, d, fd
+        c = np.where(left, new_c, d_old)
+        fc = np.where(left, fx, fd_old)
+        d = np.where(left, c_old, new_d)
+        fd = np.where(left, fc_old, fx)
+        if np.all(np.abs(hi - lo) < rtol * np.maximum(1.0, np.abs(lo))):
+            break
+    take_d = (fd > fc) | ((fd == fc) & (d > c))
+    return np.where(take_d, d, c), np.where(take_d, fd, fc)
+
+
+def sign_changes(y, falling_only=False):
+    """Grid intervals that bracket a root of sampled values.
+
+    Parameters
+    ----------
+    y : ndarray, shape (n,)
+        Function values on an increasing grid.
+    falling_only : bool, optional
+        Only the intervals where *y* falls through zero
+        (``y[i] > 0 >= y[i + 1]``); otherwise every interval whose ends do not
+        have strictly the same sign (a zero at either end counts).
+
+    Returns
+    -------
+    ndarray of int
+        Indices ``i``: the root lies in ``[x[i], x[i + 1]]``.
+    """
+    y = np.asarray(y)
+    if falling_only:
+        return np.flatnonzero((y[:-1] > 0) & (y[1:] <= 0))
+    return np.flatnonzero(np.sign(y[:-1]) * np.sign(y[1:]) <= 0)
+
+
+def descending_root(f, lo, hi, n=64):
+    """Root of *f* in ``[lo, hi]`` where it changes from positive to negative.
+
+    Parameters
+    ----------
+    f : callable
+        ``f(x) -> ndarray`` on an array of points.
+    lo, hi : float
+        Bracket with ``f(lo) > 0 >= f(hi)``.
+    n : int, optional
+        Sub-intervals per round.
+
+    Returns
+    -------
+    float
+        The root; *lo* when the bracket does not hold.
+
+    Notes
+    -----
+    Each round evaluates *f* at n + 1 points and keeps the first sub-interval
+    with the sign change (a factor n per round) until the bracket is a few
+    doubles wide; the last step is a secant.  At a kink the root is the kink.
+    """
+    for _ in range(20):
+        if hi - lo <= 4e-16 * max(1.0, abs(lo), abs(hi)):
+            break
+        x = np.linspace(lo, hi, n + 1)
+        found = sign_changes(f(x), falling_only=True)
+        if not found.size:
+            break
+        i = int(found[0])
+        lo, hi = float(x[i]), float(x[i + 1])
+    y = f(np.array([lo, hi]))
+    ylo, yhi = float(y[0]), float(y[1])
+    if not (ylo > 0 >= yhi) or ylo == yhi:
+        return lo
+    return lo + (hi - lo) * ylo / (ylo - yhi)
+
+
+def piece_grid(lo, hi, step, min_points=17):
+    """Uniform grid on ``[lo, hi]`` no coarser than *step*, at least *min_points*."""
+    n = max(min_points, int(math.ceil((hi - lo) / step)) + 1)
+    return np.linspace(lo, hi, n)
+
+
+def maximize_piecewise(pieces, step):
+    """Maximum of a piecewise-smooth function from its value and slope.
+
+    Parameters
+    ----------
+    pieces : sequence of (float, float, callable)
+        ``(lo, hi, func)`` per smooth piece; ``func(x) -> (g, dg/dx)`` on
+        arrays.
+    step : float
+        Coarse sampling step (each piece gets at least 17 samples).
+
+    Returns
+    -------
+    (float, float) or None
+        ``(x_at_max, g_max)``, refined to a few doubles of *x*; None if
+        *pieces* is empty.
+
+    Notes
+    -----
+    A piece is skipped when no point of it can reach the best grid value
+    (grid value + step × max |g'| below it).  Each remaining grid maximum is
+    bracketed between its grid neighbours and the root of dg/dx found by
+    :func:`descending_root`; a maximum at a piece end (one-sided, e.g. a
+    kink) is taken as is.
+    """
+    sampled = []
+    for lo, hi, func in pieces:
+        grid = piece_grid(lo, hi, step)
+        g, dg = func(grid)
+        sampled.append((func, grid, g, dg))
+    if not sampled:
+        return None
+    top = max(float(np.max(g)) for _, _, g, _ in sampled)
+    best = (None, -math.inf)
+    for func, grid, g, dg in sampled:
+        h = grid[1] - grid[0]
+        # no point of this piece can exceed a grid value by more than h max|g'|
+        reach = h * float(np.max(np.abs(dg)))
+        if float(np.max(g)) + reach < top:
+            continue
+        inner = np.ones(len(g), dtype=bool)
+        inner[1:] &= g[1:] >= g[:-1]
+        inner[:-1] &= g[:-1] >= g[1:]
+        for i in np.flatnonzero(inner & (g + reach >= top)):
+            cand = _refine_grid_max(func, grid, g, dg, int(i))
+            if cand[1] > best[1]:
+                best = cand
+    return best
+
+
+def _refine_grid_max(func, grid, g, dg, i):
+    """Refine the grid maximum *i* of one piece by a root of its slope."""
+
+    def slope(x):
+        return func(np.asarray(x, dtype=float))[1]
+
+    x_best, g_best = float(grid[i]), float(g[i])
+    if dg[i] > 0 and i < len(grid) - 1:
+        lo, hi = x_best, float(grid[i + 1])
+        dlo, dhi = float(dg[i]), float(dg[i + 1])
+    elif dg[i] < 0 and i > 0:
+        lo, hi = float(grid[i - 1]), x_best
+        dlo, dhi = float(dg[i - 1]), float(dg[i])
+    else:
+        return x_best, g_best
+    if dlo > 0 > dhi:
+        x = descending_root(slope, lo, hi)
+        gx = float(func(np.array([x]))[0][0])
+        if gx >= g_best:
+            return x, gx
+    return x_best, g_best
+
+
+def true_runs(mask):
+    """The runs of True of a 1-D boolean array.
+
+    Returns
+    -------
+    list of (int, int)
+        ``(start, stop)`` index pairs, ``mask[start:stop]`` all True, in order.
+    """
+    m = np.concatenate(([False], mask, [False])).astype(np.int8)
+    edges = np.flatnonzero(np.diff(m))
+    return list(zip(edges[0::2], edges[1::2]))
+
+
+def gauss_legendre(breaks, n=4):
+    """Gauss–Legendre nodes and weights on every interval of a grid.
+
+    Parameters
+    ----------
+    breaks : ndarray, shape (m,)
+        Increasing interval ends.
+    n : int, optional
+        Nodes per interval (exact for polynomials of degree 2n − 1).
+
+    Returns
+    -------
+    x, w : ndarray, shape ((m − 1) n,)
+        Nodes and weights: ``w @ f(x)`` is the integral of *f* over
+        ``[breaks[0], breaks[-1]]``.
+    """
+    nodes, weights = np.polynomial.legendre.leggauss(n)
+    lo, hi = breaks[:-1], breaks[1:]
+    half = 0.5 * (hi - lo)
+    mid = 0.5 * (hi + lo)
+    return ((mid[:, None] + half[:, None] * nodes[None, :]).ravel(),
+            (half[:, None] * weights[None, :]).ravel())
+
+
+def mean_rms(w, values, span):
+    """Mean and root mean square of *values* at quadrature nodes with weights *w*.
+
+    Parameters
+    ----------
+    w : ndarray
+        Quadrature weights (e.g. from :func:`gauss_legendre`).
+    values : ndarray
+        The function at the nodes.
+    span : float
+        Length of the integration domain (> 0).
+
+    Returns
+    -------
+    (float, float)
+        ``∫f / span`` and ``sqrt(∫f² / span)``.
+    """
+    return (float(np.dot(w, values) / span),
+            float(np.sqrt(np.dot(w, values * values) / span)))
