@@ -17,15 +17,21 @@ def gear(spec_path, **opts):
     [spur], [pair], [generation], [helical], [worm] or [bevel].
     """
     run = RunOptions.from_click(spec_path, opts)
+    from mechcli.core.gear.problems import solve_gear
+    from mechcli.core.gear.spur import GearError
+    from mechcli.report import gear as report
     from mechcli.report.files import Outputs
-    from mechcli.report.gear import PRESENTERS
     from mechcli.report.run import finish
-    from mechcli.spec.gear import enforce, read_gear_spec
+    from mechcli.spec.gear import read_gear_spec
 
-    spec = read_gear_spec(spec_path, run.sets)
-    solution = spec.problem.solve()
-    warnings = enforce(spec, solution)          # exit 3 on what the spec forbids
+    try:   # the spec checks a pair's mounting on its gears: core errors there too
+        spec = read_gear_spec(spec_path, run.sets)
+        solution = solve_gear(spec.kind, spec.problem)
+    except GearError as exc:
+        exc.args = (report.error_message(exc),)
+        raise
+    warnings = report.enforce(spec, solution)   # exit 3 on what the spec forbids
     outputs = Outputs(run.out_dir)
-    report, results, more = PRESENTERS[spec.kind](spec, solution, run, outputs)
+    rep, results, more = report.PRESENTERS[spec.kind](spec, solution, run, outputs)
     results = {"kind": spec.kind, **results}
-    finish(run, "gear", report, results, outputs, warnings + more)
+    finish(run, "gear", rep, results, outputs, warnings + more)

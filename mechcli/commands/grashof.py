@@ -41,10 +41,9 @@ def grashof(spec_path, lengths, frame, input_link, offset, batch, units, **opts)
 
     outputs = Outputs(run.out_dir)
     if batch:
-        from mechcli.core.grashof.fourbar import analyse_fourbar, closes
+        from mechcli.core.grashof.analysis import classify_batch
         bs = spec_mod.read_batch_csv(batch, units)
-        ok = closes(bs.lengths)
-        an = analyse_fourbar(bs.lengths, bs.frame, bs.input, require_closure=False)
+        an, ok = classify_batch(bs.lengths, bs.frame, bs.input)
         outputs.text("grashof.csv", report.fourbar_csv(an, bs.header.scale, ok))
         res = report.batch_results(an, ok)
         warns = [f"{res['cannot_close']} length sets cannot close (type cannot_close)"] \
@@ -56,15 +55,37 @@ def grashof(spec_path, lengths, frame, input_link, offset, batch, units, **opts)
         spec = spec_mod.quick_spec(lengths, frame, input_link, offset, units)
     else:
         spec = spec_mod.read_grashof_spec(spec_path, run.sets)
-    results, rep, csv_text, warnings, curve = report.build(spec, run.lang)
+    results, rep, csv_text, warnings, solution = build(spec, run.lang)
     if csv_text:
         outputs.text("grashof.csv", csv_text)
-    if curve is not None:
-        outputs.csv("transmission.csv", report.curve_outputs(curve, spec.problem.curve_step,
-                                                             run.lang)[0])
+    if solution.curve is not None:
+        outputs.csv("transmission.csv", report.curve_outputs(
+            solution.curve, spec.problem.curve_step, run.lang)[0])
         if run.plot:
-            warnings += report.write_curve_png(curve, outputs, run.lang, spec.header.title)
+            warnings += report.write_curve_png(solution.curve, outputs, run.lang,
+                                               spec.header.title)
     if run.plot and getattr(spec.problem, "draw", False) and "theta_deg" in results:
-        warnings += report.write_limits_png(results, report.driven_lengths(spec), outputs,
-                                            run.lang, spec.header.title)
+        warnings += report.write_limits_png(results, report.driven_lengths(spec, solution),
+                                            outputs, run.lang, spec.header.title)
     finish(run, "grashof", rep, results, outputs, warnings)
+
+
+def build(spec, lang):
+    """Solve a :class:`~mechcli.spec.grashof.GrashofSpec` with the core and present it.
+
+    Returns
+    -------
+    results, report, csv_text, warnings
+        As :func:`mechcli.report.grashof.present`.
+    solution : GrashofSolution
+    """
+    from mechcli.core.grashof.analysis import solve_grashof
+    from mechcli.core.grashof.fourbar import ClosureError
+    from mechcli.report import grashof as report
+
+    try:
+        solution = solve_grashof(spec.kind, spec.problem, spec.header.scale)
+    except ClosureError as exc:   # its numbers are in the spec's unit: say which
+        exc.args = (report.closure_message(exc, spec.header.unit),)
+        raise
+    return (*report.present(spec, solution, lang), solution)

@@ -1,10 +1,11 @@
 """Tables, results, CSV and pictures of ``mechcli gear`` (one function per problem kind).
 
 Every ``present_<kind>`` returns ``(report, results, warnings)`` after writing
-its CSV (and PNG/GIF when asked) into *outputs*.  The findings that a spec may
-forbid (ε < 1, interference, pointed tips, undercut) are checked before, by
-``mechcli.spec.gear.findings``.  Lengths are shown in the
-spec's unit, angles in degrees.
+its CSV (and PNG/GIF when asked) into *outputs*; the solution comes from
+``mechcli.core.gear.problems``.  The findings that a spec may forbid (ε < 1,
+interference, pointed tips, undercut) are checked before, by :func:`enforce`,
+and :func:`error_message` words the core's gear errors.  Lengths are shown in
+the spec's unit, angles in degrees.
 
 The scalar kinds (involute table, inverse involute, pair, helical, worm,
 bevel) never import numpy: their CSV text comes from :func:`csv_text`; only
@@ -15,6 +16,7 @@ from __future__ import annotations
 
 import math
 
+from mechcli.core.errors import UnsolvableError
 from mechcli.report.files import OutputError, format_number
 from mechcli.report.table import Block, Report
 
@@ -37,6 +39,106 @@ def csv_text(columns, digits=10):
     lines = [",".join(headers)]
     lines.extend(",".join(format_number(v, digits) for v in row) for row in zip(*cols))
     return "\n".join(lines) + "\n"
+
+
+# -- what a spec may forbid, and the core's errors in words ------------------------------
+class RequirementError(UnsolvableError):
+    """The spec forbids what the geometry has (ε < 1, interference, pointed tip, undercut)."""
+
+
+def findings(spec, solution):
+    """Warnings about the solution, each with whether the spec forbids it.
+
+    Returns
+    -------
+    list of (str, bool)
+        (one-line message in the spec's length unit, forbidden).
+    """
+    p, u, sc = spec.problem, spec.header.unit, spec.header.scale
+    out = []
+    if spec.kind == "spur":
+        g = solution["gear"]
+        if g.tooth_thickness(g.ra) <= 0:
+            out.append((f"pointed tip: the flanks meet at r = {g.pointed_radius / sc:.4f} {u} "
+                        f"below ra = {g.ra / sc:.4f} {u}", p.forbid_pointed))
+        if g.undercut:
+            out.append((f"undercut: z = {g.z} < z_min = {g.z_min:.2f} with x = {g.x:g} < "
+                        f"x_min = {g.x_min:.4f} (standard rack)", p.forbid_undercut))
+    elif spec.kind == "pair":
+        first = solution[0]
+        for i, g in enumerate((first.g1, first.g2)):
+            if g.tooth_thickness(g.ra) <= 0:
+                out.append((f"gear {i + 1} (z = {g.z}, x = {g.x:g}) has a pointed tip: the "
+                            f"flanks meet at r = {g.pointed_radius / sc:.4f} {u} below "
+                            f"ra = {g.ra / sc:.4f} {u}", p.forbid_pointed))
+        for pr in solution:
+            where = f"a' = {pr.a_w / sc:.3f} {u}"
+            eps = pr.epsilon_alpha
+            if eps < 1:
+                out.append((f"{where}: contact ratio epsilon_alpha = {eps:.3f} < 1, the mesh is "
+                            f"not continuous (a' differs from a = {pr.a / sc:.3f} {u} by "
+                            f"{(pr.a_w - pr.a) / sc:+.3f} {u})", p.require_continuous))
+            if pr.interference:
+                out.append((f"{where}: interference — a tip passes the tangent point N of the "
+                            f"line of action (N1N2 = {pr.line_of_action / sc:.3f} {u})"
+                            + ("; the ring's tip meets the pinion below its base circle"
+                               if pr.g2.internal else ""), p.forbid_interference))
+            for i, c in enumerate(pr.clearances):
+                if c < 0:
+                    out.append((f"{where}: tip of gear {i + 1} hits the root of the other "
+                                f"(clearance {c / sc:.3f} {u})", p.forbid_interference))
+    return out
+
+
+def enforce(spec, solution):
+    """Raise :class:`RequirementError` on the first forbidden finding; return all messages."""
+    found = findings(spec, solution)
+    for message, forbidden in found:
+        if forbidden:
+            raise RequirementError(message)
+    return [m for m, _ in found]
+
+
+#: reason of a core GearError -> its text from the error's values (lengths in m, angles in rad)
+_ERROR_TEXT = {
+    "ring_tip_inside_base": lambda v: (
+        f"internal gear z = {v['z']}: tip circle da = {v['da']:.6g} m is inside the base "
+        f"circle db = {v['db']:.6g} m (needs z (1 - cos alpha) >= 2 (ha* + x), "
+        f"z >= {v['z_needed']:.1f})"),
+    "tip_inside_base": lambda v: (
+        f"tip circle da = {v['da']:.6g} m is inside the base circle db = {v['db']:.6g} m "
+        f"(z = {v['z']}, x = {v['x']:g}): the teeth have no involute"),
+    "root_below_centre": lambda v: (
+        f"root diameter df = {v['df']:.4g} m would be <= 0 (z = {v['z']}, x = {v['x']:g}): "
+        "too few teeth for this shift"),
+    "base_circles_overlap": lambda v: (
+        f"centre distance {v['a_w']:g} m is below rb1 + rb2 = {v['limit']:g} m: the base "
+        "circles overlap"),
+    "teeth_not_whole": lambda v: (
+        f"2 a'/m = {v['total']:.6g} is not a whole number of teeth: a standard pair needs "
+        f"a' = m (z1 + z2) / 2, e.g. {v['below']:g} m or {v['above']:g} m"),
+    "jam": lambda v: (
+        f"centre distance {v['a_w']:.6g} m is {'above' if v['internal'] else 'below'} the "
+        f"zero-backlash distance {v['a0']:.6g} m"
+        + (" of the internal pair" if v["internal"] else "") + ": the teeth would jam"),
+    "no_contact": lambda v: (
+        f"at a' = {v['a_w']:.6g} m the tip circles do not reach the line of action "
+        f"(epsilon_alpha = {v['epsilon']:.3g}): no contact"),
+    "helical_centre_distance": lambda v: (
+        f"a' = {v['a_w']:g} m is below mn (z1 + z2) / 2 = {v['limit']:g} m: no helix angle "
+        "fits"),
+    "helix_angle": lambda v: f"helix angle {math.degrees(v['beta']):.4g} deg is 45 deg or more",
+    "crown_bevel": lambda v: (
+        f"pitch-cone angles {math.degrees(v['delta1']):.3f}° and "
+        f"{math.degrees(v['delta2']):.3f}°: a cone of 90° or more is a crown or internal bevel "
+        "gear, which is not handled"),
+}
+
+
+def error_message(exc):
+    """The user's text of a core ``GearError`` (lengths in metres as the core works)."""
+    word = _ERROR_TEXT.get(getattr(exc, "reason", ""))
+    return str(exc) if word is None else word(exc.values)
 
 
 def _t(lang, en, zh):
@@ -304,7 +406,6 @@ def _pictures(run, animate, kind, solution, spec, outputs):
 def present_generation(spec, sol, run, outputs):
     import numpy as np
 
-    from mechcli.core.gear.profile import gear_outline
     p, u, sc, lang = spec.problem, spec.header.unit, spec.header.scale, run.lang
     L = lambda v: float(v / sc)  # noqa: E731
     results, warnings, blocks, csv_cols = {}, [], [], [[], [], []]
@@ -347,7 +448,7 @@ def present_generation(spec, sol, run, outputs):
             ("least shift against undercut (ha*)", "最小变位系数 (ha*)", "xmin", f"{g.x_min:.4f}"),
             ("least shift for this sharp cutter", "本刀具不根切最小变位系数", "xmin'", f"{x_rack:.4f}"),
         ], lang))
-        out = gear_outline(tooth, p.points)
+        out = sol["outlines"][k]
         csv_cols[0].append(np.full(out.x.size, k + 1.0))
         csv_cols[1].append(out.x / sc)
         csv_cols[2].append(out.y / sc)

@@ -1,6 +1,8 @@
 """Results, book-format report and ``grashof.csv`` of ``mechcli grashof``.
 
-Lengths are shown in the spec's unit, angles in degrees.  ``results`` dicts
+Turns the :class:`~mechcli.core.grashof.analysis.GrashofSolution` of a spec
+into results, tables, CSV text and pictures; solves nothing (from the core it
+imports only result types and constants).  Lengths are shown in the spec's unit, angles in degrees.  ``results`` dicts
 hold only finite numbers, strings, booleans, None and lists of those.
 """
 
@@ -489,38 +491,35 @@ def write_limits_png(r, scale_unit, outputs, lang, title):
     return [] if used == lang else ["no CJK font installed: plot labels in English"]
 
 
-def driven_lengths(spec):
-    """((a, b, c, d) in spec units, unit) of a four-bar spec: input, coupler, output, frame."""
-    from mechcli.core.grashof.fourbar import driven_links
-
-    p = spec.problem
-    i, c, o = driven_links(p.frame, p.input)
-    L = [x / spec.header.scale for x in p.lengths]
-    return (L[i - 1], L[c - 1], L[o - 1], L[p.frame - 1]), spec.header.unit
+def driven_lengths(spec, solution):
+    """((a, b, c, d) in spec units, unit) of a solved four-bar: input, coupler, output, frame."""
+    m, sc = solution.result.merit, spec.header.scale
+    return tuple(float(x[0]) / sc for x in (m.a, m.b, m.c, m.d)), spec.header.unit
 
 
-def _curve(spec, kind, p):
-    import numpy as np
-
-    from mechcli.core.grashof import fourbar as gf
-
-    step = getattr(p, "curve_step", None)
-    if step is None:
-        return None
-    n = int(round(2 * np.pi / step))
-    th = np.linspace(0.0, n * step, n + 1)
-    if kind == "fourbar":
-        i, c, o = gf.driven_links(p.frame, p.input)
-        L = p.lengths
-        return gf.fourbar_transmission(L[i - 1], L[c - 1], L[o - 1], L[p.frame - 1], th)
-    if kind == "slider_crank":
-        return gf.slider_transmission(p.crank, p.coupler, p.offset, th)
-    return gf.guide_transmission(p.crank, p.frame, p.offset, th)
+def closure_message(exc, unit):
+    """The user's text of a :class:`~mechcli.core.grashof.fourbar.ClosureError` (its numbers
+    are in the spec's unit, see :func:`~mechcli.core.grashof.analysis.solve_grashof`)."""
+    u = f" {unit}" if unit else ""
+    length, limit = f"{exc.length:.6g}{u}", f"{exc.limit:.6g}{u}"
+    if exc.chain == "slider-crank":
+        return (f"the slider-crank cannot close: offset |e| = {length} is not shorter than "
+                f"crank + coupler = {limit}")
+    if exc.chain == "guide-bar":
+        return (f"the guide-bar cannot close: guide offset {length} is not shorter than "
+                f"crank + frame = {limit} (the guide never reaches B)")
+    if exc.chain == "RRRRP":
+        return (f"the RRRRP chain cannot reach its slider path: offset {length} >= "
+                f"l1 + l2 + l3 = {limit}")
+    return (f"the chain cannot close: link {exc.link} ({length}) is not shorter than the sum "
+            f"of the other links ({limit})"
+            + (f" (length set {exc.set_index})" if exc.set_index is not None else ""))
 
 
 # ------------------------------------------------------------------ dispatch
-def build(spec, lang):
-    """Solve a :class:`~mechcli.spec.grashof.GrashofSpec` with the core.
+def present(spec, solution, lang):
+    """Results, report and ``grashof.csv`` of a solved
+    :class:`~mechcli.spec.grashof.GrashofSpec`.
 
     Returns
     -------
@@ -529,59 +528,36 @@ def build(spec, lang):
     csv_text : str or None
         ``grashof.csv`` content (four-bar only).
     warnings : list of str
-    curve : TransmissionCurve or None
-        When the spec asks for ``curve_step``.
     """
-    r, rep, csv_text, warnings = _build(spec, lang)
-    curve = _curve(spec, spec.kind, spec.problem)
-    if curve is not None:
-        rep.blocks.append(curve_outputs(curve, spec.problem.curve_step, lang)[1])
-    return r, rep, csv_text, warnings, curve
+    r, rep, csv_text, warnings = _present(spec, solution, lang)
+    if solution.curve is not None:
+        rep.blocks.append(curve_outputs(solution.curve, spec.problem.curve_step, lang)[1])
+    return r, rep, csv_text, warnings
 
 
-def _build(spec, lang):
-    from mechcli.core.grashof import fourbar as gf
-
+def _present(spec, sol, lang):
     p, unit, scale, title = spec.problem, spec.header.unit, spec.header.scale, spec.header.title
+    res = sol.result
     warnings = []
-    if spec.kind in ("fourbar", "fivebar"):
-        # closure checked on the lengths as the user wrote them: the message quotes them
-        import numpy as np
-        gf.check_closure(np.asarray(p.lengths) / scale, unit)
     if spec.kind == "fourbar":
-        an = gf.analyse_fourbar(p.lengths, p.frame, p.input, p.crossed, p.rtol)
-        invs = gf.classify_inversions(p.lengths, p.rtol, p.crossed)
-        ranges = {k: gf.length_ranges(p.lengths, k, p.frame, p.rtol) for k in p.vary}
-        r = fourbar_results(p, an, invs, ranges, scale)
+        r = fourbar_results(p, res, sol.inversions, sol.ranges, scale)
         if r["change_point"]:
             warnings.append("s + l = p + q: a change-point linkage (it can fold flat; "
                             "the motion branch is undetermined there)")
-        return (r, fourbar_report(title, lang, r, unit, bool(ranges)), fourbar_csv(an, scale),
-                warnings)
-    if spec.kind == "slider_crank":
-        # in the spec's unit (scale-free results; messages quote the user's numbers)
-        sc = gf.analyse_slider_crank(p.crank / scale, p.coupler / scale, p.offset / scale,
-                                     p.rtol, unit)
-        r = slider_results(sc, 1.0)
-        if sc.boundary:
+        return (r, fourbar_report(title, lang, r, unit, bool(sol.ranges)),
+                fourbar_csv(res, scale), warnings)
+    if spec.kind == "slider_crank":   # solved in the spec's unit
+        r = slider_results(res, 1.0)
+        if res.boundary:
             warnings.append("a + |e| = b: the crank just exists (pressure angle reaches 90°)")
         return r, slider_report(title, lang, r, unit), None, warnings
     if spec.kind == "guide_bar":
-        gb = gf.analyse_guide_bar(p.crank / scale, p.frame / scale, p.offset / scale, p.rtol,
-                                  unit)
-        r = guide_results(gb, 1.0)
+        r = guide_results(res, 1.0)
         return r, guide_report(title, lang, r), None, warnings
     if spec.kind == "fivebar":
-        from mechcli.core.grashof.fivebar import classify_fivebar
-        kl = classify_fivebar(p.lengths, p.frame, p.rtol)
-        r = fivebar_results(p, kl, scale)
+        r = fivebar_results(p, res, scale)
         return r, fivebar_report(title, lang, r), None, warnings
     if spec.kind == "rrrrp":
-        from mechcli.core.grashof.fivebar import rrrrp_crank
-        r = rrrrp_results(rrrrp_crank(p.l1 / scale, p.l2 / scale, p.l3 / scale,
-                                      p.offset / scale, p.rtol, unit), 1.0)
+        r = rrrrp_results(res, 1.0)
         return r, rrrrp_report(title, lang, r, unit), None, warnings
-    from mechcli.core.grashof.mobility import Joint, count_mobility
-    mob = count_mobility([Joint(j.kind, j.links, j.name) for j in p.joints], p.frame,
-                         p.local_dof, p.redundant)
-    return mobility_results(mob), mobility_report(title, lang, mob), None, warnings
+    return mobility_results(res), mobility_report(title, lang, res), None, warnings

@@ -4,7 +4,8 @@ A spec holds exactly one of ``[involute]``, ``[inverse_involute]``, ``[spur]``,
 ``[pair]``, ``[generation]``, ``[helical]``, ``[worm]``, ``[bevel]`` (see
 ``docs/gear.md``).  Lengths are in the spec's ``units`` and converted to metres
 here; angles are given in degrees (keys ending in ``_deg``) and converted to
-radians.  Each problem dataclass has ``solve()``, which calls the core.
+radians.  The problem dataclasses are plain data: ``mechcli.core.gear.problems``
+solves them, ``mechcli.report.gear`` words what the spec forbids.
 """
 
 from __future__ import annotations
@@ -12,7 +13,6 @@ from __future__ import annotations
 import dataclasses
 import math
 
-from mechcli.core.errors import UnsolvableError
 from mechcli.spec.common import Header, read_expected, read_header
 from mechcli.spec.errors import SpecError
 from mechcli.spec.reader import Section, load_spec
@@ -88,15 +88,6 @@ class InvoluteProblem:
     columns: int
     digits: int
 
-    def solve(self):
-        from mechcli.core.gear.involute import involute_point, involute_table_rows
-        n = int(round(self.alpha_max / self.curve_step)) + 1
-        alpha = [self.alpha_max * i / (n - 1) for i in range(n)] if n > 1 else [0.0]
-        curve = tuple(map(list, zip(*(involute_point(self.rb, a) for a in alpha))))
-        table = involute_table_rows(self.table_from_deg, self.table_to_deg,
-                                    self.table_step_deg, self.columns)
-        return {"alpha": alpha, "curve": curve, "table": table}
-
 
 @dataclasses.dataclass(frozen=True)
 class InverseInvoluteProblem:
@@ -109,19 +100,6 @@ class InverseInvoluteProblem:
     max_iter: int
     dms_rounding: str
     dms_seconds_digits: int
-
-    def solve(self):
-        from mechcli.core.gear.involute import (InverseInvolute, involute_function,
-                                           inverse_involute_scalar)
-        found = [inverse_involute_scalar(t, self.method, start=self.start,
-                                         epsilon=self.epsilon, max_iter=self.max_iter)
-                 for t in self.theta]
-        alpha = tuple(f[0] for f in found)
-        return InverseInvolute(theta=tuple(self.theta), alpha=alpha,
-                               iterations=tuple(f[1] for f in found),
-                               residual=tuple(involute_function(a) - t
-                                              for a, t in zip(alpha, self.theta)),
-                               method=self.method, start=tuple(f[2] for f in found))
 
 
 @dataclasses.dataclass(frozen=True)
@@ -136,14 +114,6 @@ class SpurProblem:
     radii: tuple              # extra radii for the thickness (m)
     forbid_undercut: bool
     forbid_pointed: bool
-
-    def solve(self):
-        from mechcli.core.gear.spur import spur_gear
-        from mechcli.core.gear.profile import gear_outline, generated_tooth
-        t = self.teeth
-        g = spur_gear(self.z, t.m, t.alpha, t.ha_star, t.c_star, self.x)
-        tooth = generated_tooth(g)
-        return {"gear": g, "tooth": tooth, "outline": gear_outline(tooth, self.points, self.root)}
 
 
 @dataclasses.dataclass(frozen=True)
@@ -165,21 +135,6 @@ class PairProblem:
     tip_shortening: bool      # shorten both tips by Δy m (shifted external pair)
     animate: bool             # pair.gif of the first mounting (external pairs)
 
-    def solve(self):
-        from mechcli.core.gear.spur import spur_gear
-        from mechcli.core.gear.pair import gear_pair
-        t = self.teeth
-        g1 = spur_gear(self.z1, t.m, t.alpha, t.ha_star, t.c_star, self.x1)
-        g2 = spur_gear(self.z2, t.m, t.alpha, t.ha_star, t.c_star, self.x2, self.internal)
-        pairs = [gear_pair(g1, g2, a_w=a) for a in self.a_w]
-        pairs += [gear_pair(g1, g2, alpha_w=aw) for aw in self.alpha_w]
-        if not pairs:
-            pairs = [gear_pair(g1, g2)]
-        if self.tip_shortening:
-            from mechcli.core.gear.pair import tip_shortened
-            pairs = [tip_shortened(pr)[0] for pr in pairs]
-        return pairs
-
 
 @dataclasses.dataclass(frozen=True)
 class GenerationProblem:
@@ -193,15 +148,6 @@ class GenerationProblem:
     cutter_teeth: int
     animate: bool
     points: int
-
-    def solve(self):
-        from mechcli.core.gear.spur import spur_gear
-        from mechcli.core.gear.generation import generation_plan
-        from mechcli.core.gear.profile import generated_tooth
-        t = self.teeth
-        gears = [spur_gear(self.z, t.m, t.alpha, t.ha_star, t.c_star, x) for x in self.shifts]
-        return {"teeth": [generated_tooth(g) for g in gears],
-                "plan": generation_plan(self.limit, self.step)}
 
 
 @dataclasses.dataclass(frozen=True)
@@ -218,11 +164,6 @@ class HelicalProblem:
     a_w: float | None         # m
     b: float | None           # face width (m)
 
-    def solve(self):
-        from mechcli.core.gear.helical import helical_pair
-        return helical_pair(self.z1, self.z2, self.mn, self.alpha_n, self.han_star,
-                            self.cn_star, beta=self.beta, a_w=self.a_w, b=self.b)
-
 
 @dataclasses.dataclass(frozen=True)
 class WormProblem:
@@ -238,11 +179,6 @@ class WormProblem:
     ha_star: float
     c_star: float
 
-    def solve(self):
-        from mechcli.core.gear.worm import worm_drive
-        return worm_drive(self.z1, self.z2, m=self.m, d2=self.d2, q=self.q, d1=self.d1,
-                          alpha=self.alpha, ha_star=self.ha_star, c_star=self.c_star)
-
 
 @dataclasses.dataclass(frozen=True)
 class BevelProblem:
@@ -256,11 +192,6 @@ class BevelProblem:
     c_star: float
     sigma: float              # shaft angle (rad)
 
-    def solve(self):
-        from mechcli.core.gear.bevel import bevel_pair
-        return bevel_pair(self.z1, self.z2, self.m, self.alpha, self.ha_star, self.c_star,
-                          self.sigma)
-
 
 @dataclasses.dataclass(frozen=True)
 class GearSpec:
@@ -268,64 +199,6 @@ class GearSpec:
     kind: str
     problem: object
     expected: dict
-
-
-# -- what a spec may forbid ---------------------------------------------------------------
-class RequirementError(UnsolvableError):
-    """The spec forbids what the geometry has (ε < 1, interference, pointed tip, undercut)."""
-
-
-def findings(spec, solution):
-    """Warnings about the solution, each with whether the spec forbids it.
-
-    Returns
-    -------
-    list of (str, bool)
-        (one-line message in the spec's length unit, forbidden).
-    """
-    p, u, sc = spec.problem, spec.header.unit, spec.header.scale
-    out = []
-    if spec.kind == "spur":
-        g = solution["gear"]
-        if g.tooth_thickness(g.ra) <= 0:
-            out.append((f"pointed tip: the flanks meet at r = {g.pointed_radius / sc:.4f} {u} "
-                        f"below ra = {g.ra / sc:.4f} {u}", p.forbid_pointed))
-        if g.undercut:
-            out.append((f"undercut: z = {g.z} < z_min = {g.z_min:.2f} with x = {g.x:g} < "
-                        f"x_min = {g.x_min:.4f} (standard rack)", p.forbid_undercut))
-    elif spec.kind == "pair":
-        first = solution[0]
-        for i, g in enumerate((first.g1, first.g2)):
-            if g.tooth_thickness(g.ra) <= 0:
-                out.append((f"gear {i + 1} (z = {g.z}, x = {g.x:g}) has a pointed tip: the "
-                            f"flanks meet at r = {g.pointed_radius / sc:.4f} {u} below "
-                            f"ra = {g.ra / sc:.4f} {u}", p.forbid_pointed))
-        for pr in solution:
-            where = f"a' = {pr.a_w / sc:.3f} {u}"
-            eps = pr.epsilon_alpha
-            if eps < 1:
-                out.append((f"{where}: contact ratio epsilon_alpha = {eps:.3f} < 1, the mesh is "
-                            f"not continuous (a' differs from a = {pr.a / sc:.3f} {u} by "
-                            f"{(pr.a_w - pr.a) / sc:+.3f} {u})", p.require_continuous))
-            if pr.interference:
-                out.append((f"{where}: interference — a tip passes the tangent point N of the "
-                            f"line of action (N1N2 = {pr.line_of_action / sc:.3f} {u})"
-                            + ("; the ring's tip meets the pinion below its base circle"
-                               if pr.g2.internal else ""), p.forbid_interference))
-            for i, c in enumerate(pr.clearances):
-                if c < 0:
-                    out.append((f"{where}: tip of gear {i + 1} hits the root of the other "
-                                f"(clearance {c / sc:.3f} {u})", p.forbid_interference))
-    return out
-
-
-def enforce(spec, solution):
-    """Raise :class:`RequirementError` on the first forbidden finding; return all messages."""
-    found = findings(spec, solution)
-    for message, forbidden in found:
-        if forbidden:
-            raise RequirementError(message)
-    return [m for m, _ in found]
 
 
 # -- readers per kind -------------------------------------------------------------------

@@ -7,7 +7,7 @@ from numpy.testing import assert_allclose
 from mechcli.core.grashof import fourbar as gf
 from mechcli.core.grashof.fivebar import rrrrp_crank
 from mechcli.core.grashof.mobility import Joint, MobilityError, count_mobility
-from mechcli.report import grashof as report
+from mechcli.commands.grashof import build
 from mechcli.spec.errors import SpecError
 from mechcli.spec.grashof import quick_spec, read_batch_csv, read_grashof_spec
 
@@ -43,7 +43,7 @@ def test_mobility_frame_that_no_joint_names_is_an_error(tmp_path):
     assert exc.value.key.endswith("frame")
     # the same chain with the right frame: hand count F = 3·3 − 2·4 = 1
     spec = read_grashof_spec(write(tmp_path, FOURBAR_ZERO.replace("frame = 4", "frame = 0")))
-    assert report.build(spec, "en")[0]["F"] == 1
+    assert build(spec, "en")[0]["F"] == 1
 
 
 def test_inversions_of_a_crossed_parallelogram_chain(tmp_path):
@@ -51,12 +51,12 @@ def test_inversions_of_a_crossed_parallelogram_chain(tmp_path):
     (frame 4) said parallelogram."""
     spec = read_grashof_spec(write(tmp_path, 'command = "grashof"\n[fourbar]\n'
                                    'lengths = [20, 30, 20, 30]\nassembly = "crossed"\n'))
-    r = report.build(spec, "en")[0]
+    r = build(spec, "en")[0]
     assert r["type"] == "antiparallelogram"
     assert [r[f"inversion_frame{k}"] for k in (1, 2, 3, 4)] == ["antiparallelogram"] * 4
     spec = read_grashof_spec(write(tmp_path, 'command = "grashof"\n[fourbar]\n'
                                    'lengths = [20, 30, 20, 30]\n'))
-    r = report.build(spec, "en")[0]
+    r = build(spec, "en")[0]
     assert [r[f"inversion_frame{k}"] for k in (1, 2, 3, 4)] == ["parallelogram"] * 4
 
 
@@ -81,7 +81,7 @@ def test_cannot_close_message_is_in_the_spec_unit(lengths, offset, text):
     """The exit-3 message quoted metres (0.3, 0.29) for lengths given in mm."""
     spec = quick_spec(lengths, offset=offset)
     with pytest.raises(gf.ClosureError) as exc:
-        report.build(spec, "en")
+        build(spec, "en")
     assert text in str(exc.value)
 
 
@@ -101,7 +101,7 @@ def test_guide_bar_whose_guide_never_reaches_the_crank_pin_cannot_close(tmp_path
     spec = read_grashof_spec(write(tmp_path, 'command = "grashof"\n[guide_bar]\n'
                                    "crank = 10\nframe = 20\noffset = 40\n"))
     with pytest.raises(gf.ClosureError, match="40 mm"):
-        report.build(spec, "en")
+        build(spec, "en")
     assert gf.analyse_guide_bar(10.0, 20.0, 29.0).kind == "no_crank"
 
 

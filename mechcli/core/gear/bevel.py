@@ -9,7 +9,7 @@ from __future__ import annotations
 import dataclasses
 import math
 
-from mechcli.core.errors import UnsolvableError
+from mechcli.core.gear.spur import GearError
 
 
 @dataclasses.dataclass(frozen=True)
@@ -99,14 +99,13 @@ def bevel_pair(z1, z2, m, alpha, ha_star=1.0, c_star=0.2, sigma=math.pi / 2):
 
     Raises
     ------
-    UnsolvableError
+    GearError
         A pitch cone wider than 90 degrees (an internal bevel gear, not handled).
     """
     pair = BevelPair(int(z1), int(z2), float(m), float(alpha), float(ha_star), float(c_star),
                      float(sigma))
     if max(pair.delta1, pair.delta2) >= math.pi / 2 - 1e-12:
-        raise UnsolvableError(
-            f"pitch-cone angles {math.degrees(pair.delta1):.3f}° and "
-            f"{math.degrees(pair.delta2):.3f}°: a cone of 90° or more is a crown or internal "
-            "bevel gear, which is not handled")
+        raise GearError("a pitch cone of pi/2 or more is a crown or internal bevel gear, "
+                        "which is not handled", "crown_bevel", delta1=pair.delta1,
+                        delta2=pair.delta2)
     return pair

@@ -5,7 +5,7 @@ from __future__ import annotations
 import dataclasses
 import math
 
-from mechcli.core.errors import UnsolvableError
+from mechcli.core.gear.spur import GearError
 
 
 @dataclasses.dataclass(frozen=True)
@@ -102,16 +102,16 @@ def helical_pair(z1, z2, mn, alpha_n, han_star=1.0, cn_star=0.25, *, beta=None, 
 
     Raises
     ------
-    UnsolvableError
+    GearError
         a' below mn (z1 + z2) / 2, or the helix angle 45 degrees or more.
     """
     if beta is None:
         c = mn * (z1 + z2) / (2 * a_w)
         if c > 1:
-            raise UnsolvableError(f"a' = {a_w:g} m is below mn (z1 + z2) / 2 = "
-                                  f"{mn * (z1 + z2) / 2:g} m: no helix angle fits")
+            raise GearError("a' is below mn (z1 + z2) / 2: no helix angle fits",
+                            "helical_centre_distance", a_w=a_w, limit=mn * (z1 + z2) / 2)
         beta = math.acos(c)
     if not 0 <= beta < math.pi / 4 + 1e-12:
-        raise UnsolvableError(f"helix angle {math.degrees(beta):.4g} deg is 45 deg or more")
+        raise GearError("the helix angle is pi/4 or more", "helix_angle", beta=beta)
     return HelicalPair(int(z1), int(z2), float(mn), float(alpha_n), float(han_star),
                        float(cn_star), float(beta), b)

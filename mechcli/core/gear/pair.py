@@ -10,13 +10,12 @@ from __future__ import annotations
 import dataclasses
 import math
 
-from mechcli.core.errors import UnsolvableError
-from mechcli.core.gear.spur import SpurGear
+from mechcli.core.gear.spur import GearError, SpurGear
 from mechcli.core.gear.involute import involute_function, inverse_involute_scalar
 
 
-class MeshError(UnsolvableError):
-    """Two gears cannot mesh as asked."""
+class MeshError(GearError):
+    """Two gears cannot mesh as asked (numbers in ``reason``/``values``, see :class:`GearError`)."""
 
 
 def standard_centre_distance(g1: SpurGear, g2: SpurGear):
@@ -64,8 +63,8 @@ def pressure_angle_from_centre_distance(g1, g2, a_w):
     """alpha' = arccos(a cos(alpha) / a') (rad); needs a' >= rb1 + rb2."""
     c = standard_centre_distance(g1, g2) * math.cos(g1.alpha) / a_w
     if c > 1:
-        raise MeshError(f"centre distance {a_w:g} m is below rb1 + rb2 = "
-                        f"{g1.rb + g2.rb:g} m: the base circles overlap")
+        raise MeshError("the centre distance is below rb1 + rb2: the base circles overlap",
+                        "base_circles_overlap", a_w=a_w, limit=g1.rb + g2.rb)
     return math.acos(c)
 
 
@@ -82,8 +81,8 @@ def design_teeth_from_ratio(ratio, a_w, m):
     total = 2 * a_w / m
     if abs(total - round(total)) > 1e-9 * max(1.0, total):
         raise MeshError(f"2 a'/m = {total:.6g} is not a whole number of teeth: a standard "
-                        f"pair needs a' = m (z1 + z2) / 2, e.g. {m * math.floor(total) / 2:g} m "
-                        f"or {m * math.ceil(total) / 2:g} m")
+                        "pair needs a' = m (z1 + z2) / 2", "teeth_not_whole",
+                        total=total, below=m * math.floor(total) / 2, above=m * math.ceil(total) / 2)
     total = int(round(total))
     z1 = total / (1 + ratio)
     if abs(z1 - round(z1)) > 1e-9 * total:
@@ -276,14 +275,16 @@ def gear_pair(g1: SpurGear, g2: SpurGear, a_w=None, alpha_w=None):
     pair = GearPair(g1, g2, float(a_w), float(alpha_w))
     a0 = pair.a_zero_backlash
     if a0 is not None and not g2.internal and pair.a_w < a0 * (1 - 1e-12):
-        raise MeshError(f"centre distance {pair.a_w:.6g} m is below the zero-backlash distance "
-                        f"{a0:.6g} m: the teeth would jam")
+        raise MeshError("the centre distance is below the zero-backlash distance: the teeth "
+                        "would jam", "jam", a_w=pair.a_w, a0=a0, internal=False)
     if g2.internal and pair.a_w > a0 * (1 + 1e-12):
-        raise MeshError(f"centre distance {pair.a_w:.6g} m is above the zero-backlash distance "
-                        f"{a0:.6g} m of the internal pair: the teeth would jam")
+        raise MeshError("the centre distance is above the zero-backlash distance of the "
+                        "internal pair: the teeth would jam", "jam", a_w=pair.a_w, a0=a0,
+                        internal=True)
     if pair.epsilon_alpha <= 0:
-        raise MeshError(f"at a' = {pair.a_w:.6g} m the tip circles do not reach the line of "
-                        f"action (epsilon_alpha = {pair.epsilon_alpha:.3g}): no contact")
+        raise MeshError(f"the tip circles do not reach the line of action (epsilon_alpha = "
+                        f"{pair.epsilon_alpha:.3g}): no contact", "no_contact", a_w=pair.a_w,
+                        epsilon=pair.epsilon_alpha)
     return pair
 
 

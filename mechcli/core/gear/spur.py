@@ -17,7 +17,27 @@ from mechcli.core.errors import UnsolvableError
 from mechcli.core.gear.involute import involute_function, inverse_involute_scalar
 
 
-class GearGeometryError(UnsolvableError):
+class GearError(UnsolvableError):
+    """A gear or gear drive that cannot exist as asked.
+
+    The message names no unit; the numbers are attributes, for the caller to
+    word in its units.
+
+    Attributes
+    ----------
+    reason : str
+        What failed (``"tip_inside_base"``, ``"jam"``, ...; empty when the
+        message says it all).
+    values : dict
+        The numbers of the message: lengths [m], angles [rad], counts.
+    """
+
+    def __init__(self, message, reason="", **values):
+        super().__init__(message)
+        self.reason, self.values = reason, values
+
+
+class GearGeometryError(GearError):
     """A gear that cannot exist as asked (pointed tip, root below the centre, ...)."""
 
 
@@ -258,17 +278,18 @@ def spur_gear(z, m, alpha, ha_star=1.0, c_star=0.25, x=0.0, internal=False):
                  bool(internal))
     if internal:
         if g.ra < g.rb:
+            z_needed = 2 * (g.ha_star + g.x) / (1 - math.cos(g.alpha))
             raise GearGeometryError(
-                f"internal gear z = {g.z}: tip circle da = {g.da:.6g} m is inside the base circle "
-                f"db = {g.db:.6g} m (needs z (1 - cos alpha) >= 2 (ha* + x), "
-                f"z >= {2 * (g.ha_star + g.x) / (1 - math.cos(g.alpha)):.1f})")
+                f"internal gear z = {g.z}: the tip circle is inside the base circle "
+                f"(needs z >= {z_needed:.1f})", "ring_tip_inside_base", z=g.z, da=g.da, db=g.db,
+                z_needed=z_needed)
         return g
     if g.ra < g.rb:
         raise GearGeometryError(
-            f"tip circle da = {g.da:.6g} m is inside the base circle db = {g.db:.6g} m "
-            f"(z = {g.z}, x = {g.x:g}): the teeth have no involute")
+            f"the tip circle is inside the base circle (z = {g.z}, x = {g.x:g}): the teeth "
+            "have no involute", "tip_inside_base", z=g.z, x=g.x, da=g.da, db=g.db)
     if g.df <= 0:
         raise GearGeometryError(
-            f"root diameter df = {g.df:.4g} m would be <= 0 "
-            f"(z = {g.z}, x = {g.x:g}): too few teeth for this shift")
+            f"the root diameter would be <= 0 (z = {g.z}, x = {g.x:g}): too few teeth for "
+            "this shift", "root_below_centre", z=g.z, x=g.x, df=g.df)
     return g

@@ -1,9 +1,22 @@
-"""Type of a linkage chain (chapter 3 §3.1): Grashof's criterion for four-bars
-and their inversions (:mod:`.fourbar`), five-bar and RRRRP classification
-(:mod:`.fivebar`), and the mobility (degrees of freedom) count
-(:mod:`.mobility`).
+"""Type of a linkage chain (chapter 3 §3.1).
 
-May import: numpy, scipy, :mod:`mechcli.core.errors`, :mod:`mechcli.core.refine`
-and :mod:`mechcli.core.linkage` (to check a classification on the engine);
-nothing of spec, report, commands or cli.
+Modules
+-------
+fourbar
+    Grashof's criterion for four-bars and their inversions, figures of merit
+    (θ, ψ, K, γ, dead points), length ranges, slider-crank and guide-bar,
+    transmission-angle curves; :class:`~.fourbar.ClosureError`.
+fivebar
+    5R five-bar classes and types, the RRRRP crank condition.
+mobility
+    The mobility (degrees of freedom) count F = 3n − 2P_L − P_H − F' + p'.
+analysis
+    :func:`~.analysis.solve_grashof`: one problem of ``mechcli grashof``
+    (duck-typed problem data) -> :class:`~.analysis.GrashofSolution`;
+    :func:`~.analysis.classify_batch` for ``--batch``.
+
+May import: numpy (no scipy: the quick form starts fast), :mod:`mechcli.core.errors`,
+:mod:`mechcli.core.refine` and :mod:`mechcli.core.linkage`; nothing of spec,
+report, commands or cli.  Errors carry their numbers as attributes and no unit
+names; the report layer words them.
 """

@@ -225,7 +225,7 @@ class RRRRPCrank:
     slider_inner_hi: float = 0.0
 
 
-def rrrrp_crank(l1, l2, l3, e=0.0, rtol=CHANGE_POINT_RTOL, unit=""):
+def rrrrp_crank(l1, l2, l3, e=0.0, rtol=CHANGE_POINT_RTOL):
     """Crank condition of the RRRRP five-bar (the paper's §4), with slider offset.
 
     Parameters
@@ -234,8 +234,6 @@ def rrrrp_crank(l1, l2, l3, e=0.0, rtol=CHANGE_POINT_RTOL, unit=""):
         Crank, second and third link lengths [m].
     e : float
         Offset of the slider path from the crank pivot A [m].
-    unit : str
-        Name of the lengths' unit, only for the error message.
 
     Returns
     -------
@@ -254,9 +252,7 @@ def rrrrp_crank(l1, l2, l3, e=0.0, rtol=CHANGE_POINT_RTOL, unit=""):
     """
     l1, l2, l3, e = float(l1), float(l2), float(l3), abs(float(e))
     if e >= l1 + l2 + l3:
-        u = f" {unit}" if unit else ""
-        raise ClosureError(f"the RRRRP chain cannot reach its slider path: offset {e:.6g}{u} >= "
-                           f"l1 + l2 + l3 = {l1 + l2 + l3:.6g}{u}")
+        raise ClosureError("RRRRP", e, l1 + l2 + l3)
     fold = abs(l2 - l3)
     slack = fold - (l1 + e)
     boundary = abs(slack) <= rtol * (l1 + l2 + l3)

@@ -40,7 +40,35 @@ CHANGE_POINT_RTOL = 1e-9
 
 
 class ClosureError(UnsolvableError):
-    """The lengths cannot form a closed loop (one link as long as all others together)."""
+    """The lengths cannot form a closed loop (one link as long as all others together).
+
+    The message holds no numbers with units: the caller words them from the
+    attributes (lengths in the unit of the call).
+
+    Attributes
+    ----------
+    chain : str
+        ``"chain"`` (a closed loop of links), ``"slider-crank"``, ``"guide-bar"``
+        or ``"RRRRP"``.
+    length : float
+        The link (``chain``) or the offset that is too long.
+    limit : float
+        The sum it must be shorter than: the other links; crank + coupler;
+        crank + frame; l1 + l2 + l3.
+    link : int or None
+        Link number of a ``chain``.
+    set_index : int or None
+        1-based length set, when a batch of several sets was checked.
+    """
+
+    def __init__(self, chain, length, limit, link=None, set_index=None):
+        what = f"link {link}" if link is not None else "the offset"
+        super().__init__(f"the {chain} cannot close: {what} is not shorter than "
+                         + ("the sum of the other links" if chain == "chain" else
+                            "the sum of the other lengths")
+                         + (f" (length set {set_index})" if set_index is not None else ""))
+        self.chain, self.length, self.limit = chain, float(length), float(limit)
+        self.link, self.set_index = link, set_index
 
 
 def _lengths_array(lengths, n):
@@ -52,15 +80,13 @@ def _lengths_array(lengths, n):
     return arr
 
 
-def check_closure(lengths, unit=""):
+def check_closure(lengths):
     """Raise :class:`ClosureError` if some link is at least as long as all the others.
 
     Parameters
     ----------
     lengths : array_like, shape (n,) or (N, n)
         Link lengths of one closed chain (or a batch) [m, or any unit].
-    unit : str
-        Name of the lengths' unit, only for the message (e.g. ``"mm"``).
 
     Notes
     -----
@@ -76,11 +102,8 @@ def check_closure(lengths, unit=""):
     if bad.size:
         i = int(bad[0])
         k = int(np.argmax(arr[i])) + 1
-        u = f" {unit}" if unit else ""
-        raise ClosureError(
-            f"the chain cannot close: link {k} ({arr[i, k - 1]:.6g}{u}) is not shorter than "
-            f"the sum of the other links ({rest[i]:.6g}{u})"
-            + (f" (length set {i + 1})" if arr.shape[0] > 1 else ""))
+        raise ClosureError("chain", arr[i, k - 1], rest[i], link=k,
+                           set_index=i + 1 if arr.shape[0] > 1 else None)
     return True
 
 
@@ -642,7 +665,7 @@ class SliderCrank:
     alpha_max_at: float
 
 
-def analyse_slider_crank(a, b, e=0.0, rtol=CHANGE_POINT_RTOL, unit=""):
+def analyse_slider_crank(a, b, e=0.0, rtol=CHANGE_POINT_RTOL):
     """Crank condition, stroke, θ, K and pressure angle of an offset slider-crank.
 
     Parameters
@@ -651,8 +674,6 @@ def analyse_slider_crank(a, b, e=0.0, rtol=CHANGE_POINT_RTOL, unit=""):
         Crank and coupler lengths [m].
     e : float
         Offset of the slider path from the crank pivot [m] (path y = e).
-    unit : str
-        Name of the lengths' unit, only for the error message.
 
     Returns
     -------
@@ -675,9 +696,7 @@ def analyse_slider_crank(a, b, e=0.0, rtol=CHANGE_POINT_RTOL, unit=""):
     """
     a, b, e = float(a), float(b), float(e)
     if abs(e) >= a + b:
-        u = f" {unit}" if unit else ""
-        raise ClosureError(f"the slider-crank cannot close: offset |e| = {abs(e):.6g}{u} is not "
-                           f"shorter than crank + coupler = {a + b:.6g}{u}")
+        raise ClosureError("slider-crank", abs(e), a + b)
     slack = b - (a + abs(e))
     boundary = abs(slack) <= rtol * (a + b)
     exists = slack >= 0 or boundary
@@ -724,7 +743,7 @@ class GuideBar:
     gamma_max: float
 
 
-def analyse_guide_bar(a, d, e=0.0, rtol=CHANGE_POINT_RTOL, unit=""):
+def analyse_guide_bar(a, d, e=0.0, rtol=CHANGE_POINT_RTOL):
     """Oscillating or rotating guide, θ = ψ, K and transmission angle.
 
     Parameters
@@ -735,8 +754,6 @@ def analyse_guide_bar(a, d, e=0.0, rtol=CHANGE_POINT_RTOL, unit=""):
         Frame length AC (crank pivot to guide pivot) [m].
     e : float
         Offset of the guide line from its pivot C [m] (0: the guide passes through C).
-    unit : str
-        Name of the lengths' unit, only for the error message.
 
     Returns
     -------
@@ -760,9 +777,7 @@ def analyse_guide_bar(a, d, e=0.0, rtol=CHANGE_POINT_RTOL, unit=""):
     """
     a, d, e = float(a), float(d), abs(float(e))
     if e >= a + d:
-        u = f" {unit}" if unit else ""
-        raise ClosureError(f"the guide-bar cannot close: guide offset {e:.6g}{u} is not shorter "
-                           f"than crank + frame = {a + d:.6g}{u} (the guide never reaches B)")
+        raise ClosureError("guide-bar", e, a + d)
     tol = rtol * (a + d)
     if a + e < d - tol:
         kind = "oscillating"
