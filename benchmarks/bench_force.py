@@ -22,7 +22,7 @@ sys.path.insert(0, str(ROOT))
 
 from benchmarks.bench_kin import best_of  # noqa: E402
 from mechcli._alloc import keep_heap_warm  # noqa: E402
-from mechcli.core.linkage.force_analysis import _Pipeline, analyse_forces  # noqa: E402
+from mechcli.core.linkage.force_analysis import ForceEvaluator, analyse_forces  # noqa: E402
 from mechcli.core.linkage.kinematics import Sweep  # noqa: E402
 from mechcli.core.linkage.kinetostatics import solve_forces  # noqa: E402
 from mechcli.core.linkage import solve  # noqa: E402
@@ -53,7 +53,7 @@ def main(quick=False):
         solve_forces(spec.topology, motion, spec.bodies, loads, spec.gravity, umotion,
                      condition=True)
 
-    pipe = _Pipeline(spec.linkage, spec.topology, sweep, spec.bodies, spec.gravity, progs)
+    pipe = ForceEvaluator(spec.linkage, spec.topology, sweep, spec.bodies, spec.gravity, progs)
     t = best_of(force_only, rep)
     print(f"kinetostatics, 36,001 positions (given the motion): {t * 1e3:.1f} ms  (target <= 50)")
     print(f"  with condition numbers of every block: {best_of(force_cond, rep) * 1e3:.1f} ms")

@@ -4,7 +4,10 @@ Prints `name: value unit` lines.  Compare ratios within one run: machines are
 shared and noisy.  Targets (issue #2): 36,001 four-bar positions with
 velocities and accelerations <= 5 ms; 1,000,001 <= 150 ms and <= 400 MB peak;
 `mechcli kin ex1-1 --no-plot` <= 0.6 s; with PNGs <= 2 s; with a 72-frame GIF
-<= 4 s; `mechcli --version` <= 1.5x `python -c "import numpy"`.
+<= 4 s; `mechcli --version` <= 1.5x `python -c "import numpy"`.  Issue #11: 10,000
+four-bars x 361 positions, positions + velocities + accelerations in one
+batched call, <= 1.2x a plain numpy closed form of the same batch timed in the
+same run.
 
 Usage: python benchmarks/bench_kin.py [--quick]
 """
@@ -25,7 +28,8 @@ sys.path.insert(0, str(ROOT))
 
 from mechcli._alloc import keep_heap_warm  # noqa: E402
 from mechcli.core.linkage.kinematics import Sweep, analyse_sweep, default_quantities  # noqa: E402
-from mechcli.core.linkage import RRR, Crank, DriverMotion, Ground, Linkage, solve  # noqa: E402
+from mechcli.core.linkage import (RRR, Crank, DriverMotion, Ground, Linkage, four_bar,  # noqa: E402
+                                  solve)
 
 
 def fourbar():
@@ -56,6 +60,64 @@ def peak_memory(n):
     peak = tracemalloc.get_traced_memory()[1]
     tracemalloc.stop()
     return peak
+
+
+def closed_form_fourbar(l1, l2, l3, l4, th, w1):
+    """Plain numpy four-bar (open branch, alpha1 = 0): the baseline of the batched benchmark.
+
+    C from the circles about B and D; omega2, omega3 and alpha2, alpha3 from
+    the differentiated loop equation l1 e^(i th1) + l2 e^(i th2) = l4 + l3 e^(i th3).
+    """
+    bx, by = l1 * np.cos(th), l1 * np.sin(th)
+    dx, dy = l4 - bx, -by
+    d2 = dx * dx + dy * dy
+    d = np.sqrt(d2)
+    a = (l2 * l2 - l3 * l3 + d2) / (2 * d)
+    h = np.sqrt(np.maximum(l2 * l2 - a * a, 0.0))
+    cx = bx + (a * dx - h * dy) / d
+    cy = by + (a * dy + h * dx) / d
+    th2 = np.arctan2(cy - by, cx - bx)
+    th3 = np.arctan2(cy, cx - l4)
+    s32 = np.sin(th3 - th2)
+    w2 = w1 * l1 * np.sin(th - th3) / (l2 * s32)
+    w3 = w1 * l1 * np.sin(th - th2) / (l3 * s32)
+    a2 = (-w1 * w1 * l1 * np.cos(th - th3) - w2 * w2 * l2 * np.cos(th2 - th3) + w3 * w3 * l3) \
+        / (l2 * np.sin(th2 - th3))
+    a3 = (w1 * w1 * l1 * np.cos(th - th2) + w2 * w2 * l2 - w3 * w3 * l3 * np.cos(th3 - th2)) \
+        / (l3 * s32)
+    return th2, th3, w2, w3, a2, a3
+
+
+def batched(m_designs, n_positions, repeat):
+    """One call of the engine over M four-bars x N positions vs the numpy closed form."""
+    rng = np.random.default_rng(11)
+    # Grashof crank-rockers around 例 1-1 (l1 shortest, s + l < p + q)
+    l1 = rng.uniform(0.08, 0.11, (m_designs, 1))
+    l2 = rng.uniform(0.24, 0.27, (m_designs, 1))
+    l3 = rng.uniform(0.17, 0.19, (m_designs, 1))
+    l4 = rng.uniform(0.29, 0.31, (m_designs, 1))
+    th = np.linspace(0, 2 * np.pi, n_positions)
+    lk = four_bar(l1, l2, l3, l4)
+    inputs = {1: DriverMotion(th, 250.0)}
+    t_engine = best_of(lambda: solve(lk, inputs, order=2), repeat)
+    t_closed = best_of(lambda: closed_form_fourbar(l1, l2, l3, l4, th, 250.0), repeat)
+    m = solve(lk, inputs, order=2)
+    ref = closed_form_fourbar(l1, l2, l3, l4, th, 250.0)
+    ok = m.regular.all(axis=-1)  # designs that assemble at every position
+    err = max(np.max(np.abs(m.links[3].omega - ref[3])[ok]) / np.max(np.abs(ref[3][ok])),
+              np.max(np.abs(m.links[3].alpha - ref[5])[ok]) / np.max(np.abs(ref[5][ok])))
+    k = 200  # separate solves, extrapolated to M
+    t_loop = best_of(lambda: [solve(four_bar(float(l1[i, 0]), float(l2[i, 0]), float(l3[i, 0]),
+                                             float(l4[i, 0])), inputs, order=2)
+                              for i in range(k)], 1) * m_designs / k
+    tag = f"{m_designs}x{n_positions}"
+    print(f"batched_fourbar_{tag}_engine: {t_engine * 1e3:.0f} ms")
+    print(f"batched_fourbar_{tag}_numpy_closed_form: {t_closed * 1e3:.0f} ms")
+    print(f"batched_fourbar_{tag}_engine_over_closed_form: {t_engine / t_closed:.2f} x")
+    print(f"batched_fourbar_{tag}_separate_solves_estimate: {t_loop * 1e3:.0f} ms")
+    print(f"batched_fourbar_{tag}_max_rel_difference_to_closed_form: {err:.1e} 1")
+    print(f"batched_fourbar_{tag}_feasible_designs: {int(m.feasible.all(axis=-1).sum())} of "
+          f"{m_designs}")
 
 
 def process(args, repeat):
@@ -99,6 +161,7 @@ def main():
     print(f"engine_fourbar_36001_pva: {engine(36001, r) * 1e3:.2f} ms")
     print(f"engine_fourbar_1000001_pva: {engine(1000001, 2 if quick else 3) * 1e3:.1f} ms")
     print(f"engine_fourbar_1000001_peak_memory: {peak_memory(1000001) / 2**20:.0f} MB")
+    batched(10_000, 361, 2 if quick else 5)
     accuracy_vs_step()
     py = sys.executable
     cfg = str(ROOT / "configs" / "ch1" / "ex1-1.toml")

@@ -6,7 +6,7 @@ import math
 
 import numpy as np
 
-from mechcli.core.linkage import RPR, RRP, RRR, Crank, Ground, PointOnLink, SliderDriver, solve
+from mechcli.core.linkage import Bar, Block, Guide, Pivot, solve
 from mechcli.report import plotting
 from mechcli.report.kin import factor_of, input_factor, pretty_unit
 
@@ -62,26 +62,12 @@ def _plot_group(ax, spec, result, qs, x, lang):
 
 
 def _link_segments(linkage):
-    """Point pairs drawn as bars, ground points, sliders and guides."""
-    bars, blocks, guides, grounds = [], [], [], []
-    for el in linkage.elements:
-        if isinstance(el, Ground):
-            grounds.append(el.name)
-        elif isinstance(el, Crank):
-            bars.append((el.pivot, el.point))
-        elif isinstance(el, SliderDriver):
-            blocks.append((el.point, None))
-        elif isinstance(el, RRR):
-            bars += [(el.point_a, el.joint), (el.point_b, el.joint)]
-        elif isinstance(el, RRP):
-            bars.append((el.point, el.joint))
-            blocks.append((el.joint, el))
-            guides.append(el)
-        elif isinstance(el, RPR):
-            blocks.append((el.point, el))
-            guides.append(el)
-        elif isinstance(el, PointOnLink):
-            bars.append((el.origin, el.name))
+    """The elements' drawing primitives, sorted: bars, blocks, guides, ground points."""
+    prims = [p for el in linkage.elements for p in el.sketch()]
+    bars = [(p.a, p.b) for p in prims if isinstance(p, Bar)]
+    blocks = [p for p in prims if isinstance(p, Block)]
+    guides = [p for p in prims if isinstance(p, Guide)]
+    grounds = [p.name for p in prims if isinstance(p, Pivot)]
     return bars, blocks, guides, grounds
 
 
@@ -102,43 +88,36 @@ class _Drawing:
             ax.annotate(g, (x, y), textcoords="offset points", xytext=(4, -12), fontsize=8)
         # guide length for drawing: longest reach of the blocks on it, plus a margin
         self.reach = {}
-        for el in self.guides:
-            if isinstance(el, RPR):
-                s = np.abs(motion.slides[el.name or f"{el.block}{el.guide}"].s)
-                self.reach[id(el)] = spec.guide_length or 1.15 * float(np.max(s))
+        for i, g in enumerate(self.guides):
+            if g.ray:
+                s = np.abs(motion.slides[g.slide].s)
+                self.reach[i] = spec.guide_length or 1.15 * float(np.max(s))
         self.size = 0.06 * _extent(motion) * self.k
 
     def update(self, motion, i):
         P = {n: pm.p[i] * self.k for n, pm in motion.points.items()}
         for line, (a, b) in zip(self.bar_lines, self.bars):
             line.set_data([P[a].real, P[b].real], [P[a].imag, P[b].imag])
-        for line, el in zip(self.guide_lines, self.guides):
-            th = motion.links[el.guide_link if isinstance(el, RRP) else el.guide].theta[i]
-            if isinstance(el, RRP):
-                th = th + el.guide_angle
-                u = complex(math.cos(th), math.sin(th))
-                c = P[el.guide_point] + el.offset * self.k * 1j * u
-                s = motion.slides[el.name or ""].s if el.name in motion.slides else None
+        for j, (line, g) in enumerate(zip(self.guide_lines, self.guides)):
+            th = motion.links[g.link].theta[i] + g.angle
+            u = complex(math.cos(th), math.sin(th))
+            c = P[g.point] + g.offset * self.k * 1j * u
+            if g.ray:
+                ends = [c, c + self.reach[j] * self.k * u * g.branch]
+            else:
+                s = motion.slides[g.slide].s if g.slide in motion.slides else None
                 span = self.size * 8
                 if s is not None:
                     lo, hi = float(np.min(s)) * self.k - span, float(np.max(s)) * self.k + span
                 else:
                     lo, hi = -span, span
                 ends = [c + lo * u, c + hi * u]
-            else:
-                u = complex(math.cos(th), math.sin(th))
-                c = P[el.pivot] + el.offset * self.k * 1j * u
-                ends = [c, c + self.reach[id(el)] * self.k * u * el.branch]
             line.set_data([e.real for e in ends], [e.imag for e in ends])
-        for line, (name, el) in zip(self.block_lines, self.blocks):
-            if el is None:
-                th = 0.0
-            else:
-                link = el.slider if isinstance(el, RRP) else el.block
-                th = motion.links[link].theta[i]
+        for line, b in zip(self.block_lines, self.blocks):
+            th = 0.0 if b.link is None else motion.links[b.link].theta[i]
             u = complex(math.cos(th), math.sin(th)) * self.size
-            corners = [P[name] + z * u for z in (-1.4 - 0.7j, 1.4 - 0.7j, 1.4 + 0.7j,
-                                                 -1.4 + 0.7j, -1.4 - 0.7j)]
+            corners = [P[b.point] + z * u for z in (-1.4 - 0.7j, 1.4 - 0.7j, 1.4 + 0.7j,
+                                                    -1.4 + 0.7j, -1.4 - 0.7j)]
             line.set_data([c.real for c in corners], [c.imag for c in corners])
         pts = [P[n] for n in P]
         self.joints.set_data([p.real for p in pts], [p.imag for p in pts])

@@ -202,55 +202,31 @@ def _read_mobility(sec, spec_dir):
 
 
 def _joints_from_kin(path):
-    """Joints of a ``mechcli kin`` spec's linkage, revolutes merged by point name.
+    """Joints of a ``mechcli kin`` spec's linkage: its kinematic pairs, revolutes
+    merged by point name.
 
-    Crank = 1 R pair at its pivot, RRR = 3 R, RRP and RPR = 2 R + 1 P; a point
-    where several revolutes meet becomes one compound hinge.
+    The pairs are the engine's (each element declares its own); a point where
+    several revolutes meet becomes one compound hinge.
     """
-    from mechcli.core.linkage import RPR, RRP, RRR, Crank, Ground, PointOnLink, SliderDriver
+    from mechcli.core.linkage.kinetostatics import topology
     from mechcli.spec.kin import load_kin_spec
 
     lk = load_kin_spec(path, ()).linkage
-    frame = lk.frame
-    owner = {}
-    for el in lk.elements:
-        if isinstance(el, Ground):
-            owner[el.name] = frame
-        elif isinstance(el, (Crank, SliderDriver)):
-            owner[el.point] = el.link
-        elif isinstance(el, RRR):
-            owner[el.joint] = el.link_a
-        elif isinstance(el, RRP):
-            owner[el.joint] = el.link
-        elif isinstance(el, PointOnLink):
-            owner[el.name] = el.link
-    hinges, others = {}, []
+    topo = topology(lk)
+    hinges, others = [], []
+    def spec_order(pr):  # the spec's element order; a dyad's pairs to known points first
+        made = lk.elements[pr.element].makes()[1]
+        return pr.element, pr.i in made and pr.j in made
 
-    def hinge(point, *links):
-        hinges.setdefault(point, [])
-        for ln in links:
-            if ln not in hinges[point]:
-                hinges[point].append(ln)
-
-    for el in lk.elements:
-        if isinstance(el, Crank):
-            hinge(el.pivot, owner.get(el.pivot, frame), el.link)
-        elif isinstance(el, SliderDriver):
-            others.append(JointSpec("P", (frame, el.link), el.name or el.point))
-        elif isinstance(el, RRR):
-            hinge(el.point_a, owner.get(el.point_a, frame), el.link_a)
-            hinge(el.point_b, owner.get(el.point_b, frame), el.link_b)
-            hinge(el.joint, el.link_a, el.link_b)
-        elif isinstance(el, RRP):
-            hinge(el.point, owner.get(el.point, frame), el.link)
-            hinge(el.joint, el.link, el.slider)
-            others.append(JointSpec("P", (el.slider, el.guide_link), el.name or el.joint))
-        elif isinstance(el, RPR):
-            hinge(el.point, owner.get(el.point, frame), el.block)
-            hinge(el.pivot, owner.get(el.pivot, frame), el.guide)
-            others.append(JointSpec("P", (el.block, el.guide), el.name or el.point))
-    joints = [JointSpec("R", tuple(links), name) for name, links in hinges.items()]
-    return tuple(joints + others), frame
+    for pr in sorted(topo.pairs, key=spec_order):
+        if pr.kind == "R":
+            if pr.point not in hinges:
+                hinges.append(pr.point)
+        else:
+            name = getattr(lk.elements[pr.element], "name", None) or pr.point
+            others.append(JointSpec("P", (pr.block, pr.guide), name))
+    joints = [JointSpec("R", topo.links_at[p], p) for p in hinges]
+    return tuple(joints + others), lk.frame
 
 
 def read_grashof_spec(path, overrides=()):

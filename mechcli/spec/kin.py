@@ -20,6 +20,7 @@ import numpy as np
 
 from mechcli.core.linkage import (RPR, RRP, RRR, Crank, Ground, Linkage,
                                   LinkageDefinitionError, PointOnLink, SliderDriver)
+from mechcli.core.linkage import presets
 from mechcli.spec.common import Header, read_expected, read_header
 from mechcli.spec.errors import SpecError
 from mechcli.spec.reader import MAX_LENGTH, load_spec
@@ -101,35 +102,31 @@ def _branch(sec, name, default, named):
 
 
 def _preset(mech, kind):
-    """Expand a preset into (frame, elements, guide_length)."""
-    open_crossed = {"open": 1, "crossed": -1}
+    """Expand a preset into (frame, elements, guide_length) with the core's presets."""
     mech.declare("l1", "l2", "l3", "l4", "l6", "l6p", "e", "branch", "point")
+    guide_length = None
     if kind == "four_bar":
         l1, l2, l3, l4 = (mech.length(k) for k in ("l1", "l2", "l3", "l4"))
-        br = _branch(mech, "branch", "open", open_crossed)
-        return 4, [Ground("A", 0.0, 0.0), Ground("D", l4, 0.0),
-                   Crank(1, "A", "B", l1), RRR("C", "B", 2, l2, "D", 3, l3, br)], None
-    if kind == "slider_crank":
+        br = _branch(mech, "branch", "open", presets.FOUR_BAR_BRANCHES)
+        linkage = presets.four_bar(l1, l2, l3, l4, br)
+    elif kind == "slider_crank":
         l1, l2 = mech.length("l1"), mech.length("l2")
         e = mech.coordinate("e", 0.0)
-        br = _branch(mech, "branch", "right", {"right": 1, "left": -1})
-        return 4, [Ground("A", 0.0, 0.0), Crank(1, "A", "B", l1),
-                   RRP("C", "B", 2, l2, 3, 4, "A", 0.0, e, br, "3")], None
-    if kind == "guide_bar":
+        br = _branch(mech, "branch", "right", presets.SLIDER_CRANK_BRANCHES)
+        linkage = presets.slider_crank(l1, l2, e, br)
+    elif kind == "guide_bar":
         l1, l4 = mech.length("l1"), mech.length("l4")
         e = mech.coordinate("e", 0.0)
-        l3 = mech.length("l3", None)
+        guide_length = mech.length("l3", None)
         br = _branch(mech, "branch", 1, {})
-        return 4, [Ground("C", 0.0, 0.0), Ground("A", 0.0, l4), Crank(1, "A", "B", l1),
-                   RPR("B", 2, "C", 3, e, br, "23")], l3
-    if kind == "shaper":
+        linkage = presets.guide_bar(l1, l4, e, br)
+    elif kind == "shaper":
         l1, l3, l4, l6, l6p = (mech.length(k) for k in ("l1", "l3", "l4", "l6", "l6p"))
-        br = _branch(mech, "branch", "left", {"left": -1, "right": 1})
-        return 6, [Ground("C", 0.0, 0.0), Ground("A", 0.0, l6), Ground("G", 0.0, l6p),
-                   Crank(1, "A", "B", l1), RPR("B", 2, "C", 3, 0.0, 1, "23"),
-                   PointOnLink("D", 3, "C", l3, 0.0),
-                   RRP("E", "D", 4, l4, 5, 6, "G", 0.0, 0.0, br, "E")], None
-    raise AssertionError(kind)
+        br = _branch(mech, "branch", "left", presets.SHAPER_BRANCHES)
+        linkage = presets.shaper(l1, l3, l4, l6, l6p, br)
+    else:
+        raise AssertionError(kind)
+    return linkage.frame, list(linkage.elements), guide_length
 
 
 def _general(mech):
@@ -162,33 +159,43 @@ def _general(mech):
                                else d.number("phase", 0.0) * mech.unit)
         d.finish()
     for dy in mech.tables("dyad", []):
-        kind = dy.string("type", choices=["RRR", "RRP", "RPR"])
+        kind = dy.string("type", choices=list(DYADS))
         br = _branch(dy, "branch", 1, {"left": 1, "right": -1})
-        if kind == "RRR":
-            pts = dy.strings("points")
-            links = dy.raw("links")
-            lengths = dy.numbers("lengths", size=2, positive=True)
-            if len(pts) != 2:
-                raise dy.error("points", "an array of 2 point names", repr(pts))
-            if not (isinstance(links, list) and len(links) == 2
-                    and all(isinstance(x, int) and not isinstance(x, bool) and x > 0
-                            for x in links)):
-                raise dy.error("links", "an array of 2 link numbers", repr(links))
-            elements.append(RRR(dy.string("joint"), pts[0], links[0], lengths[0] * mech.unit,
-                                pts[1], links[1], lengths[1] * mech.unit, br))
-        elif kind == "RRP":
-            elements.append(RRP(dy.string("joint"), dy.string("point"), dy.integer("link", lo=1),
-                                dy.length("length"), dy.integer("slider", lo=1),
-                                dy.integer("guide_link", lo=1), dy.string("guide_point"),
-                                math.radians(dy.number("guide_angle", 0.0)),
-                                dy.coordinate("offset", 0.0), br, dy.string("name", None)))
-        else:
-            elements.append(RPR(dy.string("point"), dy.integer("block", lo=1), dy.string("pivot"),
-                                dy.integer("guide", lo=1), dy.coordinate("offset", 0.0),
-                                br, dy.string("name", None)))
+        elements.append(DYADS[kind](dy, br, mech.unit))
         paths.append(dy.path)
         dy.finish()
     return frame, elements, followers, paths
+
+
+def _rrr(dy, br, unit):
+    pts = dy.strings("points")
+    links = dy.raw("links")
+    lengths = dy.numbers("lengths", size=2, positive=True)
+    if len(pts) != 2:
+        raise dy.error("points", "an array of 2 point names", repr(pts))
+    if not (isinstance(links, list) and len(links) == 2
+            and all(isinstance(x, int) and not isinstance(x, bool) and x > 0 for x in links)):
+        raise dy.error("links", "an array of 2 link numbers", repr(links))
+    return RRR(dy.string("joint"), pts[0], links[0], lengths[0] * unit,
+               pts[1], links[1], lengths[1] * unit, br)
+
+
+def _rrp(dy, br, unit):
+    return RRP(dy.string("joint"), dy.string("point"), dy.integer("link", lo=1),
+               dy.length("length"), dy.integer("slider", lo=1), dy.integer("guide_link", lo=1),
+               dy.string("guide_point"), math.radians(dy.number("guide_angle", 0.0)),
+               dy.coordinate("offset", 0.0), br, dy.string("name", None))
+
+
+def _rpr(dy, br, unit):
+    return RPR(dy.string("point"), dy.integer("block", lo=1), dy.string("pivot"),
+               dy.integer("guide", lo=1), dy.coordinate("offset", 0.0), br,
+               dy.string("name", None))
+
+
+#: ``[[mechanism.dyad]] type`` -> reader of that dyad's keys (a new dyad type of
+#: the engine adds one reader here)
+DYADS = {"RRR": _rrr, "RRP": _rrp, "RPR": _rpr}
 
 
 def _points(mech, elements, paths):
@@ -215,6 +222,10 @@ _SPEC_KEY = {"point_a": "points", "point_b": "points", "link_a": "links", "link_
              "guide": "guide", "block": "block", "slider": "slider", "name": "name"}
 
 
+#: (element kind, engine field) -> spec key, where the kind's table names it otherwise
+_KIND_KEY = {("slider", "origin"): "origin"}
+
+
 def _build_linkage(mech, frame, elements, paths):
     try:
         return Linkage(frame=frame, elements=tuple(elements))
@@ -226,12 +237,7 @@ def _build_linkage(mech, frame, elements, paths):
                 _kind, value = exc.field
                 for f in dataclasses.fields(el):
                     if getattr(el, f.name) == value and f.name in _SPEC_KEY:
-                        if isinstance(el, PointOnLink) and f.name == "origin":
-                            key += ".from"
-                        elif isinstance(el, SliderDriver) and f.name == "origin":
-                            key += ".origin"
-                        else:
-                            key += "." + _SPEC_KEY[f.name]
+                        key += "." + _KIND_KEY.get((el.kind, f.name), _SPEC_KEY[f.name])
                         break
         msg = str(exc)
         cycle = getattr(exc, "cycle", None)
@@ -244,7 +250,7 @@ def _build_linkage(mech, frame, elements, paths):
 
 def _input(sec, linkage, followers):
     first = linkage.drivers[0]
-    rotary = isinstance(first, Crank)
+    rotary = first.rotary
     if rotary:
         has_w, has_n = sec.has("omega1"), sec.has("n1")
         if has_w and has_n:

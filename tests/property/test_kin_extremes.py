@@ -38,8 +38,10 @@ def all_finite(res):
 def test_crank_rocker_at_any_scale_is_finite_and_closes(scale, ratios):
     b, c, d = ratios
     l1, l2, l3, l4 = scale, b * scale, c * scale, d * scale
-    if not (l1 + max(l2, l3, l4) < sum((l2, l3, l4)) - max(l2, l3, l4)):
-        return  # not Grashof with the crank shortest
+    if not (l1 + max(l2, l3, l4) < (sum((l2, l3, l4)) - max(l2, l3, l4)) * (1 - 1e-9)):
+        # not Grashof with the crank shortest -- or a change point to round-off (e.g. ratios
+        # 4, 2.5, 2.5: s + l = p + q, dead points at 0°, a clear error by design)
+        return
     res, _ = analyse(fourbar(l1, l2, l3, l4))
     assert all_finite(res)
     C, B = res.motion.points["C"].p, res.motion.points["B"].p

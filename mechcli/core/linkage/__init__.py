@@ -1,8 +1,10 @@
-"""The linkage engine and everything built on it (chapters 1, 2, and the
+"""The linkage engine and everything built on it (chapters 1 and 2, and the
 engine behind synth, flywheel, optimize and the atlas).
 
-Holds: the elements (driver, dyads, points) and their solver
-(:mod:`.engine`), the sweep analysis with gaps, dead points and refined
+Holds: the elements (drivers, dyads, points, each one class that owns its
+solving step, pairs, slide name and drawing: :mod:`.elements`), the linkage and
+its batched solver (:mod:`.engine`), the book's named linkages
+(:mod:`.presets`), the sweep analysis with gaps, dead points and refined
 extremes (:mod:`.kinematics`), kinetostatics (:mod:`.kinetostatics`) and the
 force sweep (:mod:`.force_analysis`).
 
@@ -13,7 +15,10 @@ The names below are the package's public face (``from mechcli.core.linkage
 import solve, four_bar``).
 """
 
+from mechcli.core.linkage.elements import (  # noqa: F401
+    ASSEMBLY_TOL, RPR, RRP, RRR, SINGULAR_TOL, Bar, Block, Crank, Element, Ground, Guide,
+    Pivot, PointOnLink, SliderDriver)
 from mechcli.core.linkage.engine import (  # noqa: F401
-    ASSEMBLY_TOL, RPR, RRP, RRR, SINGULAR_TOL, Crank, DriverMotion, DyadCondition, Element,
-    Ground, LinkMotion, Linkage, LinkageDefinitionError, LinkageMotion, PointMotion, PointOnLink,
-    SlideMotion, SliderDriver, _needs, solve)
+    DriverMotion, DyadCondition, LinkMotion, Linkage, LinkageDefinitionError, LinkageMotion,
+    PointMotion, SlideMotion, kinematic_coefficients, solve)
+from mechcli.core.linkage.presets import four_bar, guide_bar, shaper, slider_crank  # noqa: F401

@@ -1,33 +1,15 @@
-"""The linkage engine: drivers plus class-II Assur groups (杆组法), vectorized.
+"""The linkage engine: a :class:`Linkage` of elements, solved by :func:`solve`.
 
-A planar linkage is a frame, one or more drivers (a crank turning about a
-known point, or a slider moving along a line) and a sequence of class-II Assur
-groups (dyads), each of which locates one new joint from two known points:
+The elements (drivers, dyads, points; :mod:`mechcli.core.linkage.elements`)
+each own their solving step; this module orders them, runs them over whole
+arrays at once and gathers the results.  Inputs and every element parameter
+may be arrays of any common (broadcastable) shape: ``solve`` over lengths of
+shape ``(M, 1)`` and input angles of shape ``(N,)`` solves M candidate linkages
+at N positions each, with results of shape ``(M, N)``.
 
-* :class:`RRR` -- two links joined at a new revolute ``joint``;
-* :class:`RRP` -- a link from a known point to a slider pin on a guide line
-  carried by a known link (the frame or a moving one);
-* :class:`RPR` -- a guide link pivoted at a known point, sliding through a
-  block pivoted at another known point (guide-bar, 导杆);
-* :class:`PointOnLink` -- any point fixed on a solved link (tracer/coupler
-  point, or the next dyad's known point).
-
-Positions are closed-form with an explicit ``branch``; velocities and
-accelerations come from the time-differentiated loop equations, each a 2x2
-linear system solved by Cramer's rule on whole arrays -- never by differencing
-positions.  All inputs may be arrays of any (common, broadcastable) shape: the
-whole sweep is solved at once.
-
-Points are complex numbers ``x + iy`` [m]; velocities [m/s] and accelerations
-[m/s^2] likewise.  Angles are counter-clockwise from +x [rad].
-
-Notes
------
-This generalises the closed-vector-loop method of chapter 1 of the book
-(eq. 1-1 ... 1-36): e.g. the four-bar of 例 1-1 is ``Crank`` + ``RRR``; the
-slider-crank of 例 1-2 is ``Crank`` + ``RRP``; the guide-bar of 例 1-3 is
-``Crank`` + ``RPR``; the shaper of 例 1-4 is ``Crank`` + ``RPR`` +
-``PointOnLink`` + ``RRP``.
+Points are complex numbers ``x + iy`` [m] (kept as separate real arrays);
+velocities [m/s] and accelerations [m/s^2] likewise.  Angles are
+counter-clockwise from +x [rad].
 """
 
 from __future__ import annotations
@@ -38,13 +20,9 @@ from typing import Dict, Optional, Tuple, Union
 
 import numpy as np
 
-#: relative size below which a dyad counts as singular (a dead point).  The
-#: closed-form positions carry a sqrt of a rounded discriminant, so sin(gamma)
-#: at an exact toggle comes out as large as ~sqrt(eps) ~ 1.5e-8: anything below
-#: 1e-7 is numerically indistinguishable from the toggle itself.
-SINGULAR_TOL = 1e-7
-#: relative tolerance for a dyad that just touches its assembly limit
-ASSEMBLY_TOL = 1e-10
+from mechcli.core.linkage.elements import (ASSEMBLY_TOL, RPR, RRP, RRR, SINGULAR_TOL,  # noqa: F401
+                                           Crank, Element, Ground, LinkState, PointOnLink,
+                                           SliderDriver)
 
 
 class LinkageDefinitionError(ValueError):
@@ -54,6 +32,8 @@ class LinkageDefinitionError(ValueError):
     ----------
     index : int or None
         Index of the offending element in ``Linkage.elements``.
+    field : tuple or None
+        ``("point", name)`` or ``("link", number)``: the reference at fault.
     """
 
     def __init__(self, message, index=None, field=None):
@@ -62,154 +42,13 @@ class LinkageDefinitionError(ValueError):
         self.field = field
 
 
-# ---------------------------------------------------------------------------
-# elements
-# ---------------------------------------------------------------------------
-@dataclasses.dataclass(frozen=True)
-class Ground:
-    """A point fixed on the frame at (x, y) [m]."""
-
-    name: str
-    x: float
-    y: float
-
-
-@dataclasses.dataclass(frozen=True)
-class Crank:
-    """Rotary driver: link ``link`` turns about the known point ``pivot``.
-
-    ``point = pivot + length * exp(i*theta)``, where ``theta`` is the driver's
-    input angle (the link's absolute angle) [rad]; ``length`` [m].
-    """
-
-    link: int
-    pivot: str
-    point: str
-    length: float
-
-
-@dataclasses.dataclass(frozen=True)
-class SliderDriver:
-    """Linear driver: link ``link`` translates along a line fixed on the frame.
-
-    ``point = origin + s * exp(i*angle)``; ``s`` is the driver's input [m].
-    """
-
-    link: int
-    origin: str
-    point: str
-    angle: float = 0.0
-    name: Optional[str] = None
-
-
-@dataclasses.dataclass(frozen=True)
-class RRR:
-    """RRR dyad: link ``link_a`` (from ``point_a``, length ``length_a``) and
-    link ``link_b`` (from ``point_b``, length ``length_b``) meet at ``joint``.
-
-    ``branch = +1`` puts ``joint`` to the left of the directed line
-    point_a -> point_b, ``-1`` to the right.
-    """
-
-    joint: str
-    point_a: str
-    link_a: int
-    length_a: float
-    point_b: str
-    link_b: int
-    length_b: float
-    branch: int = 1
-
-
-@dataclasses.dataclass(frozen=True)
-class RRP:
-    """RRP dyad: link ``link`` of length ``length`` from the known ``point`` to a
-    slider pin ``joint`` on block ``slider``, which slides on a guide line of
-    link ``guide_link``.
-
-    The guide line passes through ``guide_point`` (a point on the guide link)
-    shifted by ``offset`` [m] along the line's left normal, in direction
-    ``guide_angle`` [rad] relative to the guide link.  The slide ``s`` is
-    measured along the line from that base point.  ``branch = +1`` takes the
-    larger ``s`` (pin ahead along the guide direction), ``-1`` the smaller.
-    """
-
-    joint: str
-    point: str
-    link: int
-    length: float
-    slider: int
-    guide_link: int
-    guide_point: str
-    guide_angle: float = 0.0
-    offset: float = 0.0
-    branch: int = 1
-    name: Optional[str] = None
-
-
-@dataclasses.dataclass(frozen=True)
-class RPR:
-    """RPR dyad (guide-bar): guide link ``guide`` pivoted at known ``pivot``
-    passes through block ``block`` pivoted at the known point ``point``.
-
-    The guide line runs at perpendicular distance ``offset`` [m] (to its left)
-    from the pivot; the guide angle is the line's direction and ``s`` the
-    block's position along it from the foot of the pivot.  ``branch = +1``
-    takes ``s > 0`` (guide pointing from pivot towards the block).
-    """
-
-    point: str
-    block: int
-    pivot: str
-    guide: int
-    offset: float = 0.0
-    branch: int = 1
-    name: Optional[str] = None
-
-
-@dataclasses.dataclass(frozen=True)
-class PointOnLink:
-    """A point fixed on link ``link``: ``origin + (along + i*normal) * exp(i*theta_link)``.
-
-    ``along`` is measured along the link's reference direction, ``normal`` to
-    its left (counter-clockwise), both [m].
-    """
-
-    name: str
-    link: int
-    origin: str
-    along: float = 0.0
-    normal: float = 0.0
-
-
-Element = Union[Ground, Crank, SliderDriver, RRR, RRP, RPR, PointOnLink]
-
-
-def _needs(el):
-    """(points needed, links needed, points made, links made) of an element."""
-    if isinstance(el, Ground):
-        return (), (), (el.name,), ()
-    if isinstance(el, Crank):
-        return (el.pivot,), (), (el.point,), (el.link,)
-    if isinstance(el, SliderDriver):
-        return (el.origin,), (), (el.point,), (el.link,)
-    if isinstance(el, RRR):
-        return (el.point_a, el.point_b), (), (el.joint,), (el.link_a, el.link_b)
-    if isinstance(el, RRP):
-        return (el.point, el.guide_point), (el.guide_link,), (el.joint,), (el.link, el.slider)
-    if isinstance(el, RPR):
-        return (el.point, el.pivot), (), (), (el.guide, el.block)
-    if isinstance(el, PointOnLink):
-        return (el.origin,), (el.link,), (el.name,), ()
-    raise LinkageDefinitionError(f"unknown element {el!r}")
-
-
-@dataclasses.dataclass(frozen=True)
+@dataclasses.dataclass(frozen=True, eq=False)
 class Linkage:
     """A planar linkage: the frame's link number and the elements.
 
     Elements may be listed in any order; ``order`` is the solving order
-    (each element after those that define its points and links).
+    (each element after those that define its points and links).  Element
+    parameters may be arrays (a batch of designs; see :func:`solve`).
     """
 
     frame: int
@@ -218,10 +57,13 @@ class Linkage:
 
     def __post_init__(self):
         object.__setattr__(self, "elements", tuple(self.elements))
+        for i, el in enumerate(self.elements):
+            if not isinstance(el, Element):
+                raise LinkageDefinitionError(f"unknown element {el!r}", i)
         points, links = set(), {self.frame}
         made_points, made_links = {}, {self.frame: -1}
         for i, el in enumerate(self.elements):
-            _, _, mp, ml = _needs(el)
+            mp, ml = el.makes()
             for p in mp:
                 if p in made_points:
                     raise LinkageDefinitionError(
@@ -237,7 +79,7 @@ class Linkage:
         while pending:
             progress = False
             for i in list(pending):
-                np_, nl, mp, ml = _needs(self.elements[i])
+                (np_, nl), (mp, ml) = self.elements[i].needs(), self.elements[i].makes()
                 if all(p in points for p in np_) and all(ln in links for ln in nl):
                     points.update(mp)
                     links.update(ml)
@@ -247,7 +89,7 @@ class Linkage:
             if not progress:
                 # report a root cause (a reference nothing defines) before a cycle
                 for i in pending:
-                    np_, nl, _, _ = _needs(self.elements[i])
+                    np_, nl = self.elements[i].needs()
                     for p in np_:
                         if p not in made_points:
                             raise LinkageDefinitionError(
@@ -264,45 +106,66 @@ class Linkage:
                 raise exc
         object.__setattr__(self, "order", tuple(order))
 
-    @property
-    def drivers(self):
-        return tuple(el for el in self.elements if isinstance(el, (Crank, SliderDriver)))
+    def with_elements(self, *extra) -> "Linkage":
+        """The same linkage with more elements (e.g. coupler points) added."""
+        return Linkage(self.frame, self.elements + tuple(extra))
 
     @property
-    def moving_links(self):
-        out = []
-        for el in self.elements:
-            for ln in _needs(el)[3]:
-                if ln not in out:
-                    out.append(ln)
-        return tuple(out)
+    def drivers(self):
+        """The driver elements, the primary (input) one first."""
+        return tuple(el for el in self.elements if el.is_driver)
+
+    def driver(self, link):
+        """The driver element of link ``link``."""
+        for d in self.drivers:
+            if d.link == link:
+                return d
+        raise KeyError(link)
 
     @property
     def translating_links(self):
         """Links that only translate (slider blocks on frame guides, linear drivers)."""
+        return tuple(ln for el in self.elements for ln in el.translating_links(self.frame))
+
+    @property
+    def rotating_links(self):
+        """Links whose angle, omega and alpha are reported (not drivers, not translating)."""
         out = []
         for el in self.elements:
-            if isinstance(el, RRP) and el.guide_link == self.frame:
-                out.append(el.slider)
-            elif isinstance(el, SliderDriver):
-                out.append(el.link)
-        return tuple(out)
+            if not el.is_driver:
+                out += [ln for ln in el.reported_links(self.frame) if ln not in out]
+        return tuple(sorted(out))
+
+    @property
+    def slide_names(self):
+        """Names of the slides (prismatic pairs reported as s/v/a), in element order."""
+        return tuple(n for el in self.elements if not el.is_driver
+                     for n in [el.slide_name(self.frame)] if n is not None)
+
+    @property
+    def transmission_joints(self):
+        """Joints whose transmission angle is reported (RRR dyads), in element order."""
+        return tuple(j for el in self.elements for j in [el.transmission_joint()]
+                     if j is not None)
 
     @property
     def point_names(self):
-        names = []
-        for el in self.elements:
-            names.extend(_needs(el)[2])
-        return tuple(names)
+        return tuple(n for el in self.elements for n in el.makes()[0])
+
+    @property
+    def shape(self):
+        """Broadcast shape of the element parameters: () for one linkage,
+        e.g. ``(M, 1)`` for a batch of M designs."""
+        return np.broadcast_shapes(*(np.shape(p) for el in self.elements
+                                     for p in el.parameters()))
 
     def scale(self):
-        """A characteristic length [m]: the largest length or coordinate."""
-        vals = [1e-300]
-        for el in self.elements:
-            for f in ("length", "length_a", "length_b", "offset", "along", "normal", "x", "y"):
-                if hasattr(el, f):
-                    vals.append(abs(getattr(el, f)))
-        return max(vals)
+        """A characteristic length [m]: the largest length or coordinate
+        (an array of shape :attr:`shape` for a batch of designs)."""
+        sizes = [s for el in self.elements for s in el.sizes()]
+        if all(np.ndim(s) == 0 for s in sizes):
+            return max([1e-300] + [float(s) for s in sizes])
+        return functools.reduce(np.maximum, sizes, 1e-300)
 
 
 # ---------------------------------------------------------------------------
@@ -423,47 +286,60 @@ class LinkageMotion:
 
 
 # ---------------------------------------------------------------------------
-# solver (contiguous real arrays: x and y components kept apart)
+# solver
 # ---------------------------------------------------------------------------
-class _Solve2:
-    """Cramer's rule for ``X*(c1x, c1y) + Y*(c2x, c2y) = (rx, ry)`` on arrays.
+class SolveState:
+    """What the elements read and write while a linkage is solved.
 
-    Positions in ``bad`` (a mask, or None when all are regular) get 0, never
-    inf or NaN.
+    ``P``/``L`` hold the solved points and links; ``vel``/``acc`` say which
+    derivatives are asked; ``full(x)`` broadcasts a parameter to the result
+    shape; ``mark`` updates the feasibility masks; ``condition`` and ``slide``
+    record a dyad's conditioning and a prismatic pair's slide.
     """
 
-    def __init__(self, c1x, c1y, c2x, c2y, bad):
-        det = c1x * c2y - c1y * c2x
-        if bad is not None:
-            det = np.where(bad, 1.0, det)
-        self.inv = 1.0 / det
-        self.c = (c1x, c1y, c2x, c2y)
-        self.bad = bad
+    def __init__(self, linkage, inputs, shape, order):
+        self.inputs = inputs
+        self.shape = shape
+        self.zero = np.broadcast_to(0.0, shape)  # a view: costs no memory
+        self.feasible = np.ones(shape, dtype=bool)
+        self.regular = np.ones(shape, dtype=bool)
+        self.vel, self.acc = order >= 1, order >= 2
+        self.scale = linkage.scale()
+        self.frame = linkage.frame
+        self.P = {}
+        self.L = {self.frame: LinkState(self.zero, 1.0, 0.0, self.zero, self.zero)}
+        self.S = {}
+        self.conds = []
+        self.index = None
 
-    def __call__(self, rx, ry):
-        c1x, c1y, c2x, c2y = self.c
-        x = (rx * c2y - ry * c2x) * self.inv
-        y = (c1x * ry - c1y * rx) * self.inv
-        if self.bad is not None:
-            x = np.where(self.bad, 0.0, x)
-            y = np.where(self.bad, 0.0, y)
-        return x, y
+    def full(self, x):
+        x = np.asarray(x, dtype=float)
+        if x.shape == self.shape:
+            return x
+        return np.broadcast_to(x, self.shape) if x.ndim == 0 else x + self.zero
 
+    def mark(self, ok, sing, position_singular=None):
+        """Update the masks; return the 'bad' mask for the 2x2 solves (None if none).
 
-class _Link:
-    """Internal link state: angle, its cosine and sine, omega, alpha."""
+        ``position_singular``: a mask of positions where the singularity
+        leaves the position itself undefined (RPR: the guide's direction when
+        the block is at its pivot), so they are irregular even when only
+        positions are asked.
+        """
+        self.feasible &= ok
+        if not self.vel:
+            if position_singular is not None:
+                self.regular &= ok & ~position_singular
+            return None
+        good = ok & (sing > SINGULAR_TOL)
+        self.regular &= good
+        return None if good.all() else ~good
 
-    __slots__ = ("theta", "c", "s", "w", "al")
+    def condition(self, element, joint, sin_gamma, cos_joint=None):
+        self.conds.append(DyadCondition(self.index, element.kind, joint, sin_gamma, cos_joint))
 
-    def __init__(self, theta, c, s, w, al):
-        self.theta, self.c, self.s, self.w, self.al = theta, c, s, w, al
-
-
-class _Pt:
-    __slots__ = ("x", "y", "vx", "vy", "ax", "ay")
-
-    def __init__(self, x, y, vx=None, vy=None, ax=None, ay=None):
-        self.x, self.y, self.vx, self.vy, self.ax, self.ay = x, y, vx, vy, ax, ay
+    def slide(self, name, block, guide, s, v, a):
+        self.S[name] = SlideMotion(name, block, guide, s, v, a)
 
 
 def solve(linkage: Linkage, inputs, order: int = 2, on_fail: str = "mask") -> LinkageMotion:
@@ -472,6 +348,8 @@ def solve(linkage: Linkage, inputs, order: int = 2, on_fail: str = "mask") -> Li
     Parameters
     ----------
     linkage : Linkage
+        Its element parameters may be arrays (a batch of designs), e.g. of
+        shape ``(M, 1)`` against inputs of shape ``(N,)``.
     inputs : dict
         ``{driver link number: DriverMotion}`` for every driver; arrays of a
         common (broadcastable) shape, angles [rad], slides [m].
@@ -485,6 +363,15 @@ def solve(linkage: Linkage, inputs, order: int = 2, on_fail: str = "mask") -> Li
     Returns
     -------
     LinkageMotion
+        Every array has the broadcast shape of the inputs and the parameters.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from mechcli.core.linkage import DriverMotion, four_bar, solve
+    >>> m = solve(four_bar(0.1, 0.25, 0.2, 0.3), {1: DriverMotion(np.radians([0, 90]), 10.0)})
+    >>> m.links[3].omega.shape
+    (2,)
     """
     from mechcli.core.errors import AssemblyError
 
@@ -493,234 +380,51 @@ def solve(linkage: Linkage, inputs, order: int = 2, on_fail: str = "mask") -> Li
     for d in linkage.drivers:
         if d.link not in inputs:
             raise LinkageDefinitionError(f"no input given for driver link {d.link}")
-    shape = np.broadcast(*[np.asarray(m.q) for m in inputs.values()]).shape
-    zero = np.broadcast_to(0.0, shape)  # a view: costs no memory
-    feasible = np.ones(shape, dtype=bool)
-    regular = np.ones(shape, dtype=bool)
-    vel, acc = order >= 1, order >= 2
-    scale = linkage.scale()
-    frame = linkage.frame
-
-    def full(x):
-        x = np.asarray(x, dtype=float)
-        if x.shape == shape:
-            return x
-        return np.broadcast_to(x, shape) if x.ndim == 0 else x + zero
-
-    P: Dict[str, _Pt] = {}
-    L: Dict[int, _Link] = {frame: _Link(zero, 1.0, 0.0, zero, zero)}
-    S: Dict[str, SlideMotion] = {}
-    conds = []
-
-    def mark(ok, sing, position_singular=False):
-        """Update the masks; return the 'bad' mask for the 2x2 solves (None if none).
-
-        ``position_singular``: the singularity leaves the position itself
-        undefined (RPR: the guide's direction when the block is at its pivot),
-        so it makes the position irregular even when only positions are asked.
-        """
-        nonlocal feasible, regular
-        feasible &= ok
-        if not vel:
-            if position_singular is True:
-                regular &= ok & (sing > SINGULAR_TOL)
-            elif position_singular is not None and position_singular is not False:
-                regular &= ok & ~position_singular
-            return None
-        good = ok & (sing > SINGULAR_TOL)
-        regular &= good
-        return None if good.all() else ~good
-
+    shape = np.broadcast_shapes(*[np.shape(m.q) for m in inputs.values()], linkage.shape)
+    st = SolveState(linkage, inputs, shape, order)
     for idx in linkage.order:
-        el = linkage.elements[idx]
-        if isinstance(el, Ground):
-            P[el.name] = _Pt(full(el.x), full(el.y), zero, zero, zero, zero)
-
-        elif isinstance(el, Crank):
-            m = inputs[el.link]
-            th, w, al = full(m.q), full(m.dq), full(m.ddq)
-            c, s = np.cos(th), np.sin(th)
-            o = P[el.pivot]
-            rx, ry = el.length * c, el.length * s
-            p = _Pt(o.x + rx, o.y + ry)
-            if vel:
-                p.vx, p.vy = o.vx - w * ry, o.vy + w * rx
-            if acc:
-                w2 = w * w
-                p.ax = o.ax - al * ry - w2 * rx
-                p.ay = o.ay + al * rx - w2 * ry
-            P[el.point] = p
-            L[el.link] = _Link(th, c, s, w, al)
-
-        elif isinstance(el, SliderDriver):
-            m = inputs[el.link]
-            s = full(m.q)
-            ux, uy = np.cos(el.angle), np.sin(el.angle)
-            o = P[el.origin]
-            p = _Pt(o.x + s * ux, o.y + s * uy)
-            v = full(m.dq) if vel else None
-            a = full(m.ddq) if acc else None
-            if vel:
-                p.vx, p.vy = o.vx + v * ux, o.vy + v * uy
-            if acc:
-                p.ax, p.ay = o.ax + a * ux, o.ay + a * uy
-            P[el.point] = p
-            L[el.link] = _Link(full(el.angle), ux, uy, zero, zero)
-            name = el.name or str(el.link)
-            S[name] = SlideMotion(name, el.link, frame, s, v, a)
-
-        elif isinstance(el, RRR):
-            pa, pb = P[el.point_a], P[el.point_b]
-            la, lb = el.length_a, el.length_b
-            dx, dy = pb.x - pa.x, pb.y - pa.y
-            d2 = dx * dx + dy * dy
-            dist = np.sqrt(d2)
-            ok = dist > ASSEMBLY_TOL * scale
-            coincide = None
-            if not ok.all():
-                # the known points coincide: with equal lengths (a kite's folded
-                # position) the joint may be anywhere on the circle -- a dead
-                # point, not a failure to assemble
-                if abs(la - lb) <= ASSEMBLY_TOL * max(la, lb):
-                    coincide = ~ok
-                dist = np.where(ok, dist, 1.0)
-            inv = 1.0 / dist
-            along = (la * la - lb * lb + d2) * (0.5 * inv)
-            h2 = la * la - along * along
-            ok &= h2 >= -4 * ASSEMBLY_TOL * la * la
-            h = np.sqrt(np.maximum(h2, 0.0)) * (el.branch * 1.0)
-            ex, ey = dx * inv, dy * inv
-            qx = pa.x + along * ex - h * ey
-            qy = pa.y + along * ey + h * ex
-            rax, ray = qx - pa.x, qy - pa.y
-            rbx, rby = qx - pb.x, qy - pb.y
-            nab = 1.0 / (la * lb)
-            cross = rax * rby - ray * rbx
-            sing = np.abs(cross) * nab
-            if coincide is not None:
-                ok = ok | coincide
-                sing = np.where(coincide, 0.0, sing)
-            conds.append(DyadCondition(idx, "RRR", el.joint, sing,
-                                       (rax * rbx + ray * rby) * nab))
-            bad = mark(ok, sing, position_singular=coincide)
-            q = _Pt(qx, qy)
-            wa = wb = aa = ab = None
-            if vel:
-                solve2 = _Solve2(-ray, rax, rby, -rbx, bad)
-                wa, wb = solve2(pb.vx - pa.vx, pb.vy - pa.vy)
-                q.vx, q.vy = pa.vx - wa * ray, pa.vy + wa * rax
-                if acc:
-                    wa2, wb2 = wa * wa, wb * wb
-                    aa, ab = solve2(pb.ax - pa.ax + wa2 * rax - wb2 * rbx,
-                                    pb.ay - pa.ay + wa2 * ray - wb2 * rby)
-                    q.ax = pa.ax - aa * ray - wa2 * rax
-                    q.ay = pa.ay + aa * rax - wa2 * ray
-            P[el.joint] = q
-            L[el.link_a] = _Link(np.arctan2(ray, rax), rax * (1 / la), ray * (1 / la), wa, aa)
-            L[el.link_b] = _Link(np.arctan2(rby, rbx), rbx * (1 / lb), rby * (1 / lb), wb, ab)
-
-        elif isinstance(el, RRP):
-            pp, pg, g = P[el.point], P[el.guide_point], L[el.guide_link]
-            cphi, sphi = np.cos(el.guide_angle), np.sin(el.guide_angle)
-            ux, uy = g.c * cphi - g.s * sphi, g.s * cphi + g.c * sphi
-            ux, uy = full(ux), full(uy)
-            moving = el.guide_link != frame
-            bx, by = pg.x - el.offset * uy, pg.y + el.offset * ux  # base of the slide
-            wx, wy = bx - pp.x, by - pp.y
-            b = wx * ux + wy * uy
-            disc = b * b - (wx * wx + wy * wy - el.length ** 2)
-            ok = disc >= -4 * ASSEMBLY_TOL * el.length ** 2
-            s = np.sqrt(np.maximum(disc, 0.0)) * (el.branch * 1.0) - b
-            qx, qy = bx + s * ux, by + s * uy
-            rx, ry = qx - pp.x, qy - pp.y
-            sing = np.abs(rx * ux + ry * uy) * (1.0 / el.length)
-            conds.append(DyadCondition(idx, "RRP", el.joint, sing))
-            bad = mark(ok, sing)
-            name = el.name or (str(el.slider) if not moving else f"{el.slider}{el.guide_link}")
-            q = _Pt(qx, qy)
-            wr = ar = sd = sdd = None
-            if vel:
-                solve2 = _Solve2(-ry, rx, -ux, -uy, bad)
-                rhs_x, rhs_y = pg.vx - pp.vx, pg.vy - pp.vy
-                if moving:
-                    gx, gy = bx - pg.x, by - pg.y
-                    rhs_x = rhs_x - g.w * (gy + s * uy)
-                    rhs_y = rhs_y + g.w * (gx + s * ux)
-                wr, sd = solve2(rhs_x, rhs_y)
-                q.vx, q.vy = pp.vx - wr * ry, pp.vy + wr * rx
-                if acc:
-                    wr2 = wr * wr
-                    rhs_x = pg.ax - pp.ax + wr2 * rx
-                    rhs_y = pg.ay - pp.ay + wr2 * ry
-                    if moving:
-                        w2 = g.w * g.w
-                        lx, ly = gx + s * ux, gy + s * uy  # base->pin relative to the guide point
-                        rhs_x = rhs_x - g.al * ly - w2 * lx - 2 * sd * g.w * uy
-                        rhs_y = rhs_y + g.al * lx - w2 * ly + 2 * sd * g.w * ux
-                    ar, sdd = solve2(rhs_x, rhs_y)
-                    q.ax = pp.ax - ar * ry - wr2 * rx
-                    q.ay = pp.ay + ar * rx - wr2 * ry
-            P[el.joint] = q
-            L[el.link] = _Link(np.arctan2(ry, rx), rx * (1 / el.length), ry * (1 / el.length),
-                               wr, ar)
-            L[el.slider] = _Link(g.theta + el.guide_angle if moving else full(el.guide_angle),
-                                 ux, uy, g.w, g.al)
-            S[name] = SlideMotion(name, el.slider, el.guide_link, s, sd, sdd)
-
-        elif isinstance(el, RPR):
-            pp, pc = P[el.point], P[el.pivot]
-            e = el.offset
-            dx, dy = pp.x - pc.x, pp.y - pc.y
-            d2 = dx * dx + dy * dy
-            disc = d2 - e * e
-            ok = disc >= -ASSEMBLY_TOL * scale * scale
-            s = np.sqrt(np.maximum(disc, 0.0)) * (el.branch * 1.0)
-            # d = (s + i e) u  =>  u = d (s - i e) / |d|^2
-            inv = 1.0 / np.maximum(d2, 1e-300 * scale * scale + 1e-300)
-            ux, uy = (dx * s + dy * e) * inv, (dy * s - dx * e) * inv
-            if e == 0.0:
-                # exact unit vector even where d -> 0 (the foot of the pivot)
-                ux, uy = dx * (inv * s), dy * (inv * s)
-            # det of the velocity system is s: singular when the block passes the
-            # foot of the pivot (the guide's direction is then undefined)
-            sing = np.abs(s) / np.maximum(np.sqrt(d2), scale)
-            conds.append(DyadCondition(idx, "RPR", el.point, sing))
-            bad = mark(ok, sing, position_singular=e == 0.0)
-            name = el.name or f"{el.block}{el.guide}"
-            wg = ag = sd = sdd = None
-            if vel:
-                solve2 = _Solve2(ux, uy, -dy, dx, bad)
-                sd, wg = solve2(pp.vx - pc.vx, pp.vy - pc.vy)
-                if acc:
-                    w2 = wg * wg
-                    sdd, ag = solve2(pp.ax - pc.ax + 2 * sd * wg * uy + w2 * dx,
-                                     pp.ay - pc.ay - 2 * sd * wg * ux + w2 * dy)
-            theta = np.arctan2(uy, ux)
-            L[el.guide] = _Link(theta, ux, uy, wg, ag)
-            L[el.block] = L[el.guide]
-            S[name] = SlideMotion(name, el.block, el.guide, s, sd, sdd)
-
-        elif isinstance(el, PointOnLink):
-            o, k = P[el.origin], L[el.link]
-            rx = el.along * k.c - el.normal * k.s
-            ry = el.along * k.s + el.normal * k.c
-            p = _Pt(o.x + rx, o.y + ry)
-            if vel:
-                p.vx, p.vy = o.vx - k.w * ry, o.vy + k.w * rx
-            if acc:
-                w2 = k.w * k.w
-                p.ax = o.ax - k.al * ry - w2 * rx
-                p.ay = o.ay + k.al * rx - w2 * ry
-            P[el.name] = p
-
+        st.index = idx
+        linkage.elements[idx].step(st)
+    vel, acc = st.vel, st.acc
+    regular, feasible = st.regular, st.feasible
     if not vel:
         regular &= feasible
     if on_fail == "raise" and not np.all(regular):
         bad = int(np.size(regular) - np.count_nonzero(regular))
         raise AssemblyError(f"the linkage cannot be assembled (or is at a dead point) at "
                             f"{bad} of {np.size(regular)} input positions")
-    points = {n: PointMotion(p.x, p.y, p.vx, p.vy, p.ax, p.ay) for n, p in P.items()}
+    full = st.full
+    points = {n: PointMotion(p.x, p.y, p.vx, p.vy, p.ax, p.ay) for n, p in st.P.items()}
     links = {n: LinkMotion(full(k.theta), None if k.w is None or not vel else full(k.w),
                            None if k.al is None or not acc else full(k.al))
-             for n, k in L.items()}
-    return LinkageMotion(order, feasible, regular, points, links, S, tuple(conds))
+             for n, k in st.L.items()}
+    return LinkageMotion(order, feasible, regular, points, links, st.S, tuple(st.conds))
+
+
+def kinematic_coefficients(linkage: Linkage, q, followers=None, order: int = 2) -> LinkageMotion:
+    """Velocity and acceleration coefficients (类速度, 类加速度) at input positions ``q``.
+
+    The linkage is solved at unit input speed and zero input acceleration, so
+    every velocity is a first derivative with respect to the input
+    (``links[n].omega`` = dθn/dφ, ``points[P].vx`` = dxP/dφ [m/rad]) and every
+    acceleration a second derivative (``links[n].alpha`` = d²θn/dφ²).  At any
+    input speed ω1 and acceleration α1 the motion follows as
+    ``ω_n = ω1 dθn/dφ`` and ``α_n = α1 dθn/dφ + ω1² d²θn/dφ²``: what the
+    equivalent inertia Je(φ) = Σ m (v_S/ω1)² + J (ω/ω1)², its exact derivative
+    dJe/dφ and the equivalent moment need (chapter 6).
+
+    Parameters
+    ----------
+    linkage : Linkage
+    q : array
+        Positions of the primary (first) driver [rad or m].
+    followers : dict, optional
+        ``{link: (ratio, phase)}`` of secondary drivers: q_k = phase + ratio q.
+    order : {1, 2}
+    """
+    q = np.asarray(q, dtype=float)
+    drivers = linkage.drivers
+    inputs = {drivers[0].link: DriverMotion(q, 1.0, 0.0)}
+    for link, (ratio, phase) in (followers or {}).items():
+        inputs[link] = DriverMotion(phase + ratio * q, ratio, 0.0)
+    return solve(linkage, inputs, order=order)

@@ -13,9 +13,11 @@ from typing import Dict, List, Tuple
 
 import numpy as np
 
-from mechcli.core.linkage.kinematics import SEARCH_STEP, Sweep, _bisect, analyse_sweep
+from mechcli.core.linkage.kinematics import SEARCH_STEP, Sweep, analyse_sweep
 from mechcli.core.linkage.kinetostatics import COND_FLAG, ForceResult, solve_forces
-from mechcli.core.linkage import Crank, solve
+from mechcli.core.linkage.engine import solve
+from mechcli.core.refine import (bisect, gauss_legendre, golden_section_max, mean_rms,
+                                 true_runs)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -53,7 +55,7 @@ class ForceSweep:
 def balancing_symbol(linkage, link):
     drivers = linkage.drivers
     d = next(x for x in drivers if x.link == link)
-    base = "Mb" if isinstance(d, Crank) else "Fb"
+    base = "Mb" if d.rotary else "Fb"
     return base if len(drivers) == 1 else f"{base}{link}"
 
 
@@ -87,8 +89,31 @@ def extreme_symbols(linkage, fr: ForceResult):
     return out
 
 
-class _Pipeline:
-    """Kinematics + loads + kinetostatics at arbitrary input positions."""
+class ForceEvaluator:
+    """Kinematics + loads + kinetostatics at any input positions (the public
+    kinetostatic evaluator: ``force`` sweeps with it, flywheel takes the
+    equivalent moment from it).
+
+    Parameters
+    ----------
+    linkage : Linkage
+    topo : Topology
+        ``topology(linkage)``.
+    sweep : Sweep
+        The input program (driver, input speed and acceleration, followers);
+        its ``q`` is not used here.
+    bodies : dict
+        ``{link: Body}``: masses, moments of inertia, centres of mass.
+    gravity : tuple or None
+        ``(gx, gy)`` [m/s^2].
+    programs : sequence of LoadProgram
+        External loads with their programs over the input.
+
+    Calling it with input positions ``q`` returns ``(ForceResult, masks,
+    motion)``: the reactions, the balancing torque (or force) of every driver,
+    the power and its residual; ``masks[load name]`` where each load acts; the
+    linkage motion at ``q``.
+    """
 
     def __init__(self, linkage, topo, sweep, bodies, gravity, programs):
         self.linkage, self.topo, self.sweep = linkage, topo, sweep
@@ -96,6 +121,8 @@ class _Pipeline:
         self.unit_sweep = dataclasses.replace(sweep, dq=1.0, ddq=0.0)
 
     def __call__(self, q, motion=None, condition=False):
+        """Forces at inputs ``q``; ``motion`` (order 2, at ``q``) saves a solve when
+        known; ``condition`` also computes each position's condition number."""
         q = np.asarray(q, dtype=float)
         if motion is None:
             motion = solve(self.linkage, self.sweep.inputs(q), order=2)
@@ -123,14 +150,14 @@ def analyse_forces(linkage, topo, sweep: Sweep, bodies, gravity, programs, parti
             p = p.with_band_limits(lo.value, hi.value)
             band[p.load.name] = p.band_limits
         progs.append(p)
-    pipe = _Pipeline(linkage, topo, sweep, bodies, gravity, progs)
+    pipe = ForceEvaluator(linkage, topo, sweep, bodies, gravity, progs)
     q = kin.q
     fr, masks, _ = pipe(q, kin.motion, condition=True)
     series = series_of(linkage, fr)
     syms = extreme_symbols(linkage, fr)
 
     # search grid: the output grid, or a <= 0.5 deg grid inside the analysed runs
-    rotary = isinstance(next(d for d in linkage.drivers if d.link == sweep.driver), Crank)
+    rotary = linkage.driver(sweep.driver).rotary
     step = float(np.max(np.diff(q))) if q.size > 1 else 0.0
     fine = SEARCH_STEP if rotary else (q[-1] - q[0]) / 720
     if step > fine * (1 + 1e-9):
@@ -173,27 +200,9 @@ def analyse_forces(linkage, topo, sweep: Sweep, bodies, gravity, programs, parti
             ser = series_of(linkage, f)
             return np.array([ser[t[0]][i] for i, t in enumerate(targets)]) * signs
 
-        gr = (np.sqrt(5) - 1) / 2
-        c = hi_b - gr * (hi_b - lo_b)
-        d = lo_b + gr * (hi_b - lo_b)
-        fc, fd = values(c), values(d)
-        for _ in range(iterations):
-            left = fc > fd  # the maximum lies in [lo, d]
-            hi_b = np.where(left, d, hi_b)
-            lo_b = np.where(left, lo_b, c)
-            new_c = hi_b - gr * (hi_b - lo_b)
-            new_d = lo_b + gr * (hi_b - lo_b)
-            x = np.where(left, new_c, new_d)
-            fx = values(x)
-            c_old, fc_old, d_old, fd_old = c, fc, d, fd
-            c = np.where(left, new_c, d_old)
-            fc = np.where(left, fx, fd_old)
-            d = np.where(left, c_old, new_d)
-            fd = np.where(left, fc_old, fx)
-            if np.all(np.abs(hi_b - lo_b) < 1e-10 * np.maximum(1.0, np.abs(lo_b))):
-                break
+        x_best, f_best = golden_section_max(values, lo_b, hi_b, iterations)
         for i, (sym, which, k) in enumerate(targets):
-            cand = [(s_series[sym][k] * which, qs[k]), (fc[i], c[i]), (fd[i], d[i])]
+            cand = [(s_series[sym][k] * which, qs[k]), (f_best[i], x_best[i])]
             val, at = max(cand)
             best[(sym, which)] = ForceExtreme(float(val * which), float(at))
     for sym, signed in syms:
@@ -224,10 +233,10 @@ def analyse_forces(linkage, topo, sweep: Sweep, bodies, gravity, programs, parti
             stops = []
             for e in edges:
                 if mask[e]:   # on -> off between e and e+1
-                    lo, hi = _bisect(qs[e], qs[e + 1], lambda x: state(x), 1e-14)
+                    lo, hi = bisect(qs[e], qs[e + 1], lambda x: state(x), 1e-14)
                     stops.append(float(lo))
                 else:         # off -> on
-                    lo, hi = _bisect(qs[e], qs[e + 1], lambda x: ~state(x), 1e-14)
+                    lo, hi = bisect(qs[e], qs[e + 1], lambda x: ~state(x), 1e-14)
                     starts.append(float(hi))
             if m[-1]:
                 stops.append(qs[b - 1])
@@ -237,18 +246,14 @@ def analyse_forces(linkage, topo, sweep: Sweep, bodies, gravity, programs, parti
     # mean and RMS over the analysed range: 4-point Gauss-Legendre on every grid
     # interval, split where a conditional load switches (exact for the jumps)
     cuts = [e for iv in active.values() for pair in iv for e in pair]
-    nodes, weights = np.polynomial.legendre.leggauss(4)
     xs, ws = [], []
     span = 0.0
     for a, b in runs:
         if b - a < 2:
             continue
-        br = np.union1d(qs[a:b], [c for c in cuts if qs[a] < c < qs[b - 1]])
-        lo_e, hi_e = br[:-1], br[1:]
-        half = 0.5 * (hi_e - lo_e)
-        mid = 0.5 * (hi_e + lo_e)
-        xs.append((mid[:, None] + half[:, None] * nodes[None, :]).ravel())
-        ws.append((half[:, None] * weights[None, :]).ravel())
+        x, w = gauss_legendre(np.union1d(qs[a:b], [c for c in cuts if qs[a] < c < qs[b - 1]]))
+        xs.append(x)
+        ws.append(w)
         span += qs[b - 1] - qs[a]
     mean, rms = {}, {}
     if xs:
@@ -258,9 +263,7 @@ def analyse_forces(linkage, topo, sweep: Sweep, bodies, gravity, programs, parti
     for d in linkage.drivers:
         sym = balancing_symbol(linkage, d.link)
         if xs and span > 0:
-            v = gser[sym]
-            mean[sym] = float(np.dot(wg, v) / span)
-            rms[sym] = float(np.sqrt(np.dot(wg, v * v) / span))
+            mean[sym], rms[sym] = mean_rms(wg, gser[sym], span)
         else:
             v = series[sym]
             mean[sym] = float(np.mean(v))
@@ -268,13 +271,8 @@ def analyse_forces(linkage, topo, sweep: Sweep, bodies, gravity, programs, parti
     flagged = []
     bad = fr.cond > COND_FLAG
     if bad.any():
-        for a, b in _true_runs(bad):
+        for a, b in true_runs(bad):
             flagged.append((float(q[a]), float(q[b - 1])))
     return ForceSweep(q, kin, fr, series, extremes, active,
                       {k: v for k, v in masks.items()}, mean, rms, band, flagged)
 
-
-def _true_runs(mask):
-    m = np.concatenate(([False], mask, [False])).astype(np.int8)
-    e = np.flatnonzero(np.diff(m))
-    return list(zip(e[0::2], e[1::2]))

@@ -18,8 +18,8 @@ from typing import Callable, Dict, Optional, Tuple
 import numpy as np
 
 from mechcli.core.errors import AssemblyError
-from mechcli.core.linkage import (RRR, Crank, DriverMotion, Linkage, LinkageMotion,
-                                  SliderDriver, solve)
+from mechcli.core.linkage.engine import DriverMotion, Linkage, LinkageMotion, solve
+from mechcli.core.refine import bisect, true_runs
 
 #: sin(gamma) below which an interior minimum is flagged as near a dead point
 NEAR_TOGGLE_SIN = 0.05
@@ -35,9 +35,13 @@ class Sweep:
         Link number of the primary driver.
     q : ndarray
         Input positions: crank angle [rad] or slide [m].
-    dq, ddq : float
-        Input velocity [rad/s or m/s] and acceleration, the same at every
-        position (the book's ``omega1``, ``alpha1``).
+    dq, ddq : float, array or callable
+        Input velocity [rad/s or m/s] and acceleration.  A float is the same
+        at every position (the book's ``omega1``, ``alpha1``); an array of
+        the shape of ``q`` gives the values at ``q`` (interpolated linearly
+        between them, periodically when ``periodic``: e.g. omega(phi) of a
+        flywheel run); a callable ``f(q)`` is evaluated wherever the
+        analysis needs it (exact).
     followers : dict
         ``{link: (ratio, phase)}`` of secondary drivers.
     periodic : bool
@@ -46,16 +50,34 @@ class Sweep:
 
     driver: int
     q: np.ndarray
-    dq: float = 1.0
-    ddq: float = 0.0
+    dq: object = 1.0
+    ddq: object = 0.0
     followers: Dict[int, Tuple[float, float]] = dataclasses.field(default_factory=dict)
     periodic: bool = False
 
+    def _at(self, value, q):
+        if callable(value):
+            return np.asarray(value(q), dtype=float)
+        if np.ndim(value) == 0:
+            return value
+        value = np.asarray(value, dtype=float)
+        if value.shape != np.shape(self.q):
+            raise ValueError(f"an input rate array must have the shape of q {np.shape(self.q)}, "
+                             f"got {value.shape}")
+        if q is self.q:
+            return value
+        return np.interp(q, self.q, value, period=2 * np.pi if self.periodic else None)
+
+    def speed(self, q):
+        """Input velocity at ``q`` (a float when it is constant)."""
+        return self._at(self.dq, q)
+
     def inputs(self, q):
         q = np.asarray(q, dtype=float)
-        out = {self.driver: DriverMotion(q, self.dq, self.ddq)}
+        dq, ddq = self._at(self.dq, q), self._at(self.ddq, q)
+        out = {self.driver: DriverMotion(q, dq, ddq)}
         for link, (ratio, phase) in self.followers.items():
-            out[link] = DriverMotion(phase + ratio * q, ratio * self.dq, ratio * self.ddq)
+            out[link] = DriverMotion(phase + ratio * q, ratio * dq, ratio * ddq)
         return out
 
 
@@ -140,20 +162,9 @@ def default_quantities(linkage: Linkage, order: int, tracers=()):
     slide s/v/a, the transmission angle of every RRR dyad, and x, y (vx, vy, ax,
     ay) of every tracer point.
     """
-    from mechcli.core.linkage import RPR
-
     out = []
-    drivers = {d.link for d in linkage.drivers}
-    translating = set(linkage.translating_links)
-    blocks = {el.block for el in linkage.elements if isinstance(el, RPR)}
-    rotating = []
-    for el in linkage.elements:
-        if isinstance(el, (Crank, SliderDriver)):
-            continue
-        for link in _links_of(el):
-            if link not in drivers | translating | blocks and link not in rotating:
-                rotating.append(link)
-    slides = _slide_names(linkage)
+    rotating = linkage.rotating_links
+    slides = linkage.slide_names
     # (symbol prefix, kind, attribute) per derivative order, for links, slides, points
     table = (
         (("theta", "angle", "theta"), ("s", "length", "s"),
@@ -170,7 +181,7 @@ def default_quantities(linkage: Linkage, order: int, tracers=()):
     for k in range(order + 1):
         (lp, lkind, lattr), (sp, skind, sattr), pts = table[k]
         nxt = table[k + 1] if k < 2 else None
-        for n in sorted(rotating):
+        for n in rotating:
             out.append(Quantity(f"{lp}{n}", lkind, k, getter("links", n, lattr),
                                 getter("links", n, nxt[0][2]) if nxt else None))
         for name in slides:
@@ -181,28 +192,10 @@ def default_quantities(linkage: Linkage, order: int, tracers=()):
                 out.append(Quantity(f"{pp}{tr}", pkind, k, getter("points", tr, pattr),
                                     getter("points", tr, nxt[2][j][2]) if nxt else None))
         if k == 0:
-            for el in linkage.elements:
-                if isinstance(el, RRR):
-                    out.append(Quantity(f"gamma{el.joint}", "angle", 0,
-                                        lambda m, j=el.joint: _cond(m, j).gamma))
+            for joint in linkage.transmission_joints:
+                out.append(Quantity(f"gamma{joint}", "angle", 0,
+                                    lambda m, j=joint: _cond(m, j).gamma))
     return out
-
-
-def _links_of(el):
-    from mechcli.core.linkage import _needs
-    return _needs(el)[3]
-
-
-def _slide_names(linkage):
-    from mechcli.core.linkage import RPR, RRP
-    names = []
-    for el in linkage.elements:
-        if isinstance(el, RRP):
-            names.append(el.name or (str(el.slider) if el.guide_link == linkage.frame
-                                     else f"{el.slider}{el.guide_link}"))
-        elif isinstance(el, RPR):
-            names.append(el.name or f"{el.block}{el.guide}")
-    return names
 
 
 def _cond(m, joint):
@@ -227,31 +220,6 @@ def _take(motion: LinkageMotion, idx) -> LinkageMotion:
                          sls, cds)
 
 
-def _runs(mask):
-    """(start, stop) index pairs of the True runs of a 1-D boolean array."""
-    m = np.concatenate(([False], mask, [False])).astype(np.int8)
-    edges = np.flatnonzero(np.diff(m))
-    return list(zip(edges[0::2], edges[1::2]))
-
-
-def _bisect(lo, hi, keep_lo, rtol, iterations=64):
-    """Vectorized bisection: ``keep_lo(mid)`` is a mask, True where the sought
-    point lies beyond ``mid`` (so ``lo`` moves to ``mid``), else ``hi`` does.
-
-    ``lo`` and ``hi`` may be in either order; returns the final (lo, hi).
-    """
-    lo = np.asarray(lo, dtype=float).copy()
-    hi = np.asarray(hi, dtype=float).copy()
-    for _ in range(iterations):
-        mid = 0.5 * (lo + hi)
-        go = keep_lo(mid)
-        lo = np.where(go, mid, lo)
-        hi = np.where(go, hi, mid)
-        if np.all(np.abs(hi - lo) <= rtol * np.maximum(1.0, np.abs(lo))):
-            break
-    return lo, hi
-
-
 def _bisect_boundaries(linkage, sweep, order, good, bad):
     """Refine boundaries between regular inputs ``good`` and irregular ``bad``.
 
@@ -260,7 +228,7 @@ def _bisect_boundaries(linkage, sweep, order, good, bad):
     def regular(mid):
         return solve(linkage, sweep.inputs(mid), order=order).regular
 
-    return _bisect(good, bad, regular, 1e-15)[0]
+    return bisect(good, bad, regular, 1e-15)[0]
 
 
 def _wrap(x):
@@ -316,7 +284,8 @@ def _derivative_probe(linkage, sweep, order, getters, x, h):
     with step ``h`` (one-sided where a probe leaves the regular domain).
     """
     T = len(getters)
-    need_fd = [j for j, g in enumerate(getters) if g[1] is None or sweep.dq == 0]
+    speed = np.broadcast_to(sweep.speed(x), np.shape(x))
+    need_fd = [j for j, g in enumerate(getters) if g[1] is None or speed[j] == 0]
     probe = x
     if need_fd:
         probe = np.concatenate([x, x - h, x + h])
@@ -324,8 +293,8 @@ def _derivative_probe(linkage, sweep, order, getters, x, h):
     out = np.zeros(T)
     reg = m.regular
     for j, (get, rate, is_angle) in enumerate(getters):
-        if rate is not None and sweep.dq != 0:
-            out[j] = rate(m)[j] / sweep.dq
+        if rate is not None and speed[j] != 0:
+            out[j] = rate(m)[j] / speed[j]
             continue
         f = get(m)
         f0, fm, fp = f[j], f[T + j], f[2 * T + j]
@@ -355,7 +324,7 @@ def refine_extremes(linkage, sweep, order, quantities, values, domain, iteration
     """
     q = domain.q
     span = float(q[-1] - q[0]) if q.size > 1 else 1.0
-    rotary = any(isinstance(d, Crank) and d.link == sweep.driver for d in linkage.drivers)
+    rotary = linkage.driver(sweep.driver).rotary
     h = 1e-5 if rotary else 1e-5 * max(abs(span), 1e-12)
     targets = []  # (symbol index, sign, run, k)
     for qi, qt in enumerate(quantities):
@@ -392,7 +361,7 @@ def refine_extremes(linkage, sweep, order, quantities, values, domain, iteration
     def rising(mid):
         return signs * _derivative_probe(linkage, sweep, order, getters, mid, h)[0] > 0
 
-    lo, hi = _bisect(lo, hi, rising, 1e-13, iterations)
+    lo, hi = bisect(lo, hi, rising, 1e-13, iterations)
     at = 0.5 * (lo + hi)
     m = solve(linkage, sweep.inputs(at), order=order)
     best = {}
@@ -465,7 +434,7 @@ def _scan_gaps(linkage, sweep, order, q, motion, runs):
         return np.array([m.conditions[ci].sin_gamma[T + j] - m.conditions[ci].sin_gamma[j]
                          for j, (ci, *_r) in enumerate(targets)]) < 0
 
-    lo, hi = _bisect(lo, hi, falling, 1e-14, 60)
+    lo, hi = bisect(lo, hi, falling, 1e-14, 60)
     at = 0.5 * (lo + hi)
     m = solve(linkage, sweep.inputs(at), order=order)
     toggles, gaps = [], []
@@ -513,7 +482,7 @@ def analyse_sweep(linkage: Linkage, sweep: Sweep, quantities, order: int,
     SweepResult
     """
     q_out = np.asarray(sweep.q, dtype=float)
-    rotary = any(isinstance(d, Crank) and d.link == sweep.driver for d in linkage.drivers)
+    rotary = linkage.driver(sweep.driver).rotary
     span = float(q_out[-1] - q_out[0])
     fine_step = SEARCH_STEP if rotary else span / 720
     if q_out.size > 1 and np.max(np.diff(q_out)) > fine_step * (1 + 1e-9):
@@ -525,12 +494,12 @@ def analyse_sweep(linkage: Linkage, sweep: Sweep, quantities, order: int,
     motion = solve(linkage, sweep.inputs(q_all), order=order)
     good = motion.regular.copy()
     # gaps the grid stepped over: refine near-toggles on the grid's own runs
-    toggles, gaps = _scan_gaps(linkage, sweep, order, q_all, motion, _runs(good))
+    toggles, gaps = _scan_gaps(linkage, sweep, order, q_all, motion, true_runs(good))
     for x, k in gaps:
         # mark the grid point at a hidden gap as bad: the boundary search
         # below then starts from its neighbours
         good[k] = False
-    bad_runs = _runs(~good)
+    bad_runs = true_runs(~good)
     excluded = []
     if bad_runs:
         goods, bads, where = [], [], []
@@ -644,7 +613,7 @@ def _unwrap_runs(v, runs, connected):
 
 
 def _describe_exclusions(excluded, linkage, sweep):
-    rotary = any(isinstance(d, Crank) and d.link == sweep.driver for d in linkage.drivers)
+    rotary = linkage.driver(sweep.driver).rotary
     parts = []
     for start, stop, reason in excluded:
         if rotary:

@@ -15,8 +15,10 @@ square linear system per position.  It is assembled from the engine's topology
 and, because every driver and every dyad of the engine is a statically
 determinate group (an Assur group), it is block lower-triangular in the
 reverse solving order: each element's 3 or 6 unknowns are solved for all
-positions at once by a batched Gaussian elimination with partial pivoting,
-from the last dyad back to the drivers.  :func:`square_system` assembles the
+positions at once by a batched Gaussian elimination with partial pivoting
+(:mod:`.elimination`), from the last dyad back to the drivers.  The model
+(bodies, loads, pairs, results) is in :mod:`.force_model`, the load programs
+in :mod:`.loads`.  :func:`square_system` assembles the
 whole matrix of one position (for tests and inspection).
 
 Conventions (as the book, 第二章第一节)
@@ -39,353 +41,17 @@ k - 1 pairs with the defining link (the pin is part of that link).
 
 from __future__ import annotations
 
-import dataclasses
-from typing import Dict, Optional, Tuple
+from typing import Dict, Optional
 
 import numpy as np
 
-from mechcli.core.linkage import (RPR, RRP, RRR, Crank, Ground, Linkage, LinkageMotion,
-                                  PointOnLink, SliderDriver)
-
-#: condition number of an element block above which a position is flagged
-#: (reactions then carry ~cond * 1e-16 relative error)
-COND_FLAG = 1e8
-
-
-class ForceModelError(ValueError):
-    """The linkage, bodies or loads cannot be modelled (bad point or link)."""
-
-    def __init__(self, message, what=None):
-        super().__init__(message)
-        self.what = what
-
-
-# ---------------------------------------------------------------------------
-# model description
-# ---------------------------------------------------------------------------
-@dataclasses.dataclass(frozen=True)
-class Body:
-    """Inertia of one moving link.
-
-    The centre of mass is ``origin + (along + i*normal) * exp(i*theta_link)``
-    (as :class:`~mechcli.core.linkage.PointOnLink`); ``mass`` [kg] and
-    ``inertia`` J_S about the centre of mass [kg m^2].
-    """
-
-    link: int
-    mass: float = 0.0
-    inertia: float = 0.0
-    origin: Optional[str] = None
-    along: float = 0.0
-    normal: float = 0.0
-
-
-@dataclasses.dataclass(frozen=True)
-class Load:
-    """An external force (at a point of a link) or torque on a link.
-
-    ``fx``, ``fy`` [N] (a force) or ``torque`` [N m]: scalars or arrays over
-    the positions (already multiplied by any table factor and active mask).
-    The force acts at ``origin + (along + i*normal) * exp(i*theta_link)``
-    (default: the link's centre of mass).  With ``relative`` the force's
-    components are in the link's own axes (along, left normal).
-    """
-
-    name: str
-    link: int
-    fx: object = 0.0
-    fy: object = 0.0
-    torque: object = 0.0
-    origin: Optional[str] = None
-    along: float = 0.0
-    normal: float = 0.0
-    relative: bool = False
-
-
-@dataclasses.dataclass(frozen=True)
-class Pair:
-    """A kinematic pair between links ``i < j`` at point ``point``.
-
-    ``kind`` is ``"R"`` (revolute) or ``"P"`` (prismatic; ``guide`` is the
-    link that carries the guide line, ``block`` the sliding one).
-    """
-
-    i: int
-    j: int
-    kind: str
-    point: str
-    element: int
-    guide: Optional[int] = None
-    block: Optional[int] = None
-
-    @property
-    def label(self):
-        sep = "_" if self.i >= 10 or self.j >= 10 else ""
-        return f"{self.i}{sep}{self.j}"
-
-
-@dataclasses.dataclass(frozen=True)
-class Topology:
-    """Pairs, drivers and link reference points of a linkage.
-
-    ``frames[link] = (origin, second)``: the point the link's local
-    coordinates start from and the second point that fixes its length (None
-    for a block or a guide with no point on it); the default centre of mass is
-    their midpoint (or the origin).
-    """
-
-    linkage: Linkage
-    links: Tuple[int, ...]
-    pairs: Tuple[Pair, ...]
-    members: Dict[str, frozenset]
-    owner: Dict[str, int]
-    frames: Dict[int, Tuple[str, Optional[str]]]
-    blocks: Tuple[Tuple[int, Tuple[int, ...], Tuple[int, ...]], ...]
-
-
-def topology(linkage: Linkage) -> Topology:
-    """Derive the pairs of a linkage from its elements (see the module notes)."""
-    frame = linkage.frame
-    owner: Dict[str, int] = {}
-    members: Dict[str, set] = {}
-    frames: Dict[int, list] = {}
-    pairs = []
-    blocks = []
-
-    def put(point, link):
-        members.setdefault(point, set()).add(link)
-
-    def new_point(point, link):
-        owner[point] = link
-        put(point, link)
-
-    def rev(point, link, idx):
-        a = owner[point]
-        put(point, link)
-        pairs.append(Pair(min(a, link), max(a, link), "R", point, idx))
-
-    def pri(guide, block, point, idx):
-        pairs.append(Pair(min(guide, block), max(guide, block), "P", point, idx, guide, block))
-
-    for idx in linkage.order:
-        el = linkage.elements[idx]
-        start = len(pairs)
-        if isinstance(el, Ground):
-            new_point(el.name, frame)
-            continue
-        if isinstance(el, PointOnLink):
-            if el.link not in members.get(el.origin, ()):
-                raise ForceModelError(
-                    f"point '{el.name}' is placed from '{el.origin}', which is not on link "
-                    f"{el.link}", ("point", el.name))
-            new_point(el.name, el.link)
-            if frames[el.link][1] is None:
-                frames[el.link][1] = el.name
-            continue
-        if isinstance(el, Crank):
-            rev(el.pivot, el.link, idx)
-            new_point(el.point, el.link)
-            frames[el.link] = [el.pivot, el.point]
-            new_links = (el.link,)
-        elif isinstance(el, SliderDriver):
-            if owner.get(el.origin) != frame:
-                raise ForceModelError(
-                    f"the slider driver of link {el.link} needs its origin '{el.origin}' on "
-                    "the frame", ("link", el.link))
-            new_point(el.point, el.link)
-            pri(frame, el.link, el.point, idx)
-            frames[el.link] = [el.point, None]
-            new_links = (el.link,)
-        elif isinstance(el, RRR):
-            rev(el.point_a, el.link_a, idx)
-            new_point(el.joint, el.link_a)
-            put(el.joint, el.link_b)
-            pairs.append(Pair(min(el.link_a, el.link_b), max(el.link_a, el.link_b), "R",
-                              el.joint, idx))
-            rev(el.point_b, el.link_b, idx)
-            frames[el.link_a] = [el.point_a, el.joint]
-            frames[el.link_b] = [el.point_b, el.joint]
-            new_links = (el.link_a, el.link_b)
-        elif isinstance(el, RRP):
-            rev(el.point, el.link, idx)
-            new_point(el.joint, el.link)
-            put(el.joint, el.slider)
-            pairs.append(Pair(min(el.link, el.slider), max(el.link, el.slider), "R",
-                              el.joint, idx))
-            pri(el.guide_link, el.slider, el.joint, idx)
-            frames[el.link] = [el.point, el.joint]
-            frames[el.slider] = [el.joint, None]
-            new_links = (el.link, el.slider)
-        elif isinstance(el, RPR):
-            rev(el.point, el.block, idx)
-            pri(el.guide, el.block, el.point, idx)
-            rev(el.pivot, el.guide, idx)
-            frames[el.block] = [el.point, None]
-            frames[el.guide] = [el.pivot, None]
-            new_links = (el.block, el.guide)
-        else:  # pragma: no cover - the engine has no other element
-            raise ForceModelError(f"unsupported element {el!r}")
-        blocks.append((idx, new_links, tuple(range(start, len(pairs)))))
-    links = tuple(ln for _, nl, _ in blocks for ln in nl)
-    return Topology(linkage, links, tuple(pairs), {k: frozenset(v) for k, v in members.items()},
-                    owner, {k: (v[0], v[1]) for k, v in frames.items()}, tuple(blocks))
-
-
-def com_of(topo: Topology, body: Optional[Body], link):
-    """``(origin, along, normal)`` of a link's centre of mass; ``along is None``
-    means the midpoint of the link's two points (the default)."""
-    if body is not None and body.origin is not None:
-        return body.origin, body.along, body.normal
-    origin, second = topo.frames[link]
-    return (origin, 0.0, 0.0) if second is None else (origin, None, None)
-
-
-# ---------------------------------------------------------------------------
-# results
-# ---------------------------------------------------------------------------
-@dataclasses.dataclass(frozen=True)
-class PairForce:
-    """Reaction of a pair over the positions: force of ``i`` on ``j`` (fx, fy) [N]
-    and, for a prismatic pair, the couple of ``i`` on ``j`` [N m] about the
-    pair's point (zero for a revolute pair)."""
-
-    pair: Pair
-    fx: np.ndarray
-    fy: np.ndarray
-    couple: np.ndarray
-
-    @property
-    def magnitude(self):
-        return np.hypot(self.fx, self.fy)
-
-
-@dataclasses.dataclass(frozen=True)
-class ForceResult:
-    """Kinetostatics over the positions of a motion.
-
-    Attributes
-    ----------
-    balancing : dict
-        ``{driver link: array}``: torque [N m] on a crank, force [N] along a
-        slider driver's line.
-    pairs : list of PairForce
-        In the order of the topology's pairs.
-    frame_force : (ndarray, ndarray)
-        Force transmitted to the frame (through its pairs and the drives) [N].
-    frame_moment : ndarray
-        Moment transmitted to the frame about the origin (0, 0) [N m].
-    input_power : ndarray
-        Σ balancing · driver speed [W].
-    cond : ndarray
-        Largest 1-norm condition number of the (scaled) element blocks.
-    power_residual : ndarray
-        Virtual-power balance Σ balancing·ω* + Σ known loads·v* (ω*, v* per unit
-        primary input speed): zero up to round-off (a second route to Mb).
-    force_residual : ndarray
-        |Σ external + gravity + frame reactions − Σ m a_S| over the mechanism [N].
-    active : dict
-        ``{load name: bool array}`` (only for conditional loads; set by callers).
-    """
-
-    balancing: Dict[int, np.ndarray]
-    pairs: list
-    frame_force: Tuple[np.ndarray, np.ndarray]
-    frame_moment: np.ndarray
-    input_power: np.ndarray
-    cond: np.ndarray
-    power_residual: np.ndarray
-    force_residual: np.ndarray
-    com: Dict[int, Tuple[np.ndarray, np.ndarray]]
-
-
-# ---------------------------------------------------------------------------
-# batched sparse Gaussian elimination
-# ---------------------------------------------------------------------------
-def _nonzero(v):
-    return not (isinstance(v, float) and v == 0.0)
-
-
-def _gauss(A, B):
-    """Solve ``A X = B`` at every position by Gaussian elimination.
-
-    ``A`` is a k x k list of lists whose entries are Python floats (the same at
-    every position; exact zeros are skipped) or arrays over the positions;
-    ``B`` a list of k arrays of shape (..., N).  A column with a constant pivot
-    of magnitude >= 0.5 (the +-1 of a force equation) is eliminated with it;
-    otherwise the pivot is chosen per position among the candidate rows
-    (partial pivoting).  An exactly singular position gives zeros, never inf or
-    NaN, and is reported in the returned mask.
-    """
-    k = len(A)
-    A = [list(r) for r in A]
-    B = list(B)
-    free = list(range(k))
-    pivots = []
-    singular = None
-    for c in range(k):
-        cand = [r for r in free if _nonzero(A[r][c])]
-        const = [r for r in cand if isinstance(A[r][c], float) and abs(A[r][c]) >= 0.5]
-        if const:
-            p = max(const, key=lambda r: abs(A[r][c]))
-        elif len(cand) == 1:
-            p = cand[0]
-        elif cand:
-            # partial pivoting per position among the candidate rows
-            mags = np.stack([np.abs(np.broadcast_to(A[r][c], B[0].shape[-1:])) for r in cand])
-            sel = np.argmax(mags, axis=0)
-            p = cand[0]
-            if np.any(sel != 0):
-                rows = [A[r] for r in cand]
-                rhs = [B[r] for r in cand]
-                new0 = [np.choose(sel, [np.broadcast_to(row[j], sel.shape) for row in rows])
-                        if any(_nonzero(row[j]) for row in rows) else 0.0 for j in range(k)]
-                rhs0 = np.choose(sel, rhs) if B[0].ndim == 1 else np.where(
-                    sel == 0, rhs[0], 0.0) + sum(np.where(sel == i, rhs[i], 0.0)
-                                                 for i in range(1, len(cand)))
-                for i, r in enumerate(cand[1:], start=1):
-                    hit = sel == i
-                    A[r] = [np.where(hit, rows[0][j], rows[i][j])
-                            if _nonzero(rows[0][j]) or _nonzero(rows[i][j]) else 0.0
-                            for j in range(k)]
-                    B[r] = np.where(hit, rhs[0], rhs[i])
-                A[p], B[p] = new0, rhs0
-        else:
-            p = free[0]  # a structurally singular column
-        free.remove(p)
-        pivots.append(p)
-        piv = A[p][c]
-        if isinstance(piv, float):
-            if piv == 0.0:
-                singular = np.ones(B[0].shape[-1], dtype=bool)
-                piv = 1.0
-        else:
-            zero = piv == 0.0
-            if zero.any():
-                singular = zero if singular is None else singular | zero
-                piv = np.where(zero, 1.0, piv)
-        inv = 1.0 / piv
-        for r in free:
-            if not _nonzero(A[r][c]):
-                continue
-            f = A[r][c] * inv
-            A[r][c] = 0.0
-            for j in range(c + 1, k):
-                if _nonzero(A[p][j]):
-                    A[r][j] = A[r][j] - f * A[p][j]
-            B[r] = B[r] - f * B[p]
-        A[p][c] = piv
-    X = [None] * k
-    for c in range(k - 1, -1, -1):
-        p = pivots[c]
-        acc = B[p]
-        for j in range(c + 1, k):
-            if _nonzero(A[p][j]):
-                acc = acc - A[p][j] * X[j]
-        X[c] = acc / A[p][c]
-    if singular is not None and singular.any():
-        X = [np.where(singular, 0.0, x) for x in X]
-    return X, singular
-
+from mechcli.core.linkage.elimination import gauss
+from mechcli.core.linkage.engine import LinkageMotion
+# the model and the load programs, re-exported: this module is the entry point
+from mechcli.core.linkage.force_model import (COND_FLAG, Body, ForceModelError,  # noqa: F401
+                                              ForceResult, Load, Pair, PairForce, Topology,
+                                              com_of, topology)
+from mechcli.core.linkage.loads import LoadProgram  # noqa: F401
 
 # ---------------------------------------------------------------------------
 # solve
@@ -538,7 +204,7 @@ def solve_forces(topo: Topology, motion: LinkageMotion, bodies: Dict[int, Body],
     driver_cols = {}
     for d in linkage.drivers:
         col = []
-        if isinstance(d, Crank):
+        if d.rotary:
             col.append((eq_of[d.link] + 2, 1.0 / L))
         else:
             p = motion.points[d.point]
@@ -548,8 +214,8 @@ def solve_forces(topo: Topology, motion: LinkageMotion, bodies: Dict[int, Body],
         columns.append(col)
         owners.append(("D", d.link, 0))
     # couples and balancing torques: the scaled unknown is value / L
-    is_couple = [o[0] == "P" and o[2] == 1 or (o[0] == "D" and isinstance(
-        _driver(linkage, o[1]), Crank)) for o in owners]
+    is_couple = [o[0] == "P" and o[2] == 1 or (o[0] == "D" and linkage.driver(o[1]).rotary)
+                 for o in owners]
 
     rhs = np.zeros((3 * len(topo.links), flat))
     for link in topo.links:
@@ -567,7 +233,7 @@ def solve_forces(topo: Topology, motion: LinkageMotion, bodies: Dict[int, Body],
         for pi in pidx:
             unk += list(pair_cols[pi][:2])
         el = linkage.elements[idx]
-        if isinstance(el, (Crank, SliderDriver)):
+        if el.is_driver:
             unk.append(driver_cols[el.link])
         rows = [eq_of[ln] + c for ln in new_links for c in range(3)]
         k = len(rows)
@@ -593,7 +259,7 @@ def solve_forces(topo: Topology, motion: LinkageMotion, bodies: Dict[int, Body],
             nrm = np.max([sum(full[i][j] for i in range(k)) for j in range(k)], axis=0)
             b = [np.concatenate([bi[None, :], np.eye(k)[i][:, None] + np.zeros((1, flat))])
                  for i, bi in enumerate(b)]
-        X, sing = _gauss(A, b)
+        X, sing = gauss(A, b)
         if condition:
             inv_nrm = np.max([sum(np.abs(X[i][1 + j]) for i in range(k)) for j in range(k)],
                              axis=0)
@@ -632,7 +298,7 @@ def solve_forces(topo: Topology, motion: LinkageMotion, bodies: Dict[int, Body],
     power = np.zeros(flat)
     for d in linkage.drivers:
         val = balancing[d.link].reshape(flat)
-        if isinstance(d, Crank):
+        if d.rotary:
             fm -= val
             power += val * arr(motion.links[d.link].omega)
         else:
@@ -641,7 +307,7 @@ def solve_forces(topo: Topology, motion: LinkageMotion, bodies: Dict[int, Body],
             ffx -= val * ux
             ffy -= val * uy
             fm -= arr(p.x) * val * uy - arr(p.y) * val * ux
-            power += val * arr(motion.slides[d.name or str(d.link)].v)
+            power += val * arr(motion.slides[d.slide_name(frame)].v)
     # global balance: Σ known forces (gravity, loads, inertia) = force on the frame
     kfx = sum(known[ln][0] for ln in topo.links)
     kfy = sum(known[ln][1] for ln in topo.links)
@@ -651,10 +317,10 @@ def solve_forces(topo: Topology, motion: LinkageMotion, bodies: Dict[int, Body],
         pres = np.zeros(flat)
         for d in linkage.drivers:
             val = balancing[d.link].reshape(flat)
-            if isinstance(d, Crank):
+            if d.rotary:
                 pres += val * arr(unit_motion.links[d.link].omega)
             else:
-                pres += val * arr(unit_motion.slides[d.name or str(d.link)].v)
+                pres += val * arr(unit_motion.slides[d.slide_name(frame)].v)
         for link in topo.links:
             x0, y0, origin, along, normal = com[link]
             _x, _y, vx, vy, _a, _b = _point(unit_motion, topo, origin, link, along, normal,
@@ -669,93 +335,3 @@ def solve_forces(topo: Topology, motion: LinkageMotion, bodies: Dict[int, Body],
                        power.reshape(n), cond.reshape(n), power_residual,
                        force_residual.reshape(n),
                        {ln: (com[ln][0].reshape(n), com[ln][1].reshape(n)) for ln in topo.links})
-
-
-def _driver(linkage, link):
-    for d in linkage.drivers:
-        if d.link == link:
-            return d
-    raise KeyError(link)
-
-
-# ---------------------------------------------------------------------------
-# load programs: constant, tabulated, conditional
-# ---------------------------------------------------------------------------
-@dataclasses.dataclass(frozen=True)
-class LoadProgram:
-    """A load with its program over the input.
-
-    ``window`` (lo, hi) of the primary input [rad or m] (periodic in 2*pi when
-    ``rotary``; lo > hi wraps through 0); ``velocity`` a
-    :class:`~mechcli.core.linkage.kinematics.Quantity` whose sign must be ``sign``;
-    ``slide`` a slide quantity that must lie within ``band`` (absolute limits
-    [m], see :meth:`with_band_limits`; fractions of the stroke until then);
-    ``table`` (xs, ys) a factor tabulated against the input (linear, periodic
-    when rotary).
-    """
-
-    load: Load
-    window: Optional[Tuple[float, float]] = None
-    rotary: bool = True
-    velocity: object = None
-    sign: int = 0
-    slide: object = None
-    band: Optional[Tuple[float, float]] = None
-    table: Optional[Tuple[np.ndarray, np.ndarray]] = None
-    band_limits: Optional[Tuple[float, float]] = None
-
-    @property
-    def conditional(self):
-        return self.window is not None or self.velocity is not None or self.band is not None
-
-    def with_band_limits(self, s_min, s_max):
-        """Fix the band to absolute slide limits from the slide's stroke."""
-        lo, hi = self.band
-        h = s_max - s_min
-        return dataclasses.replace(self, band_limits=(s_min + lo * h, s_min + hi * h))
-
-    def active(self, q, motion):
-        """Boolean mask of the positions where the load acts."""
-        q = np.asarray(q, dtype=float)
-        on = np.ones(q.shape, dtype=bool)
-        if self.window is not None:
-            lo, hi = self.window
-            if self.rotary:
-                two_pi = 2 * np.pi
-                x = np.mod(q - lo, two_pi)
-                width = np.mod(hi - lo, two_pi)
-                if hi - lo >= two_pi:
-                    width = two_pi
-                # inclusive at both ends, to round-off of the input grid
-                tol = 1e-12 * two_pi
-                on &= (x <= width + tol) | (x >= two_pi - tol)
-            else:
-                on &= (q >= lo) & (q <= hi)
-        if self.velocity is not None:
-            v = np.asarray(self.velocity.get(motion))
-            on &= (v > 0) if self.sign > 0 else (v < 0)
-        if self.band_limits is not None:
-            s = np.asarray(self.slide.get(motion))
-            lo, hi = self.band_limits
-            on &= (s >= lo) & (s <= hi)
-        return on
-
-    def factor(self, q):
-        if self.table is None:
-            return 1.0
-        xs, ys = self.table
-        if self.rotary:
-            # periodic: close the table over one turn (the last point joins the first)
-            period = 2 * np.pi
-            if xs[-1] - xs[0] < period * (1 - 1e-12):
-                xs = np.append(xs, xs[0] + period)
-                ys = np.append(ys, ys[0])
-            return np.interp(np.mod(q - xs[0], period) + xs[0], xs, ys)
-        return np.interp(q, xs, ys)
-
-    def evaluate(self, q, motion):
-        """The load with its components as arrays over ``q``; and the active mask."""
-        on = self.active(q, motion)
-        f = np.where(on, 1.0, 0.0) * self.factor(q)
-        ld = self.load
-        return dataclasses.replace(ld, fx=ld.fx * f, fy=ld.fy * f, torque=ld.torque * f), on

@@ -1,0 +1,679 @@
+"""The elements of a linkage: each one class that owns everything about it.
+
+A planar linkage is a frame, one or more drivers and a sequence of class-II
+Assur groups (dyads) solved in order (杆组法).  Every element class here owns
+
+* what it needs and what it makes (:meth:`Element.needs`, :meth:`Element.makes`),
+* its position / velocity / acceleration step (:meth:`Element.step`),
+* its kinematic pairs for kinetostatics (:meth:`Element.pairs`),
+* the name of the slide it reports (:meth:`Element.slide_name`) and which of
+  its links are reported as rotating (:meth:`Element.reported_links`),
+* how it is drawn (:meth:`Element.sketch`, plain data: the report layer turns
+  :class:`Bar`, :class:`Block`, :class:`Guide` and :class:`Pivot` into
+  pictures).
+
+Adding a dyad type (PRP, RPP, ...) is one new class here plus its tests; the
+engine, the sweep analysis, kinetostatics, the mobility count and the drawings
+use only these methods.
+
+Points are complex numbers ``x + iy`` kept as separate real arrays [m];
+velocities [m/s] and accelerations [m/s^2] likewise; angles are
+counter-clockwise from +x [rad].  Every length, offset, coordinate and angle of
+an element may be an array that broadcasts against the input positions: one
+solve then covers many candidate linkages (designs) at once.
+
+Notes
+-----
+This generalises the closed-vector-loop method of chapter 1 of the book
+(eq. 1-1 ... 1-36): the four-bar of 例 1-1 is ``Crank`` + ``RRR``; the
+slider-crank of 例 1-2 is ``Crank`` + ``RRP``; the guide-bar of 例 1-3 is
+``Crank`` + ``RPR``; the shaper of 例 1-4 is ``Crank`` + ``RPR`` +
+``PointOnLink`` + ``RRP``.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from typing import ClassVar, Optional, Tuple
+
+import numpy as np
+
+#: relative size below which a dyad counts as singular (a dead point).  The
+#: closed-form positions carry a sqrt of a rounded discriminant, so sin(gamma)
+#: at an exact toggle comes out as large as ~sqrt(eps) ~ 1.5e-8: anything below
+#: 1e-7 is numerically indistinguishable from the toggle itself.
+SINGULAR_TOL = 1e-7
+#: relative tolerance for a dyad that just touches its assembly limit
+ASSEMBLY_TOL = 1e-10
+
+
+# ---------------------------------------------------------------------------
+# drawing primitives (data only; report/kin_plots.py draws them)
+# ---------------------------------------------------------------------------
+@dataclasses.dataclass(frozen=True)
+class Bar:
+    """A bar drawn between two points."""
+
+    a: str
+    b: str
+
+
+@dataclasses.dataclass(frozen=True)
+class Block:
+    """A slider block at ``point``, turned with link ``link`` (``None``: not turned)."""
+
+    point: str
+    link: Optional[int] = None
+
+
+@dataclasses.dataclass(frozen=True)
+class Guide:
+    """A guide line carried by link ``link``.
+
+    It passes through ``point`` shifted by ``offset`` [m] to the left of its
+    direction, which is ``angle`` [rad] relative to the link.  ``ray``: drawn
+    from that point along ``branch`` times the direction (a guide bar pivoted
+    at ``point``); otherwise a line spanning the range of slide ``slide``.
+    """
+
+    link: int
+    point: str
+    angle: float
+    offset: float
+    slide: str
+    ray: bool = False
+    branch: int = 1
+
+
+@dataclasses.dataclass(frozen=True)
+class Pivot:
+    """A point fixed on the frame, drawn as a ground symbol."""
+
+    name: str
+
+
+# ---------------------------------------------------------------------------
+# solver state and helpers
+# ---------------------------------------------------------------------------
+class Solve2:
+    """Cramer's rule for ``X*(c1x, c1y) + Y*(c2x, c2y) = (rx, ry)`` on arrays.
+
+    Positions in ``bad`` (a mask, or None when all are regular) get 0, never
+    inf or NaN.
+    """
+
+    def __init__(self, c1x, c1y, c2x, c2y, bad):
+        det = c1x * c2y - c1y * c2x
+        if bad is not None:
+            det = np.where(bad, 1.0, det)
+        self.inv = 1.0 / det
+        self.c = (c1x, c1y, c2x, c2y)
+        self.bad = bad
+
+    def __call__(self, rx, ry):
+        c1x, c1y, c2x, c2y = self.c
+        x = (rx * c2y - ry * c2x) * self.inv
+        y = (c1x * ry - c1y * rx) * self.inv
+        if self.bad is not None:
+            x = np.where(self.bad, 0.0, x)
+            y = np.where(self.bad, 0.0, y)
+        return x, y
+
+
+class LinkState:
+    """A solved link: angle, its cosine and sine, omega, alpha."""
+
+    __slots__ = ("theta", "c", "s", "w", "al")
+
+    def __init__(self, theta, c, s, w, al):
+        self.theta, self.c, self.s, self.w, self.al = theta, c, s, w, al
+
+
+class PointState:
+    """A solved point: x, y and (where computed) vx, vy, ax, ay."""
+
+    __slots__ = ("x", "y", "vx", "vy", "ax", "ay")
+
+    def __init__(self, x, y, vx=None, vy=None, ax=None, ay=None):
+        self.x, self.y, self.vx, self.vy, self.ax, self.ay = x, y, vx, vy, ax, ay
+
+
+def rotate_about(o: PointState, link: LinkState, rx, ry, vel, acc) -> PointState:
+    """The point ``o + (rx, ry)`` fixed on ``link``, with its velocity and acceleration."""
+    p = PointState(o.x + rx, o.y + ry)
+    if vel:
+        p.vx, p.vy = o.vx - link.w * ry, o.vy + link.w * rx
+    if acc:
+        w2 = link.w * link.w
+        p.ax = o.ax - link.al * ry - w2 * rx
+        p.ay = o.ay + link.al * rx - w2 * ry
+    return p
+
+
+class Element:
+    """Base of every element.  Subclasses are frozen dataclasses.
+
+    Class attributes
+    ----------------
+    kind : str
+        Short name (``"crank"``, ``"RRR"`` ...).
+    is_driver : bool
+        A driver takes an input motion (``inputs[link]``).
+    rotary : bool
+        For a driver: its input is an angle (else a slide).
+    lengths_ : tuple of str
+        Fields that are lengths or coordinates [m] (the linkage's scale).
+    angles_ : tuple of str
+        Fields that are angles [rad].
+    """
+
+    kind: ClassVar[str] = ""
+    is_driver: ClassVar[bool] = False
+    rotary: ClassVar[bool] = False
+    lengths_: ClassVar[Tuple[str, ...]] = ()
+    angles_: ClassVar[Tuple[str, ...]] = ()
+
+    def needs(self):
+        """(points, links) that must be known before this element is solved."""
+        raise NotImplementedError
+
+    def makes(self):
+        """(points, links) this element positions."""
+        raise NotImplementedError
+
+    def parameters(self):
+        """Every numeric parameter (lengths, coordinates, angles, branch)."""
+        return tuple(getattr(self, f) for f in self.lengths_ + self.angles_ + ("branch",)
+                     if hasattr(self, f))
+
+    def sizes(self):
+        """Absolute values of the length-like parameters [m]."""
+        return tuple(np.abs(getattr(self, f)) for f in self.lengths_)
+
+    def slide_name(self, frame) -> Optional[str]:
+        """Symbol suffix of the slide this element reports (``s3``, ``s23``, ``sE``)."""
+        return None
+
+    def translating_links(self, frame):
+        """Links made here that only translate (their angle never changes)."""
+        return ()
+
+    def reported_links(self, frame):
+        """Links made here whose angle, omega and alpha are reported."""
+        return ()
+
+    def transmission_joint(self) -> Optional[str]:
+        """Joint whose transmission angle is reported (RRR dyads)."""
+        return None
+
+    def step(self, st):
+        """Solve this element on the state ``st`` (see ``engine.solve``)."""
+        raise NotImplementedError
+
+    def pairs(self, tb):
+        """Declare the element's points and kinematic pairs on a topology builder."""
+        raise NotImplementedError
+
+    def sketch(self):
+        """Drawing primitives: a tuple of Bar, Block, Guide, Pivot."""
+        return ()
+
+
+# ---------------------------------------------------------------------------
+# elements
+# ---------------------------------------------------------------------------
+@dataclasses.dataclass(frozen=True)
+class Ground(Element):
+    """A point fixed on the frame at (x, y) [m]."""
+
+    name: str
+    x: float
+    y: float
+
+    kind: ClassVar[str] = "ground"
+    lengths_: ClassVar[Tuple[str, ...]] = ("x", "y")
+
+    def needs(self):
+        return (), ()
+
+    def makes(self):
+        return (self.name,), ()
+
+    def step(self, st):
+        st.P[self.name] = PointState(st.full(self.x), st.full(self.y), st.zero, st.zero,
+                                     st.zero, st.zero)
+
+    def pairs(self, tb):
+        tb.new_point(self.name, tb.frame)
+
+    def sketch(self):
+        return (Pivot(self.name),)
+
+
+@dataclasses.dataclass(frozen=True)
+class Crank(Element):
+    """Rotary driver: link ``link`` turns about the known point ``pivot``.
+
+    ``point = pivot + length * exp(i*theta)``, where ``theta`` is the driver's
+    input angle (the link's absolute angle) [rad]; ``length`` [m].
+    """
+
+    link: int
+    pivot: str
+    point: str
+    length: float
+
+    kind: ClassVar[str] = "crank"
+    is_driver: ClassVar[bool] = True
+    rotary: ClassVar[bool] = True
+    lengths_: ClassVar[Tuple[str, ...]] = ("length",)
+
+    def needs(self):
+        return (self.pivot,), ()
+
+    def makes(self):
+        return (self.point,), (self.link,)
+
+    def step(self, st):
+        m = st.inputs[self.link]
+        th, w, al = st.full(m.q), st.full(m.dq), st.full(m.ddq)
+        c, s = np.cos(th), np.sin(th)
+        link = LinkState(th, c, s, w, al)
+        st.P[self.point] = rotate_about(st.P[self.pivot], link, self.length * c,
+                                        self.length * s, st.vel, st.acc)
+        st.L[self.link] = link
+
+    def pairs(self, tb):
+        tb.revolute(self.pivot, self.link)
+        tb.new_point(self.point, self.link)
+        tb.frames[self.link] = [self.pivot, self.point]
+        return (self.link,)
+
+    def sketch(self):
+        return (Bar(self.pivot, self.point),)
+
+
+@dataclasses.dataclass(frozen=True)
+class SliderDriver(Element):
+    """Linear driver: link ``link`` translates along a line fixed on the frame.
+
+    ``point = origin + s * exp(i*angle)``; ``s`` is the driver's input [m].
+    """
+
+    link: int
+    origin: str
+    point: str
+    angle: float = 0.0
+    name: Optional[str] = None
+
+    kind: ClassVar[str] = "slider"
+    is_driver: ClassVar[bool] = True
+    angles_: ClassVar[Tuple[str, ...]] = ("angle",)
+
+    def needs(self):
+        return (self.origin,), ()
+
+    def makes(self):
+        return (self.point,), (self.link,)
+
+    def slide_name(self, frame):
+        return self.name or str(self.link)
+
+    def translating_links(self, frame):
+        return (self.link,)
+
+    def step(self, st):
+        m = st.inputs[self.link]
+        s = st.full(m.q)
+        ux, uy = np.cos(self.angle), np.sin(self.angle)
+        o = st.P[self.origin]
+        p = PointState(o.x + s * ux, o.y + s * uy)
+        v = st.full(m.dq) if st.vel else None
+        a = st.full(m.ddq) if st.acc else None
+        if st.vel:
+            p.vx, p.vy = o.vx + v * ux, o.vy + v * uy
+        if st.acc:
+            p.ax, p.ay = o.ax + a * ux, o.ay + a * uy
+        st.P[self.point] = p
+        st.L[self.link] = LinkState(st.full(self.angle), ux, uy, st.zero, st.zero)
+        st.slide(self.slide_name(st.frame), self.link, st.frame, s, v, a)
+
+    def pairs(self, tb):
+        if tb.owner.get(self.origin) != tb.frame:
+            tb.fail(f"the slider driver of link {self.link} needs its origin '{self.origin}' "
+                    "on the frame", ("link", self.link))
+        tb.new_point(self.point, self.link)
+        tb.prismatic(tb.frame, self.link, self.point)
+        tb.frames[self.link] = [self.point, None]
+        return (self.link,)
+
+    def sketch(self):
+        return (Block(self.point, None),)
+
+
+@dataclasses.dataclass(frozen=True)
+class RRR(Element):
+    """RRR dyad: link ``link_a`` (from ``point_a``, length ``length_a``) and
+    link ``link_b`` (from ``point_b``, length ``length_b``) meet at ``joint``.
+
+    ``branch = +1`` puts ``joint`` to the left of the directed line
+    point_a -> point_b, ``-1`` to the right.
+    """
+
+    joint: str
+    point_a: str
+    link_a: int
+    length_a: float
+    point_b: str
+    link_b: int
+    length_b: float
+    branch: int = 1
+
+    kind: ClassVar[str] = "RRR"
+    lengths_: ClassVar[Tuple[str, ...]] = ("length_a", "length_b")
+
+    def needs(self):
+        return (self.point_a, self.point_b), ()
+
+    def makes(self):
+        return (self.joint,), (self.link_a, self.link_b)
+
+    def reported_links(self, frame):
+        return (self.link_a, self.link_b)
+
+    def transmission_joint(self):
+        return self.joint
+
+    def step(self, st):
+        pa, pb = st.P[self.point_a], st.P[self.point_b]
+        la, lb = self.length_a, self.length_b
+        dx, dy = pb.x - pa.x, pb.y - pa.y
+        d2 = dx * dx + dy * dy
+        dist = np.sqrt(d2)
+        ok = dist > ASSEMBLY_TOL * st.scale
+        coincide = None
+        if not ok.all():
+            # the known points coincide: with equal lengths (a kite's folded
+            # position) the joint may be anywhere on the circle -- a dead
+            # point, not a failure to assemble
+            kite = np.abs(la - lb) <= ASSEMBLY_TOL * np.maximum(la, lb)
+            if np.any(kite):
+                coincide = ~ok & kite
+            dist = np.where(ok, dist, 1.0)
+        inv = 1.0 / dist
+        along = (la * la - lb * lb + d2) * (0.5 * inv)
+        h2 = la * la - along * along
+        ok &= h2 >= -4 * ASSEMBLY_TOL * la * la
+        h = np.sqrt(np.maximum(h2, 0.0)) * (self.branch * 1.0)
+        ex, ey = dx * inv, dy * inv
+        qx = pa.x + along * ex - h * ey
+        qy = pa.y + along * ey + h * ex
+        rax, ray = qx - pa.x, qy - pa.y
+        rbx, rby = qx - pb.x, qy - pb.y
+        nab = 1.0 / (la * lb)
+        cross = rax * rby - ray * rbx
+        sing = np.abs(cross) * nab
+        if coincide is not None:
+            ok = ok | coincide
+            sing = np.where(coincide, 0.0, sing)
+        st.condition(self, self.joint, sing, (rax * rbx + ray * rby) * nab)
+        bad = st.mark(ok, sing, coincide)
+        q = PointState(qx, qy)
+        wa = wb = aa = ab = None
+        if st.vel:
+            solve2 = Solve2(-ray, rax, rby, -rbx, bad)
+            wa, wb = solve2(pb.vx - pa.vx, pb.vy - pa.vy)
+            q.vx, q.vy = pa.vx - wa * ray, pa.vy + wa * rax
+            if st.acc:
+                wa2, wb2 = wa * wa, wb * wb
+                aa, ab = solve2(pb.ax - pa.ax + wa2 * rax - wb2 * rbx,
+                                pb.ay - pa.ay + wa2 * ray - wb2 * rby)
+                q.ax = pa.ax - aa * ray - wa2 * rax
+                q.ay = pa.ay + aa * rax - wa2 * ray
+        st.P[self.joint] = q
+        st.L[self.link_a] = LinkState(np.arctan2(ray, rax), rax * (1 / la), ray * (1 / la), wa, aa)
+        st.L[self.link_b] = LinkState(np.arctan2(rby, rbx), rbx * (1 / lb), rby * (1 / lb), wb, ab)
+
+    def pairs(self, tb):
+        tb.revolute(self.point_a, self.link_a)
+        tb.new_point(self.joint, self.link_a)
+        tb.joint(self.joint, self.link_a, self.link_b)
+        tb.revolute(self.point_b, self.link_b)
+        tb.frames[self.link_a] = [self.point_a, self.joint]
+        tb.frames[self.link_b] = [self.point_b, self.joint]
+        return (self.link_a, self.link_b)
+
+    def sketch(self):
+        return (Bar(self.point_a, self.joint), Bar(self.point_b, self.joint))
+
+
+@dataclasses.dataclass(frozen=True)
+class RRP(Element):
+    """RRP dyad: link ``link`` of length ``length`` from the known ``point`` to a
+    slider pin ``joint`` on block ``slider``, which slides on a guide line of
+    link ``guide_link``.
+
+    The guide line passes through ``guide_point`` (a point on the guide link)
+    shifted by ``offset`` [m] along the line's left normal, in direction
+    ``guide_angle`` [rad] relative to the guide link.  The slide ``s`` is
+    measured along the line from that base point.  ``branch = +1`` takes the
+    larger ``s`` (pin ahead along the guide direction), ``-1`` the smaller.
+    """
+
+    joint: str
+    point: str
+    link: int
+    length: float
+    slider: int
+    guide_link: int
+    guide_point: str
+    guide_angle: float = 0.0
+    offset: float = 0.0
+    branch: int = 1
+    name: Optional[str] = None
+
+    kind: ClassVar[str] = "RRP"
+    lengths_: ClassVar[Tuple[str, ...]] = ("length", "offset")
+    angles_: ClassVar[Tuple[str, ...]] = ("guide_angle",)
+
+    def needs(self):
+        return (self.point, self.guide_point), (self.guide_link,)
+
+    def makes(self):
+        return (self.joint,), (self.link, self.slider)
+
+    def slide_name(self, frame):
+        if self.name:
+            return self.name
+        return str(self.slider) if self.guide_link == frame else f"{self.slider}{self.guide_link}"
+
+    def translating_links(self, frame):
+        return (self.slider,) if self.guide_link == frame else ()
+
+    def reported_links(self, frame):
+        return (self.link,) if self.guide_link == frame else (self.link, self.slider)
+
+    def step(self, st):
+        pp, pg, g = st.P[self.point], st.P[self.guide_point], st.L[self.guide_link]
+        cphi, sphi = np.cos(self.guide_angle), np.sin(self.guide_angle)
+        ux, uy = st.full(g.c * cphi - g.s * sphi), st.full(g.s * cphi + g.c * sphi)
+        moving = self.guide_link != st.frame
+        e = self.offset
+        bx, by = pg.x - e * uy, pg.y + e * ux  # base of the slide
+        wx, wy = bx - pp.x, by - pp.y
+        b = wx * ux + wy * uy
+        length2 = self.length * self.length
+        disc = b * b - (wx * wx + wy * wy - length2)
+        ok = disc >= -4 * ASSEMBLY_TOL * length2
+        s = np.sqrt(np.maximum(disc, 0.0)) * (self.branch * 1.0) - b
+        qx, qy = bx + s * ux, by + s * uy
+        rx, ry = qx - pp.x, qy - pp.y
+        sing = np.abs(rx * ux + ry * uy) * (1.0 / self.length)
+        st.condition(self, self.joint, sing)
+        bad = st.mark(ok, sing)
+        q = PointState(qx, qy)
+        wr = ar = sd = sdd = None
+        if st.vel:
+            solve2 = Solve2(-ry, rx, -ux, -uy, bad)
+            rhs_x, rhs_y = pg.vx - pp.vx, pg.vy - pp.vy
+            if moving:
+                gx, gy = bx - pg.x, by - pg.y
+                rhs_x = rhs_x - g.w * (gy + s * uy)
+                rhs_y = rhs_y + g.w * (gx + s * ux)
+            wr, sd = solve2(rhs_x, rhs_y)
+            q.vx, q.vy = pp.vx - wr * ry, pp.vy + wr * rx
+            if st.acc:
+                wr2 = wr * wr
+                rhs_x = pg.ax - pp.ax + wr2 * rx
+                rhs_y = pg.ay - pp.ay + wr2 * ry
+                if moving:
+                    w2 = g.w * g.w
+                    lx, ly = gx + s * ux, gy + s * uy  # base->pin relative to the guide point
+                    rhs_x = rhs_x - g.al * ly - w2 * lx - 2 * sd * g.w * uy
+                    rhs_y = rhs_y + g.al * lx - w2 * ly + 2 * sd * g.w * ux
+                ar, sdd = solve2(rhs_x, rhs_y)
+                q.ax = pp.ax - ar * ry - wr2 * rx
+                q.ay = pp.ay + ar * rx - wr2 * ry
+        st.P[self.joint] = q
+        st.L[self.link] = LinkState(np.arctan2(ry, rx), rx * (1 / self.length),
+                                    ry * (1 / self.length), wr, ar)
+        st.L[self.slider] = LinkState(g.theta + self.guide_angle if moving
+                                      else st.full(self.guide_angle), ux, uy, g.w, g.al)
+        st.slide(self.slide_name(st.frame), self.slider, self.guide_link, s, sd, sdd)
+
+    def pairs(self, tb):
+        tb.revolute(self.point, self.link)
+        tb.new_point(self.joint, self.link)
+        tb.joint(self.joint, self.link, self.slider)
+        tb.prismatic(self.guide_link, self.slider, self.joint)
+        tb.frames[self.link] = [self.point, self.joint]
+        tb.frames[self.slider] = [self.joint, None]
+        return (self.link, self.slider)
+
+    def sketch(self):
+        return (Bar(self.point, self.joint), Block(self.joint, self.slider),
+                Guide(self.guide_link, self.guide_point, self.guide_angle, self.offset,
+                      self.name or ""))
+
+
+@dataclasses.dataclass(frozen=True)
+class RPR(Element):
+    """RPR dyad (guide-bar): guide link ``guide`` pivoted at known ``pivot``
+    passes through block ``block`` pivoted at the known point ``point``.
+
+    The guide line runs at perpendicular distance ``offset`` [m] (to its left)
+    from the pivot; the guide angle is the line's direction and ``s`` the
+    block's position along it from the foot of the pivot.  ``branch = +1``
+    takes ``s > 0`` (guide pointing from pivot towards the block).
+    """
+
+    point: str
+    block: int
+    pivot: str
+    guide: int
+    offset: float = 0.0
+    branch: int = 1
+    name: Optional[str] = None
+
+    kind: ClassVar[str] = "RPR"
+    lengths_: ClassVar[Tuple[str, ...]] = ("offset",)
+
+    def needs(self):
+        return (self.point, self.pivot), ()
+
+    def makes(self):
+        return (), (self.guide, self.block)
+
+    def slide_name(self, frame):
+        return self.name or f"{self.block}{self.guide}"
+
+    def reported_links(self, frame):
+        return (self.guide,)  # the block turns with the guide
+
+    def step(self, st):
+        pp, pc = st.P[self.point], st.P[self.pivot]
+        e = self.offset
+        scale = st.scale
+        dx, dy = pp.x - pc.x, pp.y - pc.y
+        d2 = dx * dx + dy * dy
+        disc = d2 - e * e
+        ok = disc >= -ASSEMBLY_TOL * scale * scale
+        s = np.sqrt(np.maximum(disc, 0.0)) * (self.branch * 1.0)
+        # d = (s + i e) u  =>  u = d (s - i e) / |d|^2
+        inv = 1.0 / np.maximum(d2, 1e-300 * scale * scale + 1e-300)
+        ux, uy = (dx * s + dy * e) * inv, (dy * s - dx * e) * inv
+        centred = np.equal(e, 0.0)
+        if np.any(centred):
+            # exact unit vector even where d -> 0 (the foot of the pivot)
+            ux = np.where(centred, dx * (inv * s), ux) if np.ndim(e) else dx * (inv * s)
+            uy = np.where(centred, dy * (inv * s), uy) if np.ndim(e) else dy * (inv * s)
+        # det of the velocity system is s: singular when the block passes the
+        # foot of the pivot (the guide's direction is then undefined)
+        sing = np.abs(s) / np.maximum(np.sqrt(d2), scale)
+        st.condition(self, self.point, sing)
+        bad = st.mark(ok, sing, centred & (sing <= SINGULAR_TOL) if np.any(centred) else None)
+        wg = ag = sd = sdd = None
+        if st.vel:
+            solve2 = Solve2(ux, uy, -dy, dx, bad)
+            sd, wg = solve2(pp.vx - pc.vx, pp.vy - pc.vy)
+            if st.acc:
+                w2 = wg * wg
+                sdd, ag = solve2(pp.ax - pc.ax + 2 * sd * wg * uy + w2 * dx,
+                                 pp.ay - pc.ay - 2 * sd * wg * ux + w2 * dy)
+        st.L[self.guide] = LinkState(np.arctan2(uy, ux), ux, uy, wg, ag)
+        st.L[self.block] = st.L[self.guide]
+        st.slide(self.slide_name(st.frame), self.block, self.guide, s, sd, sdd)
+
+    def pairs(self, tb):
+        tb.revolute(self.point, self.block)
+        tb.prismatic(self.guide, self.block, self.point)
+        tb.revolute(self.pivot, self.guide)
+        tb.frames[self.block] = [self.point, None]
+        tb.frames[self.guide] = [self.pivot, None]
+        return (self.block, self.guide)
+
+    def sketch(self):
+        return (Block(self.point, self.block),
+                Guide(self.guide, self.pivot, 0.0, self.offset, self.slide_name(None), True,
+                      self.branch))
+
+
+@dataclasses.dataclass(frozen=True)
+class PointOnLink(Element):
+    """A point fixed on link ``link``: ``origin + (along + i*normal) * exp(i*theta_link)``.
+
+    ``along`` is measured along the link's reference direction, ``normal`` to
+    its left (counter-clockwise), both [m].
+    """
+
+    name: str
+    link: int
+    origin: str
+    along: float = 0.0
+    normal: float = 0.0
+
+    kind: ClassVar[str] = "point"
+    lengths_: ClassVar[Tuple[str, ...]] = ("along", "normal")
+
+    def needs(self):
+        return (self.origin,), (self.link,)
+
+    def makes(self):
+        return (self.name,), ()
+
+    def step(self, st):
+        k = st.L[self.link]
+        rx = self.along * k.c - self.normal * k.s
+        ry = self.along * k.s + self.normal * k.c
+        st.P[self.name] = rotate_about(st.P[self.origin], k, rx, ry, st.vel, st.acc)
+
+    def pairs(self, tb):
+        if self.link not in tb.members.get(self.origin, ()):
+            tb.fail(f"point '{self.name}' is placed from '{self.origin}', which is not on link "
+                    f"{self.link}", ("point", self.name))
+        tb.new_point(self.name, self.link)
+        if tb.frames[self.link][1] is None:
+            tb.frames[self.link][1] = self.name
+
+    def sketch(self):
+        return (Bar(self.origin, self.name),)
