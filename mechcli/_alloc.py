@@ -1,13 +1,21 @@
 """Keep freed numpy buffers in the process heap (glibc only).
 
-On this sandboxed 2-core machine a page fault costs ~1.5 µs, so a freshly
-mapped 36,001-element array costs ~110 µs before any arithmetic; glibc maps
-such arrays with mmap and unmaps them on free, paying that again on every
-vectorized solve.  Raising the mmap and trim thresholds lets repeated solves
-(extreme refinement, optimizers, benchmarks) reuse warm memory: measured 6-7x
-faster per fresh temporary.  Called once by the command line and the
-benchmarks, never by ``mechcli.core`` itself.  A no-op where ``mallopt`` is
-not available.
+glibc may serve a large allocation (above its mmap threshold: 128 KiB by
+default, about 16,000 float64, adjusted dynamically) with a fresh ``mmap``
+and give freed memory back to the system (trim), so a vectorized temporary of
+that size can pay one page fault per 4 KiB page before any arithmetic, again
+on every solve.  Raising the mmap and trim thresholds lets repeated solves
+(extreme refinement, optimizers, benchmarks) reuse warm memory instead.
+
+The effect depends on the machine and the allocation pattern: where page
+faults are dear (about 1.5 µs each, as in some virtual machines and
+sandboxes) a fresh temporary was measured 6-7x slower than a warm one; where
+glibc's dynamic threshold already keeps the buffers, the gain is nil.  The
+price is memory the process keeps after its largest solve.  Measure with
+``benchmarks/`` on the target machine.
+Called once by the command line and the benchmarks, never by
+``mechcli.core`` itself.  A no-op where ``mallopt`` is not available
+(non-glibc platforms).
 """
 
 import ctypes

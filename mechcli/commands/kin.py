@@ -35,11 +35,6 @@ def kin(spec_path, **opts):
         from mechcli.report import kin_plots
         warnings += kin_plots.write(spec, quantities, result, sweep, outputs, run.lang,
                                     plots=run.plot and spec.output.plots, animate=animate)
-    unit = "°" if inp.rotary else f" {spec.header.unit}"
-    f = report.input_factor(spec)
-    warnings += [f"{why} for input {a * f:.6g}{unit} … {b * f:.6g}{unit} (excluded)"
-                 for a, b, why in result.excluded]
-    warnings += [f"{sym} grows without bound towards the dead point at {e.at * f:.6g}{unit}"
-                 for sym, pair in result.extremes.items() for e in pair if not e.bounded]
+    warnings += report.warnings(spec, result)
     finish(run, "kin", report.build_report(spec, quantities, result, run.lang),
            report.scalar_results(spec, quantities, result), outputs, warnings)

@@ -14,9 +14,11 @@ class AssemblyError(UnsolvableError):
 
     Attributes
     ----------
-    intervals : list of (float, float)
-        Input-angle intervals (degrees for rotary drivers, spec length unit
-        for linear drivers, as given by the caller) where assembly fails.
+    intervals : list of (float, float, str)
+        ``(start, stop, reason)`` of every input interval where the linkage
+        cannot be analysed: start and stop in core units (radians for a
+        rotary driver, metres for a linear one), reason ``"cannot assemble"``
+        or ``"dead point"``.  Empty when the caller gives no intervals.
     """
 
     def __init__(self, message, intervals=()):

@@ -93,3 +93,13 @@ class Outputs:
     def add(self, path):
         self.files.append(Path(path))
         return self.files[-1]
+
+    def discard(self):
+        """Remove the files this run wrote (each was complete: see :func:`_atomic`),
+        so that a run that fails after writing leaves none of its output."""
+        for f in self.files:
+            try:
+                f.unlink()
+            except FileNotFoundError:
+                pass
+        self.files.clear()

@@ -2,13 +2,11 @@
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 
-from mechcli.core.linkage.force_analysis import balancing_symbol
 from mechcli.core.linkage.kinetostatics import COND_FLAG
-from mechcli.report.kin import fixed, input_factor, table_rows
+from mechcli.report.kin import (excluded_warnings, fixed, input_column, input_factor,
+                                input_suffix, table_rows)
 from mechcli.report.table import Block, Report
 
 
@@ -21,11 +19,6 @@ def _unit(sym):
 
 
 _PRETTY = {"N_m": "N·m", "N": "N", "W": "W"}
-
-
-def input_column(spec):
-    n = spec.input.driver
-    return f"theta{n}_deg" if spec.input.rotary else f"s{n}_{spec.header.unit}"
 
 
 def columns(spec, res):
@@ -79,10 +72,10 @@ def scalar_results(spec, res):
 
 
 def warnings(spec, res):
-    fin = input_factor(spec)
-    unit = "°" if spec.input.rotary else f" {spec.header.unit}"
-    out = [f"{why} for input {a * fin:.6g}{unit} … {b * fin:.6g}{unit} (excluded)"
-           for a, b, why in res.kin.excluded]
+    """The warnings of a ``force`` run: excluded input intervals, ill-conditioned
+    positions, conditional loads that never act."""
+    fin, unit = input_factor(spec), input_suffix(spec)
+    out = excluded_warnings(spec, res.kin.excluded)
     for a, b in res.flagged:
         out.append(f"ill-conditioned (condition number > {COND_FLAG:.0e}) for input "
                    f"{a * fin:.6g}{unit} … {b * fin:.6g}{unit}: reactions lose digits near "
@@ -170,4 +163,4 @@ def build_report(spec, res, lang="en"):
     return report
 
 
-__all__ = ["columns", "scalar_results", "build_report", "warnings", "balancing_symbol"]
+__all__ = ["columns", "scalar_results", "build_report", "warnings", "input_column"]

@@ -54,6 +54,30 @@ def input_factor(spec):
     return 180 / math.pi if spec.input.rotary else 1 / spec.header.scale
 
 
+def input_suffix(spec):
+    """Unit text after an input value in a message: ``°`` or `` mm``."""
+    return "°" if spec.input.rotary else f" {spec.header.unit}"
+
+
+def excluded_warnings(spec, excluded):
+    """One line per input interval left out of the analysis (``partial = true``).
+
+    *excluded* holds ``(start, stop, reason)`` in core units (rad or m).
+    """
+    f, unit = input_factor(spec), input_suffix(spec)
+    return [f"{why} for input {a * f:.6g}{unit} … {b * f:.6g}{unit} (excluded)"
+            for a, b, why in excluded]
+
+
+def warnings(spec, result):
+    """The warnings of a ``kin`` run: excluded input intervals, and extremes
+    that grow without bound towards a dead point."""
+    f, unit = input_factor(spec), input_suffix(spec)
+    return excluded_warnings(spec, result.excluded) + [
+        f"{sym} grows without bound towards the dead point at {e.at * f:.6g}{unit}"
+        for sym, pair in result.extremes.items() for e in pair if not e.bounded]
+
+
 def columns(spec, quantities, result):
     """CSV columns: the input, then every quantity in the spec's units."""
     cols = [(input_column(spec), result.q * input_factor(spec))]

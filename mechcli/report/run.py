@@ -1,4 +1,5 @@
-"""The end of every command: write ``report.txt``, then show the table or the JSON."""
+"""The end of every command: check ``[expected]``, write ``report.txt``, then show the
+table or the JSON."""
 
 from __future__ import annotations
 
@@ -9,7 +10,14 @@ from mechcli.report.table import print_rich, render_text
 
 
 def finish(run, command, report, results, outputs, warnings=()):
-    """Write ``report.txt`` into *outputs* and print what the user asked for.
+    """Check ``[expected]``, write ``report.txt`` into *outputs* and print what the
+    user asked for.
+
+    Every key of the spec's ``[expected]`` table must name a key of *results*:
+    otherwise a :class:`~mechcli.spec.errors.SpecError` (exit 2) is raised
+    before anything is printed, and the files this run already wrote (CSV,
+    plots, GIF: each complete, as every write is atomic) are removed, so the
+    failed run leaves no output of its own behind.
 
     Parameters
     ----------
@@ -24,6 +32,14 @@ def finish(run, command, report, results, outputs, warnings=()):
     warnings : sequence of str
         One-line warnings; shown on stderr unless ``--json`` (then in the JSON).
     """
+    from mechcli.spec.common import check_expected
+    from mechcli.spec.errors import SpecError
+
+    try:
+        check_expected(run.spec_path, run.sets, results)
+    except SpecError:
+        outputs.discard()
+        raise
     for w in warnings:
         report.notes.append(("警告: " if run.lang == "zh" else "warning: ") + w)
     outputs.text("report.txt", render_text(report))

@@ -5,7 +5,8 @@ from __future__ import annotations
 import dataclasses
 import math
 
-from mechcli.spec.errors import SpecError
+from mechcli.spec.errors import SpecError, closest
+from mechcli.spec.reader import load_spec
 
 
 @dataclasses.dataclass(frozen=True)
@@ -63,6 +64,47 @@ def read_expected(root):
                             "a number, a boolean, a string or { value = …, tol = … }", repr(raw))
     sec.finish()
     return out
+
+
+def check_expected(path, overrides, results):
+    """Reject an ``[expected]`` key that names no result of the run (exit 2).
+
+    The keys of ``[expected]`` are compared with the keys of *results* (the
+    ``--json`` ``"results"`` object), so a misspelled name fails the run
+    instead of passing unchecked.  The spec is read again (a few hundred
+    microseconds) so that every command gets the check from
+    :func:`mechcli.report.run.finish` without passing its spec along.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path or None
+        The spec file of the run; None for file-less runs (nothing to check).
+    overrides : sequence of str
+        The run's ``--set KEY=VALUE`` overrides (they may add expected keys).
+    results : dict
+        The scalar results of the run.
+
+    Raises
+    ------
+    SpecError
+        On the first key of ``[expected]`` that is not a key of *results*,
+        with the nearest result name as a suggestion.
+    """
+    if path is None:
+        return
+    try:
+        root = load_spec(path, overrides)
+    except SpecError:
+        # the command has read this file already, so it is not a TOML spec
+        # (``grashof --batch`` reads a CSV): there is no [expected] table
+        return
+    sec = root.table("expected", None)
+    names = sorted(map(str, results))
+    for name in [] if sec is None else sec.keys():
+        if name not in results:
+            raise SpecError(sec.file, sec.key(name),
+                            "the name of a result of this run (a key of --json \"results\")",
+                            f"unknown key '{name}'", closest(name, names))
 
 
 @dataclasses.dataclass(frozen=True)

@@ -142,10 +142,6 @@ def _bodies(root, topo, frame):
     return bodies
 
 
-def _velocity_symbols(quantities):
-    return {q.symbol: q for q in quantities if q.order == 1}
-
-
 def _loads(root, topo, frame, inp, quantities):
     from mechcli.core.linkage.kinetostatics import Load
 

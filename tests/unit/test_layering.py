@@ -1,22 +1,255 @@
-"""The core stays pure; start-up stays light."""
+"""The layers keep their import contract; the core stays pure; start-up stays light.
 
+``cli -> commands -> {spec, report} -> core`` (DESIGN.md §1).  The contract is
+checked on the AST of every module (module-level and function-level imports
+alike), not on its text:
+
+* ``mechcli.core`` imports nothing of mechcli outside ``mechcli.core`` (so
+  nothing of ``spec``, ``report``, ``commands``, ``cli``, ``options``) and
+  none of click, rich, matplotlib, PIL, tomllib, tomli.
+* ``mechcli.spec`` turns TOML into validated problems and does not solve: it
+  imports nothing of ``report``, ``commands``, ``cli``, ``options``, nor a
+  user interface or plotting library; from the core it imports only classes
+  (problem and element types, errors), constants, and the model-building
+  functions named in :data:`SPEC_CORE_FUNCTIONS`.
+* ``mechcli.report`` words and draws results and does not solve another
+  command's problem: it imports nothing of ``commands``, ``cli``,
+  ``options``; of ``spec`` only what :data:`REPORT_SPEC_IMPORTS` allows; from
+  the core only classes (result types) and constants, plus the functions
+  named per module in :data:`REPORT_CORE_FUNCTIONS`, each of which must live
+  in the core package of the report module's own command.
+
+What breaks the contract today is listed in :data:`KNOWN_VIOLATIONS`, to be
+emptied; an entry that no longer occurs fails the test, so the list only
+shrinks.
+"""
+
+import ast
+import importlib
+import inspect
 import re
 import subprocess
 import sys
 
 from tests.conftest import ROOT
 
-FORBIDDEN = re.compile(r"^\s*(import|from)\s+(click|rich|matplotlib|tomllib|tomli)\b", re.M)
+PACKAGE = ROOT / "mechcli"
+
+#: third-party packages the core must never import
+CORE_FORBIDDEN_LIBRARIES = {"click", "rich", "matplotlib", "PIL", "tomllib", "tomli"}
+#: ... nor the spec layer (it reads TOML, but shows and draws nothing)
+SPEC_FORBIDDEN_LIBRARIES = {"click", "rich", "matplotlib", "PIL"}
+
+#: functions of the core the spec layer may call: they build a model from
+#: numbers (presets, constructors), they do not solve it
+SPEC_CORE_FUNCTIONS = {
+    "four_bar", "slider_crank", "guide_bar", "shaper",  # presets (issue 11)
+    "topology",            # the pair model of a linkage (which pairs carry forces)
+    "default_quantities",  # the names of the quantities a linkage has
+}
+
+#: report module -> the core package of its command (functions only from there)
+OWN_CORE = {
+    "mechcli.report.kin": "mechcli.core.linkage",
+    "mechcli.report.kin_plots": "mechcli.core.linkage",
+    "mechcli.report.force": "mechcli.core.linkage",
+    "mechcli.report.force_plots": "mechcli.core.linkage",
+    "mechcli.report.cam": "mechcli.core.cam",
+    "mechcli.report.cam_plots": "mechcli.core.cam",
+    "mechcli.report.gear": "mechcli.core.gear",
+    "mechcli.report.gear_plot": "mechcli.core.gear",
+    "mechcli.report.grashof": "mechcli.core.grashof",
+}
+
+#: report module -> core functions it may call: drawing geometry and naming
+#: helpers of its own command, never the solver of the problem it reports
+REPORT_CORE_FUNCTIONS = {
+    "mechcli.report.kin_plots": {"solve"},  # poses of the linkage for the animation frames
+    "mechcli.report.force_plots": {"balancing_symbol"},
+    "mechcli.report.cam_plots": {"working_outline"},
+    "mechcli.report.gear": {"degrees_minutes_seconds", "format_dms"},
+    "mechcli.report.gear_plot": {"gear_outline", "generated_tooth", "ring_outline",
+                                 "mesh_positions", "cutter_positions"},
+}
+
+#: report module -> spec modules it may import: ``finish`` checks the keys of
+#: ``[expected]`` against the results of the run
+REPORT_SPEC_IMPORTS = {
+    "mechcli.report.run": {"mechcli.spec.common", "mechcli.spec.errors"},
+}
+
+#: what breaks the contract today, as "importer -> imported"; empty it, never grow it
+KNOWN_VIOLATIONS = {
+    # spec/gear.py derives the teeth from a ratio and checks the centre distance by
+    # building the gears (issue 11 item 6: the spec layer does not solve)
+    "mechcli.spec.gear -> mechcli.core.gear.pair.design_teeth_from_ratio",
+    "mechcli.spec.gear -> mechcli.core.gear.pair.zero_backlash_distance",
+    "mechcli.spec.gear -> mechcli.core.gear.spur.spur_gear",
+}
 
 
-def test_core_imports_no_ui_plot_or_toml():
-    offenders = [p.name for p in (ROOT / "mechcli" / "core").rglob("*.py")
-                 if FORBIDDEN.search(p.read_text(encoding="utf-8"))]
-    assert offenders == []
+def _module_name(path):
+    rel = path.relative_to(ROOT).with_suffix("")
+    parts = rel.parts[:-1] if rel.name == "__init__" else rel.parts
+    return ".".join(parts)
+
+
+def _modules():
+    return {_module_name(p): p for p in sorted(PACKAGE.rglob("*.py"))}
+
+
+def _tree(path):
+    return ast.parse(path.read_text(encoding="utf-8"), str(path))
+
+
+def _imports(name, path):
+    """``(module, imported name or None)`` of every import statement in a module.
+
+    A core module imported as a module (``from mechcli.core.linkage import
+    presets``) counts as importing each attribute the importer uses
+    (``presets.four_bar`` -> ``mechcli.core.linkage.presets``, ``four_bar``).
+    """
+    package = name if path.name == "__init__.py" else name.rpartition(".")[0]
+    tree = _tree(path)
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Import):
+            for alias in node.names:
+                yield alias.name, None
+        elif isinstance(node, ast.ImportFrom):
+            base = node.module or ""
+            if node.level:
+                parent = package.rsplit(".", node.level - 1)[0] if node.level > 1 else package
+                base = f"{parent}.{base}" if base else parent
+            for alias in node.names:
+                submodule = f"{base}.{alias.name}"
+                if _within(base, "mechcli.core") and _is_module(submodule):
+                    local = alias.asname or alias.name
+                    for use in ast.walk(tree):
+                        if isinstance(use, ast.Attribute) and isinstance(use.value, ast.Name) \
+                                and use.value.id == local:
+                            yield submodule, use.attr
+                else:
+                    yield base, alias.name
+
+
+def _is_module(name):
+    try:
+        importlib.import_module(name)
+    except ImportError:
+        return False
+    return True
+
+
+def _within(module, package):
+    return module == package or module.startswith(package + ".")
+
+
+def _core_object(module, name):
+    """(kind, where): kind in module/class/function/constant; where = defining module."""
+    if name is None:
+        return "module", module
+    mod = importlib.import_module(module)
+    obj = getattr(mod, name, None)
+    if obj is None:
+        raise AssertionError(f"{module} has no attribute {name}")
+    if inspect.ismodule(obj):
+        return "module", obj.__name__
+    if inspect.isclass(obj):
+        return "class", getattr(obj, "__module__", module)
+    if callable(obj):
+        return "function", getattr(obj, "__module__", module)
+    return "constant", module
+
+
+def _violations():
+    out = set()
+    for name, path in _modules().items():
+        for module, imported in _imports(name, path):
+            top = module.split(".")[0]
+            label = f"{name} -> {module}" + (f".{imported}" if imported else "")
+            if _within(name, "mechcli.core"):
+                if top == "mechcli" and not _within(module, "mechcli.core"):
+                    out.add(label)
+                if top in CORE_FORBIDDEN_LIBRARIES:
+                    out.add(label)
+                continue
+            layer = name.split(".")[1] if name.count(".") else ""
+            if layer not in ("spec", "report"):
+                continue
+            if top in SPEC_FORBIDDEN_LIBRARIES and layer == "spec":
+                out.add(label)
+            if any(_within(module, f"mechcli.{x}") for x in ("commands", "cli", "options")):
+                out.add(label)
+            if layer == "spec" and _within(module, "mechcli.report"):
+                out.add(label)
+            if layer == "report" and _within(module, "mechcli.spec") \
+                    and module not in REPORT_SPEC_IMPORTS.get(name, ()):
+                out.add(label)
+            if not _within(module, "mechcli.core"):
+                continue
+            kind, where = _core_object(module, imported)
+            if kind == "module":
+                out.add(f"{name} -> {where} (module)")
+            elif kind == "function":
+                if layer == "spec":
+                    ok = imported in SPEC_CORE_FUNCTIONS
+                else:
+                    ok = imported in REPORT_CORE_FUNCTIONS.get(name, ()) \
+                        and _within(where, OWN_CORE.get(name, "-"))
+                if not ok:
+                    out.add(label)
+    return out
+
+
+def test_layers_keep_the_import_contract():
+    new = _violations() - KNOWN_VIOLATIONS
+    assert not new, "imports that break the layer contract (see this module's docstring):\n" \
+        + "\n".join(sorted(new))
+
+
+def test_known_violations_are_not_stale():
+    fixed = KNOWN_VIOLATIONS - _violations()
+    assert not fixed, "fixed, remove from KNOWN_VIOLATIONS:\n" + "\n".join(sorted(fixed))
+
+
+def test_allowances_are_used():
+    """Every function allowed above is imported by a module it is allowed to (no rot)."""
+    used = {}
+    for name, path in _modules().items():
+        for module, imported in _imports(name, path):
+            if imported and _within(module, "mechcli.core"):
+                used.setdefault(name, set()).add(imported)
+    for name, allowed in REPORT_CORE_FUNCTIONS.items():
+        assert allowed <= used.get(name, set()), (name, allowed - used.get(name, set()))
+    spec_used = set().union(*(u for n, u in used.items() if n.startswith("mechcli.spec.")))
+    assert SPEC_CORE_FUNCTIONS <= spec_used, SPEC_CORE_FUNCTIONS - spec_used
+
+
+def test_contract_tables_name_real_modules():
+    modules = _modules()
+    for table in (OWN_CORE, REPORT_CORE_FUNCTIONS, REPORT_SPEC_IMPORTS):
+        assert set(table) <= set(modules), set(table) - set(modules)
+    assert {m for m in modules if m.startswith("mechcli.report.")} - set(OWN_CORE) <= {
+        "mechcli.report.files", "mechcli.report.jsonout", "mechcli.report.plotting",
+        "mechcli.report.run", "mechcli.report.table"}, "give a new report module its OWN_CORE"
+
+
+def test_the_contract_catches_what_it_forbids(tmp_path, monkeypatch):
+    """The checker itself: a core module importing click, a spec module calling a solver."""
+    probe = {"mechcli.core.fake": "import click\nfrom mechcli.spec import errors\n",
+             "mechcli.spec.fake": "def f():\n    from mechcli.core.linkage import solve\n"}
+    found = set()
+    for name, text in probe.items():
+        path = tmp_path / (name.rpartition(".")[2] + ".py")
+        path.write_text(text)
+        monkeypatch.setattr(sys.modules[__name__], "_modules", lambda n=name, p=path: {n: p})
+        found |= _violations()
+    assert found == {"mechcli.core.fake -> click", "mechcli.core.fake -> mechcli.spec.errors",
+                     "mechcli.spec.fake -> mechcli.core.linkage.solve"}
 
 
 def test_core_does_not_open_files():
-    offenders = [p.name for p in (ROOT / "mechcli" / "core").rglob("*.py")
+    offenders = [p.name for p in (PACKAGE / "core").rglob("*.py")
                  if re.search(r"\bopen\(|\bprint\(", p.read_text(encoding="utf-8"))]
     assert offenders == []
 
