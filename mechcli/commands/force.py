@@ -14,6 +14,7 @@ def force(spec_path, **opts):
     """Kinetostatics (动态静力分析) of any linkage of `kin`: pair reactions, the
     balancing torque, shaking force and moment, checked by the power balance."""
     run = RunOptions.from_click(spec_path, opts)
+    from mechcli.core.errors import AssemblyError
     from mechcli.core.linkage.force_analysis import analyse_forces
     from mechcli.core.linkage.kinematics import Sweep
     from mechcli.report import force as report
@@ -24,8 +25,11 @@ def force(spec_path, **opts):
     spec = load_force_spec(spec_path, run.sets)
     inp = spec.input
     sweep = Sweep(inp.driver, inp.q, inp.omega, inp.alpha, inp.followers, inp.periodic)
-    result = analyse_forces(spec.linkage, spec.topology, sweep, spec.bodies, spec.gravity,
-                            spec.loads, partial=inp.partial)
+    try:
+        result = analyse_forces(spec.linkage, spec.topology, sweep, spec.bodies, spec.gravity,
+                                spec.loads, partial=inp.partial)
+    except AssemblyError as exc:   # worded in the spec's units
+        raise AssemblyError(report.assembly_message(spec, exc), exc.intervals) from None
     outputs = Outputs(run.out_dir)
     outputs.csv("force.csv", report.columns(spec, result))
     warnings = report.warnings(spec, result)

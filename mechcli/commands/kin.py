@@ -14,6 +14,7 @@ def kin(spec_path, **opts):
     """Kinematics of a planar linkage (chapter 1): four-bar, slider-crank,
     guide-bar, shaper or any linkage of drivers and RRR/RRP/RPR dyads."""
     run = RunOptions.from_click(spec_path, opts)
+    from mechcli.core.errors import AssemblyError
     from mechcli.core.linkage.kinematics import Sweep, analyse_sweep, default_quantities
     from mechcli.report import kin as report
     from mechcli.report.files import Outputs
@@ -25,8 +26,11 @@ def kin(spec_path, **opts):
     sweep = Sweep(inp.driver, inp.q, inp.omega, inp.alpha, inp.followers, inp.periodic)
     quantities = default_quantities(spec.linkage, spec.output.order,
                                     [t.name for t in spec.tracers])
-    result = analyse_sweep(spec.linkage, sweep, quantities, spec.output.order,
-                           partial=inp.partial)
+    try:
+        result = analyse_sweep(spec.linkage, sweep, quantities, spec.output.order,
+                               partial=inp.partial)
+    except AssemblyError as exc:   # worded in the spec's units
+        raise AssemblyError(report.assembly_message(spec, exc), exc.intervals) from None
     outputs = Outputs(run.out_dir)
     outputs.csv("kin.csv", report.columns(spec, quantities, result))
     warnings = []

@@ -19,11 +19,18 @@ class AssemblyError(UnsolvableError):
         cannot be analysed: start and stop in core units (radians for a
         rotary driver, metres for a linear one), reason ``"cannot assemble"``
         or ``"dead point"``.  Empty when the caller gives no intervals.
+    too_few : bool
+        Fewer than two positions remain to analyse (even with the intervals
+        left out).
+
+    The core's message names no unit and no spec key; the report layer words
+    the intervals for the user (``report.kin.assembly_message``).
     """
 
-    def __init__(self, message, intervals=()):
+    def __init__(self, message, intervals=(), too_few=False):
         super().__init__(message)
         self.intervals = list(intervals)
+        self.too_few = too_few
 
 
 class ConvergenceError(RuntimeError):

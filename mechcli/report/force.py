@@ -5,8 +5,8 @@ from __future__ import annotations
 import numpy as np
 
 from mechcli.core.linkage.kinetostatics import COND_FLAG
-from mechcli.report.kin import (excluded_warnings, fixed, input_column, input_factor,
-                                input_suffix, table_rows)
+from mechcli.report.kin import (assembly_message, excluded_warnings, fixed, input_column,  # noqa: F401
+                                input_factor, input_suffix, table_rows)
 from mechcli.report.table import Block, Report
 
 

@@ -69,6 +69,19 @@ def excluded_warnings(spec, excluded):
             for a, b, why in excluded]
 
 
+def assembly_message(spec, exc):
+    """The user's wording of an :class:`~mechcli.core.errors.AssemblyError`: the
+    intervals in the spec's input unit, and the key that analyses the rest."""
+    if not exc.intervals:
+        return str(exc)
+    f, unit = input_factor(spec), input_suffix(spec)
+    what = "input angle" if spec.input.rotary else "input"
+    text = "; ".join(f"{why} for {what} {a * f:.6g}{unit} … {b * f:.6g}{unit}"
+                     for a, b, why in exc.intervals)
+    text += " (set input.partial = true to analyse the feasible ranges only)"
+    return ("fewer than two input positions can be analysed: " + text) if exc.too_few else text
+
+
 def warnings(spec, result):
     """The warnings of a ``kin`` run: excluded input intervals, and extremes
     that grow without bound towards a dead point."""

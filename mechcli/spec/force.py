@@ -187,7 +187,7 @@ def _loads(root, topo, frame, inp, quantities):
             xs = ft.numbers("at")
             ys = _bounded(ft, "value", ft.numbers("value"), MAX_FACTOR, "factors")
             if len(xs) != len(ys) or len(xs) < 2:
-                raise ft.error("value", f"as many values as 'at' points (at least 2)",
+                raise ft.error("value", "as many values as 'at' points (at least 2)",
                                f"{len(ys)} values for {len(xs)} points")
             if any(b <= a for a, b in zip(xs, xs[1:])):
                 raise ft.error("at", "increasing input positions", repr(xs))

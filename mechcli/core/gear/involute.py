@@ -17,8 +17,12 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from typing import TYPE_CHECKING
 
 from mechcli.core.errors import ConvergenceError
+
+if TYPE_CHECKING:  # annotations only: numpy is imported lazily
+    import numpy as np
 
 #: Taylor coefficients c_n of tan(a) - a = sum c_n a^(2n+1), n = 1, 2, ...
 #: (c_n = (-1)^n 2^(2n+2) (2^(2n+2) - 1) B_(2n+2) / (2n+2)!).

@@ -9,9 +9,13 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from typing import TYPE_CHECKING
 
 from mechcli.core.gear.spur import GearError, SpurGear
 from mechcli.core.gear.involute import involute_function, inverse_involute_scalar
+
+if TYPE_CHECKING:  # annotations only: numpy is imported lazily
+    import numpy as np
 
 
 class MeshError(GearError):

@@ -20,9 +20,7 @@ from typing import Dict, Optional, Tuple, Union
 
 import numpy as np
 
-from mechcli.core.linkage.elements import (ASSEMBLY_TOL, RPR, RRP, RRR, SINGULAR_TOL,  # noqa: F401
-                                           Crank, Element, Ground, LinkState, PointOnLink,
-                                           SliderDriver)
+from mechcli.core.linkage.elements import SINGULAR_TOL, Element, LinkState
 
 
 class LinkageDefinitionError(ValueError):

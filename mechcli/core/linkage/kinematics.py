@@ -526,11 +526,11 @@ def analyse_sweep(linkage: Linkage, sweep: Sweep, quantities, order: int,
                 motion.feasible[i0:i1]) else "dead point"
             excluded.append((start, stop, reason))
         if not partial:
-            raise AssemblyError(_describe_exclusions(excluded, linkage, sweep), excluded)
+            raise AssemblyError(_describe_exclusions(excluded), excluded)
     idx = np.flatnonzero(good)
     if idx.size < 2 or np.count_nonzero(good[out_idx]) < 2:
         raise AssemblyError("fewer than two input positions can be analysed: "
-                            + _describe_exclusions(excluded, linkage, sweep), excluded)
+                            + _describe_exclusions(excluded), excluded, too_few=True)
     # runs of the analysis grid, and their real extent (refined gap edges)
     q = q_all[idx]
     cuts = np.flatnonzero(np.diff(idx) > 1) + 1
@@ -612,13 +612,7 @@ def _unwrap_runs(v, runs, connected):
     return out
 
 
-def _describe_exclusions(excluded, linkage, sweep):
-    rotary = linkage.driver(sweep.driver).rotary
-    parts = []
-    for start, stop, reason in excluded:
-        if rotary:
-            parts.append(f"{reason} for input angle {np.degrees(start):.6g}° … "
-                         f"{np.degrees(stop):.6g}°")
-        else:
-            parts.append(f"{reason} for input {start:.6g} … {stop:.6g} m")
-    return ("; ".join(parts) + " (set input.partial = true to analyse the feasible ranges only)")
+def _describe_exclusions(excluded):
+    """Core wording (input in rad or m); the report layer rewords it in the spec's units."""
+    return "; ".join(f"{reason} for input {start:.6g} … {stop:.6g}"
+                     for start, stop, reason in excluded)
