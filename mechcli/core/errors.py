@@ -9,6 +9,26 @@ class UnsolvableError(ValueError):
     """The problem, although well-formed, has no solution (exit code 3)."""
 
 
+class DescribedError(UnsolvableError):
+    """A problem without solution described by numbers, for the caller to word.
+
+    The message names the failure in words of the mechanism and names no unit
+    or spec key; the command's report layer words it in the spec's units.
+
+    Attributes
+    ----------
+    reason : str
+        What failed, one word (e.g. ``"pitch_cusp"``, ``"tip_inside_base"``;
+        see the raising function); empty when the message says it all.
+    values : dict
+        The numbers of the failure: lengths [m], angles [rad], counts.
+    """
+
+    def __init__(self, message, reason="", **values):
+        super().__init__(message)
+        self.reason, self.values = reason, values
+
+
 class AssemblyError(UnsolvableError):
     """A linkage cannot be assembled at some input positions.
 

@@ -162,7 +162,7 @@ def test_unsolvable_exit_3(tmp_path, body, fragment):
     ("[involute]\nrb = 50\ncurve_step_deg = 1e-9\n", "curve_step_deg"),      # was MemoryError
     ("[involute]\nrb = 50\ntable_step_deg = 1e-9\n", "table_step_deg"),
 ])
-def test_review_bad_keys_exit_2(tmp_path, body, key):
+def test_bad_keys_exit_2(tmp_path, body, key):
     proc = run_cli("gear", _spec(tmp_path, body), "--no-plot", "-q", "--out", tmp_path / "o")
     assert proc.returncode == 2, proc.stderr
     assert key in proc.stderr and "Traceback" not in proc.stderr

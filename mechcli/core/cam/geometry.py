@@ -39,7 +39,7 @@ import math
 import numpy as np
 
 from mechcli.core.cam.motion import MotionProgram
-from mechcli.core.errors import UnsolvableError
+from mechcli.core.errors import DescribedError
 from mechcli.core.refine import sign_changes
 
 FOLLOWER_MOTIONS = ("translating", "oscillating")
@@ -49,24 +49,9 @@ FOLLOWER_CONTACTS = ("knife", "roller", "flat")
 RHO_CAP = 1e6
 
 
-class CamError(UnsolvableError):
-    """A cam problem without solution, described by numbers.
-
-    The message names the failure in words of the mechanism and SI numbers
-    only; the command's report layer words it in the spec's units and keys.
-
-    Attributes
-    ----------
-    reason : str
-        What failed (one word, e.g. ``"pitch_cusp"``; see the raising function).
-    values : dict
-        The numbers of the failure, SI units and radians.
-    """
-
-    def __init__(self, message, reason, **values):
-        super().__init__(message)
-        self.reason = reason
-        self.values = values
+class CamError(DescribedError):
+    """A cam problem without solution (``reason`` and ``values``: see
+    :class:`~mechcli.core.errors.DescribedError`)."""
 
 
 class UndercutError(CamError):

@@ -13,28 +13,13 @@ from __future__ import annotations
 import dataclasses
 import math
 
-from mechcli.core.errors import UnsolvableError
+from mechcli.core.errors import DescribedError
 from mechcli.core.gear.involute import involute_function, inverse_involute_scalar
 
 
-class GearError(UnsolvableError):
-    """A gear or gear drive that cannot exist as asked.
-
-    The message names no unit; the numbers are attributes, for the caller to
-    word in its units.
-
-    Attributes
-    ----------
-    reason : str
-        What failed (``"tip_inside_base"``, ``"jam"``, ...; empty when the
-        message says it all).
-    values : dict
-        The numbers of the message: lengths [m], angles [rad], counts.
-    """
-
-    def __init__(self, message, reason="", **values):
-        super().__init__(message)
-        self.reason, self.values = reason, values
+class GearError(DescribedError):
+    """A gear or gear drive that cannot exist as asked (``reason`` and ``values``:
+    see :class:`~mechcli.core.errors.DescribedError`)."""
 
 
 class GearGeometryError(GearError):

@@ -1,4 +1,5 @@
-"""Regression tests from the independent review of ``mechcli gear`` (issue 5)."""
+"""``mechcli gear`` edge cases: no addendum, tip inside the base circle, the book's
+inverse-involute start, internal interference at the ring tip, thin teeth, pointed teeth."""
 
 import math
 

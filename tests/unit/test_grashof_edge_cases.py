@@ -1,4 +1,5 @@
-"""Regression tests of the review of ``mechcli grashof`` (defects found by independent checks)."""
+"""``mechcli grashof`` edge cases: mobility frames, crossed chains, empty or odd
+quick-form and batch input, chains that cannot close, RRRRP sliders inside the crank circle."""
 
 import numpy as np
 import pytest

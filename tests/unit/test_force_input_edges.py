@@ -1,4 +1,5 @@
-"""Regression tests from the review of ``mechcli force`` (one per defect)."""
+"""``mechcli force`` at the edges of its input: huge finite masses, periodic factor
+tables, upside-down windows, load messages that name the right key, the input column."""
 
 import math
 

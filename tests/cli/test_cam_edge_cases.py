@@ -1,4 +1,5 @@
-"""Review regressions for ``mechcli cam`` (each failed before its fix)."""
+"""``mechcli cam`` edge cases: a zero allowed pressure angle, 0° dwells as the book
+writes them, sized cams exactly at the limit, segment and lift sums within tolerance."""
 
 import math
 
