@@ -282,6 +282,14 @@ class LinkageMotion:
     slides: Dict[str, SlideMotion]
     conditions: Tuple[DyadCondition, ...]
 
+    def condition(self, joint) -> DyadCondition:
+        """The conditioning of the dyad whose joint (or block point) is ``joint``:
+        ``m.condition("C").gamma`` is the transmission angle at C [rad]."""
+        for c in self.conditions:
+            if c.joint == joint:
+                return c
+        raise KeyError(joint)
+
 
 # ---------------------------------------------------------------------------
 # solver

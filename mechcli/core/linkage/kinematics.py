@@ -194,15 +194,8 @@ def default_quantities(linkage: Linkage, order: int, tracers=()):
         if k == 0:
             for joint in linkage.transmission_joints:
                 out.append(Quantity(f"gamma{joint}", "angle", 0,
-                                    lambda m, j=joint: _cond(m, j).gamma))
+                                    lambda m, j=joint: m.condition(j).gamma))
     return out
-
-
-def _cond(m, joint):
-    for c in m.conditions:
-        if c.joint == joint:
-            return c
-    raise KeyError(joint)
 
 
 def _take(motion: LinkageMotion, idx) -> LinkageMotion:
