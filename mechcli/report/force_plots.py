@@ -14,7 +14,7 @@ import numpy as np
 from mechcli.core.linkage.force_analysis import balancing_symbol
 from mechcli.report import plotting
 from mechcli.report.force import input_factor
-from mechcli.report.kin_plots import _broken, _Drawing, _extent, _limits
+from mechcli.report.kin_plots import Drawing, broken, extent, limits
 
 _TEXT = {
     "en": {"pair": "Reaction F_R{lab}", "Mb": "Balancing torque {sym}",
@@ -67,22 +67,22 @@ def plot_reactions(spec, result, outputs, t):
     """``force.png``: one panel per pair (x solid, y dashed) and per balancing quantity."""
     fin = input_factor(spec)
     kin = result.kin
-    x = _broken(kin, result.q * fin)
+    x = broken(kin, result.q * fin)
     xlabel = _input_label(spec, t)
     pairs = result.forces.pairs
     drivers = [d.link for d in spec.linkage.drivers]
     fig, axs = _grid(len(pairs) + len(drivers), 2)
     for ax, pf in zip(axs, pairs):
         lab = pf.pair.label
-        ax.plot(x, _broken(kin, pf.fx), "-", color="C0", lw=1.3, label=f"FR{lab}x")
-        ax.plot(x, _broken(kin, pf.fy), "--", color="C3", lw=1.3, label=f"FR{lab}y")
+        ax.plot(x, broken(kin, pf.fx), "-", color="C0", lw=1.3, label=f"FR{lab}x")
+        ax.plot(x, broken(kin, pf.fy), "--", color="C3", lw=1.3, label=f"FR{lab}y")
         ax.axhline(0, color="0.5", lw=0.6)
         ax.set_ylabel("F / N")
         handles, labels = ax.get_legend_handles_labels()
         if pf.pair.kind == "P":
             tw = ax.twinx()
             tw.grid(False)
-            h, = tw.plot(x, _broken(kin, pf.couple), ":", color="C2", lw=1.3, label=f"MR{lab}")
+            h, = tw.plot(x, broken(kin, pf.couple), ":", color="C2", lw=1.3, label=f"MR{lab}")
             tw.set_ylabel(f"MR{lab} / N·m")
             handles.append(h)
             labels.append(h.get_label())
@@ -92,7 +92,7 @@ def plot_reactions(spec, result, outputs, t):
     for ax, link in zip(axs[len(pairs):], drivers):
         sym = balancing_symbol(spec.linkage, link)
         v = result.forces.balancing[link]
-        ax.plot(x, _broken(kin, v), "-", color="C1", lw=1.5, label=sym)
+        ax.plot(x, broken(kin, v), "-", color="C1", lw=1.5, label=sym)
         ax.axhline(0, color="0.5", lw=0.6)
         _shade_loads(ax, spec, result, t)
         key = "Mb" if sym.startswith("Mb") else "Fb"
@@ -116,7 +116,7 @@ def plot_hodographs(spec, result, outputs, t):
     fig.set_size_inches(4.2 * ncols, 4.0 * math.ceil(len(pins) / ncols))
     for k, (ax, pf) in enumerate(zip(axs, pins)):
         lab = pf.pair.label
-        ax.plot(_broken(kin, pf.fx), _broken(kin, pf.fy), "-", color=f"C{k % 10}", lw=1.2)
+        ax.plot(broken(kin, pf.fx), broken(kin, pf.fy), "-", color=f"C{k % 10}", lw=1.2)
         ax.plot([pf.fx[0]], [pf.fy[0]], "o", color=f"C{k % 10}", ms=4)
         ax.plot([0], [0], "+", color="k", ms=10, mew=1.5)
         ax.axhline(0, color="0.6", lw=0.5)
@@ -136,21 +136,21 @@ def plot_frame(spec, result, outputs, t):
 
     fin = input_factor(spec)
     kin, s = result.kin, result.series
-    x = _broken(kin, result.q * fin)
+    x = broken(kin, result.q * fin)
     fig, axs = plt.subplots(3, 1, figsize=(9, 9), sharex=True)
     ax = axs[0]
-    ax.plot(x, _broken(kin, s["Fshx"]), "-", color="C0", lw=1.2, label="Fshx")
-    ax.plot(x, _broken(kin, s["Fshy"]), "--", color="C3", lw=1.2, label="Fshy")
-    ax.plot(x, _broken(kin, s["Fsh"]), "-", color="k", lw=1.6, label="|Fsh|")
+    ax.plot(x, broken(kin, s["Fshx"]), "-", color="C0", lw=1.2, label="Fshx")
+    ax.plot(x, broken(kin, s["Fshy"]), "--", color="C3", lw=1.2, label="Fshy")
+    ax.plot(x, broken(kin, s["Fsh"]), "-", color="k", lw=1.6, label="|Fsh|")
     ax.set_ylabel("F / N")
     ax.set_title(_t(t, "shake_f"), fontsize=10)
     ax.legend(fontsize=7, loc="best")
     ax = axs[1]
-    ax.plot(x, _broken(kin, s["Msh"]), "-", color="C2", lw=1.4, label="Msh")
+    ax.plot(x, broken(kin, s["Msh"]), "-", color="C2", lw=1.4, label="Msh")
     ax.set_ylabel("Msh / N·m")
     ax.set_title(_t(t, "shake_m"), fontsize=10)
     ax = axs[2]
-    ax.plot(x, _broken(kin, s["P"]), "-", color="C1", lw=1.4, label="P")
+    ax.plot(x, broken(kin, s["P"]), "-", color="C1", lw=1.4, label="P")
     _shade_loads(ax, spec, result, t)
     ax.legend(fontsize=7, loc="best")
     ax.set_ylabel("P / W")
@@ -194,15 +194,15 @@ def animate_reactions(spec, result, sweep, outputs, t):
     fx = np.array([pf.fx[idx] for pf in pairs])
     fy = np.array([pf.fy[idx] for pf in pairs])
     peak = float(np.max(np.hypot(fx, fy))) if fx.size else 0.0
-    length = 0.25 * _extent(motion) * k
+    length = 0.25 * extent(motion) * k
     f = length / peak if peak > 0 else 0.0
 
     fig, ax = plt.subplots(figsize=(6.4, 5.2), dpi=80)
-    d = _Drawing(ax, spec, motion, spec.header.scale)
+    d = Drawing(ax, spec, motion, spec.header.scale)
     for tr in spec.tracers:
-        p = _broken(result.kin, motion.points[tr.name].p * k)
+        p = broken(result.kin, motion.points[tr.name].p * k)
         ax.plot(p.real, p.imag, ":", lw=1, color="C3")
-    _limits(ax, motion, k, pad=0.3)
+    limits(ax, motion, k, pad=0.3)
     ax.set_title(_t(t, "anim") + "\n" + plotting.text(spec.header.title), fontsize=9)
     ax.set_xlabel(spec.header.unit)
     ax.set_ylabel(spec.header.unit)

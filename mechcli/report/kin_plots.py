@@ -28,7 +28,7 @@ def _groups(quantities):
     return groups
 
 
-def _broken(result, v):
+def broken(result, v):
     """Values with a NaN between runs, so a curve is not drawn across a gap.
     (NaN only goes to matplotlib, never to an output file.)"""
     if len(result.runs) <= 1:
@@ -52,7 +52,7 @@ def _plot_group(ax, spec, result, qs, x, lang):
     for k, (a, group) in enumerate(axes):
         for j, q in enumerate(group):
             f = factor_of(q.kind, scale)
-            h, = a.plot(_broken(result, x), _broken(result, result.values[q.symbol] * f),
+            h, = a.plot(broken(result, x), broken(result, result.values[q.symbol] * f),
                         styles[j % 4],
                         color=f"C{j + 3 * k}", label=q.symbol)
             handles.append(h)
@@ -71,7 +71,7 @@ def _link_segments(linkage):
     return bars, blocks, guides, grounds
 
 
-class _Drawing:
+class Drawing:
     """Artists for one mechanism drawing, updated frame by frame."""
 
     def __init__(self, ax, spec, motion, scale):
@@ -92,7 +92,7 @@ class _Drawing:
             if g.ray:
                 s = np.abs(motion.slides[g.slide].s)
                 self.reach[i] = spec.guide_length or 1.15 * float(np.max(s))
-        self.size = 0.06 * _extent(motion) * self.k
+        self.size = 0.06 * extent(motion) * self.k
 
     def update(self, motion, i):
         P = {n: pm.p[i] * self.k for n, pm in motion.points.items()}
@@ -123,12 +123,12 @@ class _Drawing:
         self.joints.set_data([p.real for p in pts], [p.imag for p in pts])
 
 
-def _extent(motion):
+def extent(motion):
     pts = np.concatenate([pm.p for pm in motion.points.values()])
     return max(float(np.ptp(pts.real)), float(np.ptp(pts.imag)), 1e-300)
 
 
-def _limits(ax, motion, k, pad=0.12):
+def limits(ax, motion, k, pad=0.12):
     pts = np.concatenate([pm.p for pm in motion.points.values()]) * k
     x0, x1, y0, y1 = pts.real.min(), pts.real.max(), pts.imag.min(), pts.imag.max()
     d = pad * max(x1 - x0, y1 - y0, 1e-300)
@@ -166,15 +166,15 @@ def write(spec, quantities, result, sweep, outputs, lang, plots=True, animate=Fa
         at = spec.output.draw_at
         m1 = solve(spec.linkage, sweep.inputs(np.array([at])), order=0)
         if bool(m1.regular[0]):
-            d = _Drawing(ax, spec, result.motion, scale)
+            d = Drawing(ax, spec, result.motion, scale)
             d.update(m1, 0)
         else:
             warnings.append(f"mechanism not drawn: it cannot be assembled at draw_at = "
                             f"{at * input_factor(spec):g}")
         for tr in spec.tracers:
-            p = _broken(result, result.motion.points[tr.name].p * k)
+            p = broken(result, result.motion.points[tr.name].p * k)
             ax.plot(p.real, p.imag, ":", lw=1, label=tr.name)
-        _limits(ax, result.motion, k)
+        limits(ax, result.motion, k)
         ax.set_title(f"{t['mech']} θ1 = {at * input_factor(spec):g}°" if spec.input.rotary
                      else t["mech"])
         ax.set_xlabel(unit)
@@ -186,7 +186,7 @@ def write(spec, quantities, result, sweep, outputs, lang, plots=True, animate=Fa
             fig, ax = plt.subplots(figsize=(6, 5))
             p = result.motion.points[tr.name].p * k
             ax.plot(p.real[0], p.imag[0], "o", color="C3")
-            p = _broken(result, p)
+            p = broken(result, p)
             ax.plot(p.real, p.imag, "-", color="C3")
             ax.set_title(f"{t['curve']} {tr.name}")
             ax.set_xlabel(unit)
@@ -207,11 +207,11 @@ def _animate(spec, result, sweep, outputs, t, k):
     m = solve(spec.linkage, sweep.inputs(qs), order=0)
     keep = np.flatnonzero(m.regular)
     fig, ax = plt.subplots(figsize=(5.5, 4.5), dpi=80)
-    d = _Drawing(ax, spec, result.motion, 1 / k)
+    d = Drawing(ax, spec, result.motion, 1 / k)
     for tr in spec.tracers:
         p = result.motion.points[tr.name].p * k
         ax.plot(p.real, p.imag, ":", lw=1, color="C3")
-    _limits(ax, result.motion, k)
+    limits(ax, result.motion, k)
     ax.set_title(plotting.text(spec.header.title))
     # blitting: draw the static background once, then only the moving artists
     artists = d.bar_lines + d.guide_lines + d.block_lines + [d.joints]

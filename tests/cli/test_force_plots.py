@@ -121,12 +121,12 @@ def test_runs_break_curves_and_frames_are_finite():
     import numpy as np
 
     from mechcli.report import force_plots
-    from mechcli.report.kin_plots import _broken
+    from mechcli.report.kin_plots import broken
 
     class Kin:
         runs = [(0, 3), (3, 5)]
 
-    v = _broken(Kin, np.arange(5.0))
+    v = broken(Kin, np.arange(5.0))
     assert np.isnan(v[3]) and v.size == 6
 
     class Pair:
