@@ -22,12 +22,15 @@ def gear(spec_path, **opts):
     from mechcli.report import gear as report
     from mechcli.report.files import Outputs
     from mechcli.report.run import finish
+    from mechcli.spec.errors import SpecError
     from mechcli.spec.gear import read_gear_spec
 
-    try:   # the spec checks a pair's mounting on its gears: core errors there too
-        spec = read_gear_spec(spec_path, run.sets)
+    spec = read_gear_spec(spec_path, run.sets)
+    try:
         solution = solve_gear(spec.kind, spec.problem)
     except GearError as exc:
+        if exc.reason == "mounting":   # a' that jams the teeth: a bad spec value (exit 2)
+            raise SpecError(spec_path, *report.mounting_error(spec, exc)) from None
         exc.args = (report.error_message(exc),)
         raise
     warnings = report.enforce(spec, solution)   # exit 3 on what the spec forbids

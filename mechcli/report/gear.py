@@ -4,7 +4,8 @@ Every ``present_<kind>`` returns ``(report, results, warnings)`` after writing
 its CSV (and PNG/GIF when asked) into *outputs*; the solution comes from
 ``mechcli.core.gear.problems``.  The findings that a spec may forbid (ε < 1,
 interference, pointed tips, undercut) are checked before, by :func:`enforce`,
-and :func:`error_message` words the core's gear errors.  Lengths are shown in
+:func:`error_message` words the core's gear errors and :func:`mounting_error` a
+refused mounting as the spec error of its key.  Lengths are shown in
 the spec's unit, angles in degrees.
 
 The scalar kinds (involute table, inverse involute, pair, helical, worm,
@@ -139,6 +140,26 @@ def error_message(exc):
     """The user's text of a core ``GearError`` (lengths in metres as the core works)."""
     word = _ERROR_TEXT.get(getattr(exc, "reason", ""))
     return str(exc) if word is None else word(exc.values)
+
+
+def mounting_error(spec, exc):
+    """``(key, expected, got)`` of a pair's mounting the core refused (MeshError reason
+    ``"mounting"``, :func:`mechcli.core.gear.pair.check_mountings`): the command
+    raises it as the spec error of that key (exit 2), in the spec's length unit."""
+    p, sc, v = spec.problem, spec.header.scale, exc.values
+    a, a0 = v["a_w"], v["a0"]
+    if v["given"] == "alpha_w":
+        return (p.alpha_w_keys[v["index"]], "an operating pressure angle giving a' "
+                f"{'<=' if v['internal'] else '>='} {a0 / sc:.6g}",
+                f"{math.degrees(v['alpha_w']):g} (a' = {a / sc:.6g})")
+    if v["internal"]:
+        expected = (f"a centre distance in ({v['lo'] / sc:.6g}, {a0 / sc:.6g}] for this "
+                    "internal pair (larger jams the teeth)")
+    else:
+        bound = ("the base circles rb1 + rb2; these thin teeth never jam" if v["thin"]
+                 else "zero backlash; smaller jams the teeth")
+        expected = f"a centre distance >= {a0 / sc:.6g} ({bound})"
+    return p.a_w_keys[v["index"]], expected, f"{a / sc:g}"
 
 
 def _t(lang, en, zh):

@@ -74,6 +74,11 @@ def _shift(sec: Section, name):
     return sec.number(name, 0.0, lo=-1.5, hi=1.5)
 
 
+def _item_keys(sec: Section, name, n):
+    """Key paths of the n values of a number-or-array key (``a_w``; ``a_w[0]``, ``a_w[1]``)."""
+    return tuple(sec.key(name if n == 1 else f"{name}[{i}]") for i in range(n))
+
+
 # -- the problem kinds ---------------------------------------------------------------
 @dataclasses.dataclass(frozen=True)
 class InvoluteProblem:
@@ -120,20 +125,27 @@ class SpurProblem:
 class PairProblem:
     """A pair of external spur gears (【例 5-4】, 习题 5-2 … 5-5)."""
 
-    z1: int
-    z2: int
+    z1: int | None            # None: designed from the ratio
+    z2: int | None
+    ratio: float | None       # z1, z2 to find from ratio, a', m (the core does)
     teeth: ToothSystem
     x1: float
     x2: float
     a_w: tuple                # operating centre distances (m)
     alpha_w: tuple            # operating pressure angles (rad)
-    designed: bool            # z1, z2 found from ratio, a', m
     require_continuous: bool
     forbid_interference: bool
     forbid_pointed: bool
     internal: bool            # gear 2 is a ring gear
     tip_shortening: bool      # shorten both tips by Δy m (shifted external pair)
     animate: bool             # pair.gif of the first mounting (external pairs)
+    a_w_keys: tuple           # key path of each a_w value (the core refuses a mounting
+    alpha_w_keys: tuple       # by index; the command names the key)
+
+    @property
+    def designed(self):
+        """z1, z2 are found from the ratio."""
+        return self.ratio is not None
 
 
 @dataclasses.dataclass(frozen=True)
@@ -256,10 +268,9 @@ def _read_spur(sec):
     radii = _one_or_many(sec, "thickness_radii")
     radii = tuple(r * sec.unit for r in radii)
     rb = ts.m * z * math.cos(ts.alpha) / 2
-    for i, r in enumerate(radii):
+    for key, r in zip(_item_keys(sec, "thickness_radii", len(radii)), radii):
         if r < rb:
-            key = "thickness_radii" if len(radii) == 1 else f"thickness_radii[{i}]"
-            raise SpecError(sec.file, sec.key(key), f"radii >= rb = {rb / sec.unit:.6g} "
+            raise SpecError(sec.file, key, f"radii >= rb = {rb / sec.unit:.6g} "
                             "(no involute inside the base circle)", f"{r / sec.unit:g}")
     fu = sec.boolean("forbid_undercut", False)
     fp = sec.boolean("forbid_pointed", False)
@@ -267,7 +278,6 @@ def _read_spur(sec):
 
 
 def _read_pair(sec):
-    from mechcli.core.gear.pair import design_teeth_from_ratio
     ts = _tooth_system(sec)
     a_w = tuple(a * sec.unit for a in _one_or_many(sec, "a_w"))
     alpha_w = []
@@ -288,8 +298,9 @@ def _read_pair(sec):
         if len(a_w) != 1:
             raise sec.error("a_w", "one centre distance to design the teeth from",
                             f"{len(a_w)} values")
-        z1, z2 = design_teeth_from_ratio(ratio, a_w[0], ts.m)   # MeshError: exit 3
+        z1 = z2 = None   # the core designs them (MeshError: exit 3)
     else:
+        ratio = None
         z1, z2 = _teeth(sec, "z1"), _teeth(sec, "z2")
         if internal and z2 <= z1:
             raise sec.error("z2", f"more teeth than the pinion (z1 = {z1}) for a ring gear",
@@ -303,39 +314,10 @@ def _read_pair(sec):
     if ts_short and (internal or len(a_w) + len(alpha_w) > 1):
         raise sec.error("tip_shortening", "an external pair with one mounting",
                         "internal = true" if internal else "several mountings")
-    # a' must not be below the zero-backlash distance (the teeth would jam): exit 2
-    from mechcli.core.gear.spur import spur_gear
-    from mechcli.core.gear.pair import zero_backlash_distance
-    g1 = spur_gear(z1, ts.m, ts.alpha, ts.ha_star, ts.c_star, x1)
-    g2 = spur_gear(z2, ts.m, ts.alpha, ts.ha_star, ts.c_star, x2, internal)
-    a0 = zero_backlash_distance(g1, g2)
-    a_std = ts.m * (z2 - z1 if internal else z1 + z2) / 2
-    bound = "zero backlash; smaller jams the teeth"
-    if a0 is None:  # thin teeth never jam: only the base circles bound a' (rb1 + rb2 < a')
-        a0 = a_std * math.cos(ts.alpha) * (1 + 1e-9)
-        bound = "the base circles rb1 + rb2; these thin teeth never jam"
-    # external: a' >= a0 (smaller jams); internal: a cos(alpha) < a' <= a0 (larger jams)
-    for i, a in enumerate(a_w):
-        key = "a_w" if len(a_w) == 1 else f"a_w[{i}]"
-        if not internal and a < a0 * (1 - 1e-12):
-            raise SpecError(sec.file, sec.key(key),
-                            f"a centre distance >= {a0 / sec.unit:.6g} ({bound})",
-                            f"{a / sec.unit:g}")
-        if internal and not a_std * math.cos(ts.alpha) < a <= a0 * (1 + 1e-12):
-            raise SpecError(sec.file, sec.key(key),
-                            f"a centre distance in ({a_std * math.cos(ts.alpha) / sec.unit:.6g}, "
-                            f"{a0 / sec.unit:.6g}] for this internal pair (larger jams the teeth)",
-                            f"{a / sec.unit:g}")
-    for i, aw in enumerate(alpha_w):
-        a = a_std * math.cos(ts.alpha) / math.cos(aw)
-        if (a > a0 * (1 + 1e-12)) if internal else (a < a0 * (1 - 1e-12)):
-            key = "alpha_w_deg" if len(alpha_w) == 1 else f"alpha_w_deg[{i}]"
-            raise SpecError(sec.file, sec.key(key),
-                            f"an operating pressure angle giving a' {'<=' if internal else '>='} "
-                            f"{a0 / sec.unit:.6g}",
-                            f"{math.degrees(aw):g} (a' = {a / sec.unit:.6g})")
-    return PairProblem(z1, z2, ts, x1, x2, a_w, tuple(alpha_w), designed, rc, fi, fp,
-                       internal, ts_short, animate)
+    # a' jamming the teeth is refused by the core, named by these keys (exit 2)
+    return PairProblem(z1, z2, ratio, ts, x1, x2, a_w, tuple(alpha_w), rc, fi, fp, internal,
+                       ts_short, animate, _item_keys(sec, "a_w", len(a_w)),
+                       _item_keys(sec, "alpha_w_deg", len(alpha_w)))
 
 
 def _read_generation(sec):

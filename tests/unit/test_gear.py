@@ -11,8 +11,8 @@ from mechcli.core.gear.bevel import bevel_pair
 from mechcli.core.gear.generation import (cutter_positions, generation_plan,
                                           swept_half_space)
 from mechcli.core.gear.helical import helical_pair
-from mechcli.core.gear.pair import (MeshError, design_teeth_from_ratio, gear_pair,
-                                    zero_backlash_pressure_angle)
+from mechcli.core.gear.pair import (MeshError, check_mountings, design_teeth_from_ratio,
+                                    gear_pair, zero_backlash_pressure_angle)
 from mechcli.core.gear.profile import (flank_chordal_deviation, gear_outline,
                                        generated_tooth)
 from mechcli.core.gear.worm import worm_drive
@@ -111,6 +111,45 @@ def test_design_from_ratio_exercise_5_2():
         design_teeth_from_ratio(1.7, 0.078, 0.003)
     with pytest.raises(MeshError, match="whole number"):
         design_teeth_from_ratio(1.6, 0.0785, 0.003)
+
+
+def test_mountings_that_jam_are_refused_by_index_with_their_bound():
+    g1, g2 = spur_gear(20, 5 * MM, A20), spur_gear(80, 5 * MM, A20)
+    check_mountings(g1, g2, (0.250, 0.255), (A20, math.radians(25)))
+    with pytest.raises(MeshError) as err:
+        check_mountings(g1, g2, (0.255, 0.245))
+    v = err.value.values
+    assert err.value.reason == "mounting" and (v["given"], v["index"]) == ("a_w", 1)
+    assert v["a0"] == pytest.approx(0.250, rel=1e-12) and not v["internal"] and not v["thin"]
+    with pytest.raises(MeshError) as err:   # alpha' = 15 deg: a' = 243.21 mm < a0
+        check_mountings(g1, g2, (0.255,), (A20, math.radians(15)))
+    v = err.value.values
+    assert (v["given"], v["index"], v["alpha_w"]) == ("alpha_w", 1, math.radians(15))
+    assert v["a_w"] * 1e3 == pytest.approx(243.21, abs=5e-3)
+    ring = spur_gear(60, 4 * MM, A20, internal=True)
+    pinion = spur_gear(20, 4 * MM, A20)
+    for a in (0.070, 0.081):   # outside (a cos alpha, a0] = (75.18, 80] mm
+        with pytest.raises(MeshError) as err:
+            check_mountings(pinion, ring, (a,))
+        assert err.value.values["lo"] * 1e3 == pytest.approx(75.1754, abs=1e-4)
+    thin1, thin2 = spur_gear(12, MM, A20, x=-0.5), spur_gear(30, MM, A20, x=-0.5)
+    check_mountings(thin1, thin2, (0.020,))
+    with pytest.raises(MeshError) as err:   # no a' jams: the base circles bound a'
+        check_mountings(thin1, thin2, (0.0197,))
+    assert err.value.values["thin"]
+
+
+def test_the_spec_reads_a_design_from_the_ratio_without_solving(tmp_path):
+    from mechcli.core.gear.problems import solve_pair
+    from mechcli.spec.gear import read_gear_spec
+    path = tmp_path / "g.toml"
+    path.write_text('command = "gear"\nunits = "mm"\n[pair]\nratio = 1.7\na_w = 78\nm = 3\n',
+                    encoding="utf-8")
+    p = read_gear_spec(path).problem   # 1.7 gives no whole z1: the core says so, not the spec
+    assert (p.z1, p.z2, p.ratio, p.designed, p.a_w_keys) == (None, None, 1.7, True,
+                                                             ("pair.a_w",))
+    with pytest.raises(MeshError, match="not whole"):
+        solve_pair(p)
 
 
 @pytest.mark.parametrize("z, x", [(9, 0.0), (9, 0.75), (35, 0.0), (12, -0.2)])

@@ -79,13 +79,7 @@ REPORT_SPEC_IMPORTS = {
 }
 
 #: what breaks the contract today, as "importer -> imported"; empty it, never grow it
-KNOWN_VIOLATIONS = {
-    # spec/gear.py derives the teeth from a ratio and checks the centre distance by
-    # building the gears (issue 11 item 6: the spec layer does not solve)
-    "mechcli.spec.gear -> mechcli.core.gear.pair.design_teeth_from_ratio",
-    "mechcli.spec.gear -> mechcli.core.gear.pair.zero_backlash_distance",
-    "mechcli.spec.gear -> mechcli.core.gear.spur.spur_gear",
-}
+KNOWN_VIOLATIONS: set = set()
 
 
 def _module_name(path):

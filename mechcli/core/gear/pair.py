@@ -72,6 +72,48 @@ def pressure_angle_from_centre_distance(g1, g2, a_w):
     return math.acos(c)
 
 
+def check_mountings(g1: SpurGear, g2: SpurGear, a_w=(), alpha_w=()):
+    """Refuse the first operating centre distance, then pressure angle, at which the
+    teeth would jam (checked before any pair is mounted).
+
+    External pair: a' >= a0, the zero-backlash distance; when the teeth are so
+    thin that no a' jams, a' > rb1 + rb2.  Internal pair: a cos(alpha) < a' <= a0.
+    A pressure angle alpha' stands for a' = a cos(alpha) / cos(alpha').
+
+    Raises
+    ------
+    MeshError
+        reason ``"mounting"``, values: ``given`` (``"a_w"`` or ``"alpha_w"``:
+        which argument), ``index`` (in it), ``a_w`` (the a' [m]), ``alpha_w``
+        (the alpha' [rad] or None), ``a0`` (the bound [m]: the zero-backlash
+        distance, or rb1 + rb2 when ``thin``), ``lo`` (internal: a cos(alpha)
+        [m], else None), ``internal``, ``thin``; or the MeshError of
+        :func:`zero_backlash_distance` (an internal pair without one).
+    """
+    internal = g2.internal
+    a0 = zero_backlash_distance(g1, g2)
+    base = standard_centre_distance(g1, g2) * math.cos(g1.alpha)   # rb1 + rb2 (rb2 - rb1)
+    thin = a0 is None
+    if thin:   # thin teeth never jam: only the base circles bound a' (rb1 + rb2 < a')
+        a0 = base * (1 + 1e-9)
+    lo = base if internal else None
+    for given, values in (("a_w", a_w), ("alpha_w", alpha_w)):
+        for i, value in enumerate(values):
+            a = value if given == "a_w" else base / math.cos(value)
+            if internal:
+                bad = not base < a <= a0 * (1 + 1e-12) if given == "a_w" \
+                    else a > a0 * (1 + 1e-12)
+            else:
+                bad = a < a0 * (1 - 1e-12)
+            if bad:
+                where = f"in ({lo:.6g}, {a0:.6g}]" if internal else f">= {a0:.6g}"
+                raise MeshError(
+                    f"mounting {given}[{i}]: a' = {a:.6g} is not {where}, where the teeth "
+                    "neither jam nor overlap their base circles", "mounting",
+                    given=given, index=i, a_w=a, alpha_w=None if given == "a_w" else value,
+                    a0=a0, lo=lo, internal=internal, thin=thin)
+
+
 def design_teeth_from_ratio(ratio, a_w, m):
     """Tooth numbers of a standard pair from the ratio, centre distance and module.
 

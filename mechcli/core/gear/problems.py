@@ -59,10 +59,22 @@ def solve_spur(p):
 
 def solve_pair(p):
     """A pair at each mounting (``p.a_w``, then ``p.alpha_w``; zero backlash if none)
-    (【例 5-4】): list of :class:`~.pair.GearPair`, tips shortened when asked."""
-    from mechcli.core.gear.pair import gear_pair, tip_shortened
-    g1 = _gear(p.teeth, p.z1, p.x1)
-    g2 = _gear(p.teeth, p.z2, p.x2, p.internal)
+    (【例 5-4】): list of :class:`~.pair.GearPair`, tips shortened when asked.
+
+    The teeth are ``p.z1``, ``p.z2``, or designed from ``p.ratio`` (not None) and
+    the one centre distance ``p.a_w[0]`` (习题 5-2).  Every mounting is checked
+    before any pair is mounted (:func:`~.pair.check_mountings`: MeshError with
+    reason ``"mounting"`` when the teeth would jam).
+    """
+    from mechcli.core.gear.pair import (check_mountings, design_teeth_from_ratio, gear_pair,
+                                        tip_shortened)
+    if p.ratio is None:
+        z1, z2 = p.z1, p.z2
+    else:
+        z1, z2 = design_teeth_from_ratio(p.ratio, p.a_w[0], p.teeth.m)
+    g1 = _gear(p.teeth, z1, p.x1)
+    g2 = _gear(p.teeth, z2, p.x2, p.internal)
+    check_mountings(g1, g2, p.a_w, p.alpha_w)
     pairs = [gear_pair(g1, g2, a_w=a) for a in p.a_w]
     pairs += [gear_pair(g1, g2, alpha_w=aw) for aw in p.alpha_w]
     if not pairs:
