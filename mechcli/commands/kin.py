@@ -12,7 +12,7 @@ from mechcli.options import RunOptions, common_options
 @common_options
 def kin(spec_path, **opts):
     """Kinematics of a planar linkage (chapter 1): four-bar, slider-crank,
-    guide-bar, shaper or any linkage of drivers and RRR/RRP/RPR dyads."""
+    guide-bar, shaper or any linkage of drivers and RRR/RRP/RPR/PRP dyads."""
     run = RunOptions.from_click(spec_path, opts)
     from mechcli.core.errors import AssemblyError
     from mechcli.core.linkage.kinematics import Sweep, analyse_sweep, default_quantities

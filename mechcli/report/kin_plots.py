@@ -63,7 +63,7 @@ def _plot_group(ax, spec, result, qs, x, lang):
 
 def _link_segments(linkage):
     """The elements' drawing primitives, sorted: bars, blocks, guides, ground points."""
-    prims = [p for el in linkage.elements for p in el.sketch()]
+    prims = [p for el in linkage.elements for p in el.sketch(linkage.frame)]
     bars = [(p.a, p.b) for p in prims if isinstance(p, Bar)]
     blocks = [p for p in prims if isinstance(p, Block)]
     guides = [p for p in prims if isinstance(p, Guide)]

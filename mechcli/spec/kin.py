@@ -7,7 +7,7 @@ there is one engine and one code path:
 * ``slider_crank`` l1, l2, offset e; A=(0,0), slider guide y = e (图 1-4)
 * ``guide_bar``    l1 crank, l4 = AC frame; C=(0,0), A=(0,l4); optional guide offset e (图 1-6)
 * ``shaper``       l1, l3, l4, l6, l6p (= l6'); C=(0,0), A=(0,l6), ram guide y = l6p (图 1-8)
-* ``general``      ground points, drivers, dyads (RRR, RRP, RPR) and points on links
+* ``general``      ground points, drivers, dyads (RRR, RRP, RPR, PRP) and points on links
 """
 
 from __future__ import annotations
@@ -18,7 +18,7 @@ from typing import Optional, Tuple
 
 import numpy as np
 
-from mechcli.core.linkage import (RPR, RRP, RRR, Crank, Ground, Linkage,
+from mechcli.core.linkage import (PRP, RPR, RRP, RRR, Crank, Ground, Linkage,
                                   LinkageDefinitionError, PointOnLink, SliderDriver)
 from mechcli.core.linkage import presets
 from mechcli.spec.common import Header, read_expected, read_header
@@ -160,14 +160,18 @@ def _general(mech):
         d.finish()
     for dy in mech.tables("dyad", []):
         kind = dy.string("type", choices=list(DYADS))
-        br = _branch(dy, "branch", 1, {"left": 1, "right": -1})
-        elements.append(DYADS[kind](dy, br, mech.unit))
+        elements.append(DYADS[kind](dy, mech.unit))
         paths.append(dy.path)
         dy.finish()
     return frame, elements, followers, paths
 
 
-def _rrr(dy, br, unit):
+def _dyad_branch(dy):
+    return _branch(dy, "branch", 1, {"left": 1, "right": -1})
+
+
+def _rrr(dy, unit):
+    br = _dyad_branch(dy)
     pts = dy.strings("points")
     links = dy.raw("links")
     lengths = dy.numbers("lengths", size=2, positive=True)
@@ -180,22 +184,40 @@ def _rrr(dy, br, unit):
                pts[1], links[1], lengths[1] * unit, br)
 
 
-def _rrp(dy, br, unit):
+def _rrp(dy, unit):
+    br = _dyad_branch(dy)
     return RRP(dy.string("joint"), dy.string("point"), dy.integer("link", lo=1),
                dy.length("length"), dy.integer("slider", lo=1), dy.integer("guide_link", lo=1),
                dy.string("guide_point"), math.radians(dy.number("guide_angle", 0.0)),
                dy.coordinate("offset", 0.0), br, dy.string("name", None))
 
 
-def _rpr(dy, br, unit):
+def _rpr(dy, unit):
+    br = _dyad_branch(dy)
     return RPR(dy.string("point"), dy.integer("block", lo=1), dy.string("pivot"),
                dy.integer("guide", lo=1), dy.coordinate("offset", 0.0), br,
                dy.string("name", None))
 
 
+def _prp(dy, unit):
+    """RRP's guide keys twice, suffixed ``_a`` and ``_b`` (the keys are the fields)."""
+    if dy.has("branch"):
+        raise dy.error("branch", "no branch (a PRP dyad's joint is the one intersection of "
+                       "its two guide lines)", repr(dy.raw("branch")))
+    keys = {}
+    for x in "ab":
+        keys.update({f"slider_{x}": dy.integer(f"slider_{x}", lo=1),
+                     f"guide_link_{x}": dy.integer(f"guide_link_{x}", lo=1),
+                     f"guide_point_{x}": dy.string(f"guide_point_{x}"),
+                     f"guide_angle_{x}": math.radians(dy.number(f"guide_angle_{x}", 0.0)),
+                     f"offset_{x}": dy.coordinate(f"offset_{x}", 0.0),
+                     f"name_{x}": dy.string(f"name_{x}", None)})
+    return PRP(dy.string("joint"), **keys)
+
+
 #: ``[[mechanism.dyad]] type`` -> reader of that dyad's keys (a new dyad type of
 #: the engine adds one reader here)
-DYADS = {"RRR": _rrr, "RRP": _rrp, "RPR": _rpr}
+DYADS = {"RRR": _rrr, "RRP": _rrp, "RPR": _rpr, "PRP": _prp}
 
 
 def _points(mech, elements, paths):
@@ -219,7 +241,9 @@ def _points(mech, elements, paths):
 _SPEC_KEY = {"point_a": "points", "point_b": "points", "link_a": "links", "link_b": "links",
              "origin": "from", "joint": "joint", "point": "point", "pivot": "pivot",
              "guide_point": "guide_point", "guide_link": "guide_link", "link": "link",
-             "guide": "guide", "block": "block", "slider": "slider", "name": "name"}
+             "guide": "guide", "block": "block", "slider": "slider", "name": "name",
+             **{f"{k}_{x}": f"{k}_{x}" for k in ("guide_point", "guide_link", "slider")
+                for x in "ab"}}
 
 
 #: (element kind, engine field) -> spec key, where the kind's table names it otherwise

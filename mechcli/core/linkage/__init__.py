@@ -16,7 +16,7 @@ import solve, four_bar``).
 """
 
 from mechcli.core.linkage.elements import (  # noqa: F401
-    ASSEMBLY_TOL, RPR, RRP, RRR, SINGULAR_TOL, Bar, Block, Crank, Element, Ground, Guide,
+    ASSEMBLY_TOL, PRP, RPR, RRP, RRR, SINGULAR_TOL, Bar, Block, Crank, Element, Ground, Guide,
     Pivot, PointOnLink, SliderDriver)
 from mechcli.core.linkage.engine import (  # noqa: F401
     DriverMotion, DyadCondition, LinkMotion, Linkage, LinkageDefinitionError, LinkageMotion,

@@ -6,7 +6,7 @@ Assur groups (dyads) solved in order (杆组法).  Every element class here owns
 * what it needs and what it makes (:meth:`Element.needs`, :meth:`Element.makes`),
 * its position / velocity / acceleration step (:meth:`Element.step`),
 * its kinematic pairs for kinetostatics (:meth:`Element.pairs`),
-* the name of the slide it reports (:meth:`Element.slide_name`) and which of
+* the names of the slides it reports (:meth:`Element.slide_names`) and which of
   its links are reported as rotating (:meth:`Element.reported_links`),
 * how it is drawn (:meth:`Element.sketch`, plain data: the report layer turns
   :class:`Bar`, :class:`Block`, :class:`Guide` and :class:`Pivot` into
@@ -150,6 +150,53 @@ def rotate_about(o: PointState, link: LinkState, rx, ry, vel, acc) -> PointState
     return p
 
 
+class _GuideLine:
+    """A guide line carried by link ``link`` (solved), as a dyad sees it.
+
+    The line passes through the known point ``point`` of that link, shifted
+    by ``offset`` [m] along its left normal, in direction ``angle`` [rad]
+    relative to the link: unit direction ``(ux, uy)``, base ``(bx, by)``.
+    A block on it at slide ``s`` is at ``base + s * u``.
+    """
+
+    def __init__(self, st, link, point, angle, offset):
+        self.p, self.g = st.P[point], st.L[link]
+        self.moving = link != st.frame
+        g, c, s = self.g, np.cos(angle), np.sin(angle)
+        self.ux, self.uy = st.full(g.c * c - g.s * s), st.full(g.s * c + g.c * s)
+        self.bx, self.by = self.p.x - offset * self.uy, self.p.y + offset * self.ux
+        self.theta = st.full(g.theta + angle)
+
+    def carried_velocity(self, rx, ry):
+        """Velocity [m/s] of the guide link's point at ``point + (rx, ry)``."""
+        p, w = self.p, self.g.w
+        if not self.moving:
+            return p.vx, p.vy
+        return p.vx - w * ry, p.vy + w * rx
+
+    def carried_acceleration(self, rx, ry, sd):
+        """Acceleration [m/s^2] of the guide link's point at ``point + (rx, ry)``
+        plus the Coriolis term ``2 omega x (sd u)`` of a block sliding at ``sd`` [m/s]."""
+        p, g = self.p, self.g
+        if not self.moving:
+            return p.ax, p.ay
+        w2, cor = g.w * g.w, 2 * sd * g.w
+        return (p.ax - g.al * ry - w2 * rx - cor * self.uy,
+                p.ay + g.al * rx - w2 * ry + cor * self.ux)
+
+    def block(self):
+        """State of a block sliding on this line: turned with the guide link."""
+        return LinkState(self.theta, self.ux, self.uy, self.g.w, self.g.al)
+
+
+def _slide_symbol(name, block, guide, frame):
+    """Slide symbol suffix: ``name`` if given, else ``<block>`` on a frame
+    guide, ``<block><guide>`` on a moving one (RRP's rule)."""
+    if name:
+        return name
+    return str(block) if guide == frame else f"{block}{guide}"
+
+
 class Element:
     """Base of every element.  Subclasses are frozen dataclasses.
 
@@ -190,9 +237,9 @@ class Element:
         """Absolute values of the length-like parameters [m]."""
         return tuple(np.abs(getattr(self, f)) for f in self.lengths_)
 
-    def slide_name(self, frame) -> Optional[str]:
-        """Symbol suffix of the slide this element reports (``s3``, ``s23``, ``sE``)."""
-        return None
+    def slide_names(self, frame) -> Tuple[str, ...]:
+        """Symbol suffixes of the slides this element reports (``s3``, ``s23``, ``sE``)."""
+        return ()
 
     def translating_links(self, frame):
         """Links made here that only translate (their angle never changes)."""
@@ -214,8 +261,9 @@ class Element:
         """Declare the element's points and kinematic pairs on a topology builder."""
         raise NotImplementedError
 
-    def sketch(self):
-        """Drawing primitives: a tuple of Bar, Block, Guide, Pivot."""
+    def sketch(self, frame):
+        """Drawing primitives: a tuple of Bar, Block, Guide, Pivot (``frame``: the
+        frame's link number, for the slide names)."""
         return ()
 
 
@@ -246,7 +294,7 @@ class Ground(Element):
     def pairs(self, tb):
         tb.new_point(self.name, tb.frame)
 
-    def sketch(self):
+    def sketch(self, frame):
         return (Pivot(self.name),)
 
 
@@ -289,7 +337,7 @@ class Crank(Element):
         tb.frames[self.link] = [self.pivot, self.point]
         return (self.link,)
 
-    def sketch(self):
+    def sketch(self, frame):
         return (Bar(self.pivot, self.point),)
 
 
@@ -316,8 +364,8 @@ class SliderDriver(Element):
     def makes(self):
         return (self.point,), (self.link,)
 
-    def slide_name(self, frame):
-        return self.name or str(self.link)
+    def slide_names(self, frame):
+        return (self.name or str(self.link),)
 
     def translating_links(self, frame):
         return (self.link,)
@@ -336,7 +384,7 @@ class SliderDriver(Element):
             p.ax, p.ay = o.ax + a * ux, o.ay + a * uy
         st.P[self.point] = p
         st.L[self.link] = LinkState(st.full(self.angle), ux, uy, st.zero, st.zero)
-        st.slide(self.slide_name(st.frame), self.link, st.frame, s, v, a)
+        st.slide(self.slide_names(st.frame)[0], self.link, st.frame, s, v, a)
 
     def pairs(self, tb):
         if tb.owner.get(self.origin) != tb.frame:
@@ -347,7 +395,7 @@ class SliderDriver(Element):
         tb.frames[self.link] = [self.point, None]
         return (self.link,)
 
-    def sketch(self):
+    def sketch(self, frame):
         return (Block(self.point, None),)
 
 
@@ -443,7 +491,7 @@ class RRR(Element):
         tb.frames[self.link_b] = [self.point_b, self.joint]
         return (self.link_a, self.link_b)
 
-    def sketch(self):
+    def sketch(self, frame):
         return (Bar(self.point_a, self.joint), Bar(self.point_b, self.joint))
 
 
@@ -482,10 +530,8 @@ class RRP(Element):
     def makes(self):
         return (self.joint,), (self.link, self.slider)
 
-    def slide_name(self, frame):
-        if self.name:
-            return self.name
-        return str(self.slider) if self.guide_link == frame else f"{self.slider}{self.guide_link}"
+    def slide_names(self, frame):
+        return (_slide_symbol(self.name, self.slider, self.guide_link, frame),)
 
     def translating_links(self, frame):
         return (self.slider,) if self.guide_link == frame else ()
@@ -539,7 +585,7 @@ class RRP(Element):
                                     ry * (1 / self.length), wr, ar)
         st.L[self.slider] = LinkState(g.theta + self.guide_angle if moving
                                       else st.full(self.guide_angle), ux, uy, g.w, g.al)
-        st.slide(self.slide_name(st.frame), self.slider, self.guide_link, s, sd, sdd)
+        st.slide(self.slide_names(st.frame)[0], self.slider, self.guide_link, s, sd, sdd)
 
     def pairs(self, tb):
         tb.revolute(self.point, self.link)
@@ -550,10 +596,10 @@ class RRP(Element):
         tb.frames[self.slider] = [self.joint, None]
         return (self.link, self.slider)
 
-    def sketch(self):
+    def sketch(self, frame):
         return (Bar(self.point, self.joint), Block(self.joint, self.slider),
                 Guide(self.guide_link, self.guide_point, self.guide_angle, self.offset,
-                      self.name or ""))
+                      self.slide_names(frame)[0]))
 
 
 @dataclasses.dataclass(frozen=True)
@@ -584,8 +630,8 @@ class RPR(Element):
     def makes(self):
         return (), (self.guide, self.block)
 
-    def slide_name(self, frame):
-        return self.name or f"{self.block}{self.guide}"
+    def slide_names(self, frame):
+        return (self.name or f"{self.block}{self.guide}",)
 
     def reported_links(self, frame):
         return (self.guide,)  # the block turns with the guide
@@ -622,7 +668,7 @@ class RPR(Element):
                                  pp.ay - pc.ay - 2 * sd * wg * ux + w2 * dy)
         st.L[self.guide] = LinkState(np.arctan2(uy, ux), ux, uy, wg, ag)
         st.L[self.block] = st.L[self.guide]
-        st.slide(self.slide_name(st.frame), self.block, self.guide, s, sd, sdd)
+        st.slide(self.slide_names(st.frame)[0], self.block, self.guide, s, sd, sdd)
 
     def pairs(self, tb):
         tb.revolute(self.point, self.block)
@@ -632,9 +678,9 @@ class RPR(Element):
         tb.frames[self.guide] = [self.pivot, None]
         return (self.block, self.guide)
 
-    def sketch(self):
+    def sketch(self, frame):
         return (Block(self.point, self.block),
-                Guide(self.guide, self.pivot, 0.0, self.offset, self.slide_name(None), True,
+                Guide(self.guide, self.pivot, 0.0, self.offset, self.slide_names(frame)[0], True,
                       self.branch))
 
 
@@ -675,5 +721,126 @@ class PointOnLink(Element):
         if tb.frames[self.link][1] is None:
             tb.frames[self.link][1] = self.name
 
-    def sketch(self):
+    def sketch(self, frame):
         return (Bar(self.origin, self.name),)
+
+
+@dataclasses.dataclass(frozen=True)
+class PRP(Element):
+    """PRP dyad: two slider blocks pinned together at a new ``joint``.
+
+    Block ``slider_a`` slides on a guide line carried by link
+    ``guide_link_a``: through that link's known point ``guide_point_a``,
+    shifted by ``offset_a`` [m] along the line's left normal, in direction
+    ``guide_angle_a`` [rad] relative to the guide link (the frame or a moving
+    link).  Block ``slider_b`` likewise on ``guide_link_b``.  The joint is the
+    intersection of the two lines,
+
+        joint = base_a + s_a u_a = base_b + s_b u_b,
+
+    with the slides ``s_a``, ``s_b`` [m] measured along each line from its
+    base point.  The intersection is unique: there is no branch.  It is
+    singular when the guides are parallel: the conditioning ``sin_gamma`` is
+    |sin| of the angle between them (a dead point at ``sin_gamma -> 0``,
+    where the position itself is undefined and the slides are set to 0).
+
+    Both slides are reported (:meth:`slide_names`), named ``name_a`` /
+    ``name_b`` or by RRP's rule (``s<slider>`` on the frame,
+    ``s<slider><guide>`` on a moving link).  Each block turns with its guide
+    link.
+
+    Notes
+    -----
+    The pin of a cross-slide, of the tangent mechanism (正切机构: slotted
+    crank + slider on a fixed line, y = d tan θ) and of the Oldham coupling's
+    inversion of the elliptic trammel (two slotted cranks).  Velocities and
+    accelerations follow from differentiating the loop twice: the point of a
+    moving guide link under the joint, plus the slide along the guide, plus
+    the Coriolis term ``2 ω × (ṡ u)``, as in :class:`RRP`.
+    """
+
+    joint: str
+    slider_a: int
+    guide_link_a: int
+    guide_point_a: str
+    slider_b: int
+    guide_link_b: int
+    guide_point_b: str
+    guide_angle_a: float = 0.0
+    offset_a: float = 0.0
+    guide_angle_b: float = 0.0
+    offset_b: float = 0.0
+    name_a: Optional[str] = None
+    name_b: Optional[str] = None
+
+    kind: ClassVar[str] = "PRP"
+    lengths_: ClassVar[Tuple[str, ...]] = ("offset_a", "offset_b")
+    angles_: ClassVar[Tuple[str, ...]] = ("guide_angle_a", "guide_angle_b")
+
+    def _sides(self):
+        return ((self.slider_a, self.guide_link_a, self.guide_point_a, self.guide_angle_a,
+                 self.offset_a, self.name_a),
+                (self.slider_b, self.guide_link_b, self.guide_point_b, self.guide_angle_b,
+                 self.offset_b, self.name_b))
+
+    def needs(self):
+        return (self.guide_point_a, self.guide_point_b), (self.guide_link_a, self.guide_link_b)
+
+    def makes(self):
+        return (self.joint,), (self.slider_a, self.slider_b)
+
+    def slide_names(self, frame):
+        return tuple(_slide_symbol(name, sl, gl, frame) for sl, gl, *_, name in self._sides())
+
+    def translating_links(self, frame):
+        return tuple(sl for sl, gl, *_ in self._sides() if gl == frame)
+
+    def reported_links(self, frame):
+        return tuple(sl for sl, gl, *_ in self._sides() if gl != frame)
+
+    def step(self, st):
+        a, b = (_GuideLine(st, gl, gp, ang, off) for _, gl, gp, ang, off, _ in self._sides())
+        # s_a u_a - s_b u_b = base_b - base_a: its determinant is -(u_a x u_b)
+        sing = np.abs(a.ux * b.uy - a.uy * b.ux)
+        st.condition(self, self.joint, sing)
+        parallel = sing <= SINGULAR_TOL
+        st.mark(True, sing, parallel)
+        solve2 = Solve2(a.ux, a.uy, -b.ux, -b.uy, parallel if parallel.any() else None)
+        sa, sb = solve2(b.bx - a.bx, b.by - a.by)
+        q = PointState(a.bx + sa * a.ux, a.by + sa * a.uy)
+        sda = sdb = sdda = sddb = None
+        if st.vel:
+            rax, ray = q.x - a.p.x, q.y - a.p.y
+            rbx, rby = q.x - b.p.x, q.y - b.p.y
+            (vax, vay), (vbx, vby) = a.carried_velocity(rax, ray), b.carried_velocity(rbx, rby)
+            sda, sdb = solve2(vbx - vax, vby - vay)
+            q.vx, q.vy = vax + sda * a.ux, vay + sda * a.uy
+            if st.acc:
+                aax, aay = a.carried_acceleration(rax, ray, sda)
+                abx, aby = b.carried_acceleration(rbx, rby, sdb)
+                sdda, sddb = solve2(abx - aax, aby - aay)
+                q.ax, q.ay = aax + sdda * a.ux, aay + sdda * a.uy
+        st.P[self.joint] = q
+        for (sl, gl, *_), name, line, s, v, acc in zip(
+                self._sides(), self.slide_names(st.frame), (a, b), (sa, sb), (sda, sdb),
+                (sdda, sddb)):
+            st.L[sl] = line.block()
+            st.slide(name, sl, gl, s, v, acc)
+
+    def pairs(self, tb):
+        for sl, gl, gp, *_ in self._sides():
+            if gl not in tb.members.get(gp, ()):
+                tb.fail(f"the guide of slider {sl} passes through '{gp}', which is not on "
+                        f"link {gl}", ("point", gp))
+        tb.new_point(self.joint, self.slider_a)
+        tb.prismatic(self.guide_link_a, self.slider_a, self.joint)
+        tb.joint(self.joint, self.slider_a, self.slider_b)
+        tb.prismatic(self.guide_link_b, self.slider_b, self.joint)
+        tb.frames[self.slider_a] = [self.joint, None]
+        tb.frames[self.slider_b] = [self.joint, None]
+        return (self.slider_a, self.slider_b)
+
+    def sketch(self, frame):
+        return tuple(p for (sl, gl, gp, ang, off, _), name in zip(self._sides(),
+                                                                  self.slide_names(frame))
+                     for p in (Block(self.joint, sl), Guide(gl, gp, ang, off, name)))

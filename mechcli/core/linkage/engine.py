@@ -138,7 +138,7 @@ class Linkage:
     def slide_names(self):
         """Names of the slides (prismatic pairs reported as s/v/a), in element order."""
         return tuple(n for el in self.elements if not el.is_driver
-                     for n in [el.slide_name(self.frame)] if n is not None)
+                     for n in el.slide_names(self.frame))
 
     @property
     def transmission_joints(self):
@@ -230,7 +230,8 @@ class DyadCondition:
     joint and ``cos_joint`` that angle's cosine, so ``gamma`` is the acute
     transmission angle in [0, pi/2]; for RRP |cos| of the angle between rod
     and guide; for RPR |s| over the pivot-block distance (or the linkage
-    scale, whichever is larger).
+    scale, whichever is larger); for PRP |sin| of the angle between the two
+    guides.  Each element class documents its own (``Element.step``).
     """
 
     element: int

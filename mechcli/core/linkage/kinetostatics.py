@@ -307,7 +307,7 @@ def solve_forces(topo: Topology, motion: LinkageMotion, bodies: Dict[int, Body],
             ffx -= val * ux
             ffy -= val * uy
             fm -= arr(p.x) * val * uy - arr(p.y) * val * ux
-            power += val * arr(motion.slides[d.slide_name(frame)].v)
+            power += val * arr(motion.slides[d.slide_names(frame)[0]].v)
     # global balance: Σ known forces (gravity, loads, inertia) = force on the frame
     kfx = sum(known[ln][0] for ln in topo.links)
     kfy = sum(known[ln][1] for ln in topo.links)
@@ -320,7 +320,7 @@ def solve_forces(topo: Topology, motion: LinkageMotion, bodies: Dict[int, Body],
             if d.rotary:
                 pres += val * arr(unit_motion.links[d.link].omega)
             else:
-                pres += val * arr(unit_motion.slides[d.slide_name(frame)].v)
+                pres += val * arr(unit_motion.slides[d.slide_names(frame)[0]].v)
         for link in topo.links:
             x0, y0, origin, along, normal = com[link]
             _x, _y, vx, vy, _a, _b = _point(unit_motion, topo, origin, link, along, normal,
