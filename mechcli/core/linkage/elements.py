@@ -288,7 +288,10 @@ class Ground(Element):
         return (self.name,), ()
 
     def step(self, st):
-        st.P[self.name] = PointState(st.full(self.x), st.full(self.y), st.zero, st.zero,
+        # kept at the parameters' own shape: broadcast to the full shape only in
+        # the results (a batch of designs need not repeat x, y at every position)
+        st.P[self.name] = PointState(np.asarray(self.x, dtype=float),
+                                     np.asarray(self.y, dtype=float), st.zero, st.zero,
                                      st.zero, st.zero)
 
     def pairs(self, tb):
@@ -324,7 +327,8 @@ class Crank(Element):
 
     def step(self, st):
         m = st.inputs[self.link]
-        th, w, al = st.full(m.q), st.full(m.dq), st.full(m.ddq)
+        # the angle at its own shape (cos and sin once per input, not per design)
+        th, w, al = np.asarray(m.q, dtype=float), st.full(m.dq), st.full(m.ddq)
         c, s = np.cos(th), np.sin(th)
         link = LinkState(th, c, s, w, al)
         st.P[self.point] = rotate_about(st.P[self.pivot], link, self.length * c,

@@ -401,7 +401,8 @@ def solve(linkage: Linkage, inputs, order: int = 2, on_fail: str = "mask") -> Li
         raise AssemblyError(f"the linkage cannot be assembled (or is at a dead point) at "
                             f"{bad} of {np.size(regular)} input positions")
     full = st.full
-    points = {n: PointMotion(p.x, p.y, p.vx, p.vy, p.ax, p.ay) for n, p in st.P.items()}
+    points = {n: PointMotion(full(p.x), full(p.y), p.vx, p.vy, p.ax, p.ay)
+              for n, p in st.P.items()}
     links = {n: LinkMotion(full(k.theta), None if k.w is None or not vel else full(k.w),
                            None if k.al is None or not acc else full(k.al))
              for n, k in st.L.items()}
