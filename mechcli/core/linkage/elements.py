@@ -189,6 +189,17 @@ class _GuideLine:
         return LinkState(self.theta, self.ux, self.uy, self.g.w, self.g.al)
 
 
+def _nonpositive(*lengths):
+    """Mask of the designs where any of ``lengths`` is <= 0 (None when none is:
+    the common case costs one comparison per parameter and changes nothing)."""
+    void = None
+    for v in lengths:
+        if np.any(np.less_equal(v, 0.0)):
+            m = np.less_equal(v, 0.0)
+            void = m if void is None else void | m
+    return void
+
+
 def _slide_symbol(name, block, guide, frame):
     """Slide symbol suffix: ``name`` if given, else ``<block>`` on a frame
     guide, ``<block><guide>`` on a moving one (RRP's rule)."""
@@ -219,6 +230,20 @@ class Element:
     rotary: ClassVar[bool] = False
     lengths_: ClassVar[Tuple[str, ...]] = ()
     angles_: ClassVar[Tuple[str, ...]] = ()
+
+    def __post_init__(self):
+        # numeric parameters given as lists/tuples become arrays (a batch of
+        # designs); a branch must be +1 or -1 (0 or 2 would solve silently wrong)
+        for f in self.lengths_ + self.angles_ + ("branch",):
+            v = getattr(self, f, None)
+            if isinstance(v, (list, tuple)):
+                v = np.asarray(v, dtype=float)
+                object.__setattr__(self, f, v)
+        if hasattr(self, "branch"):
+            b = np.asarray(self.branch)
+            if b.dtype.kind not in "biuf" or not np.all(np.abs(b) == 1):
+                raise ValueError(f"{self.kind} dyad: branch must be +1 or -1 (or an array of "
+                                 f"them), got {self.branch!r}")
 
     def needs(self):
         """(points, links) that must be known before this element is solved."""
@@ -439,6 +464,11 @@ class RRR(Element):
     def step(self, st):
         pa, pb = st.P[self.point_a], st.P[self.point_b]
         la, lb = self.length_a, self.length_b
+        # a link of zero (or negative) length cannot assemble (its angle is
+        # undefined): such designs of a batch are infeasible, never inf/NaN
+        void = _nonpositive(la, lb)
+        if void is not None:
+            la, lb = np.where(void, 1.0, la), np.where(void, 1.0, lb)
         dx, dy = pb.x - pa.x, pb.y - pa.y
         d2 = dx * dx + dy * dy
         dist = np.sqrt(d2)
@@ -468,6 +498,8 @@ class RRR(Element):
         if coincide is not None:
             ok = ok | coincide
             sing = np.where(coincide, 0.0, sing)
+        if void is not None:
+            ok = ok & ~void
         st.condition(self, self.joint, sing, (rax * rbx + ray * rby) * nab)
         bad = st.mark(ok, sing, coincide)
         q = PointState(qx, qy)
@@ -552,13 +584,19 @@ class RRP(Element):
         bx, by = pg.x - e * uy, pg.y + e * ux  # base of the slide
         wx, wy = bx - pp.x, by - pp.y
         b = wx * ux + wy * uy
-        length2 = self.length * self.length
+        length = self.length
+        void = _nonpositive(length)  # a rod of zero length: infeasible (see RRR)
+        if void is not None:
+            length = np.where(void, 1.0, length)
+        length2 = length * length
         disc = b * b - (wx * wx + wy * wy - length2)
         ok = disc >= -4 * ASSEMBLY_TOL * length2
+        if void is not None:
+            ok = ok & ~void
         s = np.sqrt(np.maximum(disc, 0.0)) * (self.branch * 1.0) - b
         qx, qy = bx + s * ux, by + s * uy
         rx, ry = qx - pp.x, qy - pp.y
-        sing = np.abs(rx * ux + ry * uy) * (1.0 / self.length)
+        sing = np.abs(rx * ux + ry * uy) * (1.0 / length)
         st.condition(self, self.joint, sing)
         bad = st.mark(ok, sing)
         q = PointState(qx, qy)
@@ -585,8 +623,8 @@ class RRP(Element):
                 q.ax = pp.ax - ar * ry - wr2 * rx
                 q.ay = pp.ay + ar * rx - wr2 * ry
         st.P[self.joint] = q
-        st.L[self.link] = LinkState(np.arctan2(ry, rx), rx * (1 / self.length),
-                                    ry * (1 / self.length), wr, ar)
+        st.L[self.link] = LinkState(np.arctan2(ry, rx), rx * (1 / length),
+                                    ry * (1 / length), wr, ar)
         st.L[self.slider] = LinkState(g.theta + self.guide_angle if moving
                                       else st.full(self.guide_angle), ux, uy, g.w, g.al)
         st.slide(self.slide_names(st.frame)[0], self.slider, self.guide_link, s, sd, sdd)

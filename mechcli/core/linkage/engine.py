@@ -14,6 +14,7 @@ counter-clockwise from +x [rad].
 
 from __future__ import annotations
 
+import contextlib
 import dataclasses
 import functools
 from typing import Dict, Optional, Tuple, Union
@@ -154,8 +155,15 @@ class Linkage:
     def shape(self):
         """Broadcast shape of the element parameters: () for one linkage,
         e.g. ``(M, 1)`` for a batch of M designs."""
-        return np.broadcast_shapes(*(np.shape(p) for el in self.elements
-                                     for p in el.parameters()))
+        shapes = [np.shape(p) for el in self.elements for p in el.parameters()]
+        try:
+            return np.broadcast_shapes(*shapes)
+        except ValueError:
+            named = ", ".join(f"element {i} ({el.kind}) {f} {np.shape(getattr(el, f))}"
+                              for i, el in enumerate(self.elements) for f in _fields(el)
+                              if np.ndim(getattr(el, f)))
+            raise ValueError("the element parameters do not broadcast to one batch shape: "
+                             + named) from None
 
     def scale(self):
         """A characteristic length [m]: the largest length or coordinate
@@ -164,6 +172,10 @@ class Linkage:
         if all(np.ndim(s) == 0 for s in sizes):
             return max([1e-300] + [float(s) for s in sizes])
         return functools.reduce(np.maximum, sizes, 1e-300)
+
+
+def _fields(el):
+    return [f for f in el.lengths_ + el.angles_ + ("branch",) if hasattr(el, f)]
 
 
 # ---------------------------------------------------------------------------
@@ -384,16 +396,22 @@ def solve(linkage: Linkage, inputs, order: int = 2, on_fail: str = "mask") -> Li
 
     if order not in (0, 1, 2):
         raise ValueError(f"order must be 0, 1 or 2, got {order}")
-    for d in linkage.drivers:
-        if d.link not in inputs:
-            raise LinkageDefinitionError(f"no input given for driver link {d.link}")
-    shape = np.broadcast_shapes(*[np.shape(m.q) for m in inputs.values()], linkage.shape)
+    if on_fail not in ("mask", "raise"):
+        raise ValueError(f"on_fail must be 'mask' or 'raise', got {on_fail!r}")
+    shape = _input_shape(linkage, inputs, order)
     st = SolveState(linkage, inputs, shape, order)
-    for idx in linkage.order:
-        st.index = idx
-        linkage.elements[idx].step(st)
+    finite = _finite_designs(linkage)
+    with np.errstate(invalid="ignore", over="ignore") if finite is not None else _NO_CONTEXT:
+        for idx in linkage.order:
+            st.index = idx
+            linkage.elements[idx].step(st)
     vel, acc = st.vel, st.acc
     regular, feasible = st.regular, st.feasible
+    if finite is not None:
+        # a design with an inf/NaN parameter does not assemble (and, above, did
+        # not warn): it never poisons the masks of the other designs
+        feasible &= finite
+        regular &= finite
     if not vel:
         regular &= feasible
     if on_fail == "raise" and not np.all(regular):
@@ -407,6 +425,51 @@ def solve(linkage: Linkage, inputs, order: int = 2, on_fail: str = "mask") -> Li
                            None if k.al is None or not acc else full(k.al))
              for n, k in st.L.items()}
     return LinkageMotion(order, feasible, regular, points, links, st.S, tuple(st.conds))
+
+
+_NO_CONTEXT = contextlib.nullcontext()
+
+
+def _input_shape(linkage, inputs, order):
+    """Broadcast shape of the inputs (the rates that ``order`` uses) and the
+    linkage parameters; a clear ValueError naming every shape when they do not
+    broadcast, or when a driver has no input or an input has no driver."""
+    drivers = {d.link for d in linkage.drivers}
+    for d in sorted(drivers):
+        if d not in inputs:
+            raise LinkageDefinitionError(f"no input given for driver link {d} "
+                                         f"(inputs are needed for links {sorted(drivers)})")
+    for link, m in inputs.items():
+        if link not in drivers:
+            raise LinkageDefinitionError(f"an input is given for link {link!r}, which is not "
+                                         f"driven (drivers: links {sorted(drivers)})")
+        if not isinstance(m, DriverMotion):
+            raise TypeError(f"the input of driver link {link} must be a DriverMotion(q, dq, ddq),"
+                            f" got {type(m).__name__}")
+    named = [(f"q of link {k}", np.shape(m.q)) for k, m in inputs.items()]
+    used = [(f"q of link {k}", np.shape(m.q)) for k, m in inputs.items()]
+    for k, m in inputs.items():
+        for i, attr in ((1, "dq"), (2, "ddq")):
+            item = (f"{attr} of link {k}", np.shape(getattr(m, attr)))
+            named.append(item)
+            if order >= i:
+                used.append(item)
+    try:
+        np.broadcast_shapes(*(sh for _n, sh in named), linkage.shape)
+        return np.broadcast_shapes(*(sh for _n, sh in used), linkage.shape)
+    except ValueError:
+        raise ValueError("the driver inputs and the linkage parameters do not broadcast "
+                         "together: " + ", ".join(f"{n} {sh}" for n, sh in named)
+                         + f", linkage parameters {linkage.shape}") from None
+
+
+def _finite_designs(linkage):
+    """Mask (of the parameters' shape) of the designs whose parameters are all
+    finite; None when every one is (the common case)."""
+    params = [p for el in linkage.elements for p in el.parameters()]
+    if all(np.isfinite(p).all() for p in params):
+        return None
+    return functools.reduce(np.logical_and, (np.isfinite(p) for p in params), True)
 
 
 def kinematic_coefficients(linkage: Linkage, q, followers=None, order: int = 2) -> LinkageMotion:
@@ -432,6 +495,11 @@ def kinematic_coefficients(linkage: Linkage, q, followers=None, order: int = 2) 
     """
     q = np.asarray(q, dtype=float)
     drivers = linkage.drivers
+    missing = [d.link for d in drivers[1:] if d.link not in (followers or {})]
+    if missing:
+        raise LinkageDefinitionError(
+            f"links {missing} are secondary drivers: give followers={{link: (ratio, phase)}} "
+            f"for each (q_k = phase + ratio * q of link {drivers[0].link})")
     inputs = {drivers[0].link: DriverMotion(q, 1.0, 0.0)}
     for link, (ratio, phase) in (followers or {}).items():
         inputs[link] = DriverMotion(phase + ratio * q, ratio, 0.0)

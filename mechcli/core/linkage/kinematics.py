@@ -66,7 +66,16 @@ class Sweep:
                              f"got {value.shape}")
         if q is self.q:
             return value
-        return np.interp(q, self.q, value, period=2 * np.pi if self.periodic else None)
+        nodes = np.asarray(self.q, dtype=float)
+        if nodes.ndim != 1:
+            raise ValueError(f"an input rate array needs a one-dimensional q, got shape "
+                             f"{nodes.shape}")
+        if nodes.size > 1 and nodes[-1] < nodes[0]:
+            nodes, value = nodes[::-1], value[::-1]  # np.interp needs rising nodes
+        if nodes.size > 1 and np.any(np.diff(nodes) <= 0):
+            raise ValueError("an input rate array needs q strictly monotonic, to interpolate "
+                             "between its values")
+        return np.interp(q, nodes, value, period=2 * np.pi if self.periodic else None)
 
     def speed(self, q):
         """Input velocity at ``q`` (a float when it is constant)."""
@@ -474,7 +483,12 @@ def analyse_sweep(linkage: Linkage, sweep: Sweep, quantities, order: int,
     -------
     SweepResult
     """
+    if linkage.shape != ():
+        raise ValueError(f"analyse_sweep works on one design at a time, got a batch of designs "
+                         f"(linkage parameters of shape {linkage.shape}); use solve for a batch")
     q_out = np.asarray(sweep.q, dtype=float)
+    if q_out.ndim != 1:
+        raise ValueError(f"a sweep's q must be one-dimensional, got shape {q_out.shape}")
     rotary = linkage.driver(sweep.driver).rotary
     span = float(q_out[-1] - q_out[0])
     fine_step = SEARCH_STEP if rotary else span / 720

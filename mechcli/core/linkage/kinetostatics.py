@@ -82,6 +82,14 @@ def _point(motion, topo, origin, link, along, normal, order=2):
             o.ax - k.alpha * ry - w2 * rx, o.ay + k.alpha * rx - w2 * ry)
 
 
+def _broadcasts(a, b):
+    try:
+        np.broadcast_shapes(a, b)
+        return True
+    except ValueError:
+        return False
+
+
 def solve_forces(topo: Topology, motion: LinkageMotion, bodies: Dict[int, Body], loads=(),
                  gravity=(0.0, 0.0), unit_motion: Optional[LinkageMotion] = None,
                  scale: Optional[float] = None, condition: bool = True) -> ForceResult:
@@ -113,11 +121,26 @@ def solve_forces(topo: Topology, motion: LinkageMotion, bodies: Dict[int, Body],
     frame = linkage.frame
     n = motion.feasible.shape
     flat = motion.feasible.size
-    L = scale or linkage.scale()
+    L = linkage.scale() if scale is None else scale
     gx, gy = gravity
 
     def arr(x):
         return np.broadcast_to(np.asarray(x, dtype=float), n).reshape(flat)
+
+    for what, obj, fields in ([(f"body of link {k}", b, ("mass", "inertia", "along", "normal"))
+                               for k, b in bodies.items()]
+                              + [(f"load '{ld.name}'", ld, ("fx", "fy", "torque", "along",
+                                                            "normal")) for ld in loads]):
+        for f in fields:
+            sh = np.shape(getattr(obj, f))
+            if sh and not (_broadcasts(sh, n) and np.broadcast_shapes(sh, n) == n):
+                raise ValueError(f"{what}: {f} of shape {sh} does not broadcast to the "
+                                 f"motion's shape {n} (a batch of designs needs a batched "
+                                 "linkage or input)")
+    if np.ndim(L):
+        # a batch of designs: one moment scale per design (flattened like the
+        # positions), so each design's system is scaled as when solved alone
+        L = arr(L)
 
     # centre of mass, its acceleration, and the known force/moment on each link
     com, known = {}, {}
@@ -128,9 +151,12 @@ def solve_forces(topo: Topology, motion: LinkageMotion, bodies: Dict[int, Body],
         x, y = arr(x), arr(y)
         com[link] = (x, y, origin, along, normal)
         kl = motion.links[link]
-        fx = b.mass * (gx - arr(ax))
-        fy = b.mass * (gy - arr(ay))
-        m = -b.inertia * arr(kl.alpha) if b.inertia else np.zeros(flat)
+        # masses and inertias may be arrays of a batch of designs: arr() flattens
+        # them with the positions
+        fx = arr(b.mass * (gx - arr(ax).reshape(n)))
+        fy = arr(b.mass * (gy - arr(ay).reshape(n)))
+        m = (arr(-b.inertia * arr(kl.alpha).reshape(n)) if np.any(b.inertia)
+             else np.zeros(flat))
         known[link] = [fx, fy, m]
     for ld in loads:
         if ld.link not in known:
@@ -209,6 +235,8 @@ def solve_forces(topo: Topology, motion: LinkageMotion, bodies: Dict[int, Body],
         else:
             p = motion.points[d.point]
             ux, uy = np.cos(d.angle), np.sin(d.angle)
+            if np.ndim(d.angle):
+                ux, uy = arr(ux), arr(uy)
             add_force(col, None, d.link, 1.0, arr(p.x), arr(p.y), ux, uy)
         driver_cols[d.link] = len(columns)
         columns.append(col)
@@ -304,6 +332,8 @@ def solve_forces(topo: Topology, motion: LinkageMotion, bodies: Dict[int, Body],
         else:
             p = motion.points[d.point]
             ux, uy = np.cos(d.angle), np.sin(d.angle)
+            if np.ndim(d.angle):
+                ux, uy = arr(ux), arr(uy)
             ffx -= val * ux
             ffy -= val * uy
             fm -= arr(p.x) * val * uy - arr(p.y) * val * ux

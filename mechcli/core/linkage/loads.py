@@ -62,16 +62,17 @@ class LoadProgram:
                     width = two_pi
                 # inclusive at both ends, to round-off of the input grid
                 tol = 1e-12 * two_pi
-                on &= (x <= width + tol) | (x >= two_pi - tol)
+                on = on & ((x <= width + tol) | (x >= two_pi - tol))
             else:
-                on &= (q >= lo) & (q <= hi)
+                on = on & (q >= lo) & (q <= hi)
         if self.velocity is not None:
             v = np.asarray(self.velocity.get(motion))
-            on &= (v > 0) if self.sign > 0 else (v < 0)
+            # not in place: over a batch of designs v has the motion's shape
+            on = on & ((v > 0) if self.sign > 0 else (v < 0))
         if self.band_limits is not None:
             s = np.asarray(self.slide.get(motion))
             lo, hi = self.band_limits
-            on &= (s >= lo) & (s <= hi)
+            on = on & (s >= lo) & (s <= hi)
         return on
 
     def factor(self, q):
