@@ -301,7 +301,8 @@ class LinkageMotion:
         for c in self.conditions:
             if c.joint == joint:
                 return c
-        raise KeyError(joint)
+        raise KeyError(f"no dyad has the joint {joint!r}; the dyads' joints are "
+                       f"{[c.joint for c in self.conditions]}")
 
 
 # ---------------------------------------------------------------------------
