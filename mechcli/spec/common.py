@@ -1,69 +1,17 @@
-"""Spec pieces shared by every command: ``[expected]`` and ``[output]``."""
+"""Spec pieces shared by every command: the header and ``[expected]``.
+
+What an ``[expected]`` value means (tolerances, comparison) lives in
+:mod:`mechcli.spec.expected`; :func:`read_expected` is re-exported here for the
+spec readers.
+"""
 
 from __future__ import annotations
 
 import dataclasses
-import math
 
 from mechcli.spec.errors import SpecError, closest
+from mechcli.spec.expected import Expected, read_expected  # noqa: F401 (re-exported)
 from mechcli.spec.reader import load_spec
-
-
-@dataclasses.dataclass(frozen=True)
-class Expected:
-    """One expected value (from the book, or an independent hand calculation).
-
-    The default tolerance is half a unit of the last printed digit, taken from
-    the number as written in the TOML file (``0.1283`` -> 5e-5).
-    """
-
-    name: str
-    value: float
-    tol: float
-
-
-def _printed_tolerance(value):
-    text = repr(float(value))
-    if "e" in text or "E" in text:
-        mant, _, exp = text.lower().partition("e")
-        decimals = len(mant.partition(".")[2].rstrip("0")) - int(exp)
-    else:
-        decimals = len(text.partition(".")[2].rstrip("0"))
-    return 0.5 * 10.0 ** (-decimals) * (1 + 1e-9)
-
-
-def read_expected(root):
-    """Read the optional ``[expected]`` table of a spec.
-
-    Each key maps a result name (as in ``--json`` ``results``) to a number, or
-    to a table ``{ value = …, tol = … }`` / ``{ value = …, rel = … }``.
-    Booleans and strings are compared exactly.
-    """
-    sec = root.table("expected", None)
-    if sec is None:
-        return {}
-    out = {}
-    for name in sec.keys():
-        raw = sec.raw(name)
-        if isinstance(raw, dict):
-            sub = sec.table(name)
-            value = sub.number("value")
-            tol = sub.number("tol", None, nonneg=True)
-            rel = sub.number("rel", None, nonneg=True)
-            sub.raw("note", None)
-            sub.finish()
-            if tol is None:
-                tol = abs(value) * rel if rel is not None else _printed_tolerance(value)
-            out[name] = Expected(name, value, tol)
-        elif isinstance(raw, bool) or isinstance(raw, str):
-            out[name] = Expected(name, raw, 0.0)
-        elif isinstance(raw, (int, float)) and math.isfinite(raw):
-            out[name] = Expected(name, float(raw), _printed_tolerance(raw))
-        else:
-            raise SpecError(sec.file, sec.key(name),
-                            "a number, a boolean, a string or { value = …, tol = … }", repr(raw))
-    sec.finish()
-    return out
 
 
 def check_expected(path, overrides, results):
