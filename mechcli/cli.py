@@ -1,7 +1,7 @@
 """The ``mechcli`` command line: a lazy click group and ONE error boundary.
 
 Exit codes (:class:`ExitStatus`): 0 ok, 1 internal error, 2 bad spec or usage,
-3 the problem has no solution.  Subcommand modules are imported only when the
+3 the problem has no solution, 4 ``mechcli check``: an expected value is not met.  Subcommand modules are imported only when the
 subcommand runs, so ``mechcli --version`` never imports numpy.
 """
 
@@ -26,6 +26,11 @@ COMMANDS = {
                 "Linkage type, crank conditions, K, transmission angle, mobility (ch. 3 §1)."),
     "cam": ("mechcli.commands.cam", "cam",
             "Disc cams: motion laws, profiles, pressure angle, sizing (chapter 4)."),
+    "check": ("mechcli.commands.check", "check",
+              "Run specs and compare every [expected] value (batches, CI, JUnit)."),
+    "new": ("mechcli.commands.new", "new", "Write a commented starter spec for a command."),
+    "schema": ("mechcli.commands.schema", "schema",
+               "Print the JSON Schema of a command's spec (for editors)."),
 }
 
 
@@ -34,6 +39,7 @@ class ExitStatus(enum.IntEnum):
     INTERNAL = 1
     BAD_SPEC = 2
     UNSOLVABLE = 3
+    CHECK_FAILED = 4   # mechcli check: an expected value is not met
 
 
 class LazyGroup(click.Group):
@@ -106,7 +112,8 @@ def main(argv=None):
         from mechcli._alloc import keep_heap_warm
         keep_heap_warm()
     try:
-        cli.main(args=args, prog_name="mechcli", standalone_mode=False)
+        # with standalone_mode=False click returns (not raises) the code of an Exit
+        rv = cli.main(args=args, prog_name="mechcli", standalone_mode=False)
     except SpecError as exc:
         _traceback(show_tb)
         _err(exc.format())
@@ -138,5 +145,5 @@ def main(argv=None):
              "(this is a bug; rerun with --traceback and report it)")
         code = ExitStatus.INTERNAL
     else:
-        code = ExitStatus.OK
+        code = rv if isinstance(rv, int) and not isinstance(rv, bool) else ExitStatus.OK
     sys.exit(int(code))

@@ -7,6 +7,11 @@ from pathlib import Path
 
 import click
 
+#: significant digits of CSV numbers unless ``--digits`` says otherwise
+DEFAULT_DIGITS = 10
+#: ``%.17g`` writes every double so that it reads back bit for bit
+EXACT_DIGITS = 17
+
 
 @dataclasses.dataclass(frozen=True)
 class RunOptions:
@@ -32,6 +37,8 @@ class RunOptions:
         Show the traceback of an internal error.
     sets : tuple of str
         ``KEY=VALUE`` overrides.
+    digits : int
+        Significant digits of CSV numbers (``--digits``; 17 is round-trip exact).
     """
 
     spec_path: Path | None
@@ -43,6 +50,7 @@ class RunOptions:
     quiet: bool = False
     traceback: bool = False
     sets: tuple = ()
+    digits: int = DEFAULT_DIGITS
 
     @classmethod
     def from_click(cls, spec_path, opts, stem=None):
@@ -60,6 +68,7 @@ class RunOptions:
             quiet=opts.pop("quiet", False),
             traceback=opts.pop("traceback", False),
             sets=tuple(opts.pop("sets", ()) or ()),
+            digits=opts.pop("digits", None) or DEFAULT_DIGITS,
         )
 
     @property
@@ -81,6 +90,9 @@ def common_options(func):
                      help="Labels in English or the book's Chinese."),
         click.option("--quiet", "-q", is_flag=True, help="No table on the terminal."),
         click.option("--traceback", is_flag=True, help="Show the traceback of internal errors."),
+        click.option("--digits", type=click.IntRange(1, EXACT_DIGITS), default=DEFAULT_DIGITS,
+                     show_default=True, metavar="N",
+                     help="Significant digits of CSV numbers (17: round-trip exact)."),
         click.option("--set", "sets", multiple=True, metavar="KEY=VALUE",
                      help="Override a spec key (dotted path, TOML value); repeatable."),
     ]

@@ -30,7 +30,7 @@ def force(spec_path, **opts):
                                 spec.loads, partial=inp.partial)
     except AssemblyError as exc:   # worded in the spec's units
         raise AssemblyError(report.assembly_message(spec, exc), exc.intervals) from None
-    outputs = Outputs(run.out_dir)
+    outputs = Outputs(run.out_dir, digits=run.digits)
     outputs.csv("force.csv", report.columns(spec, result))
     warnings = report.warnings(spec, result)
     animate = spec.output.animate if run.animate is None else run.animate

@@ -34,7 +34,7 @@ def gear(spec_path, **opts):
         exc.args = (report.error_message(exc),)
         raise
     warnings = report.enforce(spec, solution)   # exit 3 on what the spec forbids
-    outputs = Outputs(run.out_dir)
+    outputs = Outputs(run.out_dir, digits=run.digits)
     rep, results, more = report.PRESENTERS[spec.kind](spec, solution, run, outputs)
     results = {"kind": spec.kind, **results}
     finish(run, "gear", rep, results, outputs, warnings + more)

@@ -39,12 +39,12 @@ def grashof(spec_path, lengths, frame, input_link, offset, batch, units, **opts)
     from mechcli.report.run import finish
     from mechcli.spec import grashof as spec_mod
 
-    outputs = Outputs(run.out_dir)
+    outputs = Outputs(run.out_dir, digits=run.digits)
     if batch:
         from mechcli.core.grashof.analysis import classify_batch
         bs = spec_mod.read_batch_csv(batch, units)
         an, ok = classify_batch(bs.lengths, bs.frame, bs.input)
-        outputs.text("grashof.csv", report.fourbar_csv(an, bs.header.scale, ok))
+        outputs.text("grashof.csv", report.fourbar_csv(an, bs.header.scale, ok, run.digits))
         res = report.batch_results(an, ok)
         warns = [f"{res['cannot_close']} length sets cannot close (type cannot_close)"] \
             if res["cannot_close"] else []
@@ -55,7 +55,7 @@ def grashof(spec_path, lengths, frame, input_link, offset, batch, units, **opts)
         spec = spec_mod.quick_spec(lengths, frame, input_link, offset, units)
     else:
         spec = spec_mod.read_grashof_spec(spec_path, run.sets)
-    results, rep, csv_text, warnings, solution = build(spec, run.lang)
+    results, rep, csv_text, warnings, solution = build(spec, run.lang, run.digits)
     if csv_text:
         outputs.text("grashof.csv", csv_text)
     if solution.curve is not None:
@@ -70,7 +70,7 @@ def grashof(spec_path, lengths, frame, input_link, offset, batch, units, **opts)
     finish(run, "grashof", rep, results, outputs, warnings)
 
 
-def build(spec, lang):
+def build(spec, lang, digits=10):
     """Solve a :class:`~mechcli.spec.grashof.GrashofSpec` with the core and present it.
 
     Returns
@@ -88,4 +88,4 @@ def build(spec, lang):
     except ClosureError as exc:   # its numbers are in the spec's unit: say which
         exc.args = (report.closure_message(exc, spec.header.unit),)
         raise
-    return (*report.present(spec, solution, lang), solution)
+    return (*report.present(spec, solution, lang, digits), solution)

@@ -31,7 +31,7 @@ def kin(spec_path, **opts):
                                partial=inp.partial)
     except AssemblyError as exc:   # worded in the spec's units
         raise AssemblyError(report.assembly_message(spec, exc), exc.intervals) from None
-    outputs = Outputs(run.out_dir)
+    outputs = Outputs(run.out_dir, digits=run.digits)
     outputs.csv("kin.csv", report.columns(spec, quantities, result))
     warnings = []
     animate = spec.output.animate if run.animate is None else run.animate

@@ -317,7 +317,7 @@ def build_report(cs, design, lang="en"):
 
 def cam_report(run, cs, design):
     """Write cam.csv, the pictures and report.txt; print the table or JSON."""
-    out = Outputs(run.out_dir)
+    out = Outputs(run.out_dir, digits=run.digits)
     out.csv("cam.csv", csv_columns(cs, design))
     warnings = warnings_for(cs, design, run.lang)
     animate = cs.animate if run.animate is None else run.animate

@@ -1,4 +1,15 @@
-"""Atomic file output: a file is either complete or absent, never half-written."""
+"""Atomic file output: a file is either complete or absent, never half-written.
+
+Every file is written into a temporary file that :func:`tempfile.mkstemp` creates
+in the target folder (a unique name, opened with ``O_EXCL``), then renamed over
+the target with :func:`os.replace`.  Parallel runs therefore never share a
+temporary file, and when two runs write the same ``--out`` each file is
+replaced whole by one of them: a reader sees one run's complete file, never a
+mixture.
+
+CSV numbers are ``%.{digits}g`` (``--digits``, default 10 significant digits;
+17 reads back bit for bit).
+"""
 
 from __future__ import annotations
 
@@ -12,16 +23,29 @@ class OutputError(RuntimeError):
     """Refusing to write a non-finite number or an unwritable file."""
 
 
+#: significant digits of CSV numbers unless a run asks otherwise (``--digits``)
+DEFAULT_DIGITS = 10
+
+
+def _umask():
+    umask = os.umask(0)
+    os.umask(umask)
+    return umask
+
+
+_UMASK = _umask()
+
+
 def _atomic(path, write):
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
+    # unique per call (mkstemp: random suffix, O_CREAT | O_EXCL) in the target folder, so
+    # the rename below stays on one file system and is atomic
     fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
     try:
         with os.fdopen(fd, "wb") as fh:
             write(fh)
-        umask = os.umask(0)
-        os.umask(umask)
-        os.chmod(tmp, 0o666 & ~umask)
+        os.chmod(tmp, 0o666 & ~_UMASK)   # mkstemp's 0600 -> what open() would give
         os.replace(tmp, path)
     except BaseException:
         try:
@@ -40,14 +64,14 @@ def write_text(path, text: str):
     return _atomic(path, lambda fh: fh.write(text.encode("utf-8")))
 
 
-def format_number(x, digits=10):
+def format_number(x, digits=DEFAULT_DIGITS):
     """Shortest faithful text for a CSV cell (``%.{digits}g``); refuses NaN/inf."""
     if not math.isfinite(x):
         raise OutputError(f"refusing to write a non-finite value ({x})")
     return f"{x:.{digits}g}"
 
 
-def write_csv(path, columns, digits=10):
+def write_csv(path, columns, digits=DEFAULT_DIGITS):
     """Write named columns (``[(header, sequence), ...]``) as CSV, atomically.
 
     Every value must be finite: a NaN or inf is a bug upstream and raises
@@ -73,10 +97,16 @@ def write_csv(path, columns, digits=10):
 
 
 class Outputs:
-    """Collects the files a run writes, in order, for ``--json`` and the summary."""
+    """Collects the files a run writes, in order, for ``--json`` and the summary.
 
-    def __init__(self, out_dir):
+    *digits* is the run's ``--digits``: the significant digits of every CSV
+    number this run writes (:meth:`csv`, and the text CSV writers that read
+    :attr:`digits`).
+    """
+
+    def __init__(self, out_dir, digits=DEFAULT_DIGITS):
         self.out_dir = Path(out_dir)
+        self.digits = int(digits)
         self.files: list[Path] = []
 
     def path(self, name):
@@ -86,7 +116,8 @@ class Outputs:
         self.files.append(write_text(self.path(name), text))
         return self.files[-1]
 
-    def csv(self, name, columns, digits=10):
+    def csv(self, name, columns, digits=None):
+        digits = self.digits if digits is None else digits
         self.files.append(write_csv(self.path(name), columns, digits))
         return self.files[-1]
 

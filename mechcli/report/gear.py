@@ -18,11 +18,11 @@ from __future__ import annotations
 import math
 
 from mechcli.core.errors import UnsolvableError
-from mechcli.report.files import OutputError, format_number
+from mechcli.report.files import DEFAULT_DIGITS, OutputError, format_number
 from mechcli.report.table import Block, Report
 
 
-def csv_text(columns, digits=10):
+def csv_text(columns, digits=DEFAULT_DIGITS):
     """CSV text of named columns ``[(header, sequence of numbers), ...]`` without numpy.
 
     The rules of :func:`mechcli.report.files.write_csv`: equal column lengths,
@@ -192,11 +192,12 @@ def present_involute(spec, sol, run, outputs):
     results.update({"rb": p.rb / sc, "alpha_max_deg": math.degrees(p.alpha_max),
                     "theta_max_rad": float(th[-1]), "r_max": float(r[-1] / sc),
                     "x_max": float(x[-1] / sc), "y_max": float(y[-1] / sc)})
-    outputs.text("involute.csv", csv_text([("alpha_deg", ang_flat), ("inv_alpha_rad", inv_flat)]))
+    outputs.text("involute.csv", csv_text([("alpha_deg", ang_flat), ("inv_alpha_rad", inv_flat)],
+                                          outputs.digits))
     outputs.text("curve.csv", csv_text([
         ("alpha_K_deg", [math.degrees(a) for a in sol["alpha"]]),
         (f"r_K_{u}", [v / sc for v in r]), ("theta_K_rad", th),
-        (f"x_{u}", [v / sc for v in x]), (f"y_{u}", [v / sc for v in y])]))
+        (f"x_{u}", [v / sc for v in x]), (f"y_{u}", [v / sc for v in y])], outputs.digits))
     cols = [f"{k * p.table_step_deg:.1f}" for k in range(p.columns)]
     table = Block(_t(lang, "Table 5-1  involute function inv(alpha) = tan(alpha) - alpha",
                      "表 5-1 渐开线函数值"),
@@ -256,7 +257,8 @@ def present_inverse_involute(spec, sol, run, outputs):
     outputs.text("involute.csv", csv_text([
         ("theta_rad", sol.theta), ("alpha_rad", sol.alpha),
         ("alpha_deg", [math.degrees(a) for a in sol.alpha]),
-        ("iterations", sol.iterations), ("residual_rad", sol.residual)], digits=17))
+        ("iterations", sol.iterations), ("residual_rad", sol.residual)],
+        digits=17))   # the inverse involute is always written round-trip exact
     return Report(spec.header.title, blocks), results, warnings
 
 
@@ -402,7 +404,7 @@ def present_pair(spec, pairs, run, outputs):
     cols = list(zip(*rows_csv))
     names = [f"a_w_{u}", "alpha_w_deg", f"dw1_{u}", f"dw2_{u}", "epsilon_alpha",
              f"backlash_{u}", f"clearance1_{u}", f"clearance2_{u}"]
-    outputs.text("gear.csv", csv_text(list(zip(names, cols))))
+    outputs.text("gear.csv", csv_text(list(zip(names, cols)), outputs.digits))
     animate = p.animate if run.animate is None else run.animate
     if animate and g2.internal:
         warnings.append("no mesh animation for internal pairs (pair.png only)")
@@ -570,7 +572,7 @@ def _simple(spec, run, outputs, heading, results, rows, warnings):
     u = spec.header.unit
     cols = [(key if un in ("", "°") else f"{key}_{u}", [results[key]])
             for _, _, _, key, un in rows]
-    outputs.text("gear.csv", csv_text(cols))
+    outputs.text("gear.csv", csv_text(cols, outputs.digits))
     return Report(spec.header.title, [block]), results, warnings
 
 

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import math
 
+from mechcli.report.files import DEFAULT_DIGITS
 from mechcli.report.table import Block, Report
 
 ZH_TYPES = {
@@ -193,8 +194,9 @@ CSV_HEADER = ("l1,l2,l3,l4,frame,input,type,crank,grashof,theta_deg,psi_deg,K,"
               "gamma_min_deg,gamma_min_at_deg,gamma_max_deg")
 
 
-def fourbar_csv(an, scale, closes_mask=None):
-    """``grashof.csv`` text, one row per length set (empty cells: does not exist)."""
+def fourbar_csv(an, scale, closes_mask=None, digits=DEFAULT_DIGITS):
+    """``grashof.csv`` text, one row per length set (empty cells: does not exist);
+    numbers with *digits* significant digits (``--digits``)."""
     import numpy as np
 
     kl, m = an.klass, an.merit
@@ -213,12 +215,12 @@ def fourbar_csv(an, scale, closes_mask=None):
     deg = 180.0 / np.pi
     lim = m.has_limits & ok
 
-    def col(x, mask, fmt="{:.6g}"):
+    def col(x, mask, fmt=f"{{:.{digits}g}}"):
         f = fmt.format
         return [f(v) if k else "" for v, k in zip(x.tolist(), np.broadcast_to(mask, (n,)).tolist())]
 
     always = np.ones(n, dtype=bool)
-    cols = [col(L[:, k], always, "{:.10g}") for k in range(4)]
+    cols = [col(L[:, k], always) for k in range(4)]
     cols += [list(map(str, an.frame.tolist())), list(map(str, an.input.tolist())),
              tnames[types].tolist(), col(crank, (crank > 0) & ok, "{:d}"),
              [("true" if g else "false") if k else "" for g, k in
@@ -517,7 +519,7 @@ def closure_message(exc, unit):
 
 
 # ------------------------------------------------------------------ dispatch
-def present(spec, solution, lang):
+def present(spec, solution, lang, digits=DEFAULT_DIGITS):
     """Results, report and ``grashof.csv`` of a solved
     :class:`~mechcli.spec.grashof.GrashofSpec`.
 
@@ -526,16 +528,16 @@ def present(spec, solution, lang):
     results : dict
     report : Report
     csv_text : str or None
-        ``grashof.csv`` content (four-bar only).
+        ``grashof.csv`` content (four-bar only), numbers with *digits* significant digits.
     warnings : list of str
     """
-    r, rep, csv_text, warnings = _present(spec, solution, lang)
+    r, rep, csv_text, warnings = _present(spec, solution, lang, digits)
     if solution.curve is not None:
         rep.blocks.append(curve_outputs(solution.curve, spec.problem.curve_step, lang)[1])
     return r, rep, csv_text, warnings
 
 
-def _present(spec, sol, lang):
+def _present(spec, sol, lang, digits=DEFAULT_DIGITS):
     p, unit, scale, title = spec.problem, spec.header.unit, spec.header.scale, spec.header.title
     res = sol.result
     warnings = []
@@ -545,7 +547,7 @@ def _present(spec, sol, lang):
             warnings.append("s + l = p + q: a change-point linkage (it can fold flat; "
                             "the motion branch is undetermined there)")
         return (r, fourbar_report(title, lang, r, unit, bool(sol.ranges)),
-                fourbar_csv(res, scale), warnings)
+                fourbar_csv(res, scale, digits=digits), warnings)
     if spec.kind == "slider_crank":   # solved in the spec's unit
         r = slider_results(res, 1.0)
         if res.boundary:

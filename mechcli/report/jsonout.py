@@ -1,4 +1,10 @@
-"""``--json`` output: scalar results and the written file paths."""
+"""``--json`` output: scalar results and the written file paths.
+
+Numbers are always round-trip exact, whatever ``--digits`` says for the CSV:
+:mod:`json` writes a float with ``float.__repr__``, the shortest text that reads
+back to the same double (``0.1 + 0.2`` -> ``0.30000000000000004``), and numpy
+scalars become Python floats first.
+"""
 
 from __future__ import annotations
 
@@ -10,7 +16,7 @@ def _clean(value):
     if isinstance(value, float):
         if not math.isfinite(value):
             raise ValueError(f"refusing to emit a non-finite JSON number ({value})")
-        return value
+        return float(value)   # a float subclass (np.float64) as a plain float: repr is exact
     if isinstance(value, dict):
         return {str(k): _clean(v) for k, v in value.items()}
     if isinstance(value, (list, tuple)):
