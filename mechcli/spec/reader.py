@@ -103,6 +103,8 @@ def load_spec(path, overrides=()):
         The root table.
     """
     file = str(path)
+    if Section.recorder is not None and file == Section.recorder.file:
+        return _recorded_root(file, overrides)
     try:
         with open(path, "rb") as fh:
             raw = fh.read()
@@ -126,6 +128,14 @@ def load_spec(path, overrides=()):
     return root
 
 
+def _recorded_root(file, overrides):
+    """The root of the in-memory spec that :mod:`mechcli.spec.schema` is probing."""
+    import copy
+    root = Section(copy.deepcopy(Section.recorder.data), file, "")
+    root.overridden = frozenset()
+    return root
+
+
 class Section:
     """A TOML table being validated.
 
@@ -143,6 +153,10 @@ class Section:
     unit : float, optional
         Metres per length unit of the spec (inherited by sub-tables).
     """
+
+    #: a recorder while :mod:`mechcli.spec.schema` runs a reader to learn its keys
+    #: (``None`` otherwise: then every accessor costs one attribute test more)
+    recorder = None
 
     def __init__(self, data, file, path, unit=1.0):
         self.data = data
@@ -166,6 +180,8 @@ class Section:
         return SpecError(self.file, self.key(name), expected, got)
 
     def has(self, name):
+        if self.recorder is not None:
+            self.recorder.key(self, name, "has", None)
         self._known.add(name)
         return name in self.data
 
@@ -174,6 +190,8 @@ class Section:
         if name in self.data:
             return self.data[name]
         if default is REQUIRED:
+            if self.recorder is not None:
+                self.recorder.missing(self, name)
             # a missing key next to a misspelled one: report the misspelling
             import difflib
             strays = [k for k in self.data if k not in self._known and k not in self._declared]
@@ -188,6 +206,14 @@ class Section:
     def number(self, name, default=REQUIRED, *, positive=False, nonneg=False,
                lo=None, hi=None, expected=None):
         """A finite real number (int or float) with optional bounds."""
+        if self.recorder is not None:
+            self.recorder.key(self, name, "number", default, positive=positive, nonneg=nonneg,
+                              lo=lo, hi=hi)
+        return self._number(name, default, positive=positive, nonneg=nonneg, lo=lo, hi=hi,
+                            expected=expected)
+
+    def _number(self, name, default=REQUIRED, *, positive=False, nonneg=False,
+                lo=None, hi=None, expected=None):
         value = self._get(name, default)
         if value is None or (value is default and default is not REQUIRED):
             return value
@@ -211,8 +237,11 @@ class Section:
         Lengths must lie within [MIN_LENGTH, MAX_LENGTH] metres (zero allowed
         with ``nonneg``): far outside, squares of lengths under- or overflow.
         """
-        value = self.number(name, default, positive=positive and not nonneg, nonneg=nonneg,
-                            expected=None)
+        if self.recorder is not None:
+            self.recorder.key(self, name, "number", default, positive=positive and not nonneg,
+                              nonneg=nonneg)
+        value = self._number(name, default, positive=positive and not nonneg, nonneg=nonneg,
+                             expected=None)
         if value is None or (value is default and default is not REQUIRED):
             return value
         metres = value * self.unit
@@ -224,13 +253,17 @@ class Section:
     def coordinate(self, name, default=REQUIRED):
         """A signed length or coordinate in the spec's unit, returned in metres
         (|value| at most MAX_LENGTH metres)."""
+        if self.recorder is not None:
+            self.recorder.key(self, name, "number", default)
         lim = MAX_LENGTH / self.unit
-        value = self.number(name, default, lo=-lim, hi=lim)
+        value = self._number(name, default, lo=-lim, hi=lim)
         if value is None or (value is default and default is not REQUIRED):
             return value
         return value * self.unit
 
     def integer(self, name, default=REQUIRED, *, lo=None, hi=None):
+        if self.recorder is not None:
+            self.recorder.key(self, name, "integer", default, lo=lo, hi=hi)
         value = self._get(name, default)
         if value is default and default is not REQUIRED:
             return value
@@ -243,6 +276,8 @@ class Section:
         return value
 
     def string(self, name, default=REQUIRED, *, choices=None):
+        if self.recorder is not None:
+            self.recorder.key(self, name, "string", default, choices=choices)
         value = self._get(name, default)
         if value is default and default is not REQUIRED:
             return value
@@ -258,6 +293,8 @@ class Section:
         return value
 
     def boolean(self, name, default=REQUIRED):
+        if self.recorder is not None:
+            self.recorder.key(self, name, "boolean", default)
         value = self._get(name, default)
         if not isinstance(value, bool):
             raise self.error(name, "true or false", _describe(value))
@@ -265,6 +302,8 @@ class Section:
 
     def numbers(self, name, default=REQUIRED, *, size=None, positive=False):
         """An array of finite numbers, of exactly *size* items if given."""
+        if self.recorder is not None:
+            self.recorder.key(self, name, "numbers", default, size=size, positive=positive)
         value = self._get(name, default)
         if value is default and default is not REQUIRED:
             return value
@@ -283,6 +322,8 @@ class Section:
         return out
 
     def strings(self, name, default=REQUIRED, *, choices=None):
+        if self.recorder is not None:
+            self.recorder.key(self, name, "strings", default, choices=choices)
         value = self._get(name, default)
         if value is default and default is not REQUIRED:
             return value
@@ -298,6 +339,8 @@ class Section:
 
     def table(self, name, default=REQUIRED):
         """A sub-table as a :class:`Section` (``None`` if absent and optional)."""
+        if self.recorder is not None:
+            self.recorder.key(self, name, "table", default)
         value = self._get(name, default)
         if value is default and default is not REQUIRED:
             return value
@@ -313,6 +356,8 @@ class Section:
 
     def tables(self, name, default=REQUIRED):
         """An array of tables, as a list of :class:`Section`."""
+        if self.recorder is not None:
+            self.recorder.key(self, name, "tables", default)
         value = self._get(name, default)
         if value is default and default is not REQUIRED:
             return value
@@ -328,13 +373,19 @@ class Section:
 
     def raw(self, name, default=REQUIRED):
         """The untyped value (the caller validates it)."""
+        if self.recorder is not None:
+            self.recorder.key(self, name, "raw", default)
         return self._get(name, default)
 
     def keys(self):
+        if self.recorder is not None:
+            self.recorder.freeform(self)
         return list(self.data)
 
     def finish(self):
         """Reject every key that no accessor asked for."""
+        if self.recorder is not None:
+            self.recorder.finished(self)
         for name in self.data:
             if name not in self._known:
                 hint = closest(name, sorted(self._known))

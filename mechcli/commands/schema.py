@@ -1,0 +1,43 @@
+"""``mechcli schema COMMAND``: the JSON Schema of a command's spec, for editors.
+
+The schema is learnt from the command's own spec reader
+(:mod:`mechcli.spec.schema`), so it cannot drift from what the reader accepts.
+"""
+
+from __future__ import annotations
+
+import click
+
+
+@click.command("schema")
+@click.argument("command", metavar="COMMAND")
+@click.option("-o", "--output", "output", type=click.Path(dir_okay=False), default=None,
+              help="Write the schema to this file instead of printing it.")
+def schema(command, output):
+    """Print the JSON Schema (draft-07) of COMMAND's spec (kin, force, grashof,
+    cam, gear), for editors that check TOML against a schema (Taplo, tombi)."""
+    import difflib
+    import json
+    import os
+    import tempfile
+
+    from mechcli.spec.schema import COMMANDS, command_schema
+
+    if command not in COMMANDS:
+        near = difflib.get_close_matches(command, COMMANDS, n=1)
+        raise click.UsageError(
+            f"no spec schema for '{command}': expected one of {', '.join(COMMANDS)}"
+            + (f" (did you mean '{near[0]}'?)" if near else ""))
+    text = json.dumps(command_schema(command), indent=2, ensure_ascii=False) + "\n"
+    if output is None:
+        click.echo(text, nl=False)
+        return
+    folder = os.path.dirname(os.path.abspath(output))
+    try:
+        fd, tmp = tempfile.mkstemp(prefix=".schema-", suffix=".tmp", dir=folder)
+        with os.fdopen(fd, "w", encoding="utf-8") as fh:
+            fh.write(text)
+        os.replace(tmp, output)
+    except OSError as exc:
+        raise click.UsageError(f"-o {output}: cannot write ({exc.strerror or exc})") from None
+    click.echo(f"wrote {output}", err=True)

@@ -1,0 +1,506 @@
+"""JSON Schema of a command's spec, learnt from the spec reader itself.
+
+There is no second, declarative list of keys: :func:`command_schema` runs the
+command's own reader with :attr:`mechcli.spec.reader.Section.recorder` set, so
+every typed accessor the reader calls (``number``, ``length``, ``string(choices=…)``,
+``tables`` …) records the table, the key, its type, bounds, choices and default.
+The reader runs over *probe* specs that exercise its branches:
+
+* the seeds: the configs of the command (``configs/`` next to the package, in a
+  checkout) and the package template ``mechcli/templates/<command>.toml`` if any,
+  or else a spec holding only ``command``;
+* for every choice key seen (``mechanism.type``, a dyad's ``type``, ``contact``…),
+  the spec with each other choice;
+* for every optional table or array of tables not in the spec, the spec with an
+  empty one; for every untyped key (``has``/``raw``), the spec with a value of each
+  JSON type (a value the reader rejects at that key is not in the schema);
+* whenever the reader stops at a missing required key, the spec with a value that
+  the accessor accepts, and the reader runs again.
+
+The records are merged into JSON Schema (draft-07; 2020-12 tools read it
+alike): every table has ``additionalProperties: false`` except the free-form
+ones the reader iterates (``[expected]``, ``[mechanism.ground]``), whose values
+share one schema.  Keys
+that depend on a discriminator are merged as a union of properties; a key is
+required when every complete reading of its table required it.
+"""
+
+from __future__ import annotations
+
+import copy
+import json
+import warnings
+from pathlib import Path
+
+from mechcli.spec.errors import SpecError
+from mechcli.spec.reader import REQUIRED, Section
+
+COMMANDS = ("kin", "force", "grashof", "cam", "gear")
+PROBE_FILE = "<mechcli-schema-probe>.toml"
+#: most reader runs per command (each takes well under a millisecond to a few ms)
+MAX_RUNS = 1500
+#: values tried for an untyped key, one per JSON type
+#: seeds a mutation (a choice, a value of an untyped key) is applied to, at most
+TRIES = 3
+CANDIDATES = (1, 1.5, "A", True, [1, 2], [1.5, 2.5], ["A", "B"], {})
+_JSON_TYPE = {bool: "boolean", int: "integer", float: "number", str: "string", list: "array",
+              dict: "object"}
+#: draft-07: the newest draft Taplo (Even Better TOML) and most editors validate with; the
+#: keywords used here mean the same in draft 2020-12
+DRAFT = "http://json-schema.org/draft-07/schema#"
+
+
+def _json_type(value):
+    return _JSON_TYPE.get(type(value), "string")
+
+
+class Recorder:
+    """Collects what the accessors of :class:`Section` see during the probe runs."""
+
+    def __init__(self):
+        self.file = PROBE_FILE
+        self.data = None
+        self.run = -1
+        self.events = []       # (run, path, key, kind, default, present value type, opts)
+        self.finishes = set()  # (run, path)
+        self.free = set()      # paths of free-form tables
+        self.last_missing = None
+
+    @staticmethod
+    def _parts(sec):
+        return tuple(sec.path.split(".")) if sec.path else ()
+
+    def key(self, sec, name, kind, default, **opts):
+        if sec.file != self.file:
+            return
+        value = sec.data.get(name, None) if isinstance(sec.data, dict) else None
+        present = name in sec.data
+        self.events.append((self.run, self._parts(sec), name, kind,
+                            REQUIRED if default is REQUIRED else default,
+                            _json_type(value) if present else None, opts))
+
+    def missing(self, sec, name):
+        if sec.file == self.file:
+            kind, opts = "raw", {}
+            for ev in reversed(self.events):
+                if ev[0] == self.run and ev[1] == self._parts(sec) and ev[2] == name:
+                    kind, opts = ev[3], ev[6]
+                    break
+            self.last_missing = (self._parts(sec), name, kind, opts)
+
+    def freeform(self, sec):
+        if sec.file == self.file and sec.path:
+            self.free.add(self._parts(sec))
+
+    def finished(self, sec):
+        if sec.file == self.file:
+            self.finishes.add((self.run, self._parts(sec)))
+
+
+# -- running a reader -----------------------------------------------------------------
+def _reader(command):
+    if command == "kin":
+        from mechcli.spec.kin import load_kin_spec
+        return load_kin_spec
+    if command == "force":
+        from mechcli.spec.force import load_force_spec
+        return load_force_spec
+    if command == "gear":
+        from mechcli.spec.gear import read_gear_spec
+        return read_gear_spec
+    if command == "grashof":
+        from mechcli.spec.grashof import read_grashof_spec
+        return read_grashof_spec
+    if command == "cam":
+        from mechcli.spec.cam import read_cam_spec
+        from mechcli.spec.reader import load_spec
+        return lambda path: read_cam_spec(load_spec(path))
+    raise KeyError(command)
+
+
+def _node(data, parts, create=False):
+    node = data
+    for part in parts:
+        if isinstance(node, list):
+            node = node[int(part)]
+        else:
+            if part not in node and create:
+                node[part] = {}
+            node = node[part]
+    return node
+
+
+def _synths(kind, opts, node, avoid=frozenset()):
+    """Values the accessor *kind* accepts (bounds and choices respected), best first.
+
+    A free string takes the strings of its table first (a point name already
+    used there is likelier to be one the reader knows).
+    """
+    lo, hi = opts.get("lo"), opts.get("hi")
+    if kind == "number":
+        out = []
+        for v in (1.0, 2.0, 10.0, 0.5, 0.0, -1.0, 100.0):
+            if opts.get("positive") and v <= 0 or opts.get("nonneg") and v < 0:
+                continue
+            if (lo is None or v >= lo) and (hi is None or v <= hi):
+                out.append(v)
+        return out or [lo if lo is not None else hi]
+    if kind == "integer":
+        base = lo if lo is not None else 1
+        return [v for v in (max(base, 1), base, base + 1, base + 2, base + 3)
+                if hi is None or v <= hi][:4] or [hi]
+    if kind == "string":
+        if opts.get("choices"):
+            return list(opts["choices"])
+        near = [v for v in (node.values() if isinstance(node, dict) else ())
+                if isinstance(v, str) and v not in avoid]
+        return list(dict.fromkeys(near + ["A", "B"]))[:4]
+    if kind == "boolean":
+        return [False, True]
+    if kind == "numbers":
+        n = opts.get("size") or 2
+        return [[1.0 + i for i in range(n)], [1.0] * n]
+    if kind == "strings":
+        return [[opts["choices"][0]]] if opts.get("choices") else [["A", "B"]]
+    if kind == "table":
+        return [{}]
+    if kind == "tables":
+        return [[{}]]
+    return list(CANDIDATES)  # raw/has: one value of each JSON type
+
+
+#: probe specs for branches that the configs and templates do not reach (the
+#: synthetic values cannot build a valid linkage): a slider-driven linkage, whose
+#: ``[input]`` reads ``v1``/``a1`` and unbounded ``start``/``stop``
+_SLIDER = {"mechanism": {"type": "general", "frame": 2, "ground": {"O": [0, 0]},
+                         "driver": [{"type": "slider", "link": 1, "origin": "O",
+                                     "point": "B"}]},
+           "input": {"start": 0, "stop": 10, "v1": 1}}
+PROBES = {"kin": [_SLIDER], "force": [_SLIDER]}
+
+
+def _seeds(command):
+    seeds = [(dict(copy.deepcopy(p), command=command), None) for p in PROBES.get(command, ())]
+    here = Path(__file__).resolve().parent.parent
+    template = here / "templates" / f"{command}.toml"
+    files = [template] if template.is_file() else []
+    files += sorted((here / "templates" / "examples").glob("*.toml"))
+    configs = here.parent / "configs"
+    if configs.is_dir():
+        files += sorted(configs.rglob("*.toml"))
+    import tomllib
+    for f in files:
+        try:
+            data = tomllib.loads(f.read_text(encoding="utf-8"))
+        except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError):
+            continue
+        if data.get("command") == command or (f == template and "command" not in data):
+            data["command"] = command
+            seeds.append((data, str(f.parent)))
+    seeds.append(({"command": command}, None))
+    return seeds
+
+
+def _refill(filled, err):
+    """The filled key to try another value of, after an error at *err* (or None)."""
+    if not err:
+        return None
+    if err not in filled:
+        table = err.rpartition(".")[0]
+        same = [k for k in filled if k.rpartition(".")[0] == table]
+        if not same:
+            return None
+        err = same[-1]
+    return err if filled[err][3] + 1 < len(filled[err][2]) else None
+
+
+def explore(command, extra_seeds=()):
+    """Run *command*'s reader over the probe specs; return the :class:`Recorder`."""
+    read = _reader(command)
+    rec = Recorder()
+    queue = [(copy.deepcopy(s), 0, None, None, d) for s, d in
+             [(s, None) for s in extra_seeds] + _seeds(command)]
+    seen, tried = set(), {}
+    rec.errors = {}
+    rec.ok = set()
+    old = Section.recorder
+    Section.recorder = rec
+    try:
+        while queue and rec.run < MAX_RUNS:
+            data, depth, mutated, filled, folder = queue.pop(0)
+            sig = json.dumps(data, sort_keys=True, default=str)
+            if sig in seen:
+                continue
+            seen.add(sig)
+            rec.run += 1
+            rec.data, rec.last_missing = data, None
+            # in the seed's folder, so that a path in the spec (mobility.kin) resolves
+            rec.file = str(Path(folder) / PROBE_FILE) if folder else PROBE_FILE
+            start = len(rec.events)
+            choices = {c for e in rec.events[-200:] for c in (e[6].get("choices") or ())}
+            try:
+                with warnings.catch_warnings():
+                    warnings.simplefilter("ignore")
+                    read(rec.file)
+                rec.ok.add(rec.run)
+            except SpecError as exc:
+                rec.errors[rec.run] = exc.key or ""
+            except Exception:  # noqa: BLE001  (a probe the core refuses: records stand)
+                rec.errors[rec.run] = None
+            front = []
+            err = rec.errors.get(rec.run)
+            if rec.last_missing is not None:
+                parts, name, kind, opts = rec.last_missing
+                try:
+                    node = _node(data, parts)
+                except (KeyError, IndexError, TypeError, ValueError):
+                    node = {}
+                values = _synths(kind, opts, node, choices)
+                new = copy.deepcopy(data)
+                _node(new, parts, create=True)[name] = copy.deepcopy(values[0])
+                fills = dict(filled or {})
+                fills[".".join(parts + (name,))] = (parts, name, values, 0)
+                front.append((new, depth, mutated, fills, folder))
+            elif filled and _refill(filled, err):
+                # a value filled in was refused (stop <= start, r0 <= e, no such point),
+                # or a key of its table was refused with it: the next value
+                err = _refill(filled, err)
+                parts, name, values, i = filled[err]
+                new = copy.deepcopy(data)
+                _node(new, parts)[name] = copy.deepcopy(values[i + 1])
+                fills = dict(filled)
+                fills[err] = (parts, name, values, i + 1)
+                front.append((new, depth, mutated, fills, folder))
+            if mutated is not None and err and err.startswith(".".join(mutated[0]) + "."):
+                # refused at the key just set, or at a sibling that excludes the new value
+                # (step or points, tol or rtol, a PRP dyad's branch): try again without
+                # the sibling (each optional one in turn)
+                parts, name = mutated[0], mutated[1]
+                node = _node(data, parts)
+                here = ".".join(parts + (name,))
+                for e in rec.events[start:]:
+                    sib = ".".join(parts + (e[2],))
+                    if e[1] == parts and e[2] != name and e[2] in node \
+                            and (err == sib or (err == here and e[4] is not REQUIRED)):
+                        alt = copy.deepcopy(data)
+                        del _node(alt, parts)[e[2]]
+                        front.append((alt, depth, mutated, filled, folder))
+            queue[:0] = front
+            if depth >= 3:
+                continue
+            for ev in rec.events[start:]:
+                _, parts, name, kind, default, present, opts = ev
+                fold = _fold(parts, rec.free)
+                muts = []
+                if kind == "string" and opts.get("choices"):
+                    muts = [c for c in opts["choices"]]
+                elif kind in ("table", "tables") and present is None:
+                    muts = _synths(kind, opts, {})
+                elif kind in ("has", "raw"):
+                    muts = list(CANDIDATES)
+                for v in muts:
+                    tag = (fold, name, json.dumps(v))
+                    if tried.get(tag, 0) >= TRIES:
+                        continue
+                    tried[tag] = tried.get(tag, 0) + 1
+                    new = copy.deepcopy(data)
+                    try:
+                        _node(new, parts)[name] = copy.deepcopy(v)
+                    except (KeyError, IndexError, TypeError, ValueError):
+                        continue
+                    queue.append((new, depth + 1, (parts, name), None, folder))
+                    if kind == "has" and present is None and isinstance(v, dict):
+                        # mutually exclusive tables (gear/grashof problem tables)
+                        alt = copy.deepcopy(new)
+                        node = _node(alt, parts)
+                        for e in rec.events[start:]:
+                            if e[1] == parts and e[3] == "has" and e[2] != name \
+                                    and isinstance(node.get(e[2]), dict):
+                                del node[e[2]]
+                        queue.append((alt, depth + 1, None, None, folder))
+    finally:
+        Section.recorder = old
+    return rec
+
+
+# -- building the schema --------------------------------------------------------------
+def _fold(parts, free):
+    out = []
+    for i, part in enumerate(parts):
+        if tuple(parts[:i]) in free:
+            out.append("*")
+        elif part.isdigit():
+            out.append("[]")
+        else:
+            out.append(part)
+    return tuple(out)
+
+
+def _fragment(kind, default, opts):
+    frag = {}
+    if kind in ("number", "integer"):
+        frag["type"] = kind
+        if opts.get("positive"):
+            frag["exclusiveMinimum"] = 0
+        if opts.get("nonneg"):
+            frag["minimum"] = 0
+        for word, bound in (("lo", "minimum"), ("hi", "maximum")):
+            if opts.get(word) is not None:
+                frag[bound] = opts[word]
+    elif kind == "string":
+        frag["type"] = "string"
+        if opts.get("choices"):
+            frag["enum"] = list(opts["choices"])
+    elif kind == "boolean":
+        frag["type"] = "boolean"
+    elif kind == "numbers":
+        item = {"type": "number"}
+        if opts.get("positive"):
+            item["exclusiveMinimum"] = 0
+        frag.update(type="array", items=item, minItems=opts.get("size") or 1)
+        if opts.get("size"):
+            frag["maxItems"] = opts["size"]
+    elif kind == "strings":
+        item = {"type": "string"}
+        if opts.get("choices"):
+            item["enum"] = list(opts["choices"])
+        frag.update(type="array", items=item)
+    if frag and default is not REQUIRED and default is not None \
+            and isinstance(default, (bool, int, float, str, list)) \
+            and not str(default).endswith(PROBE_FILE):
+        frag["default"] = default
+    return frag
+
+
+def _merge(frags):
+    """One schema for several accessor records of a key (union when they differ)."""
+    unique = []
+    for f in frags:
+        if f not in unique:
+            unique.append(f)
+    if len(unique) <= 1:
+        return dict(unique[0]) if unique else {}
+    bare = []
+    for f in unique:
+        g = {k: v for k, v in f.items() if k != "default"}
+        if g not in bare:
+            bare.append(g)
+    defaults = {json.dumps(f.get("default")) for f in unique}
+    types = {g.get("type") for g in bare}
+    if len(types) == 1 and types <= {"number", "integer"} and all(
+            set(g) <= {"type", "minimum", "maximum", "exclusiveMinimum"} for g in bare):
+        # the same number read with other bounds in other branches: the loosest bounds
+        loose = {"type": bare[0]["type"]}
+        lows = [g.get("minimum", g.get("exclusiveMinimum")) for g in bare]
+        if None not in lows:
+            low = min(lows)
+            strict = all(g.get("exclusiveMinimum") == low for g in bare if
+                         g.get("minimum", g.get("exclusiveMinimum")) == low)
+            loose["exclusiveMinimum" if strict else "minimum"] = low
+        highs = [g.get("maximum") for g in bare]
+        if None not in highs:
+            loose["maximum"] = max(highs)
+        bare = [loose]
+    if len(bare) == 1:
+        out = dict(bare[0])
+        if len(defaults) == 1 and "default" in unique[0]:
+            out["default"] = unique[0]["default"]
+        return out
+    return {"anyOf": bare}
+
+
+def _covered(json_type, frags):
+    for f in frags:
+        t = f.get("type")
+        if t == json_type or (t == "number" and json_type == "integer"):
+            return True
+        if t == json_type == "array" or (t is None and "anyOf" not in f and f):
+            return True
+    return False
+
+
+class _Builder:
+    def __init__(self, rec):
+        self.rec = rec
+        self.keys = {}    # folded table path -> key -> list of events
+        self.inst = {}    # folded table path -> {(run, concrete path)}
+        for ev in rec.events:
+            run, parts, name = ev[0], ev[1], ev[2]
+            fold = _fold(parts, rec.free)
+            self.keys.setdefault(fold, {}).setdefault(name, []).append(ev)
+            self.inst.setdefault(fold, set()).add((run, parts))
+        self.free = {_fold(p, rec.free) for p in rec.free}
+
+    def _rejected(self, ev):
+        """Did the run of *ev* fail at this very key (the value was refused)?"""
+        err = self.rec.errors.get(ev[0])
+        if not err:
+            return False
+        here = ".".join(ev[1] + (ev[2],))
+        return err == here or err.startswith(here + "[") or err.startswith(here + ".")
+
+    def value_schema(self, fold, name, events):
+        frags = [_fragment(e[3], e[4], e[6]) for e in events if e[3] not in ("has", "raw")]
+        frags = [f for f in frags if f]
+        kinds = {e[3] for e in events}
+        child = fold + (name,)
+        alts = []
+        if "tables" in kinds or (child + ("[]",)) in self.keys:
+            alts.append({"type": "array", "items": self.table(child + ("[]",))})
+        if "table" in kinds or child in self.keys or child in self.free:
+            alts.append(self.table(child))
+        if frags:
+            merged = _merge(frags)
+            alts.extend(merged["anyOf"] if "anyOf" in merged else [merged])
+        seen = sorted({e[5] for e in events if e[3] in ("has", "raw") and e[5]
+                       and not self._rejected(e)})
+        covered = alts
+        extra = [t for t in seen if not _covered(t, covered)]
+        if "integer" in extra and "number" in extra:
+            extra.remove("integer")
+        alts += [{"type": t} for t in extra if not (t == "object" and alts)]
+        if not alts or len(extra) >= 5:
+            return {}  # anything goes (the reader takes any value: description, note)
+        return alts[0] if len(alts) == 1 else {"anyOf": alts}
+
+    def table(self, fold):
+        out = {"type": "object"}
+        if fold in self.free:
+            evs = [e for es in self.keys.get(fold, {}).values() for e in es]
+            out["additionalProperties"] = self.value_schema(fold, "*", evs) if evs else True
+            return out
+        props, required = {}, []
+        complete = [(r, p) for r, p in self.inst.get(fold, ()) if (r, p) in self.rec.finishes]
+        for name, evs in sorted(self.keys.get(fold, {}).items()):
+            props[name] = self.value_schema(fold, name, evs)
+            if complete and all(any(e[0] == r and e[1] == p and e[4] is REQUIRED
+                                    and e[3] != "has" for e in evs) for r, p in complete):
+                required.append(name)
+        out["properties"] = props
+        if required:
+            out["required"] = required
+        out["additionalProperties"] = False
+        return out
+
+
+def command_schema(command, extra_seeds=()):
+    """The JSON Schema (a dict) of ``mechcli COMMAND``'s spec.
+
+    Parameters
+    ----------
+    command : str
+        One of :data:`COMMANDS`.
+    extra_seeds : sequence of dict
+        More specs (parsed TOML) to run the reader over.
+    """
+    rec = explore(command, extra_seeds)
+    schema = _Builder(rec).table(())
+    out = {"$schema": DRAFT,
+           "title": f"mechcli {command} spec",
+           "description": f"A problem file for `mechcli {command}` (generated by "
+                          f"`mechcli schema {command}` from the spec reader)."}
+    out.update(schema)
+    props = out.get("properties", {})
+    if "command" in props:
+        props["command"] = {"const": command, "type": "string"}
+    return out
