@@ -128,11 +128,19 @@ def main(argv=None):
         code = ExitStatus.UNSOLVABLE
     except click.exceptions.Exit as exc:
         code = exc.exit_code
-    except click.Abort:
-        _err("aborted")
-        code = ExitStatus.INTERNAL
+    except click.Abort as exc:
+        # click turns Ctrl-C (KeyboardInterrupt) into Abort
+        interrupted = isinstance(exc.__cause__ or exc.__context__, KeyboardInterrupt)
+        _err("interrupted" if interrupted else "aborted")
+        code = 130 if interrupted else ExitStatus.INTERNAL
     except click.ClickException as exc:
-        exc.show()
+        # a usage error: one line, like every other error (and the JSON object with --json)
+        message = exc.format_message()
+        ctx = getattr(exc, "ctx", None)
+        if ctx is not None and ctx.command_path and ctx.command_path != "mechcli":
+            message = f"{ctx.command_path}: {message}"
+        _err(message)
+        _json_error(args, message, ExitStatus.BAD_SPEC)
         code = ExitStatus.BAD_SPEC
     except KeyboardInterrupt:
         _err("interrupted")

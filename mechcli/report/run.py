@@ -32,12 +32,14 @@ def finish(run, command, report, results, outputs, warnings=()):
     warnings : sequence of str
         One-line warnings; shown on stderr unless ``--json`` (then in the JSON).
     """
+    from mechcli.core.errors import UnsolvableError
     from mechcli.spec.common import check_expected
     from mechcli.spec.errors import SpecError
 
     try:
         check_expected(run.spec_path, run.sets, results)
-    except SpecError:
+        _check_finite(results)
+    except (SpecError, UnsolvableError):
         outputs.discard()
         raise
     for w in warnings:
@@ -52,3 +54,25 @@ def finish(run, command, report, results, outputs, warnings=()):
     else:
         for w in warnings:
             click.echo(f"mechcli: warning: {w}", err=True)
+
+
+def _check_finite(results, path=""):
+    """A result that overflowed (inf) or is undefined (NaN) is out of the range
+    mechcli can report: exit 3 naming it, before anything is printed or kept."""
+    import math
+
+    from mechcli.core.errors import UnsolvableError
+
+    items = results.items() if isinstance(results, dict) else enumerate(results)
+    for k, v in items:
+        name = f"{path}.{k}" if path and isinstance(k, str) else (f"{path}[{k}]" if path else k)
+        if isinstance(v, (dict, list, tuple)):
+            _check_finite(v, name)
+        elif isinstance(v, float) or hasattr(v, "dtype"):
+            try:
+                x = float(v)
+            except (TypeError, ValueError):
+                continue
+            if not math.isfinite(x):
+                raise UnsolvableError(f"the result {name} is out of the range of floating-point "
+                                      f"numbers ({x}): the inputs are too extreme to report it")

@@ -118,6 +118,9 @@ def load_spec(path, overrides=()):
         raise SpecError(file, "", "UTF-8 text", "undecodable bytes") from None
     except tomllib.TOMLDecodeError as exc:
         raise SpecError(file, "", "valid TOML", f"a syntax error: {exc}") from None
+    except RecursionError:
+        raise SpecError(file, "", "TOML nested at most a few hundred tables or arrays deep",
+                        "nesting too deep to read") from None
     overridden = set()
     for text in overrides:
         key, value = parse_override(file, text)
