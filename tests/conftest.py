@@ -57,3 +57,13 @@ def run_inprocess(*args):
         except SystemExit as exc:
             code = exc.code
     return subprocess.CompletedProcess(["mechcli", *argv], code, out.getvalue(), err.getvalue())
+
+
+@pytest.fixture(autouse=True)
+def _close_figures():
+    """In-process runs share one matplotlib state: close every figure a test left open
+    (a run that fails half-way may not reach ``plt.close``), so no test meets the
+    "More than 20 figures" RuntimeWarning (an error under ``filterwarnings = error``)."""
+    yield
+    if "matplotlib.pyplot" in sys.modules:
+        sys.modules["matplotlib.pyplot"].close("all")

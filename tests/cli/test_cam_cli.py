@@ -6,7 +6,7 @@ import math
 
 import pytest
 
-from tests.conftest import CONFIGS, run_cli
+from tests.conftest import CONFIGS, run_cli, run_inprocess
 
 BASE = """command = "cam"
 title = "test"
@@ -59,12 +59,13 @@ def _json(proc):
 
 def test_outputs_csv_report_and_json(tmp_path):
     spec = _spec(tmp_path, BASE + "[cam]\nomega = 10\n")
+    # subprocess smoke test of cam (``python -m mechcli`` end to end)
     doc = _json(run_cli("cam", spec, "--json", "--no-plot", "--out", tmp_path / "o",
                         "--step", "1"))
     assert doc["command"] == "cam"
     res = doc["results"]
-    assert res["n_points"] == 360
-    assert res["v_max"] == pytest.approx(10 * res["ds_max"])
+    assert res["n_points"] == 360                               # 360° / --step 1
+    assert res["v_max"] == pytest.approx(10 * res["ds_max"])   # v = omega ds/ddelta, omega = 10
     with open(tmp_path / "o" / "cam.csv", newline="") as fh:
         rows = list(csv.reader(fh))
     head = rows[0]
@@ -72,17 +73,19 @@ def test_outputs_csv_report_and_json(tmp_path):
                 "x_pitch_mm", "y_pitch_mm", "x_work_mm", "y_work_mm", "pressure_angle_deg",
                 "rho_pitch_mm", "rho_work_mm", "roller_angle_deg"):
         assert col in head
-    assert len(rows) == 362
-    row = dict(zip(head, map(float, rows[51])))    # δ = 50°: s = h/2 of the parabolic rise
+    assert len(rows) == 362   # header + 0° … 360° by 1° (the closing 360° repeated)
+    row = dict(zip(head, map(float, rows[51])))    # δ = 50°: s = h/2 = 30 of the parabolic rise
     assert row["delta_deg"] == pytest.approx(50.0)
     assert row["s_mm"] == pytest.approx(30.0, abs=1e-9)
     report = (tmp_path / "o" / "report.txt").read_text(encoding="utf-8")
+    # BASE is 例 4-1 (configs/ch4/ex4-1.toml): hand calculation of the rise's largest pressure
+    # angle at the parabolic kink, atan((2h/delta0 - e)/(sqrt(r0^2 - e^2) + h/2)) = 38.7067°
     assert "38.7067" in report and "soft impact" in report
 
 
 def test_chinese_report_and_plots(tmp_path):
     spec = _spec(tmp_path, OSC)
-    proc = run_cli("cam", spec, "--lang", "zh", "--quiet", "--out", tmp_path / "o")
+    proc = run_inprocess("cam", spec, "--lang", "zh", "--quiet", "--out", tmp_path / "o")
     assert proc.returncode == 0, proc.stderr
     report = (tmp_path / "o" / "report.txt").read_text(encoding="utf-8")
     assert "推程最大压力角" in report and "柔性冲击" in report
@@ -92,7 +95,7 @@ def test_chinese_report_and_plots(tmp_path):
 
 def test_animation_written_on_request(tmp_path):
     spec = _spec(tmp_path, BASE + "[output]\nframes = 8\n")
-    doc = _json(run_cli("cam", spec, "--json", "--no-plot", "--animate", "--out", tmp_path,
+    doc = _json(run_inprocess("cam", spec, "--json", "--no-plot", "--animate", "--out", tmp_path,
                         "--step", "2"))
     gif = [f for f in doc["files"] if f.endswith(".gif")]
     assert gif and (tmp_path / "cam.gif").read_bytes()[:6] in (b"GIF89a", b"GIF87a")
@@ -100,7 +103,7 @@ def test_animation_written_on_request(tmp_path):
 
 def test_set_override_and_sizing(tmp_path):
     spec = _spec(tmp_path, BASE)
-    doc = _json(run_cli("cam", spec, "--json", "--no-plot", "--out", tmp_path, "--set",
+    doc = _json(run_inprocess("cam", spec, "--json", "--no-plot", "--out", tmp_path, "--set",
                         "sizing.base_radius=true", "--set", "follower.side=left"))
     res = doc["results"]
     assert res["offset_side"] == "left"
@@ -113,10 +116,10 @@ def test_undercut_warning_then_exit_3_when_forbidden(tmp_path):
         "angle = 100, law = \"parabolic\"", "angle = 40, law = \"parabolic\"").replace(
         "{ kind = \"dwell\", angle = 60 }", "{ kind = \"dwell\", angle = 120 }")
     spec = _spec(tmp_path, text)
-    doc = _json(run_cli("cam", spec, "--json", "--no-plot", "--out", tmp_path))
+    doc = _json(run_inprocess("cam", spec, "--json", "--no-plot", "--out", tmp_path))
     assert doc["results"]["undercut"] is True
     assert any("undercut" in w for w in doc["warnings"])
-    proc = run_cli("cam", spec, "--no-plot", "--out", tmp_path, "--set",
+    proc = run_inprocess("cam", spec, "--no-plot", "--out", tmp_path, "--set",
                    "limits.forbid_undercut=true")
     assert proc.returncode == 3
     assert "undercut" in proc.stderr and "Traceback" not in proc.stderr
@@ -140,7 +143,7 @@ def test_undercut_warning_then_exit_3_when_forbidden(tmp_path):
 ])
 def test_bad_specs_exit_2_naming_the_key(tmp_path, edit, key, words):
     spec = _spec(tmp_path, BASE.replace(*edit))
-    proc = run_cli("cam", spec, "--no-plot", "--out", tmp_path)
+    proc = run_inprocess("cam", spec, "--no-plot", "--out", tmp_path)
     assert proc.returncode == 2, proc.stderr
     err = proc.stderr.strip()
     assert len(err.splitlines()) == 1 and key in err and words in err, err
@@ -154,7 +157,7 @@ def test_bad_specs_exit_2_naming_the_key(tmp_path, edit, key, words):
 ])
 def test_bad_oscillating_specs_exit_2(tmp_path, edit, key, words):
     spec = _spec(tmp_path, OSC.replace(*edit))
-    proc = run_cli("cam", spec, "--no-plot", "--out", tmp_path)
+    proc = run_inprocess("cam", spec, "--no-plot", "--out", tmp_path)
     assert proc.returncode == 2, proc.stderr
     err = proc.stderr.strip()
     assert key in err and words in err, err
@@ -164,22 +167,24 @@ def test_swing_just_below_the_geometric_limit(tmp_path):
     phi0 = math.degrees(math.acos((60 ** 2 + 50 ** 2 - 25 ** 2) / (2 * 60 * 50)))
     psi = 180 - phi0 - 1e-3
     spec = _spec(tmp_path, OSC.replace("psi = 25", f"psi = {psi!r}"))
-    doc = _json(run_cli("cam", spec, "--json", "--no-plot", "--out", tmp_path, "--step", "1"))
+    doc = _json(run_inprocess("cam", spec, "--json", "--no-plot", "--out", tmp_path, "--step", "1"))
     # the arm ends almost on the line pivot–cam centre: the pressure angle reaches ~90°
     assert 85 < doc["results"]["alpha_rise_max_deg"] < 90
     assert any("exceeds" in w for w in doc["warnings"])
 
 
 def test_ex7_2_config_text_output(tmp_path):
+    # subprocess: checks the rich table printed to the (non-terminal) stdout of a real process
     proc = run_cli("cam", CONFIGS / "ch7" / "ex7-2.toml", "--no-plot", "--out", tmp_path)
     assert proc.returncode == 0, proc.stderr
+    # 例 7-2 prints alpha_max = 22.2077° at phi = 39.2315° (configs/ch7/ex7-2.toml)
     assert "22.2077°" in proc.stdout and "39.2315°" in proc.stdout
 
 
 def test_oscillating_sizing_meets_the_limit(tmp_path):
     spec = _spec(tmp_path, OSC.replace("r0 = 25\n", "") + "[limits]\nalpha_rise = 25\n"
                  "[sizing]\nbase_radius = true\n")
-    doc = _json(run_cli("cam", spec, "--json", "--no-plot", "--out", tmp_path, "--step", "1"))
+    doc = _json(run_inprocess("cam", spec, "--json", "--no-plot", "--out", tmp_path, "--step", "1"))
     res = doc["results"]
     assert 10 < res["r0_min"] < 110 and res["r0"] == pytest.approx(res["r0_min"])
     assert res["alpha_rise_max_deg"] == pytest.approx(25.0, abs=1e-6)
@@ -200,14 +205,14 @@ segments = [
 [sizing]
 """
     spec = _spec(tmp_path, text)
-    doc = _json(run_cli("cam", spec, "--json", "--no-plot", "--out", tmp_path))
+    doc = _json(run_inprocess("cam", spec, "--json", "--no-plot", "--out", tmp_path))
     res = doc["results"]
     assert res["undercut"] is True and res["rho_work_min"] < 0
     # hand calculation: max(-(s + s'')) at the end of the rise = -20 + pi^2*20/(2*(40 deg)^2)
     assert res["r0_min"] == pytest.approx(-20 + math.pi ** 2 * 20 / (2 * math.radians(40) ** 2),
                                           rel=1e-9)
     assert any("cusp" in w for w in doc["warnings"])
-    proc = run_cli("cam", spec, "--no-plot", "--out", tmp_path, "--set",
+    proc = run_inprocess("cam", spec, "--no-plot", "--out", tmp_path, "--set",
                    "limits.forbid_undercut=true")
     assert proc.returncode == 3 and "r0 + s + s''" in proc.stderr
 
@@ -215,13 +220,13 @@ segments = [
 def test_units_aliases_partial_lifts_and_points(tmp_path):
     """Same cam in metres: lengths come back in metres, angles unchanged; law aliases,
     partial lifts and sampling.points are accepted."""
-    mm = _json(run_cli("cam", _spec(tmp_path, BASE, "mm.toml"), "--json", "--no-plot",
+    mm = _json(run_inprocess("cam", _spec(tmp_path, BASE, "mm.toml"), "--json", "--no-plot",
                        "--out", tmp_path / "a", "--step", "1"))["results"]
     text = (BASE.replace('units = "mm"', 'units = "m"').replace("r0 = 40", "r0 = 0.04")
             .replace("rr = 10", "rr = 0.01").replace("e = 15", "e = 0.015")
             .replace("h = 60", "h = 0.06").replace('"cosine"', '"harmonic"')
             + "[sampling]\npoints = 360\n")
-    m = _json(run_cli("cam", _spec(tmp_path, text, "m.toml"), "--json", "--no-plot",
+    m = _json(run_inprocess("cam", _spec(tmp_path, text, "m.toml"), "--json", "--no-plot",
                       "--out", tmp_path / "b"))["results"]
     assert m["n_points"] == 360 and m["units"] == "m"
     assert m["alpha_return_max_deg"] == pytest.approx(mm["alpha_return_max_deg"], abs=1e-9)
@@ -232,7 +237,7 @@ def test_units_aliases_partial_lifts_and_points(tmp_path):
         '  { kind = "dwell", angle = 20 },\n'
         '  { kind = "rise", angle = 50, law = "3-4-5", lift = 40 },\n'
         '  { kind = "dwell", angle = 40 },')
-    res = _json(run_cli("cam", _spec(tmp_path, two_step, "two.toml"), "--json", "--no-plot",
+    res = _json(run_inprocess("cam", _spec(tmp_path, two_step, "two.toml"), "--json", "--no-plot",
                         "--out", tmp_path / "c", "--points", "720"))["results"]
     assert res["n_points"] == 720 and res["n_rigid_impacts"] == 0
     with open(tmp_path / "c" / "cam.csv", newline="") as fh:
@@ -300,7 +305,7 @@ def test_core_error_reaches_the_cli_worded(tmp_path):
   { kind = "return", angle = 40, law = "cosine" },
   { kind = "dwell", angle = 280 },
 ]""")
-    proc = run_cli("cam", _spec(tmp_path, text), "--no-plot", "--out", tmp_path)
+    proc = run_inprocess("cam", _spec(tmp_path, text), "--no-plot", "--out", tmp_path)
     assert proc.returncode == 3, proc.stderr
     # the message the CLI printed for this spec before the wording left the core
     assert ("the working profile is undercut (cusp) near 40 deg: roller radius 35 mm >= "

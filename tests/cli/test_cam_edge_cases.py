@@ -7,7 +7,7 @@ import pytest
 
 from mechcli.core.cam.motion import build_program
 from mechcli.core.cam.sizing import translating_base_radius_min
-from tests.conftest import run_cli
+from tests.conftest import run_inprocess
 
 SIZED = """command = "cam"
 [follower]
@@ -30,7 +30,7 @@ def test_zero_allowed_pressure_angle_is_a_spec_error(tmp_path, key):
     # meaningless "sized base radius 0.628 mm" with exit 3
     spec = tmp_path / "spec.toml"
     spec.write_text(SIZED + f"[limits]\n{key} = 0\n", encoding="utf-8")
-    proc = run_cli("cam", spec, "--no-plot", "--out", tmp_path)
+    proc = run_inprocess("cam", spec, "--no-plot", "--out", tmp_path)
     assert proc.returncode == 2, proc.stderr
     err = proc.stderr.strip()
     assert len(err.splitlines()) == 1 and key in err and "Warning" not in err, err
@@ -67,7 +67,7 @@ def test_zero_degree_dwell_as_the_book_writes_it(tmp_path):
 
     spec = tmp_path / "zero.toml"
     spec.write_text(PROGRAM % "\n  { kind = \"dwell\", angle = 0 },", encoding="utf-8")
-    proc = run_cli("cam", spec, "--no-plot", "--json", "--out", tmp_path / "a")
+    proc = run_inprocess("cam", spec, "--no-plot", "--json", "--out", tmp_path / "a")
     assert proc.returncode == 0, proc.stderr
     res = json.loads(proc.stdout)["results"]
     # the hand values of configs/ch4/exercise4-1.toml (cos x = 0.25)
@@ -77,7 +77,7 @@ def test_zero_degree_dwell_as_the_book_writes_it(tmp_path):
     # a rise of 0 deg is still an error
     spec.write_text(PROGRAM.replace("angle = 120, law = \"cosine\" },%s",
                                     "angle = 0, law = \"cosine\" },%s") % "", encoding="utf-8")
-    proc = run_cli("cam", spec, "--no-plot", "--out", tmp_path / "b")
+    proc = run_inprocess("cam", spec, "--no-plot", "--out", tmp_path / "b")
     assert proc.returncode == 2 and "angle" in proc.stderr, proc.stderr
 
 
@@ -110,7 +110,7 @@ def test_sized_cam_at_the_limit_gives_no_pressure_angle_warning(tmp_path, alpha)
     spec = tmp_path / "s.toml"
     spec.write_text(EX72_SIZED + f"[limits]\nalpha_rise = {alpha}\nalpha_return = {alpha}\n",
                     encoding="utf-8")
-    proc = run_cli("cam", spec, "--no-plot", "--json", "--out", tmp_path)
+    proc = run_inprocess("cam", spec, "--no-plot", "--json", "--out", tmp_path)
     assert proc.returncode == 0, proc.stderr
     doc = json.loads(proc.stdout)
     h, beta, t = 20.0, math.pi / 2, math.tan(math.radians(alpha))
@@ -135,7 +135,7 @@ def test_segment_sum_within_the_spec_tolerance_runs(tmp_path, extra):
     spec.write_text(PROGRAM.replace("angle = 120, law = \"cosine\" },%s",
                                     f"angle = {120 + extra!r}, law = \"cosine\" }},%s") % "",
                     encoding="utf-8")
-    proc = run_cli("cam", spec, "--no-plot", "--json", "--out", tmp_path)
+    proc = run_inprocess("cam", spec, "--no-plot", "--json", "--out", tmp_path)
     assert proc.returncode == 0, proc.stderr
     res = json.loads(proc.stdout)["results"]
     assert res["alpha_rise_max_deg"] == pytest.approx(21.1713, abs=5e-5)
@@ -143,7 +143,7 @@ def test_segment_sum_within_the_spec_tolerance_runs(tmp_path, extra):
     spec.write_text(PROGRAM.replace("angle = 120, law = \"cosine\" },%s",
                                     "angle = 120.000002, law = \"cosine\" },%s") % "",
                     encoding="utf-8")
-    proc = run_cli("cam", spec, "--no-plot", "--out", tmp_path)
+    proc = run_inprocess("cam", spec, "--no-plot", "--out", tmp_path)
     assert proc.returncode == 2 and "360" in proc.stderr, proc.stderr
 
 
@@ -159,7 +159,7 @@ def test_lift_within_the_spec_tolerance_runs(tmp_path, rise, ret):
                     .replace("{ kind = \"return\", angle = 120, law = \"cosine\" }",
                              f"{{ kind = \"return\", angle = 120, law = \"cosine\", lift = {ret} }}"),
                     encoding="utf-8")
-    proc = run_cli("cam", spec, "--no-plot", "--json", "--out", tmp_path)
+    proc = run_inprocess("cam", spec, "--no-plot", "--json", "--out", tmp_path)
     assert proc.returncode == 0, proc.stderr
     res = json.loads(proc.stdout)["results"]
     assert res["alpha_rise_max_deg"] == pytest.approx(21.1713, abs=5e-5)

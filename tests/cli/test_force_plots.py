@@ -4,7 +4,7 @@ import json
 
 import pytest
 
-from tests.conftest import CONFIGS, run_cli, write_spec
+from tests.conftest import CONFIGS, run_inprocess, write_spec
 
 PNGS = ("force.png", "hodograph.png", "frame.png")
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
@@ -68,7 +68,7 @@ def _check_gif(path, frames):
 @pytest.mark.parametrize("config", ["ex2-4", "ex2-1", "exercise2-8"])
 def test_force_pictures_and_animation(tmp_path, config):
     out = tmp_path / "out"
-    proc = run_cli("force", CONFIGS / "ch2" / f"{config}.toml", "--out", out, "--animate",
+    proc = run_inprocess("force", CONFIGS / "ch2" / f"{config}.toml", "--out", out, "--animate",
                    "--json")
     assert proc.returncode == 0, proc.stderr
     files = json.loads(proc.stdout)["files"]
@@ -81,7 +81,7 @@ def test_force_pictures_and_animation(tmp_path, config):
 
 def test_no_plot_writes_no_picture(tmp_path):
     out = tmp_path / "out"
-    proc = run_cli("force", CONFIGS / "ch2" / "ex2-4.toml", "--out", out, "--no-plot")
+    proc = run_inprocess("force", CONFIGS / "ch2" / "ex2-4.toml", "--out", out, "--no-plot")
     assert proc.returncode == 0, proc.stderr
     assert (out / "force.csv").exists()
     assert not list(out.glob("*.png"))
@@ -90,7 +90,7 @@ def test_no_plot_writes_no_picture(tmp_path):
 
 def test_no_plot_with_animate_writes_only_the_gif(tmp_path):
     out = tmp_path / "out"
-    proc = run_cli("force", CONFIGS / "ch2" / "ex2-1.toml", "--out", out, "--no-plot",
+    proc = run_inprocess("force", CONFIGS / "ch2" / "ex2-1.toml", "--out", out, "--no-plot",
                    "--animate")
     assert proc.returncode == 0, proc.stderr
     assert not list(out.glob("*.png"))
@@ -99,7 +99,7 @@ def test_no_plot_with_animate_writes_only_the_gif(tmp_path):
 
 def test_chinese_labels(tmp_path):
     out = tmp_path / "out"
-    proc = run_cli("force", CONFIGS / "ch2" / "ex2-4.toml", "--out", out, "--lang", "zh")
+    proc = run_inprocess("force", CONFIGS / "ch2" / "ex2-4.toml", "--out", out, "--lang", "zh")
     assert proc.returncode == 0, proc.stderr
     for name in PNGS:
         _check_png(out / name)
@@ -108,7 +108,7 @@ def test_chinese_labels(tmp_path):
 def test_partial_range_pictures(tmp_path):
     spec = write_spec(tmp_path, PARTIAL)
     out = tmp_path / "out"
-    proc = run_cli("force", spec, "--out", out, "--animate", "--json")
+    proc = run_inprocess("force", spec, "--out", out, "--animate", "--json")
     assert proc.returncode == 0, proc.stderr
     assert json.loads(proc.stdout)["results"]["excluded"], "the spec must have a gap"
     for name in PNGS:

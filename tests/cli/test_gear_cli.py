@@ -4,7 +4,7 @@ import json
 
 import pytest
 
-from tests.conftest import CONFIGS, run_cli
+from tests.conftest import CONFIGS, run_cli, run_inprocess
 
 CH5 = CONFIGS / "ch5"
 
@@ -16,9 +16,11 @@ def _spec(tmp_path, body, name="g.toml"):
 
 
 def test_example_5_4_warns_about_contact_ratio(tmp_path):
+    # subprocess smoke test of gear (``python -m mechcli`` end to end); the rest run in-process
     proc = run_cli("gear", CH5 / "ex5-4.toml", "--json", "--no-plot", "--out", tmp_path)
     assert proc.returncode == 0, proc.stderr
     doc = json.loads(proc.stdout)
+    # 例 5-4 prints epsilon = 0.765 (BOOK_5_4 below); half a unit of the last digit
     assert doc["results"]["epsilon_alpha"] == pytest.approx(0.765, abs=5e-4)
     assert any("0.765 < 1" in w for w in doc["warnings"])
     for key in ("a", "a_w", "d1", "d2", "db1", "db2", "da1", "da2", "df1", "df2",
@@ -28,7 +30,7 @@ def test_example_5_4_warns_about_contact_ratio(tmp_path):
 
 
 def test_example_5_4_listing_in_chinese(tmp_path):
-    proc = run_cli("gear", CH5 / "ex5-4.toml", "--lang", "zh", "--quiet", "--no-plot",
+    proc = run_inprocess("gear", CH5 / "ex5-4.toml", "--lang", "zh", "--quiet", "--no-plot",
                    "--out", tmp_path)
     assert proc.returncode == 0
     text = (tmp_path / "report.txt").read_text(encoding="utf-8")
@@ -50,7 +52,7 @@ BOOK_5_4 = [  # 【例 5-4】 四、运算结果, as printed (OCR "喷合角" is
 
 
 def test_example_5_4_listing_line_for_line(tmp_path):
-    proc = run_cli("gear", CH5 / "ex5-4.toml", "--lang", "zh", "--quiet", "--no-plot",
+    proc = run_inprocess("gear", CH5 / "ex5-4.toml", "--lang", "zh", "--quiet", "--no-plot",
                    "--out", tmp_path)
     assert proc.returncode == 0
     lines = (tmp_path / "report.txt").read_text(encoding="utf-8").splitlines()
@@ -60,44 +62,47 @@ def test_example_5_4_listing_line_for_line(tmp_path):
 
 
 def test_require_continuous_mesh_exits_3(tmp_path):
-    proc = run_cli("gear", CH5 / "ex5-4.toml", "--set", "pair.require_continuous=true",
+    proc = run_inprocess("gear", CH5 / "ex5-4.toml", "--set", "pair.require_continuous=true",
                    "--no-plot", "--out", tmp_path)
     assert proc.returncode == 3
     assert "epsilon_alpha = 0.765 < 1" in proc.stderr
 
 
 def test_forbidden_interference_exits_3(tmp_path):
-    ok = run_cli("gear", CH5 / "internal-pair.toml", "--json", "--no-plot", "--out", tmp_path)
+    ok = run_inprocess("gear", CH5 / "internal-pair.toml", "--json", "--no-plot", "--out", tmp_path)
     assert ok.returncode == 0
     assert any("interference" in w for w in json.loads(ok.stdout)["warnings"])
-    proc = run_cli("gear", CH5 / "internal-pair.toml", "--set", "pair.forbid_interference=true",
+    proc = run_inprocess("gear", CH5 / "internal-pair.toml", "--set", "pair.forbid_interference=true",
                    "--no-plot", "--out", tmp_path)
     assert proc.returncode == 3
     assert "interference" in proc.stderr and "below its base circle" in proc.stderr
 
 
 def test_pair_animation_shows_the_gap_in_contact(tmp_path):
-    proc = run_cli("gear", CH5 / "ex5-4.toml", "--quiet", "--animate", "--out", tmp_path)
+    proc = run_inprocess("gear", CH5 / "ex5-4.toml", "--quiet", "--animate", "--out", tmp_path)
     assert proc.returncode == 0, proc.stderr
     assert (tmp_path / "pair.gif").read_bytes()[:6] == b"GIF89a"
     assert (tmp_path / "pair.png").stat().st_size > 10000
 
 
 def test_table_5_1_files_and_layout(tmp_path):
-    proc = run_cli("gear", CH5 / "ex5-1.toml", "--quiet", "--no-plot", "--lang", "zh",
+    proc = run_inprocess("gear", CH5 / "ex5-1.toml", "--quiet", "--no-plot", "--lang", "zh",
                    "--set", "involute.digits=6", "--out", tmp_path)
     assert proc.returncode == 0, proc.stderr
     text = (tmp_path / "report.txt").read_text(encoding="utf-8")
     assert "表 5-1" in text
     row20 = next(line for line in text.splitlines() if line.lstrip().startswith("20.0000"))
+    # 表 5-1; closed form inv alpha = tan alpha - alpha at 20°, 20°10′, 20°20′:
+    # 0.0149044, 0.0151367, 0.0153724 (rad)
     assert row20.split()[1:4] == ["0.014904", "0.015137", "0.015372"]
     lines = (tmp_path / "involute.csv").read_text().splitlines()
+    # header + the table rows of configs/ch5/ex5-1.toml's range and step
     assert lines[0] == "alpha_deg,inv_alpha_rad" and len(lines) == 211
     assert (tmp_path / "curve.csv").exists()
 
 
 def test_pictures_are_written(tmp_path):
-    proc = run_cli("gear", CH5 / "gear-cut.toml", "--quiet", "--animate", "--out", tmp_path,
+    proc = run_inprocess("gear", CH5 / "gear-cut.toml", "--quiet", "--animate", "--out", tmp_path,
                    "--set", "generation.step_deg=18")
     assert proc.returncode == 0, proc.stderr
     assert (tmp_path / "generation.png").stat().st_size > 10000
@@ -106,9 +111,10 @@ def test_pictures_are_written(tmp_path):
 
 def test_inverse_involute_auto(tmp_path):
     spec = _spec(tmp_path, "[inverse_involute]\ntheta = [1e-12, 0.02, 1.5]\n")
-    proc = run_cli("gear", spec, "--json", "--out", tmp_path / "o")
+    proc = run_inprocess("gear", spec, "--json", "--out", tmp_path / "o")
     assert proc.returncode == 0, proc.stderr
     res = json.loads(proc.stdout)["results"]
+    # inv alpha = 0.02: alpha = 21.9808° = 21°58′51″ (tan a - a = 0.02 by Newton, and 表 5-1)
     assert res["alpha_dms_2"] == "21°58′51″"
     assert res["iterations"] <= 4 and res["relative_residual"] < 1e-14
     assert res["relative_residual_3"] < 1e-14
@@ -116,7 +122,7 @@ def test_inverse_involute_auto(tmp_path):
 
 def test_book_start_outside_its_region_exits_3(tmp_path):
     spec = _spec(tmp_path, '[inverse_involute]\ntheta = 1.2\nmethod = "book"\n')
-    proc = run_cli("gear", spec, "--out", tmp_path / "o")
+    proc = run_inprocess("gear", spec, "--out", tmp_path / "o")
     assert proc.returncode == 3
     assert "book Newton start" in proc.stderr
 
@@ -144,7 +150,7 @@ def test_book_start_outside_its_region_exits_3(tmp_path):
     ("[spurr]\nz = 20\n", "spurr", "did you mean 'spur'"),
 ])
 def test_bad_specs_exit_2_naming_the_key(tmp_path, body, key, fragment):
-    proc = run_cli("gear", _spec(tmp_path, body), "--out", tmp_path / "o")
+    proc = run_inprocess("gear", _spec(tmp_path, body), "--out", tmp_path / "o")
     assert proc.returncode == 2, proc.stderr
     assert key in proc.stderr and fragment in proc.stderr
     assert "Traceback" not in proc.stderr
@@ -157,7 +163,7 @@ def test_bad_specs_exit_2_naming_the_key(tmp_path, body, key, fragment):
     ("[pair]\nz1 = 10\nz2 = 30\nm = 2\nx1 = 1.0\nforbid_pointed = true\n", "pointed tip"),
 ])
 def test_unsolvable_exit_3(tmp_path, body, fragment):
-    proc = run_cli("gear", _spec(tmp_path, body), "--no-plot", "--out", tmp_path / "o")
+    proc = run_inprocess("gear", _spec(tmp_path, body), "--no-plot", "--out", tmp_path / "o")
     assert proc.returncode == 3, proc.stderr
     assert fragment in proc.stderr
 
@@ -169,6 +175,6 @@ def test_unsolvable_exit_3(tmp_path, body, fragment):
     ("[involute]\nrb = 50\ntable_step_deg = 1e-9\n", "table_step_deg"),
 ])
 def test_bad_keys_exit_2(tmp_path, body, key):
-    proc = run_cli("gear", _spec(tmp_path, body), "--no-plot", "-q", "--out", tmp_path / "o")
+    proc = run_inprocess("gear", _spec(tmp_path, body), "--no-plot", "-q", "--out", tmp_path / "o")
     assert proc.returncode == 2, proc.stderr
     assert key in proc.stderr and "Traceback" not in proc.stderr

@@ -5,7 +5,7 @@ import json
 
 import pytest
 
-from tests.conftest import CONFIGS, run_cli, one_line_error, write_spec as write
+from tests.conftest import CONFIGS, one_line_error, run_cli, run_inprocess, write_spec as write
 
 EX11 = CONFIGS / "ch1" / "ex1-1.toml"
 
@@ -25,6 +25,7 @@ step = 5
 
 
 def test_version_and_help():
+    # subprocess: start-up (``--version`` and ``--help`` import no subcommand's dependencies)
     assert run_cli("--version").stdout.startswith("mechcli, version")
     proc = run_cli("kin", "--help")
     assert proc.returncode == 0
@@ -34,6 +35,7 @@ def test_version_and_help():
 
 
 def test_json_csv_and_report_are_written(tmp_path):
+    # subprocess smoke test of kin (``python -m mechcli`` end to end); the rest run in-process
     proc = run_cli("kin", EX11, "--json", "--no-plot", "--out", tmp_path)
     assert proc.returncode == 0, proc.stderr
     doc = json.loads(proc.stdout)
@@ -43,20 +45,20 @@ def test_json_csv_and_report_are_written(tmp_path):
         rows = list(csv.reader(fh))
     assert rows[0] == ["theta1_deg", "theta2_deg", "theta3_deg", "gammaC_deg", "omega2_rad_s",
                        "omega3_rad_s", "alpha2_rad_s2", "alpha3_rad_s2"]
-    assert len(rows) == 362
+    assert len(rows) == 362   # header + 0° … 360° by 1° (configs/ch1/ex1-1.toml)
     assert not any("nan" in c.lower() or "inf" in c.lower() for r in rows for c in r)
     assert float(rows[1][2]) == pytest.approx(96.6654, abs=5e-5)  # eq. (1-4) at theta1 = 0
 
 
 def test_lang_zh_report_uses_the_books_labels(tmp_path):
-    proc = run_cli("kin", EX11, "--lang", "zh", "--quiet", "--no-plot", "--out", tmp_path)
+    proc = run_inprocess("kin", EX11, "--lang", "zh", "--quiet", "--no-plot", "--out", tmp_path)
     assert proc.returncode == 0, proc.stderr
     text = (tmp_path / "report.txt").read_text(encoding="utf-8")
     assert "曲柄转角" in text and "角速度" in text and "计算结果" in text
 
 
 def test_plots_and_animation(tmp_path):
-    proc = run_cli("kin", CONFIGS / "ch1" / "exercise1-2.toml", "--animate", "--quiet",
+    proc = run_inprocess("kin", CONFIGS / "ch1" / "exercise1-2.toml", "--animate", "--quiet",
                    "--set", "output.frames=8", "--out", tmp_path)
     assert proc.returncode == 0, proc.stderr
     for name in ("kin.png", "path_F.png", "kin.gif"):
@@ -67,13 +69,13 @@ def test_plots_and_animation(tmp_path):
 
 
 def test_set_overrides_are_applied_and_validated(tmp_path):
-    base = json.loads(run_cli("kin", EX11, "--json", "--no-plot", "--out", tmp_path).stdout)
-    proc = run_cli("kin", EX11, "--json", "--no-plot", "--out", tmp_path,
+    base = json.loads(run_inprocess("kin", EX11, "--json", "--no-plot", "--out", tmp_path).stdout)
+    proc = run_inprocess("kin", EX11, "--json", "--no-plot", "--out", tmp_path,
                    "--set", "mechanism.l1=90", "--set", "input.step=0.5")
     doc = json.loads(proc.stdout)
-    assert doc["results"]["positions"] == 721
+    assert doc["results"]["positions"] == 721   # 360° / 0.5° + 1
     assert doc["results"]["theta3_swing_deg"] != base["results"]["theta3_swing_deg"]
-    proc = run_cli("kin", EX11, "--set", "mechanism.l1=-5", "--out", tmp_path)
+    proc = run_inprocess("kin", EX11, "--set", "mechanism.l1=-5", "--out", tmp_path)
     assert proc.returncode == 2
     assert "[mechanism] l1: expected a positive number, got -5.0" in one_line_error(proc)
 
@@ -92,7 +94,7 @@ def test_set_overrides_are_applied_and_validated(tmp_path):
 ])
 def test_bad_specs_exit_2_with_one_line_naming_file_and_key(tmp_path, edit, key, fragment):
     spec = write(tmp_path, GOOD.replace(*edit))
-    proc = run_cli("kin", spec, "--out", tmp_path / "out")
+    proc = run_inprocess("kin", spec, "--out", tmp_path / "out")
     assert proc.returncode == 2, proc.stderr
     line = one_line_error(proc)
     assert str(spec) in line and key in line and fragment in line
@@ -101,33 +103,33 @@ def test_bad_specs_exit_2_with_one_line_naming_file_and_key(tmp_path, edit, key,
 
 def test_toml_syntax_error_reports_line_and_column(tmp_path):
     spec = write(tmp_path, GOOD.replace("l3 = 250", "l3 = = 250"))
-    proc = run_cli("kin", spec)
+    proc = run_inprocess("kin", spec)
     assert proc.returncode == 2
     line = one_line_error(proc)
     assert "valid TOML" in line and "line 7" in line and "column" in line
 
 
 def test_missing_file_exit_2(tmp_path):
-    proc = run_cli("kin", tmp_path / "nope.toml")
+    proc = run_inprocess("kin", tmp_path / "nope.toml")
     assert proc.returncode == 2 and "no such file" in one_line_error(proc)
 
 
 def test_unassemblable_linkage_exit_3_with_intervals(tmp_path):
     spec = write(tmp_path, GOOD.replace("l1 = 100", "l1 = 240"))  # crank too long to turn
-    proc = run_cli("kin", spec, "--out", tmp_path / "out")
+    proc = run_inprocess("kin", spec, "--out", tmp_path / "out")
     assert proc.returncode == 3
     line = one_line_error(proc)
     assert "cannot assemble for input angle" in line and "partial = true" in line
     assert line.startswith(f"mechcli: error: {spec}: ")
     assert not (tmp_path / "out").exists()
-    proc = run_cli("kin", spec, "--json", "--out", tmp_path / "out")
+    proc = run_inprocess("kin", spec, "--json", "--out", tmp_path / "out")
     doc = json.loads(proc.stdout)
     assert proc.returncode == 3 and doc["exit_code"] == 3 and "cannot assemble" in doc["error"]
 
 
 def test_partial_analysis_reports_feasible_ranges(tmp_path):
     spec = write(tmp_path, GOOD.replace("l1 = 100", "l1 = 240"))
-    proc = run_cli("kin", spec, "--json", "--no-plot", "--set", "input.partial=true",
+    proc = run_inprocess("kin", spec, "--json", "--no-plot", "--set", "input.partial=true",
                    "--out", tmp_path)
     assert proc.returncode == 0, proc.stderr
     doc = json.loads(proc.stdout)
@@ -146,7 +148,7 @@ def test_partial_analysis_reports_feasible_ranges(tmp_path):
 
 
 def test_unknown_command_suggests(tmp_path):
-    proc = run_cli("kinn", EX11)
+    proc = run_inprocess("kinn", EX11)
     assert proc.returncode == 2 and "did you mean 'kin'" in proc.stderr
 
 
@@ -160,15 +162,15 @@ def test_unknown_command_suggests(tmp_path):
 ])
 def test_out_of_range_angles_and_counts_exit_2(tmp_path, override, fragment):
     spec = write(tmp_path, GOOD.replace("step = 5\n", ""))
-    proc = run_cli("kin", spec, "--set", override, "--out", tmp_path / "o")
+    proc = run_inprocess("kin", spec, "--set", override, "--out", tmp_path / "o")
     assert proc.returncode == 2
     assert fragment in one_line_error(proc)
 
 
 def test_set_count_replaces_the_files_step(tmp_path):
-    proc = run_cli("kin", EX11, "--json", "--no-plot", "--set", "input.count=721", "--out", tmp_path)
+    proc = run_inprocess("kin", EX11, "--json", "--no-plot", "--set", "input.count=721", "--out", tmp_path)
     assert proc.returncode == 0, proc.stderr
-    assert json.loads(proc.stdout)["results"]["positions"] == 721
+    assert json.loads(proc.stdout)["results"]["positions"] == 721   # the count asked for
     spec = write(tmp_path, GOOD.replace("step = 5", "step = 5\ncount = 10"))
-    proc = run_cli("kin", spec, "--out", tmp_path)
+    proc = run_inprocess("kin", spec, "--out", tmp_path)
     assert proc.returncode == 2 and "either step or count, not both" in one_line_error(proc)

@@ -9,7 +9,7 @@ import pytest
 from mechcli.core.linkage.kinetostatics import Load, LoadProgram
 from mechcli.spec.errors import SpecError
 from mechcli.spec.force import load_force_spec
-from tests.conftest import CONFIGS, one_line_error, run_cli, write_spec
+from tests.conftest import CONFIGS, one_line_error, run_inprocess, write_spec
 
 SLIDER_DRIVEN = """
 command = "force"
@@ -57,7 +57,7 @@ def _spec_error(tmp_path, text):
 
 def test_huge_finite_mass_is_a_spec_error_not_an_internal_error(tmp_path):
     # mass = 1e300 used to overflow the RMS to inf: internal error, exit 1
-    proc = run_cli("force", CONFIGS / "ch2" / "ex2-2.toml", "--no-plot", "--json",
+    proc = run_inprocess("force", CONFIGS / "ch2" / "ex2-2.toml", "--no-plot", "--json",
                    "--out", tmp_path, "--set", "link.0.mass=1e300")
     assert proc.returncode == 2, proc.stderr
     line = one_line_error(proc)

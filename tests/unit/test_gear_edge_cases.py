@@ -6,7 +6,7 @@ import math
 import pytest
 
 from mechcli.core.gear.spur import GearGeometryError, spur_gear
-from tests.conftest import run_cli
+from tests.conftest import run_inprocess
 
 
 def _spec(tmp_path, body):
@@ -24,7 +24,7 @@ def test_x_min_without_addendum():
 
 
 def test_spur_without_addendum_runs(tmp_path):
-    proc = run_cli("gear", _spec(tmp_path, "[spur]\nz = 20\nm = 1\nha_star = 0\nc_star = 0\n"),
+    proc = run_inprocess("gear", _spec(tmp_path, "[spur]\nz = 20\nm = 1\nha_star = 0\nc_star = 0\n"),
                    "--no-plot", "-q", "--out", tmp_path / "o")
     assert proc.returncode == 0, proc.stderr
 
@@ -33,7 +33,7 @@ def test_tip_circle_inside_base_circle_is_unsolvable(tmp_path):
     # z = 7, x = -1.5, alpha = 30: ra = 3.0 m < rb = 3.03 m; the pair died in acos (exit 1)
     with pytest.raises(GearGeometryError, match="inside the base circle"):
         spur_gear(7, 1.0, math.radians(30), x=-1.5)
-    proc = run_cli("gear", _spec(tmp_path, "[pair]\nz1 = 7\nz2 = 40\nm = 1\nalpha_deg = 30\n"
+    proc = run_inprocess("gear", _spec(tmp_path, "[pair]\nz1 = 7\nz2 = 40\nm = 1\nalpha_deg = 30\n"
                                            "x1 = -1.5\nx2 = 1.5\n"),
                    "--no-plot", "-q", "--out", tmp_path / "o")
     assert proc.returncode == 3, proc.stderr
@@ -44,7 +44,7 @@ def test_tip_circle_inside_base_circle_is_unsolvable(tmp_path):
 def test_book_start_outside_the_quadrant_is_a_spec_error(tmp_path, start):
     # was exit 3 with "its first step passes pi/2 for theta > 1.0468" (true only for 0.8)
     body = f'[inverse_involute]\ntheta = 0.02\nmethod = "book"\nbook_start = {start}\n'
-    proc = run_cli("gear", _spec(tmp_path, body), "--no-plot", "-q", "--out", tmp_path / "o")
+    proc = run_inprocess("gear", _spec(tmp_path, body), "--no-plot", "-q", "--out", tmp_path / "o")
     assert proc.returncode == 2, proc.stderr
     assert "book_start" in proc.stderr
 
@@ -94,13 +94,13 @@ def test_thin_teeth_without_zero_backlash_mount_at_a_given_distance(tmp_path):
     assert pair.backlash == pytest.approx(2 * math.pi * r1 / 12 - s1 - s2, rel=1e-12)
     assert pair.backlash > 0
     body = "[pair]\nz1 = 12\nz2 = 30\nm = 1\nx1 = -0.5\nx2 = -0.5\n"
-    proc = run_cli("gear", _spec(tmp_path, body + "a_w = 20\n"), "--json", "--no-plot",
+    proc = run_inprocess("gear", _spec(tmp_path, body + "a_w = 20\n"), "--json", "--no-plot",
                    "--out", tmp_path / "o")
     assert proc.returncode == 0, proc.stderr
-    proc = run_cli("gear", _spec(tmp_path, body + "a_w = 19.7\n"), "--no-plot", "-q",
+    proc = run_inprocess("gear", _spec(tmp_path, body + "a_w = 19.7\n"), "--no-plot", "-q",
                    "--out", tmp_path / "o")
     assert proc.returncode == 2 and "a_w" in proc.stderr and "base circles" in proc.stderr
-    proc = run_cli("gear", _spec(tmp_path, body), "--no-plot", "-q", "--out", tmp_path / "o")
+    proc = run_inprocess("gear", _spec(tmp_path, body), "--no-plot", "-q", "--out", tmp_path / "o")
     assert proc.returncode == 3 and "zero-backlash" in proc.stderr
 
 
