@@ -109,7 +109,7 @@ def _last_error(stderr):
     return line.removeprefix("mechcli: error: ")
 
 
-def run_spec(path, sets=(), plot=False, out_dir=None):
+def run_spec(path, sets=(), plot=False, out_dir=None, tmp_root=None):
     """Run one spec in this process and compare its ``[expected]`` values.
 
     Parameters
@@ -124,6 +124,10 @@ def run_spec(path, sets=(), plot=False, out_dir=None):
     out_dir : str or Path or None
         Where the command writes; None: a fresh temporary directory, removed
         afterwards.
+    tmp_root : str or Path or None
+        Where that temporary directory is made (None: the system's temporary
+        folder); :func:`run_batch` gives one it removes even if the batch is
+        interrupted.
 
     Returns
     -------
@@ -154,7 +158,7 @@ def run_spec(path, sets=(), plot=False, out_dir=None):
         return done()
     tmp = None
     if out_dir is None:
-        tmp = out_dir = tempfile.mkdtemp(prefix="mechcli-check-")
+        tmp = out_dir = tempfile.mkdtemp(prefix="mechcli-check-", dir=tmp_root)
     argv = [command, str(path), "--json", "--quiet", "--out", str(out_dir)]
     if not plot:
         argv += ["--no-plot", "--no-animate"]
@@ -174,6 +178,10 @@ def run_spec(path, sets=(), plot=False, out_dir=None):
         if tmp is not None:
             shutil.rmtree(tmp, ignore_errors=True)
     out["stderr"] = stderr.getvalue()
+    if code == 130:
+        # Ctrl-C reached the command (mechcli.cli.main turned it into exit 130):
+        # it stops the batch, not only this spec
+        raise KeyboardInterrupt
     out["exit_code"] = code
     if code != 0:
         out["error"] = _last_error(out["stderr"])
@@ -195,7 +203,12 @@ def run_spec(path, sets=(), plot=False, out_dir=None):
 
 
 def _init_worker():
+    import signal
     os.environ.setdefault("MPLBACKEND", "Agg")
+    # Ctrl-C is the parent's business: it stops the pool (a worker that caught
+    # SIGINT itself would carry on with the next spec, or die holding the
+    # queue's lock and leave the parent waiting for ever)
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
 
 
 def run_batch(specs, sets=(), jobs=None, plot=False, out_dirs=None, on_done=None):
@@ -219,11 +232,17 @@ def run_batch(specs, sets=(), jobs=None, plot=False, out_dirs=None, on_done=None
         return results
     import concurrent.futures as cf
     import multiprocessing
+    import shutil
+    import tempfile
 
     ctx = multiprocessing.get_context("fork" if hasattr(os, "fork") else "spawn")
-    with cf.ProcessPoolExecutor(max_workers=min(jobs, len(specs)), mp_context=ctx,
-                                initializer=_init_worker) as pool:
-        futures = {pool.submit(run_spec, path, tuple(sets), plot, od): i
+    # the workers' temporary directories live in one made here, so that they
+    # are removed even when a worker is stopped in the middle of a spec
+    tmp_root = tempfile.mkdtemp(prefix="mechcli-check-")
+    pool = cf.ProcessPoolExecutor(max_workers=min(jobs, len(specs)), mp_context=ctx,
+                                  initializer=_init_worker)
+    try:
+        futures = {pool.submit(run_spec, path, tuple(sets), plot, od, tmp_root): i
                    for i, (path, od) in enumerate(zip(specs, out_dirs))}
         for fut in cf.as_completed(futures):
             i = futures[fut]
@@ -237,7 +256,29 @@ def run_batch(specs, sets=(), jobs=None, plot=False, out_dirs=None, on_done=None
                               "warnings": [], "stderr": ""}
             if on_done:
                 on_done(results[i])
+    except BaseException:
+        # Ctrl-C (or any other way out): stop the workers now, do not wait for
+        # the specs still queued
+        _stop_pool(pool)
+        raise
+    else:
+        pool.shutdown(wait=True)
+    finally:
+        shutil.rmtree(tmp_root, ignore_errors=True)
     return results
+
+
+def _stop_pool(pool):
+    """Cancel what is queued and terminate the worker processes."""
+    processes = list((getattr(pool, "_processes", None) or {}).values())
+    pool.shutdown(wait=False, cancel_futures=True)
+    for proc in processes:
+        try:
+            proc.terminate()
+        except Exception:  # already gone
+            pass
+    for proc in processes:
+        proc.join(timeout=5)
 
 
 def plot_dirs(specs, root=Path("out") / "check"):

@@ -92,30 +92,90 @@ def _unquote(key):
     return key[1:-1] if key[:1] in "\"'" and key[-1:] == key[:1] else key
 
 
+def _split_inline(body):
+    """The ``key = value`` items of the inside of a one-line inline table,
+    split at the commas outside brackets, braces and strings."""
+    items, depth, quote, start = [], 0, None, 0
+    for i, ch in enumerate(body):
+        if quote:
+            quote = None if ch == quote else quote
+        elif ch in "\"'":
+            quote = ch
+        elif ch in "[{":
+            depth += 1
+        elif ch in "]}":
+            depth -= 1
+        elif ch == "," and depth == 0:
+            items.append(body[start:i])
+            start = i + 1
+    items.append(body[start:])
+    return [it for it in items if it.strip()]
+
+
+def _inline_table_texts(rest):
+    """``{key: literal}`` of a one-line inline table ``{ K = 1.20, … }``
+    (the text after ``expected =``)."""
+    rest = rest.strip()
+    if not rest.startswith("{"):
+        return {}
+    depth, end = 0, None
+    for i, ch in enumerate(rest):
+        depth += ch == "{"
+        depth -= ch == "}"
+        if depth == 0:
+            end = i
+            break
+    if end is None:
+        return {}
+    out = {}
+    for item in _split_inline(rest[1:end]):
+        m = _KEYLINE.match(item)
+        if m:
+            lit = _literal_of(m.group(2))
+            if lit is not None:
+                out[_unquote(m.group(1))] = lit
+    return out
+
+
 def literal_texts(text):
     """``{key: literal}`` of the ``[expected]`` table in a spec's TOML text.
 
     A literal is the number's text (``"1.2300"``), or a list of the element
     texts for a one-line array; keys whose value is given as
     ``{ value = …, … }`` map to the text after ``value =``.  Keys written as
-    ``expected.KEY = …`` at the top level are found too.
+    ``expected.KEY = …`` or ``expected = { KEY = …, … }`` at the top level,
+    and the ``value = …`` of an ``[expected.KEY]`` table, are found too.
+    Lines inside multi-line strings are skipped.
     """
     out = {}
     table = ""
+    in_string = None
     for line in text.splitlines():
+        if in_string:
+            if line.count(in_string) % 2:
+                in_string = None
+            continue
+        h = _HEADER.match(line)
         if line.lstrip().startswith("[["):
             table = None
             continue
-        h = _HEADER.match(line)
         if h:
             table = ".".join(_unquote(p.strip()) for p in h.group(1).split("."))
             continue
         m = _KEYLINE.match(line)
+        for quote in ('"""', "'''"):
+            if m and m.group(2).count(quote) % 2:
+                in_string = quote
         if not m or table is None:
             continue
         key = _unquote(m.group(1))
+        if table == "" and key == "expected":
+            out.update(_inline_table_texts(m.group(2)))
+            continue
         if table == "" and key.startswith("expected."):
             key = key[len("expected."):]
+        elif table.startswith("expected.") and key == "value":
+            key = table[len("expected."):]
         elif table != "expected":
             continue
         if key.endswith(".value"):
@@ -134,6 +194,11 @@ def override_texts(sets):
     for text in sets:
         key, sep, raw = text.partition("=")
         key = key.strip()
+        if sep and key == "expected":
+            for name, lit in _inline_table_texts(raw).items():
+                out.pop(name, None)
+                out[name] = lit
+            continue
         if not sep or not key.startswith("expected."):
             continue
         key = key[len("expected."):]

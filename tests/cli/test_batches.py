@@ -254,3 +254,21 @@ def test_bash_completion_through_the_lazy_group():
     proc = subprocess.run([sys.executable, "-m", "mechcli"], env=env, capture_output=True,
                           text=True)
     assert proc.stdout.splitlines() == ["plain,grashof"]
+
+
+@pytest.mark.skipif(shutil.which("make") is None, reason="make is not installed")
+def test_homework_makefile_reads_a_single_quoted_or_indented_command(tmp_path):
+    # before: `command = 'grashof'` (a TOML literal string) made the Makefile say
+    # "no command" although mechcli check runs the spec
+    specs = tmp_path / "specs"
+    specs.mkdir()
+    body = "[fourbar]\nlengths = [28, 52, 50, 72]\n"
+    (specs / "single.toml").write_text("command = 'grashof'\n" + body, encoding="utf-8")
+    (specs / "indented.toml").write_text('  command = "grashof"  # x\n' + body,
+                                         encoding="utf-8")
+    proc = subprocess.run(["make", "-s", "-C", str(HOMEWORK), f"SPECS={specs}",
+                           f"OUT={tmp_path}/out", f"MECHCLI={sys.executable} -m mechcli"],
+                          capture_output=True, text=True, timeout=120)
+    assert proc.returncode == 0, proc.stderr
+    assert (tmp_path / "out" / "single" / "report.txt").is_file()
+    assert (tmp_path / "out" / "indented" / "report.txt").is_file()

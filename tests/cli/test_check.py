@@ -218,3 +218,103 @@ def test_plot_writes_into_out_check(tmp_path, monkeypatch):
     proc = check("fb.toml", "-q", "--plot")
     assert proc.returncode == 0, proc.stderr
     assert (tmp_path / "out" / "check" / "fb" / "report.txt").exists()
+
+
+# -- review of issue 16: regressions -----------------------------------------------------
+def test_literal_texts_of_subtables_inline_tables_and_multiline_strings():
+    # an [expected.K] table, a top-level `expected = { … }` and a multi-line string that
+    # looks like an [expected] table: the digits as written, not the float's repr
+    text = ('expected = { A = 1.2300, B = { value = 2.50, tol = 1 }, s = "a,b", C = [1.0, 2.50] }\n'
+            'note = """\n[expected]\nA = 9.9\n"""\n[expected.D]\nvalue = 3.000\ntol = 1\n')
+    assert literal_texts(text) == {"A": "1.2300", "B": "2.50", "C": ["1.0", "2.50"],
+                                   "D": "3.000"}
+    assert override_texts(["expected={ A = 1.2300 }"]) == {"A": "1.2300"}
+
+
+def test_expected_subtable_keeps_its_trailing_zeros(tmp_path):
+    # before: [expected.longest] value = 170.000 was checked within ±0.05 (repr "170.0")
+    p = spec(tmp_path, "", head=FOURBAR + "[expected.longest]\nvalue = 170.000\n")
+    assert doc(check(p, "--json"))["specs"][0]["checks"][0]["tol"] == pytest.approx(5e-4)
+    top = write_spec(tmp_path, "expected = { longest = 170.000 }\n" + FOURBAR, name="top.toml")
+    assert doc(check(top, "--json"))["specs"][0]["checks"][0]["tol"] == pytest.approx(5e-4)
+
+
+def _interrupt_check(args, delay):
+    import glob
+    import os
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    before = set(glob.glob(os.path.join(__import__("tempfile").gettempdir(), "mechcli-check-*")))
+    proc = subprocess.Popen([sys.executable, "-m", "mechcli", "check", *args],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                            start_new_session=True)
+    time.sleep(delay)
+    os.killpg(proc.pid, signal.SIGINT)       # Ctrl-C: the whole process group
+    try:
+        out, err = proc.communicate(timeout=30)
+    except subprocess.TimeoutExpired:         # the hang this test is about
+        os.killpg(proc.pid, signal.SIGKILL)
+        proc.communicate()
+        pytest.fail("mechcli check hung after Ctrl-C")
+    time.sleep(0.2)
+    after = set(glob.glob(os.path.join(__import__("tempfile").gettempdir(), "mechcli-check-*")))
+    return proc.returncode, out, err, after - before
+
+
+@pytest.mark.parametrize("jobs", ["1", "2", "4"])
+def test_ctrl_c_stops_the_whole_batch_cleanly(jobs):
+    # before: -j 1 ran on after Ctrl-C (only the running spec was "interrupted"), and with
+    # -j N the workers caught SIGINT themselves, sometimes leaving the parent waiting for ever
+    specs = [str(CONFIGS)]
+    for _ in range(3):
+        code, out, err, left = _interrupt_check(specs + ["-j", jobs], 0.5)
+        if code == 0:
+            continue        # the batch finished before the signal (a very fast machine)
+        assert code == 130, err
+        assert "Traceback" not in err and "interrupted" in err
+        assert "mechcli check:" not in out       # no summary: the batch did not run on
+        assert not left
+        return
+
+
+def _slow_spec(path, sets=(), plot=False, out_dir=None, tmp_root=None):
+    """A stand-in for batch.run_spec (module level: the workers unpickle it by name)."""
+    import time
+    from pathlib import Path
+    time.sleep(0.2)
+    Path(str(path) + ".ran").write_text("", encoding="utf-8")
+    return {"spec": str(path), "command": "grashof", "status": "passed", "exit_code": 0,
+            "time_s": 0.2, "checks": [], "error": None, "warnings": [], "stderr": ""}
+
+
+def test_run_batch_stops_its_workers_on_keyboard_interrupt(tmp_path, monkeypatch):
+    # before: Ctrl-C in the parent waited for every queued spec (and the workers' own
+    # SIGINT handling could leave the pool hung); now the queue is cancelled, the workers
+    # terminated and the batch's temporary directory removed
+    import glob
+    import os
+    import signal
+    import tempfile
+
+    from mechcli import batch
+
+    specs = [tmp_path / f"s{i}.toml" for i in range(20)]
+    monkeypatch.setattr(batch, "run_spec", _slow_spec)
+    monkeypatch.setattr(tempfile, "tempdir", str(tmp_path))
+
+    def on_done(result):
+        raise KeyboardInterrupt
+    with pytest.raises(KeyboardInterrupt):
+        batch.run_batch(specs, jobs=2, on_done=on_done)
+    assert len(glob.glob(str(tmp_path / "*.ran"))) < 10
+    assert not glob.glob(os.path.join(str(tmp_path), "mechcli-check-*"))
+    # the workers leave Ctrl-C to the parent
+    old = signal.getsignal(signal.SIGINT)
+    try:
+        batch._init_worker()
+        assert signal.getsignal(signal.SIGINT) is signal.SIG_IGN
+    finally:
+        signal.signal(signal.SIGINT, old)
