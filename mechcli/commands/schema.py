@@ -13,22 +13,24 @@ import click
 @click.argument("command", metavar="COMMAND")
 @click.option("-o", "--output", "output", type=click.Path(dir_okay=False), default=None,
               help="Write the schema to this file instead of printing it.")
-def schema(command, output):
+@click.option("--learn", is_flag=True,
+              help="Learn the schema afresh from the spec reader (development: the shipped "
+                   "schemas are learnt this way with the checkout's configs/).")
+def schema(command, output, learn):
     """Print the JSON Schema (draft-07) of COMMAND's spec (kin, force, grashof,
     cam, gear), for editors that check TOML against a schema (Taplo, tombi)."""
     import difflib
-    import json
     import os
     import tempfile
 
-    from mechcli.spec.schema import COMMANDS, command_schema
+    from mechcli.spec.schema import COMMANDS, command_schema, schema_text, shipped_schema_text
 
     if command not in COMMANDS:
         near = difflib.get_close_matches(command, COMMANDS, n=1)
         raise click.UsageError(
             f"no spec schema for '{command}': expected one of {', '.join(COMMANDS)}"
             + (f" (did you mean '{near[0]}'?)" if near else ""))
-    text = json.dumps(command_schema(command), indent=2, ensure_ascii=False) + "\n"
+    text = schema_text(command_schema(command)) if learn else shipped_schema_text(command)
     if output is None:
         click.echo(text, nl=False)
         return
@@ -37,6 +39,9 @@ def schema(command, output):
         fd, tmp = tempfile.mkstemp(prefix=".schema-", suffix=".tmp", dir=folder)
         with os.fdopen(fd, "w", encoding="utf-8") as fh:
             fh.write(text)
+        umask = os.umask(0)
+        os.umask(umask)
+        os.chmod(tmp, 0o666 & ~umask)   # mkstemp makes 0600; a written schema is a normal file
         os.replace(tmp, output)
     except OSError as exc:
         raise click.UsageError(f"-o {output}: cannot write ({exc.strerror or exc})") from None

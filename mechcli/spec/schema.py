@@ -179,13 +179,13 @@ _SLIDER = {"mechanism": {"type": "general", "frame": 2, "ground": {"O": [0, 0]},
 PROBES = {"kin": [_SLIDER], "force": [_SLIDER]}
 
 
-def _seeds(command):
+def _seeds(command, configs=None):
     seeds = [(dict(copy.deepcopy(p), command=command), None) for p in PROBES.get(command, ())]
     here = Path(__file__).resolve().parent.parent
     template = here / "templates" / f"{command}.toml"
     files = [template] if template.is_file() else []
     files += sorted((here / "templates" / "examples").glob("*.toml"))
-    configs = here.parent / "configs"
+    configs = Path(configs) if configs is not None else here.parent / "configs"
     if configs.is_dir():
         files += sorted(configs.rglob("*.toml"))
     import tomllib
@@ -214,12 +214,12 @@ def _refill(filled, err):
     return err if filled[err][3] + 1 < len(filled[err][2]) else None
 
 
-def explore(command, extra_seeds=()):
+def explore(command, extra_seeds=(), configs=None):
     """Run *command*'s reader over the probe specs; return the :class:`Recorder`."""
     read = _reader(command)
     rec = Recorder()
     queue = [(copy.deepcopy(s), 0, None, None, d) for s, d in
-             [(s, None) for s in extra_seeds] + _seeds(command)]
+             [(s, None) for s in extra_seeds] + _seeds(command, configs)]
     seen, tried = set(), {}
     rec.errors = {}
     rec.ok = set()
@@ -483,8 +483,8 @@ class _Builder:
         return out
 
 
-def command_schema(command, extra_seeds=()):
-    """The JSON Schema (a dict) of ``mechcli COMMAND``'s spec.
+def command_schema(command, extra_seeds=(), configs=None):
+    """The JSON Schema (a dict) of ``mechcli COMMAND``'s spec, learnt from the reader.
 
     Parameters
     ----------
@@ -492,8 +492,12 @@ def command_schema(command, extra_seeds=()):
         One of :data:`COMMANDS`.
     extra_seeds : sequence of dict
         More specs (parsed TOML) to run the reader over.
+    configs : path, optional
+        A folder of configs to seed from (default: ``configs/`` beside the
+        package, in a checkout).  The shipped schemas (:func:`shipped_schema`)
+        are learnt with the checkout's ``configs/``.
     """
-    rec = explore(command, extra_seeds)
+    rec = explore(command, extra_seeds, configs)
     schema = _Builder(rec).table(())
     out = {"$schema": DRAFT,
            "title": f"mechcli {command} spec",
@@ -504,3 +508,20 @@ def command_schema(command, extra_seeds=()):
     if "command" in props:
         props["command"] = {"const": command, "type": "string"}
     return out
+
+
+#: where the schemas learnt in the checkout are shipped (package data)
+SHIPPED = Path(__file__).resolve().parent.parent / "schemas"
+
+
+def shipped_schema_text(command):
+    """The shipped schema of ``command`` as JSON text: learnt by :func:`command_schema`
+    in the checkout (with every config as a seed) and kept equal to it by
+    ``tests/cli/test_schema.py``, so an installed mechcli prints the same schema
+    without the configs and without running the reader."""
+    return (SHIPPED / f"{command}.json").read_text(encoding="utf-8")
+
+
+def schema_text(schema):
+    """The canonical JSON text of a schema (what is shipped and printed)."""
+    return json.dumps(schema, indent=2, ensure_ascii=False) + "\n"

@@ -14,7 +14,7 @@ import sys
 
 import pytest
 
-from mechcli.spec.schema import COMMANDS, command_schema
+from mechcli.spec.schema import COMMANDS, command_schema, schema_text, shipped_schema_text
 from tests.conftest import CONFIGS, run_inprocess
 
 if sys.version_info >= (3, 11):
@@ -100,7 +100,17 @@ def valid(schema, value):
 
 @pytest.fixture(scope="module")
 def schemas():
-    return {c: command_schema(c) for c in COMMANDS}
+    """The shipped schemas: what an installed mechcli prints."""
+    return {c: json.loads(shipped_schema_text(c)) for c in COMMANDS}
+
+
+@pytest.mark.parametrize("command", COMMANDS)
+def test_shipped_schema_is_what_the_reader_teaches(command):
+    """The shipped schema equals the one learnt afresh from the spec reader with every config
+    as a seed, so it cannot drift from the reader.  To update it after changing a reader:
+    ``mechcli schema COMMAND --learn -o mechcli/schemas/COMMAND.json``."""
+    assert schema_text(command_schema(command, configs=CONFIGS)) == shipped_schema_text(command), \
+        f"run: mechcli schema {command} --learn -o mechcli/schemas/{command}.json"
 
 
 def _load(path):

@@ -30,10 +30,13 @@ import inspect
 import re
 import subprocess
 import sys
+from pathlib import Path
 
+import mechcli
 from tests.conftest import ROOT
 
-PACKAGE = ROOT / "mechcli"
+#: the package under test: the checkout in development, the installed wheel in CI
+PACKAGE = Path(mechcli.__file__).resolve().parent
 
 #: third-party packages the core must never import
 CORE_FORBIDDEN_LIBRARIES = {"click", "rich", "matplotlib", "PIL", "tomllib", "tomli"}
@@ -86,7 +89,7 @@ KNOWN_VIOLATIONS: set = set()
 
 
 def _module_name(path):
-    rel = path.relative_to(ROOT).with_suffix("")
+    rel = path.relative_to(PACKAGE.parent).with_suffix("")
     parts = rel.parts[:-1] if rel.name == "__init__" else rel.parts
     return ".".join(parts)
 
