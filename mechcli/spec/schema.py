@@ -188,7 +188,7 @@ def _seeds(command, configs=None):
     configs = Path(configs) if configs is not None else here.parent / "configs"
     if configs.is_dir():
         files += sorted(configs.rglob("*.toml"))
-    import tomllib
+    from mechcli.spec.reader import tomllib
     for f in files:
         try:
             data = tomllib.loads(f.read_text(encoding="utf-8"))

@@ -1,0 +1,63 @@
+"""The package a user installs: every third-party module mechcli imports is a declared
+dependency, and the package data the commands read is declared (issue 21 item 13)."""
+
+import ast
+import sys
+
+import mechcli
+from tests.conftest import ROOT
+
+try:
+    import tomllib
+except ModuleNotFoundError:  # pragma: no cover - Python < 3.11
+    import tomli as tomllib
+
+#: import name -> distribution name, where they differ
+DISTRIBUTION = {"PIL": "pillow"}
+
+
+def _imported_top_level_modules():
+    package = __import__("pathlib").Path(mechcli.__file__).resolve().parent
+    names = set()
+    for path in package.rglob("*.py"):
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if isinstance(node, ast.Import):
+                names.update(a.name.split(".")[0] for a in node.names)
+            elif isinstance(node, ast.ImportFrom) and node.level == 0 and node.module:
+                names.add(node.module.split(".")[0])
+    return names - set(sys.stdlib_module_names) - {"mechcli", "tomli"}
+
+
+def _declared():
+    project = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))["project"]
+    out = set()
+    for req in project["dependencies"]:
+        name = req.split(";")[0]
+        for sep in "<>=!~[ ":
+            name = name.split(sep)[0]
+        out.add(name.strip().lower())
+    return out, project
+
+
+def test_every_imported_third_party_module_is_a_dependency():
+    declared, _ = _declared()
+    imported = {DISTRIBUTION.get(m, m).lower() for m in _imported_top_level_modules()}
+    assert imported, "the AST walk found no third-party import at all"
+    assert imported - declared == set()
+
+
+def test_published_metadata():
+    _, project = _declared()
+    for key in ("readme", "license", "authors", "classifiers", "requires-python", "description"):
+        assert project.get(key), key
+    assert "tomli>=1.1; python_version < '3.11'" in project["dependencies"]
+
+
+def test_package_data_of_new_and_schema_is_declared():
+    data = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))
+    globs = data["tool"]["setuptools"]["package-data"]["mechcli"]
+    package = __import__("pathlib").Path(mechcli.__file__).resolve().parent
+    for folder, pattern in (("templates", "*.toml"), ("templates/examples", "*.toml"),
+                            ("schemas", "*.json")):
+        assert f"{folder}/{pattern}" in globs
+        assert list((package / folder).glob(pattern)), folder
