@@ -104,6 +104,7 @@ def _traceback(show):
 def main(argv=None):
     """Entry point: run the CLI and turn every exception into an exit code."""
     from mechcli.core.errors import ConvergenceError, UnsolvableError
+    from mechcli.report.files import OutputPathError
     from mechcli.spec.errors import SpecError
 
     args = list(sys.argv[1:] if argv is None else argv)
@@ -114,7 +115,8 @@ def main(argv=None):
     try:
         # with standalone_mode=False click returns (not raises) the code of an Exit
         rv = cli.main(args=args, prog_name="mechcli", standalone_mode=False)
-    except SpecError as exc:
+    except (SpecError, OutputPathError) as exc:
+        # a bad spec, or an --out that cannot take the files (unsafe name, OS error)
         _traceback(show_tb)
         _err(exc.format())
         _json_error(args, exc.format(), ExitStatus.BAD_SPEC)

@@ -8,11 +8,23 @@ replaced whole by one of them: a reader sees one run's complete file, never a
 mixture.
 
 CSV numbers are ``%.{digits}g`` (``--digits``, default 10 significant digits;
-17 reads back bit for bit).
+17 reads back bit for bit); the header goes through the :mod:`csv` module, so a
+column name that holds a comma, a quote or a line break is quoted, never splits
+the header.
+
+:class:`Outputs` is the one way a run writes into ``--out``: every path is a
+file name joined to the folder, and a name that is absolute, holds a path
+separator or ``..``, or resolves outside the folder is refused
+(:class:`OutputPathError`, exit 2 naming ``--out``), whatever the spec layer let
+through.  An OS error while writing there (``--out`` under a regular file, a
+read-only folder, a folder where the file should go) is the same error with
+the OS's reason: the user's ``--out`` is wrong, it is not a bug.
 """
 
 from __future__ import annotations
 
+import csv
+import io
 import math
 import os
 import tempfile
@@ -21,6 +33,25 @@ from pathlib import Path
 
 class OutputError(RuntimeError):
     """Refusing to write a non-finite number or an unwritable file."""
+
+
+class OutputPathError(OutputError):
+    """``--out`` cannot take a file: an unsafe file name or an OS error there.
+
+    A user error (exit 2, mapped by :func:`mechcli.cli.main` like a
+    :class:`~mechcli.spec.errors.SpecError`), worded like one: the option
+    ``--out``, what was expected, what was found.
+    """
+
+    key = "--out"
+
+    def __init__(self, expected, got):
+        self.expected = expected
+        self.got = got
+        super().__init__(self.format())
+
+    def format(self):
+        return f"{self.key}: expected {self.expected}, got {self.got}"
 
 
 #: significant digits of CSV numbers unless a run asks otherwise (``--digits``)
@@ -34,6 +65,8 @@ def _umask():
 
 
 _UMASK = _umask()
+#: path separators: ``/``, ``\\`` (a separator on Windows, refused everywhere) and the system's
+_SEPARATORS = {"/", "\\", os.sep} | ({os.altsep} if os.altsep else set())
 
 
 def _atomic(path, write):
@@ -88,7 +121,11 @@ def write_csv(path, columns, digits=DEFAULT_DIGITS):
         if not np.all(np.isfinite(a)):
             bad = int(np.argmax(~np.isfinite(a)))
             raise OutputError(f"refusing to write non-finite {h} in row {bad + 1}")
-    lines = [",".join(headers)]
+    head = io.StringIO()
+    csv.writer(head, lineterminator="\n").writerow(headers)
+    # number cells (``%g``: digits, sign, '.', 'e') never need quoting, so the rows are
+    # formatted whole, as fast as before
+    lines = [head.getvalue()[:-1]]
     if n:
         fmt = ",".join([f"%.{digits}g"] * len(arrays))
         mat = np.column_stack(arrays)
@@ -110,20 +147,52 @@ class Outputs:
         self.files: list[Path] = []
 
     def path(self, name):
-        return self.out_dir / name
+        """``--out``/*name*, after checking that *name* is a plain file name that stays
+        inside the folder (:class:`OutputPathError` otherwise)."""
+        name = str(name)
+        shown = repr(name if len(name) <= 60 else name[:60] + "...")
+        if not name or name in (".", "..") or ".." in name or "\0" in name \
+                or os.path.isabs(name) or any(sep in name for sep in _SEPARATORS):
+            raise OutputPathError("plain file names (no path separator, no '..', not "
+                                  "absolute)", f"the file name {shown}")
+        path = self.out_dir / name
+        if Path(os.path.realpath(path)).parent != Path(os.path.realpath(self.out_dir)):
+            raise OutputPathError(f"files inside {self.out_dir}",
+                                  f"{shown}, which resolves to {os.path.realpath(path)}")
+        return path
+
+    def _write(self, name, write, *args):
+        """Write *name* with ``write(path, *args)``; on a refusal or an OS error remove
+        what this run wrote before (as :func:`mechcli.report.run.finish` does), so a
+        failed run leaves none of its output, and raise :class:`OutputPathError`."""
+        try:
+            path = self.path(name)
+        except OutputPathError:
+            self.discard()
+            raise
+        try:
+            self.files.append(write(path, *args))
+        except OSError as exc:
+            self.discard()
+            # the path the OS refused: a parent folder (mkdir), else the file itself
+            # (the rename target, never the temporary file)
+            where = exc.filename2 or exc.filename
+            if where is None or Path(where).name.startswith(f".{path.name}."):
+                where = path
+            raise OutputPathError(f"a folder where mechcli can write {name}",
+                                  f"{where}: {exc.strerror or exc}") from None
+        return self.files[-1]
 
     def text(self, name, text):
-        self.files.append(write_text(self.path(name), text))
-        return self.files[-1]
+        return self._write(name, write_text, text)
+
+    def bytes(self, name, data):
+        """Write *data* (a rendered PNG or GIF) as *name*."""
+        return self._write(name, write_bytes, data)
 
     def csv(self, name, columns, digits=None):
         digits = self.digits if digits is None else digits
-        self.files.append(write_csv(self.path(name), columns, digits))
-        return self.files[-1]
-
-    def add(self, path):
-        self.files.append(Path(path))
-        return self.files[-1]
+        return self._write(name, write_csv, columns, digits)
 
     def discard(self):
         """Remove the files this run wrote (each was complete: see :func:`_atomic`),
@@ -131,6 +200,6 @@ class Outputs:
         for f in self.files:
             try:
                 f.unlink()
-            except FileNotFoundError:
+            except OSError:   # gone already, or the folder refuses: nothing more to undo
                 pass
         self.files.clear()

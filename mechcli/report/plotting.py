@@ -13,8 +13,6 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib import font_manager  # noqa: E402
 
-from mechcli.report.files import write_bytes  # noqa: E402
-
 _CJK_FAMILIES = ("Noto Sans CJK SC", "Noto Sans CJK JP", "Noto Sans SC", "Source Han Sans SC",
                  "WenQuanYi Zen Hei", "WenQuanYi Micro Hei", "SimHei", "Microsoft YaHei",
                  "PingFang SC", "AR PL UMing CN", "Droid Sans Fallback")
@@ -68,22 +66,24 @@ def setup(lang="en"):
 
 
 def save_png(fig, outputs, name):
-    """Render *fig* to PNG in memory, then write it atomically."""
+    """Render *fig* to PNG in memory, then write it atomically as *name* in ``--out``
+    (:meth:`~mechcli.report.files.Outputs.bytes` checks the name)."""
     buf = io.BytesIO()
     fig.savefig(buf, format="png", bbox_inches="tight")
     plt.close(fig)
-    return outputs.add(write_bytes(outputs.path(name), buf.getvalue()))
+    return outputs.bytes(name, buf.getvalue())
 
 
 def save_gif(frames, outputs, name, fps=12):
-    """Write a list of RGB(A) uint8 frames (H×W×3/4 arrays) as a looping GIF."""
+    """Write a list of RGB(A) uint8 frames (H×W×3/4 arrays) as a looping GIF *name*
+    in ``--out`` (through :meth:`~mechcli.report.files.Outputs.bytes`)."""
     from PIL import Image
 
     images = [Image.fromarray(f[..., :3]) for f in frames]
     buf = io.BytesIO()
     images[0].save(buf, format="GIF", save_all=True, append_images=images[1:],
                    duration=int(1000 / fps), loop=0, optimize=False)
-    return outputs.add(write_bytes(outputs.path(name), buf.getvalue()))
+    return outputs.bytes(name, buf.getvalue())
 
 
 def canvas_frame(fig):

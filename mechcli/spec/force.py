@@ -98,13 +98,15 @@ def _link_number(sec, key, topo, frame):
 def _place(sec, key, from_key, topo, link, allow_mid):
     """A point fixed on ``link``: ``(origin, along, normal)``; along None = midpoint."""
     raw = sec.raw(key, "mid" if allow_mid else None)
-    origin = sec.string(from_key, None)
+    origin = sec.name(from_key, None)
     if origin is not None and link not in topo.members.get(origin, ()):
         on = sorted(p for p, ls in topo.members.items() if link in ls)
         raise sec.error(from_key, f"a point on link {link} ({', '.join(on)})", f"'{origin}'")
     if raw is None:
         return None
     if isinstance(raw, str):
+        if raw != "mid" or not allow_mid:
+            sec.check_name(key, raw)
         if raw == "mid" and allow_mid:
             if origin is not None:
                 raise sec.error(from_key, f"no {from_key} with {key} = \"mid\"", f"'{origin}'")
@@ -153,7 +155,7 @@ def _loads(root, topo, frame, inp, quantities):
     unit = math.pi / 180 if inp.rotary else root.unit
     out, names = [], set()
     for i, t in enumerate(root.tables("load", [])):
-        name = t.string("name", f"load{i + 1}")
+        name = t.name("name", f"load{i + 1}")
         if name in names:
             raise t.error("name", "a name not used by another load", f"'{name}'")
         names.add(name)
@@ -180,7 +182,7 @@ def _loads(root, topo, frame, inp, quantities):
                 raise t.error("at" if t.has("at") else "at_from",
                               "no point of action for a pure torque", "a point")
             origin, along, normal = _place(t, "at", "at_from", topo, link, allow_mid=False) \
-                or (t.string("at_from"), 0.0, 0.0)
+                or (t.name("at_from"), 0.0, 0.0)
         table = None
         if t.has("factor"):
             ft = t.table("factor")
@@ -208,7 +210,7 @@ def _loads(root, topo, frame, inp, quantities):
                                   repr([lo, hi]))
                 window = (lo * unit, hi * unit)
             if w.has("velocity"):
-                sym = w.string("velocity")
+                sym = w.name("velocity")
                 if sym not in by_symbol or by_symbol[sym].order != 1:
                     raise SpecError(w.file, w.key("velocity"),
                                     "a velocity of this linkage: " + ", ".join(velocities),
@@ -228,7 +230,7 @@ def _loads(root, topo, frame, inp, quantities):
                 if velocity is not None and velocity.kind == "velocity" \
                         and ("s" + velocity.symbol[1:]) in by_symbol:
                     default_slide = velocity.symbol[1:]
-                sname = w.string("slide", default_slide)
+                sname = w.name("slide", default_slide)
                 if sname is None or "s" + sname not in by_symbol:
                     raise SpecError(w.file, w.key("slide"),
                                     ("a slide of this linkage: " + ", ".join(slides)) if slides

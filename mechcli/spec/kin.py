@@ -135,6 +135,7 @@ def _general(mech):
     elements, paths = [], []
     ground = mech.table("ground")
     for name in ground.keys():
+        ground.check_name(None, name)
         xy = ground.numbers(name, size=2)
         if max(abs(xy[0]), abs(xy[1])) * mech.unit > MAX_LENGTH:
             raise ground.error(name, f"coordinates within ±{MAX_LENGTH:g} m", repr(xy))
@@ -147,11 +148,11 @@ def _general(mech):
         kind = d.string("type", "crank", choices=["crank", "slider"])
         link = d.integer("link", lo=1)
         if kind == "crank":
-            elements.append(Crank(link, d.string("pivot"), d.string("point"), d.length("length")))
+            elements.append(Crank(link, d.name("pivot"), d.name("point"), d.length("length")))
         else:
-            elements.append(SliderDriver(link, d.string("origin"), d.string("point"),
+            elements.append(SliderDriver(link, d.name("origin"), d.name("point"),
                                          math.radians(d.number("angle", 0.0)),
-                                         d.string("name", None)))
+                                         d.name("name", None)))
         paths.append(d.path)
         if i > 0:
             followers[link] = (d.number("ratio", 1.0),
@@ -176,27 +177,29 @@ def _rrr(dy, unit):
     links = dy.raw("links")
     lengths = dy.numbers("lengths", size=2, positive=True)
     if len(pts) != 2:
-        raise dy.error("points", "an array of 2 point names", repr(pts))
+        raise dy.error("points", "an array of 2 point names", f"an array of {len(pts)}")
+    for i, p in enumerate(pts):
+        dy.check_name(f"points[{i}]", p)
     if not (isinstance(links, list) and len(links) == 2
             and all(isinstance(x, int) and not isinstance(x, bool) and x > 0 for x in links)):
         raise dy.error("links", "an array of 2 link numbers", repr(links))
-    return RRR(dy.string("joint"), pts[0], links[0], lengths[0] * unit,
+    return RRR(dy.name("joint"), pts[0], links[0], lengths[0] * unit,
                pts[1], links[1], lengths[1] * unit, br)
 
 
 def _rrp(dy, unit):
     br = _dyad_branch(dy)
-    return RRP(dy.string("joint"), dy.string("point"), dy.integer("link", lo=1),
+    return RRP(dy.name("joint"), dy.name("point"), dy.integer("link", lo=1),
                dy.length("length"), dy.integer("slider", lo=1), dy.integer("guide_link", lo=1),
-               dy.string("guide_point"), math.radians(dy.number("guide_angle", 0.0)),
-               dy.coordinate("offset", 0.0), br, dy.string("name", None))
+               dy.name("guide_point"), math.radians(dy.number("guide_angle", 0.0)),
+               dy.coordinate("offset", 0.0), br, dy.name("name", None))
 
 
 def _rpr(dy, unit):
     br = _dyad_branch(dy)
-    return RPR(dy.string("point"), dy.integer("block", lo=1), dy.string("pivot"),
+    return RPR(dy.name("point"), dy.integer("block", lo=1), dy.name("pivot"),
                dy.integer("guide", lo=1), dy.coordinate("offset", 0.0), br,
-               dy.string("name", None))
+               dy.name("name", None))
 
 
 def _prp(dy, unit):
@@ -208,11 +211,11 @@ def _prp(dy, unit):
     for x in "ab":
         keys.update({f"slider_{x}": dy.integer(f"slider_{x}", lo=1),
                      f"guide_link_{x}": dy.integer(f"guide_link_{x}", lo=1),
-                     f"guide_point_{x}": dy.string(f"guide_point_{x}"),
+                     f"guide_point_{x}": dy.name(f"guide_point_{x}"),
                      f"guide_angle_{x}": math.radians(dy.number(f"guide_angle_{x}", 0.0)),
                      f"offset_{x}": dy.coordinate(f"offset_{x}", 0.0),
-                     f"name_{x}": dy.string(f"name_{x}", None)})
-    return PRP(dy.string("joint"), **keys)
+                     f"name_{x}": dy.name(f"name_{x}", None)})
+    return PRP(dy.name("joint"), **keys)
 
 
 #: ``[[mechanism.dyad]] type`` -> reader of that dyad's keys (a new dyad type of
@@ -224,9 +227,9 @@ def _points(mech, elements, paths):
     """``[[mechanism.point]]``: points fixed on links; traced unless ``trace = false``."""
     tracers = []
     for pt in mech.tables("point", []):
-        name = pt.string("name")
+        name = pt.name("name")
         link = pt.integer("link", lo=1)
-        origin = pt.string("from")
+        origin = pt.name("from")
         along = pt.coordinate("along", 0.0)
         normal = pt.coordinate("normal", 0.0)
         elements.append(PointOnLink(name, link, origin, along, normal))

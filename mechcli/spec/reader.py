@@ -27,6 +27,36 @@ MIN_LENGTH, MAX_LENGTH = 1e-9, 1e6
 #: metres per declared length unit
 LENGTH_UNITS = {"mm": 1e-3, "cm": 1e-2, "m": 1.0, "in": 0.0254}
 
+#: the longest name (a point, slide, load or joint name) mechcli accepts
+NAME_MAX = 32
+#: what a name looks like, as error messages and docs say it
+NAME_RULE = (f"a name of 1 to {NAME_MAX} letters (any script: Latin, Greek, CJK), "
+             "digits 0-9 or '_'")
+
+
+def is_name(value):
+    """Is *value* a name: 1 to :data:`NAME_MAX` characters, each a Unicode letter,
+    an ASCII digit or ``_``?
+
+    Names become file names (``path_<name>.png``), CSV columns and JSON keys, so
+    they hold no path separator, dot, comma, quote, space or control character.
+    A leading digit is allowed: slide names such as ``23`` (block 2 on guide 3)
+    are the book's.
+    """
+    return (isinstance(value, str) and 0 < len(value) <= NAME_MAX
+            and all(c == "_" or "0" <= c <= "9" or c.isalpha() for c in value))
+
+
+def _describe_name(value, limit=40):
+    """*value* for a message: a string escaped (one line) and cut after *limit* characters."""
+    if not isinstance(value, str):
+        return _describe(value)
+    if value == "":
+        return "'' (an empty string)"
+    if len(value) <= limit:
+        return f"{value!r} (a string)"
+    return f"{value[:limit]!r}... (a string of {len(value):,} characters)"
+
 
 def _describe(value):
     if isinstance(value, bool):
@@ -294,6 +324,27 @@ class Section:
             raise SpecError(self.file, self.key(name), want, _describe(value),
                             closest(value, choices))
         return value
+
+    def name(self, name, default=REQUIRED):
+        """A name that becomes a file name, a CSV column or a JSON key: see
+        :func:`is_name` (:data:`NAME_RULE`)."""
+        if self.recorder is not None:
+            self.recorder.key(self, name, "string", default)
+        value = self._get(name, default)
+        if value is default and default is not REQUIRED:
+            return value
+        return self.check_name(name, value)
+
+    def check_name(self, key, value):
+        """*value* if it is a name (:func:`is_name`); else a :class:`SpecError` naming
+        *key* (an array item such as ``points[0]``), or with *key* ``None`` naming this
+        table, whose keys are the names (``[mechanism.ground]``)."""
+        if is_name(value):
+            return value
+        if key is None:
+            raise SpecError(self.file, self.path, "keys that are names: " + NAME_RULE,
+                            _describe_name(value))
+        raise self.error(key, NAME_RULE, _describe_name(value))
 
     def boolean(self, name, default=REQUIRED):
         if self.recorder is not None:
