@@ -9,9 +9,23 @@ import click
 from mechcli.options import RunOptions, common_options
 
 
+class FiniteFloat(click.FloatRange):
+    """A float option within [min, max] that is also finite: click's FloatRange lets NaN
+    through (every comparison with NaN is false).  A bad value is a usage error (exit 2)
+    naming the option.  Shared by the commands' numeric options (``grashof --offset``)."""
+
+    name = "finite float"
+
+    def convert(self, value, param, ctx):
+        rv = click.FLOAT.convert(value, param, ctx)
+        if rv != rv or rv in (float("inf"), float("-inf")):
+            self.fail(f"{value!r} is not a finite number.", param, ctx)
+        return super().convert(rv, param, ctx)
+
+
 @click.command("cam")
 @click.argument("spec", type=click.Path(dir_okay=False, path_type=Path))
-@click.option("--step", type=click.FloatRange(1e-4, 10.0), default=None, metavar="DEG",
+@click.option("--step", type=FiniteFloat(1e-4, 10.0), default=None, metavar="DEG",
               help="Profile sampling step in degrees [default: spec, else 0.1].")
 @click.option("--points", type=click.IntRange(36, 3_600_000), default=None,
               help="Profile points per revolution (instead of --step).")

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import click
 
+from mechcli.commands.cam import FiniteFloat
 from mechcli.options import RunOptions, common_options
 
 
@@ -13,7 +14,7 @@ from mechcli.options import RunOptions, common_options
               "(four-bar), 5 (five-bar) or 2 with --offset (slider-crank).")
 @click.option("--frame", type=int, help="Frame link number (quick form) [default: 4 or 5].")
 @click.option("--input", "input_link", type=int, help="Input link (quick form) [default: 1].")
-@click.option("--offset", type=float, help="Slider offset e (quick form, slider-crank).")
+@click.option("--offset", type=FiniteFloat(), help="Slider offset e (quick form, slider-crank).")
 @click.option("--batch", type=click.Path(dir_okay=False), metavar="SETS.csv",
               help="Classify many four-bars: rows l1,l2,l3,l4[,frame[,input]] -> grashof.csv.")
 @click.option("--units", type=click.Choice(["mm", "cm", "m", "in"]), default=None,

@@ -99,7 +99,8 @@ def _segments(motion_sec, stroke, angular, file):
         else:
             law = sec.string("law", choices=list(LAW_CHOICES))
             if angular:
-                lift = math.radians(sec.number("lift", math.degrees(stroke), positive=True))
+                lift = math.radians(sec.number("lift", math.degrees(stroke), positive=True,
+                                               hi=180.0))   # at most psi
             else:
                 lift = sec.length("lift") if sec.has("lift") else stroke
             new = level + (lift if kind == "rise" else -lift)
@@ -172,6 +173,12 @@ def read_cam_spec(root, step_override=None, points_override=None):
     file = root.file
     fol = root.table("follower")
     motion = fol.string("motion", "translating", choices=["translating", "oscillating"])
+    arm = [k for k in ("a", "l") if k in fol.data]
+    if arm and "motion" not in fol.data:
+        # the default 'translating' would report a and l as unknown keys: name the key
+        # that is missing as well as the keys it explains
+        raise fol.error("motion", "'oscillating' for an arm of length l pivoted at a "
+                        f"(the default 'translating' has no {' or '.join(arm)})", "nothing")
     contact = fol.string("contact", choices=["knife", "roller", "flat"])
     angular = motion == "oscillating"
     if angular and contact == "flat":
@@ -216,13 +223,16 @@ def read_cam_spec(root, step_override=None, points_override=None):
     rotation, omega = 1, None
     if cam is not None:
         rotation = 1 if cam.string("rotation", "ccw", choices=["ccw", "cw"]) == "ccw" else -1
-        omega = cam.number("omega", None, positive=True)
+        # [rad/s]: 1e6 rad/s is ten million rpm, past any machine (an ultracentrifuge turns
+        # at 1.6e4 rad/s), and keeps omega^2 (the accelerations) finite; 1e-6 rad/s is a turn
+        # in 72 days, below which omega^2 underflows next to the lengths
+        omega = cam.number("omega", None, lo=1e-6, hi=1e6)
         cam.finish()
     args["rotation"] = rotation
 
     mot = root.table("motion")
     if angular:
-        psi = mot.number("psi", positive=True)
+        psi = mot.number("psi", positive=True, hi=180.0)   # phi0 + psi < 180 deg (eq. 4-6)
         stroke = math.radians(psi)
         if r0 is not None:
             phi0 = math.acos((a * a + l * l - r0 * r0) / (2 * a * l))

@@ -14,8 +14,8 @@ import dataclasses
 import math
 
 from mechcli.spec.common import Header, read_expected, read_header
-from mechcli.spec.errors import SpecError
-from mechcli.spec.reader import Section, load_spec
+from mechcli.spec.errors import SpecError, closest
+from mechcli.spec.reader import MAX_LENGTH, MIN_LENGTH, Section, load_spec
 
 #: most points of an involute curve or table (larger is a mistyped step, not a wish)
 MAX_POINTS = 1_000_000
@@ -25,17 +25,76 @@ KINDS = ("involute", "inverse_involute", "spur", "pair", "generation", "helical"
 
 
 # -- shared readers ----------------------------------------------------------------
+# The declared range of every kind of number (``lo``/``hi`` of the accessor, so
+# ``mechcli schema gear`` prints it and no solver sees a value outside it).
+
+#: pressure angle [deg] (alpha, alpha_n, and the working alpha' of a pair): below 1 deg
+#: no gear of at most 10000 teeth escapes undercut (z_min = 2 ha* / sin^2 alpha = 6567 at
+#: 1 deg), and near 0 the involute function alpha^3/3 and tan^2 alpha underflow (the
+#: solvers divide by them); 45 deg (excluded) is the rack's practical limit (standards use
+#: 14.5 - 25)
+PRESSURE_ANGLE_DEG = (1.0, 45.0)
+#: operating pressure angle alpha' [deg] of a mounting: a' = a cos(alpha) / cos(alpha'),
+#: so a' grows without bound as alpha' -> 90 deg; 89 deg is a' = 57 a
+WORKING_ANGLE_DEG = (1.0, 89.0)
+#: addendum and clearance coefficients (ha*, c*, han*, cn*): the rack cutter's tooth is
+#: pointed once (ha* + c*) tan(alpha) >= pi/4, so at the smallest accepted pressure angle
+#: (1 deg) no tooth system has ha* + c* above pi / (4 tan 1 deg) = 45.0
+COEFFICIENT = (0.0, 45.0)
+#: an angle of the involute curve or table [deg]: the involute ends at 90 deg (tan)
+INVOLUTE_DEG = (0.0, 89.0)
+
+
 def _teeth(sec: Section, name, lo=1, hi=10000):
     """A tooth number: an integer in [1, 10000] (a float such as 20.5, or 0, is an error)."""
     return sec.integer(name, lo=lo, hi=hi)
 
 
+def _tooth_numbers(sec: Section):
+    """z1 and z2 of a pair.  Both are declared first, so a missing z1 is reported as
+    missing, not as a misspelling of the z2 that follows it."""
+    sec.declare("z1", "z2")
+    return _teeth(sec, "z1"), _teeth(sec, "z2")
+
+
+def _exactly_one(sec: Section, a, b, va, vb, why=""):
+    """Refuse both or neither of the alternative keys *a*, *b* (values *va*, *vb*).
+
+    Neither, next to a key nobody reads that is close to one of them: name that key and
+    the missing one together (a misspelt ``beta_dg`` is why ``beta_deg`` is missing)."""
+    if (va is None) != (vb is None):
+        return
+    want = f"{a} or {b} (exactly one{why})"
+    if va is None:
+        read = getattr(sec, "_known", set())
+        for k in sec.data:
+            hint = closest(k, (a, b))
+            if hint and k not in read:
+                raise SpecError(sec.file, sec.key(k), f"a known key ({want}: neither is given)",
+                                f"unknown key '{k}'", hint)
+    raise sec.error(a, want, "both" if va is not None else "neither")
+
+
+def _degrees(sec: Section, name, default, bounds, positive=False, open_hi=False):
+    """An angle in degrees within *bounds* (declared on the accessor); returned in degrees.
+
+    ``positive`` excludes the lower bound 0 (a step, a span); ``open_hi`` the upper one."""
+    lo, hi = bounds
+    want = f"degrees in {'(' if positive else '['}{lo:g}, {hi:g}{')' if open_hi else ']'}"
+    value = sec.number(name, default, lo=lo, hi=hi, positive=positive, expected=want)
+    if open_hi and value == hi:
+        raise sec.error(name, want, repr(value))
+    return value
+
+
 def _pressure_angle(sec: Section, name="alpha_deg", default=20.0):
-    """A pressure angle in degrees, strictly inside (0, 45); returned in radians."""
-    value = sec.number(name, default, expected="a number of degrees in (0, 45)")
-    if not 0 < value < 45:
-        raise sec.error(name, "a number of degrees in (0, 45)", repr(value))
-    return math.radians(value)
+    """A pressure angle in degrees, within PRESSURE_ANGLE_DEG; returned in radians."""
+    return math.radians(_degrees(sec, name, default, PRESSURE_ANGLE_DEG, open_hi=True))
+
+
+def _coefficient(sec: Section, name, default):
+    """A tooth-system coefficient (ha*, c*) within COEFFICIENT."""
+    return sec.number(name, default, lo=COEFFICIENT[0], hi=COEFFICIENT[1])
 
 
 def _module(sec: Section, name="m"):
@@ -52,6 +111,28 @@ def _one_or_many(sec: Section, name):
     return [sec.number(name, positive=True)]
 
 
+def _lengths(sec: Section, name):
+    """A length or an array of lengths in the spec's unit, returned in metres (empty if
+    absent); each within the lengths mechcli accepts (``reader.MIN_LENGTH`` …
+    ``MAX_LENGTH``, as :meth:`Section.length`)."""
+    values = _one_or_many(sec, name)
+    for key, v in zip(_item_keys(sec, name, len(values)), values):
+        if not MIN_LENGTH <= v * sec.unit <= MAX_LENGTH:
+            raise SpecError(sec.file, key, f"a length between {MIN_LENGTH:g} m and "
+                            f"{MAX_LENGTH:g} m", f"{v:g} ({v * sec.unit:g} m)")
+    return [v * sec.unit for v in values]
+
+
+def _angles(sec: Section, name, bounds):
+    """An angle or an array of angles in degrees within *bounds*, in radians."""
+    values = _one_or_many(sec, name)
+    lo, hi = bounds
+    for key, v in zip(_item_keys(sec, name, len(values)), values):
+        if not lo <= v <= hi:
+            raise SpecError(sec.file, key, f"degrees in [{lo:g}, {hi:g}]", repr(v))
+    return [math.radians(v) for v in values]
+
+
 @dataclasses.dataclass(frozen=True)
 class ToothSystem:
     """Module (m), pressure angle (rad), addendum and clearance coefficients."""
@@ -65,8 +146,8 @@ class ToothSystem:
 def _tooth_system(sec: Section, c_default=0.25):
     m = _module(sec)
     alpha = _pressure_angle(sec)
-    ha = sec.number("ha_star", 1.0, nonneg=True)
-    c = sec.number("c_star", c_default, nonneg=True)
+    ha = _coefficient(sec, "ha_star", 1.0)
+    c = _coefficient(sec, "c_star", c_default)
     return ToothSystem(m, alpha, ha, c)
 
 
@@ -216,18 +297,20 @@ class GearSpec:
 # -- readers per kind -------------------------------------------------------------------
 def _read_involute(sec):
     rb = sec.length("rb")
-    amax = sec.number("alpha_max_deg", 40.0, expected="degrees in (0, 89]")
-    if not 0 < amax <= 89:
-        raise sec.error("alpha_max_deg", "degrees in (0, 89]", repr(amax))
-    step = sec.number("curve_step_deg", 0.1, positive=True)
-    t0 = sec.number("table_from_deg", 10.0, lo=0.0, hi=89.0)
-    t1 = sec.number("table_to_deg", 30.0, lo=0.0, hi=89.0)
-    ts = sec.number("table_step_deg", 0.1, positive=True)
+    amax = _degrees(sec, "alpha_max_deg", 40.0, INVOLUTE_DEG, positive=True)
+    step = _degrees(sec, "curve_step_deg", 0.1, INVOLUTE_DEG, positive=True)
+    t0 = _degrees(sec, "table_from_deg", 10.0, INVOLUTE_DEG)
+    t1 = _degrees(sec, "table_to_deg", 30.0, INVOLUTE_DEG)
+    ts = _degrees(sec, "table_step_deg", 0.1, INVOLUTE_DEG, positive=True)
     cols = sec.integer("columns", 10, lo=1, hi=20)
     if t1 < t0:
         raise sec.error("table_to_deg", f"a number >= table_from_deg = {t0:g}", repr(t1))
     if t1 + ts * (cols - 1) >= 90:
-        raise sec.error("table_to_deg", "a last row that stays below 90 degrees", repr(t1))
+        # a row holds `columns` values table_step_deg apart: the step (or the column
+        # count) is what takes the last row past 90 deg, not table_to_deg
+        raise sec.error("table_step_deg", f"a step whose last row, table_to_deg + step x "
+                        f"(columns - 1) = {t1:g} + {ts:g} x {cols - 1}, stays below 90 "
+                        "degrees", repr(ts))
     if amax / step > MAX_POINTS:
         raise sec.error("curve_step_deg", f"a step giving at most {MAX_POINTS} curve points "
                         f"up to {amax:g} degrees", repr(step))
@@ -249,10 +332,13 @@ def _read_inverse(sec):
             key = "theta" if not isinstance(raw, list) else f"theta[{i}]"
             raise SpecError(sec.file, sec.key(key), "a number >= 0", repr(t))
     method = sec.string("method", "auto", choices=["auto", "book"])
-    start = sec.number("book_start", 0.8, expected="an angle in radians in (0, pi/2)")
-    if not 0 < start < math.pi / 2:
-        raise sec.error("book_start", "an angle in radians in (0, pi/2)", repr(start))
-    eps = sec.number("book_epsilon", 1e-7, positive=True)
+    # Newton's first step from alpha0 is (inv(alpha0) - theta) / tan^2(alpha0): below
+    # 1e-3 rad, tan^2 < 1e-6 throws it out of (0, pi/2) for every theta > 2e-6 (and near
+    # 1e-154 rad tan^2 underflows to 0); 1.57 rad is 0.04 deg short of pi/2, where tan -> inf
+    start = sec.number("book_start", 0.8, lo=1e-3, hi=1.57,
+                       expected="an angle in radians in [0.001, 1.57] (inside (0, pi/2))")
+    # the stop |inv(alpha) - theta| < epsilon: at 1 or more it stops at the start
+    eps = sec.number("book_epsilon", 1e-7, positive=True, hi=1.0)
     max_iter = sec.integer("max_iter", 100, lo=1)
     rounding = sec.string("dms_rounding", "truncate", choices=["truncate", "round"])
     sd = sec.integer("dms_seconds_digits", 0, lo=0, hi=6)
@@ -265,8 +351,7 @@ def _read_spur(sec):
     x = _shift(sec, "x")
     points = sec.integer("points", 40, lo=2, hi=100000)
     root = sec.string("root", "generated", choices=["generated", "radial"])
-    radii = _one_or_many(sec, "thickness_radii")
-    radii = tuple(r * sec.unit for r in radii)
+    radii = tuple(_lengths(sec, "thickness_radii"))
     rb = ts.m * z * math.cos(ts.alpha) / 2
     for key, r in zip(_item_keys(sec, "thickness_radii", len(radii)), radii):
         if r < rb:
@@ -279,12 +364,8 @@ def _read_spur(sec):
 
 def _read_pair(sec):
     ts = _tooth_system(sec)
-    a_w = tuple(a * sec.unit for a in _one_or_many(sec, "a_w"))
-    alpha_w = []
-    for v in _one_or_many(sec, "alpha_w_deg"):
-        if not 0 < v < 90:
-            raise sec.error("alpha_w_deg", "degrees in (0, 90)", repr(v))
-        alpha_w.append(math.radians(v))
+    a_w = tuple(_lengths(sec, "a_w"))
+    alpha_w = _angles(sec, "alpha_w_deg", WORKING_ANGLE_DEG)
     internal = sec.boolean("internal", False)
     designed = sec.has("ratio")
     if designed and internal:
@@ -301,7 +382,7 @@ def _read_pair(sec):
         z1 = z2 = None   # the core designs them (MeshError: exit 3)
     else:
         ratio = None
-        z1, z2 = _teeth(sec, "z1"), _teeth(sec, "z2")
+        z1, z2 = _tooth_numbers(sec)
         if internal and z2 <= z1:
             raise sec.error("z2", f"more teeth than the pinion (z1 = {z1}) for a ring gear",
                             repr(z2))
@@ -332,8 +413,9 @@ def _read_generation(sec):
                                 repr(v))
     else:
         shifts = [_shift(sec, "x")]
-    step = sec.number("step_deg", 6.0, positive=True)
-    limit = sec.number("limit_deg", 126.0, positive=True)
+    # the cutter rolls +-limit/2 of the gear's turn: one full turn shows every tooth
+    limit = _degrees(sec, "limit_deg", 126.0, (0.0, 360.0), positive=True)
+    step = _degrees(sec, "step_deg", 6.0, (0.0, 360.0), positive=True)
     teeth = sec.integer("cutter_teeth", 5, lo=1, hi=50)
     animate = sec.boolean("animate", False)
     points = sec.integer("points", 60, lo=2, hi=100000)
@@ -345,53 +427,49 @@ def _read_generation(sec):
 
 
 def _read_helical(sec):
-    z1, z2 = _teeth(sec, "z1"), _teeth(sec, "z2")
+    z1, z2 = _tooth_numbers(sec)
     mn = sec.length("mn")
     an = _pressure_angle(sec, "alpha_n_deg")
-    han = sec.number("han_star", 1.0, nonneg=True)
-    cn = sec.number("cn_star", 0.25, nonneg=True)
-    beta = sec.number("beta_deg", None)
+    han = _coefficient(sec, "han_star", 1.0)
+    cn = _coefficient(sec, "cn_star", 0.25)
+    # helix angle: helical gears use 8 - 45 deg (above 45 the axial thrust exceeds the
+    # tangential force); 0 is a spur pair
+    beta = _degrees(sec, "beta_deg", None, (0.0, 45.0), positive=True)
     a_w = sec.length("a_w", None)
-    if (beta is None) == (a_w is None):
-        raise sec.error("beta_deg", "beta_deg or a_w (exactly one)",
-                        "both" if beta is not None else "neither")
-    if beta is not None and not 0 < beta < 45:
-        raise sec.error("beta_deg", "degrees in (0, 45)", repr(beta))
+    b = sec.length("b", None)
+    _exactly_one(sec, "beta_deg", "a_w", beta, a_w)
     if a_w is not None and a_w < mn * (z1 + z2) / 2 * (1 - 1e-12):
         raise sec.error("a_w", f"a centre distance >= mn (z1 + z2) / 2 = "
                         f"{mn * (z1 + z2) / 2 / sec.unit:g} (beta = 0)", f"{a_w / sec.unit:g}")
-    b = sec.length("b", None)
     return HelicalProblem(z1, z2, mn, an, han, cn,
                           None if beta is None else math.radians(beta), a_w, b)
 
 
 def _read_worm(sec):
-    z1 = _teeth(sec, "z1")
-    z2 = _teeth(sec, "z2")
+    z1, z2 = _tooth_numbers(sec)
     m = sec.length("m", None)
     d2 = sec.length("d2", None)
-    if (m is None) == (d2 is None):
-        raise sec.error("m", "m or d2 (exactly one)", "both" if m is not None else "neither")
-    q = sec.number("q", None, positive=True)
+    # q = d1 / m, the worm's diameter in modules: standards tabulate 7.1 - 22.4 (GB/T 10088);
+    # [1, 100] keeps d1 = q m within a hundred modules
+    q = sec.number("q", None, lo=1.0, hi=100.0)
     d1 = sec.length("d1", None)
-    if (q is None) == (d1 is None):
-        raise sec.error("q", "q or d1 (exactly one: the worm diameter is not implied)",
-                        "both" if q is not None else "neither")
+    _exactly_one(sec, "m", "d2", m, d2)   # after every alternative is read (not a stray)
+    _exactly_one(sec, "q", "d1", q, d1, ": the worm diameter is not implied")
     alpha = _pressure_angle(sec)
-    ha = sec.number("ha_star", 1.0, nonneg=True)
-    c = sec.number("c_star", 0.2, nonneg=True)
+    ha = _coefficient(sec, "ha_star", 1.0)
+    c = _coefficient(sec, "c_star", 0.2)
     return WormProblem(z1, z2, m, d2, q, d1, alpha, ha, c)
 
 
 def _read_bevel(sec):
-    z1, z2 = _teeth(sec, "z1"), _teeth(sec, "z2")
+    z1, z2 = _tooth_numbers(sec)
     m = _module(sec)
     alpha = _pressure_angle(sec)
-    ha = sec.number("ha_star", 1.0, nonneg=True)
-    c = sec.number("c_star", 0.2, nonneg=True)
-    sigma = sec.number("sigma_deg", 90.0, expected="degrees in (0, 180)")
-    if not 0 < sigma < 180:
-        raise sec.error("sigma_deg", "degrees in (0, 180)", repr(sigma))
+    ha = _coefficient(sec, "ha_star", 1.0)
+    c = _coefficient(sec, "c_star", 0.2)
+    # shaft angle: within 1 deg of 0 or 180 the cone distance R = r / sin(delta) exceeds 57
+    # pitch radii (a spur or an internal pair, not a bevel pair)
+    sigma = _degrees(sec, "sigma_deg", 90.0, (1.0, 179.0))
     return BevelProblem(z1, z2, m, alpha, ha, c, math.radians(sigma))
 
 
@@ -421,7 +499,6 @@ def read_gear_spec(path, overrides=()):
         if present:
             got = " and ".join(f"[{k}]" for k in present)
         else:
-            from mechcli.spec.errors import closest
             extra = [k for k in root.keys() if isinstance(root.data[k], dict)
                      and k != "expected"]
             hint = closest(extra[0], KINDS) if extra else None

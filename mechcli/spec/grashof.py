@@ -13,7 +13,7 @@ from pathlib import Path
 
 from mechcli.spec.common import Header, read_expected, read_header
 from mechcli.spec.errors import SpecError
-from mechcli.spec.reader import LENGTH_UNITS, load_spec
+from mechcli.spec.reader import LENGTH_UNITS, MAX_LENGTH, MIN_LENGTH, load_spec
 
 PROBLEMS = ("fourbar", "slider_crank", "guide_bar", "fivebar", "rrrrp", "mobility")
 
@@ -90,6 +90,26 @@ class GrashofSpec:
     path: Path | None
 
 
+def _check_length(file, key, value, scale, signed=False):
+    """The one range check of a grashof length (a spec array item, a ``--lengths`` item,
+    ``--offset``): within the lengths every reader accepts, ``reader.MIN_LENGTH`` …
+    ``MAX_LENGTH`` metres (far outside, sums of squares of lengths under- or overflow and
+    the type test compares rounding noise).  *signed*: an offset, zero or either sign."""
+    metres = abs(value) * scale
+    if signed and (metres == 0 or MIN_LENGTH <= metres <= MAX_LENGTH) \
+            or not signed and MIN_LENGTH <= metres <= MAX_LENGTH:
+        return value * scale
+    want = f"a length between {MIN_LENGTH:g} m and {MAX_LENGTH:g} m"
+    raise SpecError(file, key, ("0 or " if signed else "") + want
+                    + (" in size" if signed else ""), f"{value:g} ({value * scale:g} m)")
+
+
+def _lengths(sec, name, size):
+    """An array of *size* lengths in the spec's unit, in metres."""
+    return tuple(_check_length(sec.file, sec.key(f"{name}[{i}]"), v, sec.unit)
+                 for i, v in enumerate(sec.numbers(name, size=size, positive=True)))
+
+
 def _rtol(sec):
     return sec.number("change_point_rtol", 1e-9, lo=0.0, hi=1e-2)
 
@@ -105,7 +125,7 @@ def _link_number(sec, name, default, n):
 
 
 def _read_fourbar(sec):
-    lengths = tuple(x * sec.unit for x in sec.numbers("lengths", size=4, positive=True))
+    lengths = _lengths(sec, "lengths", 4)
     frame = _link_number(sec, "frame", 4, 4)
     neighbours = ((frame % 4) + 1, ((frame + 2) % 4) + 1)
     default_input = 1 if 1 in neighbours else neighbours[0]
@@ -145,7 +165,7 @@ def _read_guide(sec):
 
 
 def _read_fivebar(sec):
-    lengths = tuple(x * sec.unit for x in sec.numbers("lengths", size=5, positive=True))
+    lengths = _lengths(sec, "lengths", 5)
     frame = _link_number(sec, "frame", 5, 5)
     nb = sorted(((frame % 5) + 1, ((frame + 3) % 5) + 1))
     inputs = sec.raw("inputs", list(nb))
@@ -174,6 +194,14 @@ def _read_mobility(sec, spec_dir):
         path = Path(kin)
         if not path.is_absolute():
             path = spec_dir / path
+        try:
+            why = "" if not kin.strip() else None if path.is_file() else \
+                " (a folder)" if path.is_dir() else " (no such file)"
+        except OSError as exc:   # a name too long for the OS, ...
+            why = f" ({exc.strerror or exc})"
+        if why is not None:   # name this spec and key, not the folder or file it points to
+            raise sec.error("kin", "the path of a `mechcli kin` spec (relative to this file)",
+                            f"'{kin}'{why}")
         joints, frame = _joints_from_kin(path)
         sec.finish()
         return MobilityProblem(joints, frame, local, redundant, str(kin))
@@ -189,7 +217,7 @@ def _read_mobility(sec, spec_dir):
                            repr(links))
         if kind == "H" and len(links) != 2:
             raise js.error("links", "exactly 2 links for a higher pair", repr(links))
-        name = js.string("name", "")
+        name = js.name("name", None) or ""
         js.finish()
         joints.append(JointSpec(kind, tuple(links), name))
     if not joints:
@@ -279,13 +307,14 @@ def quick_spec(lengths_text, frame=None, input_link=None, offset=None, units="mm
     scale = LENGTH_UNITS[units]
     header = Header(title="mechcli grashof --lengths " + ",".join(parts), unit=units,
                     scale=scale)
-    m = [v * scale for v in vals]
+    m = [_check_length(where, f"lengths[{i}]", v, scale) for i, v in enumerate(vals)]
     if len(vals) == 2:
         for opt, val in (("--frame", frame), ("--input", input_link)):
             if val is not None:
                 raise SpecError(where, opt, "no --frame/--input for a slider-crank "
                                 "(crank, coupler[, --offset])", repr(val))
-        off = 0.0 if offset is None else float(offset) * scale
+        off = 0.0 if offset is None else _check_length("--offset", "", float(offset), scale,
+                                                        signed=True)
         prob = SliderCrankProblem(m[0], m[1], off, 1e-9)
         return GrashofSpec(header, "slider_crank", prob, {}, None)
     if offset is not None:
@@ -412,5 +441,9 @@ def read_batch_csv(path, units="mm"):
     else:
         inp = np.where((nb1 == 1) | (nb2 == 1), 1, nb1)
     scale = LENGTH_UNITS[units]
+    far = (L * scale < MIN_LENGTH) | (L * scale > MAX_LENGTH)
+    if far.any():   # the range of _check_length, on the whole array
+        i, j = map(int, np.argwhere(far)[0])
+        _check_length(file, f"row {rows[i]}", float(L[i, j]), scale)
     header = Header(title=f"mechcli grashof --batch {file}", unit=units, scale=scale)
     return BatchSpec(header, L * scale, frame, inp, Path(path))

@@ -337,7 +337,11 @@ def _output(sec, inp):
     order = max(QUANTITIES.index(q) for q in qs)
     span = (inp.stop - inp.start) / unit
     default_step = 30.0 if inp.rotary else span / 10
-    table_step = sec.number("table_step", default_step, positive=True) * unit
+    # a table row per step: at most MAX_POSITIONS rows, the sweep's own limit
+    least = span / (MAX_POSITIONS - 1)
+    table_step = sec.number("table_step", default_step, lo=least,
+                            expected=f"a step of at least {least:g} (the sweep / "
+                                     f"{MAX_POSITIONS - 1:,})") * unit
     plots = sec.boolean("plots", True)
     animate = sec.boolean("animate", False)
     frames = sec.integer("frames", 72, lo=2, hi=3600)

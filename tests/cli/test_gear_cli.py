@@ -131,7 +131,7 @@ def test_book_start_outside_its_region_exits_3(tmp_path):
     ("[spur]\nz = 20.5\nm = 5\n", "[spur] z", "an integer in [1, 10000]"),
     ("[spur]\nz = 0\nm = 5\n", "[spur] z", "an integer in [1, 10000]"),
     ("[spur]\nz = 20\nm = -5\n", "[spur] m", "positive"),
-    ("[spur]\nz = 20\nm = 5\nalpha_deg = 45\n", "[spur] alpha_deg", "(0, 45)"),
+    ("[spur]\nz = 20\nm = 5\nalpha_deg = 45\n", "[spur] alpha_deg", "[1, 45)"),
     ("[spur]\nz = 20\nm = 5\nalpa_deg = 20\n", "[spur] alpa_deg", "did you mean 'alpha_deg'"),
     ("[pair]\nz1 = 20\nz2 = 80\nm = 5\na_w = 245\n", "[pair] a_w", ">= 250"),
     ("[worm]\nz1 = 1\nz2 = 40\nd2 = 280\n", "[worm] q", "q or d1"),
