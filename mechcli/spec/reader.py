@@ -230,7 +230,9 @@ class Section:
             strays = [k for k in self.data if k not in self._known and k not in self._declared]
             near = difflib.get_close_matches(name, strays, n=1, cutoff=0.5)
             if near:
-                raise SpecError(self.file, self.key(near[0]), "a known key",
+                # say both: the required key that is missing, and the stray that may be it
+                raise SpecError(self.file, self.key(near[0]),
+                                f"the required key '{name}' (missing)",
                                 f"unknown key '{near[0]}'", name)
             raise SpecError(self.file, self.key(name), "this key (it is required)", "nothing")
         return default
