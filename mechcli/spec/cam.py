@@ -21,6 +21,17 @@ LAW_CHOICES = ("uniform", "parabolic", "cosine", "sine", "poly345", "poly4567",
 #: default sampling step of the profile, degrees (see docs/cam.md and benchmarks/bench_cam.py)
 DEFAULT_STEP_DEG = 0.1
 
+#: memory budget of one ``mechcli cam`` run (any accepted spec), bytes
+MEMORY_BUDGET = 2**30  # 1 GiB
+#: peak RSS grows by ~1.2 kB per profile point (measured 2026-11-23 with /usr/bin/time -v,
+#: ``mechcli cam configs/ch4/ex4-1.toml --set sampling.step=S --no-plot --quiet``,
+#: S = 0.01 … 0.0005 deg: 1,183 B/point; ex4-3 and exercise4-7 1,227 B/point, 0.92 GB
+#: at 720,000 points, plots and animation included): 720,000 points per revolution,
+#: i.e. a step of at least 0.0005 deg
+MAX_POINTS = 720_000
+MIN_STEP_DEG = 360.0 / MAX_POINTS
+POINTS_WHY = "1 GiB budget at ~1.2 kB per point"
+
 
 @dataclasses.dataclass(frozen=True)
 class Limits:
@@ -264,13 +275,31 @@ def read_cam_spec(root, step_override=None, points_override=None):
     if samp is not None:
         if samp.has("step") and samp.has("points"):
             raise samp.error("points", "either step or points, not both", "both")
-        step = samp.number("step", step, lo=1e-4, hi=10.0)
+        if samp.has("step"):
+            raw = samp.data["step"]
+            if isinstance(raw, (int, float)) and not isinstance(raw, bool) \
+                    and 0 < raw < MIN_STEP_DEG:
+                raise samp.error("step", f"a step of at least {MIN_STEP_DEG:g} deg: at most "
+                                 f"{MAX_POINTS:,} points per revolution ({POINTS_WHY})",
+                                 f"{raw:g} ({360.0 / raw:,.0f} points)")
+        step = samp.number("step", step, lo=MIN_STEP_DEG, hi=10.0)
         if samp.has("points"):
-            step = 360.0 / samp.integer("points", lo=36, hi=3_600_000)
+            raw = samp.data["points"]
+            if isinstance(raw, int) and not isinstance(raw, bool) and raw > MAX_POINTS:
+                raise samp.error("points", f"at most {MAX_POINTS:,} points per revolution "
+                                 f"({POINTS_WHY})", f"{raw:,}")
+            step = 360.0 / samp.integer("points", lo=36, hi=MAX_POINTS)
         samp.finish()
     if step_override is not None:
         step = float(step_override)
+        if step < MIN_STEP_DEG:
+            raise SpecError(file, "sampling.step", f"a step (--step) of at least "
+                            f"{MIN_STEP_DEG:g} deg: at most {MAX_POINTS:,} points per "
+                            f"revolution ({POINTS_WHY})", f"{step:g}")
     if points_override is not None:
+        if int(points_override) > MAX_POINTS:
+            raise SpecError(file, "sampling.points", f"at most {MAX_POINTS:,} points per revolution "
+                            f"(--points; {POINTS_WHY})", f"{int(points_override):,}")
         step = 360.0 / int(points_override)
 
     out = root.table("output", None)

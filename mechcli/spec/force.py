@@ -49,6 +49,16 @@ MAX_FORCE = 1e12      # N (and N m for torques)
 MAX_G = 1e6           # m/s^2
 MAX_FACTOR = 1e6
 
+#: memory budget of one ``mechcli force`` run (any accepted spec), bytes
+MEMORY_BUDGET = 2**30  # 1 GiB
+#: peak RSS grows by ~9.1 kB per position (measured 2026-11-23 with /usr/bin/time -v,
+#: ``mechcli force configs/ch2/ex2-4.toml --set input.count=N --no-plot --quiet``,
+#: N = 10,001 … 400,001: fit 9,113 B/position + 38 MB; 0.95 GB at 100,001, plots
+#: included; exercise2-8.toml 8.4 kB/position): 113,700 positions fit in 1 GiB,
+#: rounded down to 100,001 for deeper linkages and more loads
+MAX_POSITIONS = 100_001
+POSITIONS_WHY = "1 GiB budget at ~9.1 kB per position"
+
 
 def _bounded(sec, key, values, lim, what):
     for v in values:
@@ -274,7 +284,7 @@ def load_force_spec(path, overrides=()) -> ForceSpec:
     except ForceModelError as exc:
         raise SpecError(root.file, "mechanism", "a linkage whose pairs can carry forces",
                         str(exc)) from None
-    inp = read_input(root, linkage, followers)
+    inp = read_input(root, linkage, followers, MAX_POSITIONS, POSITIONS_WHY)
     grav = (0.0, 0.0)
     if root.has("gravity"):
         g = root.table("gravity")

@@ -275,7 +275,7 @@ def _build_linkage(mech, frame, elements, paths):
                         msg) from None
 
 
-def _input(sec, linkage, followers):
+def _input(sec, linkage, followers, max_positions=MAX_POSITIONS, why=""):
     first = linkage.drivers[0]
     rotary = first.rotary
     if rotary:
@@ -307,14 +307,19 @@ def _input(sec, linkage, followers):
             sec.data = {k: v for k, v in sec.data.items() if k != "count"}
         else:
             raise SpecError(sec.file, sec.key("count"), "either step or count, not both", "both")
+    note = f" ({why})" if why else ""
     if sec.has("count"):
-        count = sec.integer("count", lo=2, hi=MAX_POSITIONS)
+        raw = sec.data["count"]
+        if isinstance(raw, int) and not isinstance(raw, bool) and raw > max_positions:
+            raise sec.error("count", f"a count of at most {max_positions:,} "
+                            f"positions{note}", f"{raw:,}")
+        count = sec.integer("count", lo=2, hi=max_positions)
     else:
         step = sec.number("step", 1.0, positive=True) * unit
         count = int(round((stop - start) / step)) + 1
-        if count > MAX_POSITIONS:
+        if count > max_positions:
             raise SpecError(sec.file, sec.key("step"),
-                            f"a step giving at most {MAX_POSITIONS:,} positions",
+                            f"a step giving at most {max_positions:,} positions{note}",
                             f"{count:,} positions")
         if abs(start + (count - 1) * step - stop) > 1e-9 * max(1.0, abs(stop)):
             raise SpecError(sec.file, sec.key("step"),
@@ -374,10 +379,14 @@ def read_mechanism(root):
     return kind, linkage, tuple(tracers), followers, guide_length
 
 
-def read_input(root, linkage, followers):
-    """Read ``[input]`` (the primary driver's program) for *linkage*."""
+def read_input(root, linkage, followers, max_positions=MAX_POSITIONS, why=""):
+    """Read ``[input]`` (the primary driver's program) for *linkage*.
+
+    *max_positions* caps ``count`` (and the count a ``step`` gives); *why* is said
+    with the cap in the error, e.g. the memory budget it comes from.
+    """
     return _input(root.table("input") if root.has("input") else _empty(root, "input"),
-                  linkage, followers)
+                  linkage, followers, max_positions, why)
 
 
 def load_kin_spec(path, overrides=()) -> KinSpec:

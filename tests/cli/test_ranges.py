@@ -144,3 +144,60 @@ def test_involute_table_past_90_degrees_names_table_step_deg():
     # before: "[involute] table_to_deg: expected a last row that stays below 90 degrees"
     _refused("gear", _gear("ex5-1.toml"), "--set", "involute.table_step_deg=10",
              key="[involute] table_step_deg")
+
+
+# -- item 11: a 1 GiB memory budget for any accepted spec ---------------------------------
+# The limits come from measured peak RSS per sample (the comments at MAX_POSITIONS in
+# mechcli/spec/force.py and MAX_POINTS in mechcli/spec/cam.py); the tests check the reader
+# only, so that no test runs a solve at the limit.
+def test_force_count_past_the_memory_limit_is_exit_2_naming_the_limit():
+    from mechcli.spec.force import MAX_POSITIONS
+    # before: input.count = 2000001 (kin's limit) was accepted and ran out of 8 GiB
+    line = _refused("force", CONFIGS / "ch2" / "ex2-4.toml", "--set",
+                    f"input.count={MAX_POSITIONS + 1}", key="[input] count")
+    assert f"at most {MAX_POSITIONS:,} positions" in line and "1 GiB" in line
+
+
+def test_force_step_past_the_memory_limit_is_exit_2_naming_the_limit():
+    from mechcli.spec.force import MAX_POSITIONS
+    # 360 deg in steps of 0.0025 deg is 144,001 positions
+    line = _refused("force", CONFIGS / "ch2" / "ex2-4.toml", "--set", "input.step=0.0025",
+                    key="[input] step")
+    assert f"at most {MAX_POSITIONS:,} positions" in line and "1 GiB" in line
+
+
+def test_force_count_at_the_memory_limit_is_accepted_by_the_reader():
+    from mechcli.spec.force import MAX_POSITIONS, load_force_spec
+    spec = load_force_spec(CONFIGS / "ch2" / "ex2-4.toml", [f"input.count={MAX_POSITIONS}"])
+    assert len(spec.input.q) == MAX_POSITIONS
+
+
+def test_kin_keeps_its_documented_position_limit():
+    from mechcli.spec.kin import MAX_POSITIONS, load_kin_spec
+    assert MAX_POSITIONS == 2_000_001   # README.md: at most 2,000,001 positions
+    spec = load_kin_spec(CONFIGS / "ch1" / "ex1-4.toml", ["input.count=150001"])
+    assert len(spec.input.q) == 150_001  # past force's limit, well within kin's
+
+
+@pytest.mark.parametrize("args, key", [
+    (("--set", "sampling.step=0.0004"), "[sampling] step"),
+    (("--set", "sampling.points=720001"), "[sampling] points"),
+    (("--step", "0.0004"), "[sampling] step"),
+    (("--points", "720001"), "[sampling] points"),
+])
+def test_cam_sampling_past_the_memory_limit_is_exit_2_naming_the_limit(args, key):
+    from mechcli.spec.cam import MAX_POINTS
+    assert MAX_POINTS == 720_000
+    # before: sampling.step = 1e-4 took ~4 GiB and 25 s and wrote a 460 MB CSV
+    line = _refused("cam", CONFIGS / "ch4" / "ex4-1.toml", *args, key=key)
+    assert f"at most {MAX_POINTS:,} points per revolution" in line and "1 GiB" in line
+
+
+@pytest.mark.parametrize("override", ["sampling.step=0.0005", "sampling.points=720000"])
+def test_cam_sampling_at_the_memory_limit_is_accepted_by_the_reader(override):
+    import math
+
+    from mechcli.spec.cam import MAX_POINTS, read_cam_spec
+    from mechcli.spec.reader import load_spec
+    spec = read_cam_spec(load_spec(CONFIGS / "ch4" / "ex4-1.toml", [override]))
+    assert round(2 * math.pi / spec.step) == MAX_POINTS
