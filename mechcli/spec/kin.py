@@ -27,7 +27,8 @@ from mechcli.spec.reader import MAX_LENGTH, load_spec
 
 MECHANISMS = ("four_bar", "slider_crank", "guide_bar", "shaper", "general")
 QUANTITIES = ("position", "velocity", "acceleration")
-#: about 1.8 GB of results and temporaries at 2,000,001 positions (benchmarks/bench_kin.py)
+#: about 1.8 GB of results and temporaries at 2,000,001 positions for a four-bar
+#: (benchmarks/bench_kin.py); the shaper of 例 1-4 peaks at 2.8 GB (measured 2026-11-23)
 MAX_POSITIONS = 2_000_001
 
 
