@@ -39,7 +39,9 @@ class SpecError(ValueError):
         msg = f"{where}: expected {self.expected}, got {self.got}"
         if self.suggestion:
             msg += f" (did you mean '{self.suggestion}'?)"
-        return msg
+        # one line, whatever the spec holds: control and line-separator characters escaped
+        return "".join(c if c.isprintable() else c.encode("unicode_escape").decode("ascii")
+                       for c in msg)
 
 
 def closest(name, candidates):

@@ -261,8 +261,11 @@ def _loads(root, topo, frame, inp, quantities):
 def _output(sec, inp):
     unit = math.pi / 180 if inp.rotary else sec.unit
     span = (inp.stop - inp.start) / unit
-    table_step = sec.number("table_step", 30.0 if inp.rotary else span / 10,
-                            positive=True) * unit
+    # a table row per step: at most the sweep's own number of positions
+    least = span / (MAX_POSITIONS - 1)
+    table_step = sec.number("table_step", 30.0 if inp.rotary else span / 10, lo=least,
+                            expected=f"a step of at least {least:g} (the sweep / "
+                                     f"{MAX_POSITIONS - 1:,})") * unit
     plots = sec.boolean("plots", True)
     animate = sec.boolean("animate", False)
     frames = sec.integer("frames", 72, lo=2, hi=3600)

@@ -23,7 +23,7 @@ from mechcli.core.linkage import (PRP, RPR, RRP, RRR, Crank, Ground, Linkage,
 from mechcli.core.linkage import presets
 from mechcli.spec.common import Header, read_expected, read_header
 from mechcli.spec.errors import SpecError
-from mechcli.spec.reader import MAX_LENGTH, load_spec
+from mechcli.spec.reader import MAX_LENGTH, MIN_LENGTH, load_spec
 
 MECHANISMS = ("four_bar", "slider_crank", "guide_bar", "shaper", "general")
 QUANTITIES = ("position", "velocity", "acceleration")
@@ -177,6 +177,10 @@ def _rrr(dy, unit):
     pts = dy.strings("points")
     links = dy.raw("links")
     lengths = dy.numbers("lengths", size=2, positive=True)
+    for length in lengths:  # the bounds of every other length (Section.length)
+        if not MIN_LENGTH <= length * unit <= MAX_LENGTH:
+            raise dy.error("lengths", f"lengths between {MIN_LENGTH:g} m and {MAX_LENGTH:g} m",
+                           repr(lengths))
     if len(pts) != 2:
         raise dy.error("points", "an array of 2 point names", f"an array of {len(pts)}")
     for i, p in enumerate(pts):
@@ -316,12 +320,16 @@ def _input(sec, linkage, followers, max_positions=MAX_POSITIONS, why=""):
                             f"positions{note}", f"{raw:,}")
         count = sec.integer("count", lo=2, hi=max_positions)
     else:
-        step = sec.number("step", 1.0, positive=True) * unit
-        count = int(round((stop - start) / step)) + 1
-        if count > max_positions:
+        given = sec.number("step", 1.0, positive=True)
+        step = given * unit
+        # a step so small that it underflows, or gives more positions than the limit
+        steps = (stop - start) / step if step > 0 else math.inf
+        if steps + 1 > max_positions:
             raise SpecError(sec.file, sec.key("step"),
                             f"a step giving at most {max_positions:,} positions{note}",
-                            f"{count:,} positions")
+                            f"{steps + 1:,.0f} positions" if math.isfinite(steps)
+                            else f"{given:g} (too small to count positions with)")
+        count = int(round(steps)) + 1
         if abs(start + (count - 1) * step - stop) > 1e-9 * max(1.0, abs(stop)):
             raise SpecError(sec.file, sec.key("step"),
                             "a step that divides stop - start into whole steps",

@@ -280,7 +280,8 @@ class Section:
         if value is None or (value is default and default is not REQUIRED):
             return value
         metres = value * self.unit
-        if metres != 0 and not MIN_LENGTH <= abs(metres) <= MAX_LENGTH:
+        # value, not metres, decides "zero": a tiny value whose metres underflow to 0 is refused
+        if value != 0 and not MIN_LENGTH <= abs(metres) <= MAX_LENGTH:
             raise self.error(name, f"a length between {MIN_LENGTH:g} m and {MAX_LENGTH:g} m",
                              f"{value:g} ({metres:g} m)")
         return metres

@@ -65,3 +65,31 @@ def test_ctrl_c_exits_130_without_traceback(tmp_path):
     _out, err = proc.communicate(timeout=60)
     assert proc.returncode == 130, err
     assert "interrupted" in err and "Traceback" not in err
+
+
+@pytest.mark.parametrize("args, key", [
+    # a step that underflows to 0 rad (5e-324° × π/180): was ZeroDivisionError, exit 1
+    (["kin", CONFIGS / "ch1" / "ex1-2.toml", "--set", "input.step=5e-324"], "[input] step"),
+    # force's table step below the sweep over its position limit: was ZeroDivisionError
+    (["force", CONFIGS / "ch2" / "exercise2-8.toml", "--set", "output.table_step=5e-324"],
+     "[output] table_step"),
+    # a module whose metres underflow to 0 (5e-324 mm): was ZeroDivisionError
+    (["gear", CONFIGS / "ch5" / "exercise5-2.toml", "--set", "pair.m=5e-324"], "[pair] m"),
+    # a dyad length of 1e300 mm: was a numpy RuntimeWarning (invalid value in subtract)
+    (["force", CONFIGS / "ch2" / "exercise2-8.toml", "--set",
+      "mechanism.dyad.0.lengths.0=1e300"], "[mechanism.dyad.0] lengths"),
+])
+def test_extreme_numbers_found_by_the_fuzzer_are_spec_errors(args, key, tmp_path):
+    proc = run_inprocess(*args, "--no-plot", "--quiet", "--out", tmp_path / "o")
+    assert proc.returncode == 2
+    assert key in one_line_error(proc)
+
+
+@pytest.mark.parametrize("value", ["a\nb", "a;b\r", "a\u2028b"])
+def test_a_value_with_a_line_break_is_echoed_on_one_line(value, tmp_path):
+    """units = "a<newline>b" was echoed raw: the one-line error became two lines."""
+    spec = write_spec(tmp_path, (CONFIGS / "ch1" / "ex1-1.toml").read_text(encoding="utf-8")
+                      .replace('units = "mm"', "units = " + json.dumps(value)))
+    proc = run_inprocess("kin", spec, "--no-plot", "--quiet", "--out", tmp_path / "o")
+    assert proc.returncode == 2
+    assert "units" in one_line_error(proc)
