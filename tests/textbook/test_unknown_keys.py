@@ -11,9 +11,6 @@ comparing it with the results, so those cases run the whole problem (no
 pictures).
 """
 
-import json
-import math
-import re
 import shutil
 import sys
 
@@ -35,33 +32,7 @@ FREE_FORM = {
 }
 
 
-def _toml_key(key):
-    return key if re.fullmatch(r"[A-Za-z0-9_-]+", key) else json.dumps(key, ensure_ascii=False)
-
-
-def _toml_value(value):
-    if isinstance(value, bool):
-        return "true" if value else "false"
-    if isinstance(value, int):
-        return str(value)
-    if isinstance(value, float):
-        if math.isnan(value):
-            return "nan"
-        return repr(value) if math.isfinite(value) else ("inf" if value > 0 else "-inf")
-    if isinstance(value, str):
-        return json.dumps(value, ensure_ascii=False)
-    if isinstance(value, list):
-        return "[" + ", ".join(_toml_value(v) for v in value) + "]"
-    if isinstance(value, dict):
-        return "{" + ", ".join(f"{_toml_key(k)} = {_toml_value(v)}"
-                               for k, v in value.items()) + "}"
-    raise TypeError(f"no TOML writer for {type(value).__name__}")
-
-
-def dumps(data):
-    """TOML text of *data* (as read by tomllib): one ``key = value`` line per
-    top-level key, tables and arrays of tables written inline."""
-    return "".join(f"{_toml_key(k)} = {_toml_value(v)}\n" for k, v in data.items())
+from tests.tomlwrite import to_toml as dumps  # noqa: E402
 
 
 def _tables(node, path=(), pattern=()):
