@@ -29,6 +29,8 @@ MEMORY_BUDGET = 2**30  # 1 GiB
 #: at 720,000 points, plots and animation included): 720,000 points per revolution,
 #: i.e. a step of at least 0.0005 deg
 MAX_POINTS = 720_000
+#: shortest segment [deg]: the tolerance to which the segments must sum to 360 deg
+MIN_SPAN_DEG = 1e-6
 MIN_STEP_DEG = 360.0 / MAX_POINTS
 POINTS_WHY = "1 GiB budget at ~1.2 kB per point"
 
@@ -104,7 +106,12 @@ def _segments(motion_sec, stroke, angular, file):
     for sec in secs:
         kind = sec.string("kind", choices=["rise", "dwell", "return"])
         # a dwell may last 0 deg (the book's 远休止角 0°, 习题 4-1/4-4): it is dropped
-        span = sec.number("angle", nonneg=kind == "dwell", positive=kind != "dwell")
+        # spans below the 1e-6 deg tolerance of the segment sum are indistinguishable from 0
+        # (and underflow in radians): a rise or return must be longer, a dwell 0 or longer
+        span = sec.number("angle", nonneg=True)
+        if (kind != "dwell" or span != 0) and span < MIN_SPAN_DEG:
+            raise sec.error("angle", f"an angle of at least {MIN_SPAN_DEG:g} deg"
+                            + (" (or 0 for a dwell)" if kind == "dwell" else ""), f"{span:g}")
         if kind == "dwell":
             law, lift = None, 0.0
         else:

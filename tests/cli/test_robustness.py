@@ -75,6 +75,9 @@ def test_ctrl_c_exits_130_without_traceback(tmp_path):
      "[output] table_step"),
     # a module whose metres underflow to 0 (5e-324 mm): was ZeroDivisionError
     (["gear", CONFIGS / "ch5" / "exercise5-2.toml", "--set", "pair.m=5e-324"], "[pair] m"),
+    # a rise of 5e-324 deg (0 rad): was ValueError "segment spans must be positive", exit 1
+    (["cam", CONFIGS / "ch4" / "ex4-2.toml", "--set", "motion.segments.0.angle=5e-324"],
+     "[motion.segments.0] angle"),
     # a dyad length of 1e300 mm: was a numpy RuntimeWarning (invalid value in subtract)
     (["force", CONFIGS / "ch2" / "exercise2-8.toml", "--set",
       "mechanism.dyad.0.lengths.0=1e300"], "[mechanism.dyad.0] lengths"),
