@@ -46,6 +46,7 @@ from hypothesis import HealthCheck, given, note, settings
 from hypothesis import strategies as st
 
 from tests.conftest import CONFIGS, run_inprocess
+from tests.tomlwrite import Nested, to_toml
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -66,12 +67,7 @@ PLOTS = bool(os.environ.get("FUZZ_PLOTS"))
 TIMEOUT = int(os.environ.get("FUZZ_TIMEOUT", 60))
 TRACE = os.environ.get("FUZZ_TRACE")  # a file: one JSON line per example, kept or not
 
-# ---------------------------------------------------------------------------------------
-# The TOML writer (tomli_w is not a dependency)
-# ---------------------------------------------------------------------------------------
-
-
-from tests.tomlwrite import Nested, to_toml  # noqa: E402
+# The TOML writer is tests/tomlwrite.py (tomli_w is not a dependency).
 
 
 def test_toml_writer_round_trips_every_config_and_the_extremes():

@@ -17,6 +17,7 @@ import sys
 import pytest
 
 from tests.conftest import CONFIGS, run_inprocess
+from tests.tomlwrite import to_toml as dumps
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -32,7 +33,6 @@ FREE_FORM = {
 }
 
 
-from tests.tomlwrite import to_toml as dumps  # noqa: E402
 
 
 def _tables(node, path=(), pattern=()):
