@@ -31,6 +31,8 @@ MEMORY_BUDGET = 2**30  # 1 GiB
 MAX_POINTS = 720_000
 #: shortest segment [deg]: the tolerance to which the segments must sum to 360 deg
 MIN_SPAN_DEG = 1e-6
+#: smallest allowed pressure angle [deg] (see the limits reader)
+MIN_ALPHA_DEG = 0.01
 MIN_STEP_DEG = 360.0 / MAX_POINTS
 POINTS_WHY = "1 GiB budget at ~1.2 kB per point"
 
@@ -266,11 +268,13 @@ def read_cam_spec(root, step_override=None, points_override=None):
     lim = root.table("limits", None)
     a_rise_default = 45.0 if angular else 30.0
     if lim is not None:
-        # [α] = 0 admits no cam (and tan 0 would divide the sizing by zero)
-        want = "an allowed pressure angle in (0, 89.999] deg"
-        limits = Limits(math.radians(lim.number("alpha_rise", a_rise_default, positive=True,
+        # [α] = 0 admits no cam (tan 0 would divide the sizing by zero), and the base circle
+        # grows like 1/tan[α]: below 0.01 deg (r0 > ~5,700 times the largest ds/dφ) it is no
+        # cam either, and at 1e-300 deg the sizing overflows (found by the fuzzer)
+        want = f"an allowed pressure angle in [{MIN_ALPHA_DEG:g}, 89.999] deg"
+        limits = Limits(math.radians(lim.number("alpha_rise", a_rise_default, lo=MIN_ALPHA_DEG,
                                                 hi=89.999, expected=want)),
-                        math.radians(lim.number("alpha_return", 70.0, positive=True,
+                        math.radians(lim.number("alpha_return", 70.0, lo=MIN_ALPHA_DEG,
                                                 hi=89.999, expected=want)),
                         lim.boolean("forbid_undercut", False))
         lim.finish()

@@ -78,6 +78,9 @@ def test_ctrl_c_exits_130_without_traceback(tmp_path):
     # a rise of 5e-324 deg (0 rad): was ValueError "segment spans must be positive", exit 1
     (["cam", CONFIGS / "ch4" / "ex4-2.toml", "--set", "motion.segments.0.angle=5e-324"],
      "[motion.segments.0] angle"),
+    # an allowed pressure angle of 1e-300 deg: the sizing overflowed (OverflowError, exit 1)
+    (["cam", CONFIGS / "ch4" / "exercise4-2.toml", "--set", "limits.alpha_rise=1e-300"],
+     "[limits] alpha_rise"),
     # a dyad length of 1e300 mm: was a numpy RuntimeWarning (invalid value in subtract)
     (["force", CONFIGS / "ch2" / "exercise2-8.toml", "--set",
       "mechanism.dyad.0.lengths.0=1e300"], "[mechanism.dyad.0] lengths"),
