@@ -99,3 +99,12 @@ def test_a_value_with_a_line_break_is_echoed_on_one_line(value, tmp_path):
     proc = run_inprocess("kin", spec, "--no-plot", "--quiet", "--out", tmp_path / "o")
     assert proc.returncode == 2
     assert "units" in one_line_error(proc)
+
+
+def test_ratio_design_with_fewer_teeth_than_one_per_gear_is_exit_3(tmp_path):
+    """习题 5-2 with m = 1, a' = 1 mm: z1 + z2 = 2 a'/m = 2, z1 = 2/(1 + 1.6) < 1; naming the
+    nearest ratios divided by z1 = 0 (ZeroDivisionError, exit 1; found by the fuzzer)."""
+    proc = run_inprocess("gear", CONFIGS / "ch5" / "exercise5-2.toml", "--set", "pair.m=1",
+                         "--set", "pair.a_w=1", "--no-plot", "--quiet", "--out", tmp_path / "o")
+    assert proc.returncode == 3
+    assert "at least one tooth on each gear" in one_line_error(proc)

@@ -131,6 +131,10 @@ def design_teeth_from_ratio(ratio, a_w, m):
                         total=total, below=m * math.floor(total) / 2, above=m * math.ceil(total) / 2)
     total = int(round(total))
     z1 = total / (1 + ratio)
+    if z1 < 1 - 1e-9 or total - round(z1) < 1:
+        raise MeshError(f"z1 + z2 = 2 a'/m = {total} teeth in all leaves z1 = {z1:.6g} for the "
+                        f"ratio {ratio:.6g}: a pair needs at least one tooth on each gear",
+                        "too_few_teeth", total=total, z1=z1)
     if abs(z1 - round(z1)) > 1e-9 * total:
         lo = int(math.floor(z1))
         raise MeshError(f"z1 = (z1 + z2)/(1 + i) = {z1:.6g} is not whole: with z1 + z2 = "
