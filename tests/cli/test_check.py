@@ -186,7 +186,10 @@ def test_junit_xml_parses_back_with_counts(tmp_path):
     assert [f.get("message").split(":")[0] for f in cases["b.toml"].iter("failure")] \
         == ["shortest", "longest"]
     assert cases["b.toml"].get("classname") == "mechcli.grashof"
-    assert cases["c.toml"].find("error") is not None
+    error = cases["c.toml"].find("error")
+    # c.toml has no `command` key: a spec that cannot run is a JUnit error of exit 2, not a failure
+    assert error.get("type") == "exit 2"
+    assert "no top-level command" in error.get("message")
 
 
 def test_json_shape_and_parallel_equals_serial(tmp_path):
