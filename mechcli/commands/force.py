@@ -16,7 +16,6 @@ def force(spec_path, **opts):
     run = RunOptions.from_click(spec_path, opts)
     from mechcli.core.errors import AssemblyError
     from mechcli.core.linkage.force_analysis import analyse_forces
-    from mechcli.core.linkage.kinematics import Sweep
     from mechcli.report import force as report
     from mechcli.report.files import Outputs
     from mechcli.report.run import finish
@@ -24,7 +23,7 @@ def force(spec_path, **opts):
 
     spec = load_force_spec(spec_path, run.sets)
     inp = spec.input
-    sweep = Sweep(inp.driver, inp.q, inp.omega, inp.alpha, inp.followers, inp.periodic)
+    sweep = inp.sweep()
     try:
         result = analyse_forces(spec.linkage, spec.topology, sweep, spec.bodies, spec.gravity,
                                 spec.loads, partial=inp.partial)

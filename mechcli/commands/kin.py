@@ -15,7 +15,7 @@ def kin(spec_path, **opts):
     guide-bar, shaper or any linkage of drivers and RRR/RRP/RPR/PRP dyads."""
     run = RunOptions.from_click(spec_path, opts)
     from mechcli.core.errors import AssemblyError
-    from mechcli.core.linkage.kinematics import Sweep, analyse_sweep, default_quantities
+    from mechcli.core.linkage.kinematics import analyse_sweep, default_quantities
     from mechcli.report import kin as report
     from mechcli.report.files import Outputs
     from mechcli.report.run import finish
@@ -23,7 +23,7 @@ def kin(spec_path, **opts):
 
     spec = load_kin_spec(spec_path, run.sets)
     inp = spec.input
-    sweep = Sweep(inp.driver, inp.q, inp.omega, inp.alpha, inp.followers, inp.periodic)
+    sweep = inp.sweep()
     quantities = default_quantities(spec.linkage, spec.output.order,
                                     [t.name for t in spec.tracers])
     try:

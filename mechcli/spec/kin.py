@@ -59,6 +59,11 @@ class InputSpec:
     followers: dict
     partial: bool
 
+    def sweep(self):
+        """The core's :class:`~mechcli.core.linkage.kinematics.Sweep` of this program."""
+        from mechcli.core.linkage.kinematics import Sweep
+        return Sweep(self.driver, self.q, self.omega, self.alpha, self.followers, self.periodic)
+
     @property
     def periodic(self):
         if not self.rotary:

@@ -105,13 +105,12 @@ when = { band = [0.1, 0.9] }
 
 
 def test_report_input_column_names_the_driver(tmp_path):
-    from mechcli.core.linkage.kinematics import Sweep
     from mechcli.core.linkage.force_analysis import analyse_forces
     from mechcli.report.force import build_report, input_column
 
     spec = load_force_spec(write_spec(tmp_path, SLIDER_DRIVEN))
     inp = spec.input
-    sweep = Sweep(inp.driver, inp.q, inp.omega, inp.alpha, inp.followers, inp.periodic)
+    sweep = inp.sweep()
     res = analyse_forces(spec.linkage, spec.topology, sweep, spec.bodies, spec.gravity,
                          spec.loads)
     rep = build_report(spec, res)

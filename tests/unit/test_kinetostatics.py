@@ -24,7 +24,7 @@ REF = json.loads((ROOT / "tests" / "reference" / "force_reference.json").read_te
 
 def _analyse(spec):
     inp = spec.input
-    sweep = Sweep(inp.driver, inp.q, inp.omega, inp.alpha, inp.followers, inp.periodic)
+    sweep = inp.sweep()
     return analyse_forces(spec.linkage, spec.topology, sweep, spec.bodies, spec.gravity,
                           spec.loads, partial=inp.partial)
 

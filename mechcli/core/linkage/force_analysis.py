@@ -53,10 +53,8 @@ class ForceSweep:
 
 
 def balancing_symbol(linkage, link):
-    drivers = linkage.drivers
-    d = next(x for x in drivers if x.link == link)
-    base = "Mb" if d.rotary else "Fb"
-    return base if len(drivers) == 1 else f"{base}{link}"
+    base = "Mb" if linkage.driver(link).rotary else "Fb"
+    return base if len(linkage.drivers) == 1 else f"{base}{link}"
 
 
 def series_of(linkage, fr: ForceResult):
