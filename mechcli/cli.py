@@ -26,6 +26,8 @@ COMMANDS = {
                 "Linkage type, crank conditions, K, transmission angle, mobility (ch. 3 §1)."),
     "cam": ("mechcli.commands.cam", "cam",
             "Disc cams: motion laws, profiles, pressure angle, sizing (chapter 4)."),
+    "synth": ("mechcli.commands.synth", "synth",
+              "Linkage synthesis: guidance, function generation, design from K (ch. 3)."),
     "check": ("mechcli.commands.check", "check",
               "Run specs and compare every [expected] value (batches, CI, JUnit)."),
     "new": ("mechcli.commands.new", "new", "Write a commented starter spec for a command."),

@@ -82,14 +82,17 @@ def print_rich(report: Report, file=None):
         (len(b.headers) for b in report.blocks), default=0) + 4))
     console.print(f"[bold]{report.title}[/bold]")
     for block in report.blocks:
+        # a table at least as wide as its heading: rich wraps a title to the table's width
+        wide = display_width(block.heading) + 2 if block.heading else None
         if block.headers:
-            table = Table(title=block.heading or None, title_justify="left")
+            table = Table(title=block.heading or None, title_justify="left", min_width=wide)
             for h in block.headers:
                 table.add_column(h, justify="right", no_wrap=True)
             for row in block.rows:
                 table.add_row(*row)
         else:
-            table = Table(title=block.heading or None, title_justify="left", show_header=False)
+            table = Table(title=block.heading or None, title_justify="left", show_header=False,
+                          min_width=wide)
             table.add_column(justify="left")
             table.add_column(justify="right")
             for row in block.rows:

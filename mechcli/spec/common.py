@@ -46,10 +46,11 @@ def check_expected(path, overrides, results):
         # the command has read this file already, so it is not a TOML spec
         # (``grashof --batch`` reads a CSV): there is no [expected] table
         return
+    from mechcli.spec.expected import has_result
     sec = root.table("expected", None)
     names = sorted(map(str, results))
     for name in [] if sec is None else sec.keys():
-        if name not in results:
+        if not has_result(results, name):
             raise SpecError(sec.file, sec.key(name),
                             "the name of a result of this run (a key of --json \"results\")",
                             f"unknown key '{name}'", closest(name, names))

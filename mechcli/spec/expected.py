@@ -1,7 +1,8 @@
 """What ``[expected]`` means: one implementation for ``mechcli check`` and the tests.
 
 Each key of a spec's ``[expected]`` table names a result of the run (a key of
-``--json`` ``"results"``) and gives the value it must have:
+``--json`` ``"results"``, or a quoted dotted path into nested results such as
+``"cases.0.l1"``, 0-based like the JSON) and gives the value it must have:
 
 * a number: it holds within the tolerance the spec gives
   (``{ value = …, tol = … }``, or a relative ``{ value = …, rtol = … }``;
@@ -388,6 +389,31 @@ def _one(value, tol, got):
     return dev <= 1 + SLACK, dev
 
 
+_MISSING = object()
+
+
+def lookup(results, name, default=_MISSING):
+    """The result *name* names: a key of *results*, or a dotted path into nested
+    results (``"cases.0.l1"``: key ``cases``, item 0 (0-based, as in the JSON),
+    key ``l1``); *default* (or a private sentinel) when there is none."""
+    if name in results:
+        return results[name]
+    node = results
+    for part in name.split("."):
+        if isinstance(node, dict) and part in node:
+            node = node[part]
+        elif isinstance(node, (list, tuple)) and part.isdigit() and int(part) < len(node):
+            node = node[int(part)]
+        else:
+            return default
+    return node
+
+
+def has_result(results, name):
+    """Does *name* (a key or a dotted path, see :func:`lookup`) name a result?"""
+    return lookup(results, name) is not _MISSING
+
+
 def compare(expected, results):
     """Compare every expected value with the run's *results*.
 
@@ -405,10 +431,10 @@ def compare(expected, results):
     """
     out = []
     for name, exp in expected.items():
-        if name not in results:
+        got = lookup(results, name)
+        if got is _MISSING:
             out.append(Check(name, False, exp.value, None, exp.tol, math.inf))
             continue
-        got = results[name]
         if isinstance(exp.value, list):
             if not isinstance(got, (list, tuple)) or len(got) != len(exp.value):
                 out.append(Check(name, False, exp.value, got, exp.tol, math.inf))

@@ -378,6 +378,41 @@ class Section:
             out.append(float(item))
         return out
 
+    def rows(self, name, default=REQUIRED, *, width=2, count=None, lo=None, hi=None,
+             row=None):
+        """An array of rows of *width* finite numbers (points ``[x, y]``, poses
+        ``[x, y, phi]``): ``count`` rows exactly (an int), or between ``count[0]``
+        and ``count[1]``; *lo*/*hi* bound every number; *row* names a row's items
+        in messages (``"[x, y, phi]"``).  Returns a list of lists, in the spec's
+        units (the caller converts)."""
+        if self.recorder is not None:
+            self.recorder.key(self, name, "rows", default, width=width, count=count, lo=lo,
+                              hi=hi)
+        value = self._get(name, default)
+        if value is default and default is not REQUIRED:
+            return value
+        few, many = (count, count) if isinstance(count, int) else (count or (1, None))
+        size = (f"{few}" if few == many else f"{few} to {many}" if many else f"at least {few}")
+        want = f"an array of {size} rows {row or '[' + ', '.join(['n'] * width) + ']'}"
+        if not isinstance(value, list) or len(value) < few \
+                or (many is not None and len(value) > many):
+            raise self.error(name, want, _describe(value))
+        out, row_name = [], row or ""
+        for i, items in enumerate(value):
+            if not isinstance(items, list) or len(items) != width:
+                raise SpecError(self.file, self.key(f"{name}[{i}]"),
+                                f"an array of {width} numbers {row_name}".rstrip(),
+                                _describe(items))
+            for j, item in enumerate(items):
+                if isinstance(item, bool) or not isinstance(item, (int, float)) \
+                        or not math.isfinite(item) or (lo is not None and item < lo) \
+                        or (hi is not None and item > hi):
+                    bound = f" in [{lo:g}, {hi:g}]" if lo is not None and hi is not None else ""
+                    raise SpecError(self.file, self.key(f"{name}[{i}][{j}]"),
+                                    "a finite number" + bound, _describe(item))
+            out.append([float(x) for x in items])
+        return out
+
     def strings(self, name, default=REQUIRED, *, choices=None):
         if self.recorder is not None:
             self.recorder.key(self, name, "strings", default, choices=choices)

@@ -35,7 +35,7 @@ from pathlib import Path
 from mechcli.spec.errors import SpecError
 from mechcli.spec.reader import REQUIRED, Section
 
-COMMANDS = ("kin", "force", "grashof", "cam", "gear")
+COMMANDS = ("kin", "force", "grashof", "cam", "gear", "synth")
 PROBE_FILE = "<mechcli-schema-probe>.toml"
 #: most reader runs per command (each takes well under a millisecond to a few ms)
 MAX_RUNS = 1500
@@ -111,6 +111,9 @@ def _reader(command):
     if command == "grashof":
         from mechcli.spec.grashof import read_grashof_spec
         return read_grashof_spec
+    if command == "synth":
+        from mechcli.spec.synth import read_synth_spec
+        return read_synth_spec
     if command == "cam":
         from mechcli.spec.cam import read_cam_spec
         from mechcli.spec.reader import load_spec
@@ -162,6 +165,11 @@ def _synths(kind, opts, node, avoid=frozenset()):
         return [[1.0 + i for i in range(n)], [1.0] * n]
     if kind == "strings":
         return [[opts["choices"][0]]] if opts.get("choices") else [["A", "B"]]
+    if kind == "rows":
+        count = opts.get("count") or 1
+        n = count if isinstance(count, int) else count[0]
+        w = opts.get("width") or 2
+        return [[[float(i + 1), float(i * i)] + [0.0] * (w - 2) for i in range(n)]]
     if kind == "table":
         return [{}]
     if kind == "tables":
@@ -360,6 +368,18 @@ def _fragment(kind, default, opts):
         frag.update(type="array", items=item, minItems=opts.get("size") or 1)
         if opts.get("size"):
             frag["maxItems"] = opts["size"]
+    elif kind == "rows":
+        count = opts.get("count")
+        few, many = (count, count) if isinstance(count, int) else (count or (1, None))
+        num = {"type": "number"}
+        for word, bound in (("lo", "minimum"), ("hi", "maximum")):
+            if opts.get(word) is not None:
+                num[bound] = opts[word]
+        w = opts.get("width") or 2
+        frag.update(type="array", minItems=few,
+                    items={"type": "array", "items": num, "minItems": w, "maxItems": w})
+        if many is not None:
+            frag["maxItems"] = many
     elif kind == "strings":
         item = {"type": "string"}
         if opts.get("choices"):

@@ -62,6 +62,9 @@ OWN_CORE = {
     "mechcli.report.gear": "mechcli.core.gear",
     "mechcli.report.gear_plot": "mechcli.core.gear",
     "mechcli.report.grashof": "mechcli.core.grashof",
+    "mechcli.report.synth": "mechcli.core.synth",
+    # the pictures draw the designed linkage with kin's drawing, posed by the engine
+    "mechcli.report.synth_plots": "mechcli.core.linkage",
     # mechcli check reports plain dicts of the batch and calls no core function;
     # mapped to a core package it does not use
     "mechcli.report.check": "mechcli.core.linkage",
@@ -71,6 +74,7 @@ OWN_CORE = {
 #: helpers of its own command, never the solver of the problem it reports
 REPORT_CORE_FUNCTIONS = {
     "mechcli.report.kin_plots": {"solve"},  # poses of the linkage for the animation frames
+    "mechcli.report.synth_plots": {"solve"},  # the design in its positions and frames
     "mechcli.report.force_plots": {"balancing_symbol"},
     "mechcli.report.cam_plots": {"working_outline"},
     "mechcli.report.gear": {"degrees_minutes_seconds", "format_dms"},

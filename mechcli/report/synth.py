@@ -1,0 +1,430 @@
+"""Results, book-format report, CSV and ``linkage.toml`` of ``mechcli synth``.
+
+Turns each case's :class:`~mechcli.core.synth.problems.SynthSolution` into the
+``--json`` results (lengths in the spec's unit, angles in degrees, pivots as
+``[x, y]`` lists), the tables the book prints (计算结果 1: A、D 坐标 …), the
+positions CSV and a ``mechcli kin`` spec of the design.  Solves nothing.
+"""
+
+from __future__ import annotations
+
+import math
+
+from mechcli.report.table import Block, Report
+
+#: design value (core name, SI) -> (result key, how to show it): "deg" an angle,
+#: "len" a length, "" a plain number
+VALUES = {
+    "l": ("l", ""), "m": ("m", ""), "n": ("n", ""),
+    "alpha0": ("alpha0_deg", "deg"), "phi0": ("phi0_deg", "deg"),
+    "theta": ("theta_deg", "deg"), "psi": ("psi_deg", "deg"), "K": ("K", ""),
+    "gamma_1": ("gamma_1_deg", "deg"), "gamma_2": ("gamma_2_deg", "deg"),
+    "gamma_ok": ("gamma_ok", ""),
+    "method": ("method", ""), "iterations": ("iterations", ""), "tol": ("tol", ""),
+    "residual": ("equation_residual", ""),
+    "error_y_max": ("error_y_max", ""), "error_phi_max": ("error_phi_max_deg", "deg"),
+    "alpha_m": ("alpha_m_deg", "deg"), "phi_m": ("phi_m_deg", "deg"),
+    "alpha_max": ("alpha_max_deg", "deg"), "e_max": ("e_max", "len"), "R": ("R", "len"),
+    "delta": ("delta_deg", "deg"), "residual_rms": ("residual_rms", ""),
+    "limit_angle": ("limit_angle_deg", "deg"),
+}
+#: link lengths as the book names them
+LINK_NAMES = {"four_bar": (("l1", "AB"), ("l2", "BC"), ("l3", "CD"), ("l4", "AD")),
+              "slider_crank": (("l1", "AB"), ("l2", "BC"), ("e", "e"), ("H", "H")),
+              "guide_bar": (("l1", "AB"), ("l4", "AC"))}
+ZH_KINDS = {"two_positions": "连杆两位置设计", "three_positions": "连杆三位置设计",
+            "moving_pivots": "已知固定铰链的连杆三位置设计",
+            "coupler_poses": "按连杆三位置 (位移矩阵) 设计", "burmester": "Burmester 点",
+            "function": "函数生成机构设计", "slider_function": "曲柄滑块函数生成",
+            "rocker_slider": "摇杆滑块机构设计", "quick_return": "按行程速比系数 K 设计"}
+ZH_DEFECTS = {"assembly": "无法装配", "branch": "分支 (装配模式) 缺陷", "circuit": "回路缺陷",
+              "order": "顺序缺陷"}
+
+
+def _label(lang, en, zh):
+    return zh if lang == "zh" else en
+
+
+def _xy(p, u):
+    return [float(p[0]) / u, float(p[1]) / u]
+
+
+def _value(kind, v, u):
+    if isinstance(v, (bool, str)) or v is None:
+        return v
+    if kind == "deg":
+        return math.degrees(float(v))
+    if kind == "len":
+        return float(v) / u
+    if isinstance(v, int):
+        return v
+    return float(v)
+
+
+def defect_text(d):
+    """``branch:3`` (kind and 1-based position), ``order``: the JSON form of a defect."""
+    return d.kind if d.position is None else f"{d.kind}:{d.position}"
+
+
+def case_results(sol, u):
+    """The results dict of one solved case, in the spec's unit *u* [m per unit]."""
+    r = {"kind": sol.kind}
+    des, chk = sol.design, sol.check
+    if des is None:     # the Burmester curves of four poses: no linkage
+        curves = sol.extra
+        r["curve_points"] = int(sum(len(c) for c in curves.centre_branches()))
+        return r
+    r["linkage"] = des.kind
+    for key, val in des.lengths.items():
+        r[key] = float(val) / u
+    for name, p in des.pivots.items():
+        r[name] = _xy(p, u)
+    for key, val in des.values.items():
+        if key in VALUES:
+            name, how = VALUES[key]
+            r[name] = _value(how, val, u)
+    if des.inputs is not None and len(des.inputs):
+        r["theta1_deg"] = [math.degrees(float(q)) for q in des.inputs]
+    if chk.driver != 1 or sol.kind in ("two_positions", "three_positions", "moving_pivots",
+                                       "coupler_poses", "burmester"):
+        r["driver"] = {1: "AB", 3: "CD"}[chk.driver]
+    r["type"] = chk.grashof_type
+    r["crank_turns"] = chk.input_turns
+    if chk.gamma_min is not None:
+        r["gamma_min_deg"] = math.degrees(chk.gamma_min)
+    r["residual_max"] = chk.residual_max
+    r["residuals"] = [None if not math.isfinite(x) else float(x) for x in chk.residuals]
+    r["direction"] = {1: "ccw", -1: "cw", 0: "reverses" if chk.start != chk.stop
+                      else "none"}[chk.direction]
+    r["defects"] = [defect_text(d) for d in chk.defects]
+    r["defect_count"] = len(chk.defects)
+    if sol.kind == "burmester" and sol.extra is not None:
+        r["burmester_pairs"] = len(sol.extra)
+    return r
+
+
+def results(spec, solutions):
+    """The ``--json`` results: one case's keys, or ``{"cases": [...]}`` for [[case]] specs."""
+    u = spec.header.scale
+    per = [case_results(s, u) for s in solutions]
+    if spec.multi:
+        return {"cases": per}
+    return per[0]
+
+
+def warnings(spec, solutions):
+    """One line per design defect and per transmission angle below the allowed one."""
+    import numpy as np
+    out = []
+    for i, (prob, sol) in enumerate(zip(spec.cases, solutions)):
+        where = f"case {i + 1}: " if spec.multi else ""
+        chk = sol.check
+        if chk is None:
+            continue
+        for d in chk.defects:
+            out.append(where + defect_message(d))
+        alt = sol.other_driver
+        if alt is not None and not alt.defects:
+            name = {1: "AB", 3: "CD"}[alt.driver]
+            out.append(where + f"driven by {name} instead, the design has no defect: "
+                       f'set driver = "{name}"')
+        feasible = sol.design.values.get("error_feasible")
+        if feasible is not None and not bool(np.all(feasible)):
+            out.append(where + "the design cannot be assembled over part of [x0, xm]: the "
+                       "structural error is shown where it can")
+        ok = sol.design.values.get("gamma_ok")
+        if ok is False:
+            out.append(where + f"the smallest transmission angle "
+                       f"{math.degrees(sol.design.values['gamma_min']):.2f} deg is below the "
+                       f"allowed {math.degrees(prob.data['gamma_allowed']):.2f} deg")
+    return out
+
+
+def defect_message(d):
+    """A defect in words (English: warnings go to stderr and JSON in English)."""
+    if d.kind == "assembly":
+        return (f"assembly defect: the designed linkage cannot be assembled in position "
+                f"{d.position} at all")
+    if d.kind == "branch":
+        return (f"branch defect: position {d.position} is reached only in the other assembly "
+                "mode (the linkage would have to be taken apart on the way)")
+    if d.kind == "circuit":
+        at = "" if d.at is None else f" (it stops at theta1 = {math.degrees(d.at):.4g} deg)"
+        return (f"circuit defect: the crank cannot move to position {d.position} without "
+                f"disassembly or a dead point{at}")
+    return "order defect: no direction of the crank visits the positions in the given order"
+
+
+# --------------------------------------------------------------------- the book's tables
+def _f(x, nd=2):
+    text = f"{x:.{nd}f}"
+    return text[1:] if text.startswith("-") and not text.strip("-0.") else text  # no "-0.00"
+
+
+def _blocks(prob, sol, u, unit, lang, prefix=""):
+    blocks = []
+    des, chk = sol.design, sol.check
+    n = 1
+    if des is None:
+        c = sol.extra
+        blocks.append(Block(prefix + _label(lang, "Burmester curves (four poses)",
+                                            "Burmester 曲线 (四位置)"),
+                            rows=[[_label(lang, "points on the curves", "曲线点数"),
+                                   str(sum(len(b) for b in c.centre_branches()))]]))
+        return blocks
+    pivots = [k for k in ("A", "D", "C", "B1", "C1", "B2", "C2", "M1") if k in des.pivots]
+    if pivots:
+        head = _label(lang, f"Result {n}: pivot coordinates (unit {unit})",
+                      f"计算结果 {n}: " + "、".join(pivots) + f" 坐标 (单位 {unit})")
+        blocks.append(Block(prefix + head, ["", "x", "y"],
+                            [[k, _f(des.pivots[k][0] / u), _f(des.pivots[k][1] / u)]
+                             for k in pivots]))
+        n += 1
+    if "l" in des.values:
+        rows = [[_label(lang, "coupler / crank  l", "连杆相对长度 l"), _f(des.values["l"])],
+                [_label(lang, "rocker / crank  m", "摇杆相对长度 m"), _f(des.values["m"])],
+                [_label(lang, "frame / crank  n", "机架相对长度 n"), _f(des.values["n"])]]
+        blocks.append(Block(prefix + _label(lang, f"Result {n}: relative lengths",
+                                            f"计算结果 {n}: 相对长度"), rows=rows))
+        n += 1
+    names = LINK_NAMES[des.kind]
+    rows = [[label, _f(des.lengths[key] / u)] for key, label in names if key in des.lengths]
+    blocks.append(Block(prefix + _label(lang, f"Result {n}: link lengths (unit {unit})",
+                                        f"计算结果 {n}: 各杆长度 (单位 {unit})"), rows=rows))
+    n += 1
+    extra = []
+    v = des.values
+    for key, en, zh in (("alpha0", "alpha0 [deg]", "α0 (°)"), ("phi0", "phi0 [deg]", "φ0 (°)"),
+                        ("theta", "theta [deg]", "极位夹角 θ (°)"),
+                        ("psi", "psi [deg]", "摆角 ψ (°)"), ("K", "K", "行程速比系数 K"),
+                        ("gamma_1", "gamma1 [deg]", "传动角 γ1 (°)"),
+                        ("gamma_2", "gamma2 [deg]", "传动角 γ2 (°)"),
+                        ("error_phi_max", "max structural error, output [deg]",
+                         "最大结构误差 (输出角, °)"),
+                        ("error_y_max", "max structural error in y", "最大结构误差 (y)"),
+                        ("iterations", "iterations", "迭代次数")):
+        if key in v and v[key] is not None:
+            val = v[key]
+            text = str(val) if isinstance(val, int) else \
+                _f(math.degrees(val) if en.endswith("[deg]") else val,
+                   6 if key.startswith("error") else 2)
+            extra.append([_label(lang, en, zh), text])
+    if extra:
+        blocks.append(Block(prefix + _label(lang, f"Result {n}: design figures",
+                                            f"计算结果 {n}: 设计参数"), rows=extra))
+        n += 1
+    if des.inputs is not None and len(des.inputs) and des.points:
+        heads = [_label(lang, "position", "位置"), "θ1 (°)"]
+        cols = []
+        for name, pts in des.points.items():
+            heads += [f"x{name}", f"y{name}"]
+            cols.append(pts)
+        heads.append(_label(lang, "residual", "残差"))
+        rows = []
+        for i, q in enumerate(des.inputs):
+            row = [str(i + 1), _f(math.degrees(q))]
+            for pts in cols:
+                row += [_f(pts[i].real / u), _f(pts[i].imag / u)]
+            r = chk.residuals[i]
+            row.append(f"{r:.1e}" if math.isfinite(r) else "—")
+            rows.append(row)
+        blocks.append(Block(prefix + _label(lang, "Prescribed positions",
+                                            "预定位置"), heads, rows))
+    rows = [[_label(lang, "type", "机构类型"), chk.grashof_type],
+            [_label(lang, "largest residual (relative)", "最大残差 (相对)"),
+             f"{chk.residual_max:.2e}"]]
+    if chk.gamma_min is not None:
+        rows.append([_label(lang, "smallest transmission angle [deg]", "最小传动角 (°)"),
+                     _f(math.degrees(chk.gamma_min))])
+    rows.append([_label(lang, "defects", "缺陷"),
+                 ", ".join((ZH_DEFECTS.get(d.kind, d.kind) if lang == "zh" else d.kind)
+                           + ("" if d.position is None else f" @{d.position}")
+                           for d in chk.defects) or _label(lang, "none", "无")])
+    blocks.append(Block(prefix + _label(lang, "Check on the linkage engine", "机构运动校验"),
+                        rows=rows))
+    return blocks
+
+
+def build_report(spec, solutions, lang):
+    """The book-format report of every case."""
+    u, unit = spec.header.scale, spec.header.unit
+    rep = Report(spec.header.title)
+    for i, (prob, sol) in enumerate(zip(spec.cases, solutions)):
+        prefix = f"[{i + 1}] " if spec.multi else ""
+        rep.blocks += _blocks(prob, sol, u, unit, lang, prefix)
+    return rep
+
+
+# --------------------------------------------------------------------- CSV
+def positions_columns(sol, u, lang="en"):
+    """Columns of ``synth.csv``: each prescribed position, the crank angle, the
+    prescribed points/angles/slides and the residual.  None without positions."""
+    des, chk = sol.design, sol.check
+    if des is None or des.inputs is None or not len(des.inputs):
+        return None
+    import numpy as np
+    cols = [("position", np.arange(1, len(des.inputs) + 1)),
+            ("theta1_deg", np.degrees(des.inputs))]
+    for name, pts in des.points.items():
+        pts = np.asarray(pts)
+        cols += [(f"x{name}_{'u'}", pts.real / u), (f"y{name}_{'u'}", pts.imag / u)]
+    for link, ang in des.angles.items():
+        cols.append((f"theta{link}_deg", np.degrees(np.asarray(ang, dtype=float))))
+    for name, s in des.slides.items():
+        cols.append((f"s{name}_u", np.asarray(s, dtype=float) / u))
+    res = np.asarray(chk.residuals, dtype=float)
+    cols.append(("residual", np.where(np.isfinite(res), res, -1.0)))
+    return cols
+
+
+def unit_columns(cols, unit):
+    """Spell the spec's unit in the column names (``xB_mm``)."""
+    return [(h[:-2] + "_" + unit if h.endswith("_u") else h, c) for h, c in cols]
+
+
+def error_columns(sol):
+    """Columns of ``error.csv``: the structural error of a function generator."""
+    v = sol.design.values if sol.design is not None else {}
+    if "error_x" not in v:
+        return None
+    import numpy as np
+    x, ey = np.asarray(v["error_x"], dtype=float), np.asarray(v["error_y"], dtype=float)
+    ephi = np.asarray(v["error_phi"], dtype=float)
+    ok = np.isfinite(ey) & np.isfinite(ephi)     # where the design assembles
+    return [("x", x[ok]), ("error_y", ey[ok]), ("error_phi_deg", np.degrees(ephi[ok]))]
+
+
+def burmester_columns(curves, u, unit):
+    """Columns of ``burmester.csv``: centre-point and circle-point curves, branch by branch."""
+    import numpy as np
+    rows = []
+    for b, (cen, cir) in enumerate(zip(curves.centre_branches(), curves.circle_branches())):
+        rows.append(np.column_stack([np.full(len(cen), b + 1), cen.real / u, cen.imag / u,
+                                     cir.real / u, cir.imag / u]))
+    m = np.vstack(rows) if rows else np.zeros((0, 5))
+    return [("branch", m[:, 0]), (f"x_centre_{unit}", m[:, 1]), (f"y_centre_{unit}", m[:, 2]),
+            (f"x_circle_{unit}", m[:, 3]), (f"y_circle_{unit}", m[:, 4])]
+
+
+# --------------------------------------------------------------------- linkage.toml
+def _num(x):
+    return repr(float(x)) if math.isfinite(float(x)) else "0.0"
+
+
+def linkage_toml(sol, header, name):
+    """A ``mechcli kin`` spec of the design: the general form of its elements and the
+    crank turned over the checked motion (a full turn for a design from K)."""
+    from mechcli.core.linkage.elements import RPR, RRP, RRR, Crank, Ground, PointOnLink
+    des, chk = sol.design, sol.check
+    u = header.scale
+    linkage = chk.linkage if chk.linkage is not None else des.linkage
+    lines = ['command = "kin"',
+             f'title = {_toml_str("design of " + header.title)}',
+             f'units = "{header.unit}"', "",
+             f"# Written by `mechcli synth` from {name}: the designed linkage in the general",
+             "# form, its crank turned over the checked motion.", "",
+             "[mechanism]", 'type = "general"', f"frame = {linkage.frame}", "",
+             "[mechanism.ground]"]
+    for el in linkage.elements:
+        if isinstance(el, Ground):
+            lines.append(f"{el.name} = [{_num(el.x / u)}, {_num(el.y / u)}]")
+    for el in linkage.elements:
+        if isinstance(el, Crank):
+            lines += ["", "[[mechanism.driver]]", 'type = "crank"', f"link = {el.link}",
+                      f'pivot = "{el.pivot}"', f'point = "{el.point}"',
+                      f"length = {_num(el.length / u)}"]
+        elif isinstance(el, RRR):
+            lines += ["", "[[mechanism.dyad]]", 'type = "RRR"', f'joint = "{el.joint}"',
+                      f'points = ["{el.point_a}", "{el.point_b}"]',
+                      f"links = [{el.link_a}, {el.link_b}]",
+                      f"lengths = [{_num(el.length_a / u)}, {_num(el.length_b / u)}]",
+                      f"branch = {int(el.branch)}"]
+        elif isinstance(el, RRP):
+            lines += ["", "[[mechanism.dyad]]", 'type = "RRP"', f'joint = "{el.joint}"',
+                      f'point = "{el.point}"', f"link = {el.link}",
+                      f"length = {_num(el.length / u)}", f"slider = {el.slider}",
+                      f"guide_link = {el.guide_link}", f'guide_point = "{el.guide_point}"',
+                      f"guide_angle = {_num(math.degrees(el.guide_angle))}",
+                      f"offset = {_num(el.offset / u)}", f"branch = {int(el.branch)}"]
+            if el.name:
+                lines.append(f'name = "{el.name}"')
+        elif isinstance(el, RPR):
+            lines += ["", "[[mechanism.dyad]]", 'type = "RPR"', f'point = "{el.point}"',
+                      f"block = {el.block}", f'pivot = "{el.pivot}"', f"guide = {el.guide}",
+                      f"offset = {_num(el.offset / u)}", f"branch = {int(el.branch)}"]
+            if el.name:
+                lines.append(f'name = "{el.name}"')
+        elif isinstance(el, PointOnLink):
+            lines += ["", "[[mechanism.point]]", f'name = "{el.name}"', f"link = {el.link}",
+                      f'from = "{el.origin}"', f"along = {_num(el.along / u)}",
+                      f"normal = {_num(el.normal / u)}"]
+    a, b = sorted((math.degrees(chk.start), math.degrees(chk.stop)))
+    if b - a < 1e-6:
+        a, b = a, a + 360.0
+    omega = -1.0 if chk.direction == -1 else 1.0
+    lines += ["", "[input]", f"omega1 = {omega:g}   # rad/s of the driving link "
+              f"{'AB' if chk.driver == 1 else 'CD'}",
+              f"start = {_num(a)}", f"stop = {_num(b)}", f"step = {_num((b - a) / 360)}"]
+    if chk.defects:
+        lines.append("partial = true   # the design has defects: skip what cannot assemble")
+    lines += ["", "[output]", "table_step = " + _num((b - a) / 12)]
+    return "\n".join(lines) + "\n"
+
+
+def _toml_str(s):
+    return '"' + s.replace("\\", "\\\\").replace('"', '\\"').replace("\n", " ") + '"'
+
+
+# --------------------------------------------------------------------- errors
+#: core reason -> the spec keys it is about, per kind (the first that the problem has)
+_REASON_KEYS = {
+    "coincident": ("B", "C", "poses"), "not_rigid": ("B", "C"), "collinear": ("B", "C"),
+    "zero_link": ("B", "C", "poses"), "not_on_bisector": ("A", "D"),
+    "parallel": ("A_line", "D_line", "pivot_line"), "not_on_circle": ("A", "D"),
+    "at_infinity": ("poses",), "degenerate": ("poses",), "no_rotation": ("poses",),
+    "domain": ("x0",), "flat": ("function", "table_y"), "swing": ("swing", "alpha_m"),
+    "singular": ("theta1", "x", "s", "phi", "poses"), "no_solution": ("theta3", "s", "x0"),
+    "K": ("K",), "pivot_line_misses": ("pivot_line",), "pivot_line_unusable": ("pivot_line",),
+    "crank_range": ("crank",), "coupler_range": ("coupler",), "frame_range": ("frame",),
+    "offset": ("e",), "limit_angle": ("limit_angle",), "pairs": ("pairs",),
+}
+
+
+def _reason_key(reason, prob):
+    keys = _REASON_KEYS.get(reason, ())
+    data = prob.data
+    for k in keys:
+        if k in data and data[k] is not None or k in ("line_A",):
+            return k
+    if reason == "collinear" or reason == "not_rigid":
+        return "B"
+    if reason == "parallel":
+        return "pivot_line" if data.get("line_A") == data.get("line_D") else "A_line"
+    return keys[0] if keys else None
+
+
+def error_message(exc, spec, prob):
+    """The message of a synthesis core error: the table and key it is about, the
+    reason in words, and the reachable range in the spec's units when there is one."""
+    v, unit, u = exc.values, spec.header.unit, spec.header.scale
+    reason = exc.reason
+    key = _reason_key(reason, prob)
+    where = f"[{prob.path}]" + (f" {key}" if key else "")
+    text = str(exc).replace(" (the range is in the error's lo, hi)", "")
+    if reason == "domain":
+        text = (f"x0 = {v['x0']:g} .. xm = {v['xm']:g} leaves the domain of the function "
+                f"(it is not defined at x = {v['x']:g})")
+    elif reason == "not_rigid":
+        text += (": |BC| = " + ", ".join(f"{x / u:.6g}" for x in v["lengths"]) + f" {unit} "
+                 f"differ by more than rigid_tol = {v['tol']:g} of the positions' size")
+    elif reason == "K" and "hi" in v:
+        text += f" (K must lie in ({v['lo']:g}, {v['hi']:.6g}))"
+    elif reason in ("crank_range", "coupler_range", "frame_range", "offset") and "hi" in v:
+        closed = "]" if reason == "offset" else ")"
+        text += f": it must lie in ({v['lo'] / u:.6g}, {v['hi'] / u:.6g}{closed} {unit}"
+    elif reason == "pivot_line_misses":
+        text += (f": with these a, b the line meets it for c in [{v['lo'] / u:.6g}, "
+                 f"{v['hi'] / u:.6g}] {unit}")
+    elif reason == "swing" and "hi" in v:
+        text += f" (it must lie between {math.degrees(v['lo']):g} and {math.degrees(v['hi']):g} deg)"
+    return f"{where}: {text}"

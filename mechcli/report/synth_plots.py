@@ -1,0 +1,167 @@
+"""Pictures of ``mechcli synth`` (imports matplotlib): the design drawn in every
+prescribed position (the book's 图 3-5 …), the structural error of a function
+generator, the Burmester curves, and ``--animate`` a GIF of the design moving."""
+
+from __future__ import annotations
+
+import math
+import types
+
+import numpy as np
+
+from mechcli.core.linkage import DriverMotion, solve
+from mechcli.report import plotting
+from mechcli.report.kin_plots import Drawing, limits
+
+_T = {"en": {"pos": "Design in its prescribed positions", "err": "Structural error",
+             "x": "x", "ey": "error in y", "ephi": "error of the output angle / °",
+             "burm": "Burmester curves", "centre": "centre-point curve",
+             "circle": "circle-point curve", "poses": "poses",
+             "bpts": "Burmester points (centre ▲, circle ●)"},
+      "zh": {"pos": "预定位置", "err": "结构误差", "x": "x", "ey": "y 的误差",
+             "ephi": "输出角误差/°", "burm": "Burmester 曲线", "centre": "圆心点曲线",
+             "circle": "圆点曲线", "poses": "位置", "bpts": "Burmester 点 (圆心点 ▲, 圆点 ●)"}}
+
+
+def _shim(linkage):
+    return types.SimpleNamespace(linkage=linkage, guide_length=None)
+
+
+def _drive(chk, q):
+    """Solve the checked linkage at inputs *q* of its driver."""
+    return solve(chk.linkage, {chk.linkage.drivers[0].link: DriverMotion(q)}, order=0)
+
+
+def _positions_png(sol, outputs, name, title, unit, k, t):
+    import matplotlib.pyplot as plt
+    des, chk = sol.design, sol.check
+    q = np.asarray(chk.inputs, dtype=float)
+    m = _drive(chk, q)
+    fig, ax = plt.subplots(figsize=(6.5, 5.5))
+    for i in range(len(q)):
+        if not m.feasible[i]:
+            continue
+        d = Drawing(ax, _shim(chk.linkage), m, 1 / k)
+        d.update(m, i)
+        for line in d.bar_lines + d.block_lines:
+            line.set_color(f"C{i % 10}")
+        for pname in des.points:
+            p = m.points[pname].p[i] * k
+            ax.annotate(f"{pname}{i + 1}", (p.real, p.imag), textcoords="offset points",
+                        xytext=(4, 4), fontsize=8, color=f"C{i % 10}")
+    for pname, pts in des.points.items():
+        pts = np.asarray(pts) * k
+        ax.plot(pts.real, pts.imag, "x", color="k", ms=7)
+    path = np.linspace(chk.start, chk.stop, 361) if chk.start != chk.stop else q
+    mp = _drive(chk, path)
+    for pname in ("C", "M"):
+        if pname in mp.points and mp.feasible.any():
+            p = mp.points[pname].p * k
+            p = np.where(mp.feasible, p, np.nan)
+            ax.plot(p.real, p.imag, ":", lw=1, color="0.4")
+    limits(ax, m, k)
+    ax.set_title(plotting.text(title) + "\n" + t["pos"])
+    ax.set_xlabel(unit)
+    ax.set_ylabel(unit)
+    plotting.save_png(fig, outputs, name)
+
+
+def _error_png(sol, outputs, name, title, t):
+    import matplotlib.pyplot as plt
+    v = sol.design.values
+    fig, ax = plt.subplots(figsize=(6.5, 4.5))
+    ax.plot(v["error_x"], np.degrees(v["error_phi"]), "-", color="C0", label=t["ephi"])
+    ax.axhline(0.0, color="0.3", lw=0.8)
+    ax.set_xlabel(t["x"])
+    ax.set_ylabel(t["ephi"])
+    ax2 = ax.twinx()
+    ax2.plot(v["error_x"], v["error_y"], "--", color="C1", label=t["ey"])
+    ax2.set_ylabel(t["ey"])
+    ax2.grid(False)
+    ax.set_title(plotting.text(title) + "\n" + t["err"])
+    plotting.save_png(fig, outputs, name)
+
+
+def _burmester_png(sol, prob, outputs, name, title, unit, k, t):
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(figsize=(6.5, 5.5))
+    M = np.array([complex(x, y) for x, y in prob.data["M"]]) * k
+    phi = np.asarray(prob.data["phi"])
+    ax.plot(M.real, M.imag, "o", color="k", ms=4, label=t["poses"])
+    span = max(float(np.ptp(M.real)), float(np.ptp(M.imag)), 1e-300)
+    for z, p in zip(M, phi):
+        ax.annotate("", (z.real + 0.15 * span * math.cos(p), z.imag + 0.15 * span * math.sin(p)),
+                    (z.real, z.imag), arrowprops=dict(arrowstyle="->", lw=0.8))
+    if sol.design is None:
+        c = sol.extra
+        for j, (cen, cir) in enumerate(zip(c.centre_branches(), c.circle_branches())):
+            ax.plot(cen.real * k, cen.imag * k, "-", color="C0", lw=1,
+                    label=t["centre"] if j == 0 else None)
+            ax.plot(cir.real * k, cir.imag * k, "--", color="C3", lw=1,
+                    label=t["circle"] if j == 0 else None)
+        allp = np.concatenate([M] + [b * k for b in c.centre_branches()])
+        lo, hi = np.percentile(allp.real, [2, 98]), np.percentile(allp.imag, [2, 98])
+        ax.set_xlim(lo[0] - 0.2 * span, lo[1] + 0.2 * span)
+        ax.set_ylim(hi[0] - 0.2 * span, hi[1] + 0.2 * span)
+    else:
+        for j, pr in enumerate(sol.extra):
+            ax.plot([pr.centre.real * k], [pr.centre.imag * k], "^", color=f"C{j}", ms=8)
+            if not pr.at_infinity:
+                ax.plot([pr.circle.real * k], [pr.circle.imag * k], "o", color=f"C{j}", ms=6)
+                ax.plot([pr.centre.real * k, pr.circle.real * k],
+                        [pr.centre.imag * k, pr.circle.imag * k], "-", color=f"C{j}", lw=1,
+                        label=f"pair {j + 1}")
+    ax.set_aspect("equal", adjustable="box")
+    ax.legend(fontsize=7, loc="best")
+    ax.set_title(plotting.text(title) + "\n" + (t["burm"] if sol.design is None else t["bpts"]))
+    ax.set_xlabel(unit)
+    ax.set_ylabel(unit)
+    plotting.save_png(fig, outputs, name)
+
+
+def _animate(sol, outputs, name, title, k, frames=72):
+    import matplotlib.pyplot as plt
+    des, chk = sol.design, sol.check
+    a, b = chk.start, chk.stop
+    if a == b:
+        a, b = 0.0, 2 * math.pi
+    q = np.linspace(a, b, frames)
+    m = _drive(chk, q)
+    keep = np.flatnonzero(m.feasible)
+    if keep.size == 0:
+        return
+    fig, ax = plt.subplots(figsize=(5.5, 4.5), dpi=80)
+    d = Drawing(ax, _shim(chk.linkage), m, 1 / k)
+    limits(ax, m, k)
+    ax.set_title(plotting.text(title))
+    pics = []
+    for i in keep:
+        d.update(m, i)
+        pics.append(plotting.canvas_frame(fig))
+    plt.close(fig)
+    plotting.save_gif(pics, outputs, name)
+
+
+def write(spec, solutions, outputs, lang, plots=True, animate=False):
+    """Write ``positions.png``, ``error.png``, ``burmester.png`` and ``synth.gif``
+    (suffixed ``-N`` per case of a [[case]] spec).  Returns warnings."""
+    warnings = []
+    used = plotting.setup(lang)
+    if used != lang:
+        warnings.append("no CJK font installed: plot labels are in English")
+    t = _T[used]
+    unit, k = spec.header.unit, 1 / spec.header.scale
+    for i, (prob, sol) in enumerate(zip(spec.cases, solutions)):
+        tag = f"-{i + 1}" if spec.multi else ""
+        title = spec.header.title + (f" [{i + 1}]" if spec.multi else "")
+        des = sol.design
+        if plots:
+            if des is not None and sol.check.inputs is not None and len(sol.check.inputs):
+                _positions_png(sol, outputs, f"positions{tag}.png", title, unit, k, t)
+            if des is not None and "error_x" in des.values:
+                _error_png(sol, outputs, f"error{tag}.png", title, t)
+            if sol.kind == "burmester":
+                _burmester_png(sol, prob, outputs, f"burmester{tag}.png", title, unit, k, t)
+        if animate and des is not None:
+            _animate(sol, outputs, f"synth{tag}.gif", title, k)
+    return warnings
