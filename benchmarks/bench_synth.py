@@ -109,6 +109,42 @@ def main():
         print(f"burmester_curves_n{n}: {t * 1e3:.2f} ms, {pts} points in "
               f"{len(cv.centre)} branches, {t / t_base:.0f} x baseline")
 
+    structural_error_samples(t_base)
+
+
+def structural_error_samples(t_base):
+    """The ``samples`` knob of function generation: the largest structural error of
+    【例 3-7】 (y = lg x, Chebyshev) read on n samples, against 1,000,001 samples."""
+    import math
+
+    from mechcli.core.synth.function import function_generator
+    from mechcli.core.synth.functions import make_function
+
+    f = make_function("log10")
+
+    def run(n):
+        return function_generator(f, 1.0, 2.0, alpha_m=math.radians(60), phi_m=math.radians(90),
+                                  alpha0=math.radians(86), phi0=math.radians(23.5),
+                                  method="chebyshev", n=3, samples=n)
+
+    def interior_peak(v):
+        """The largest |Δy| at an interior local maximum (the ends are always sampled)."""
+        import numpy as np
+        e = np.abs(np.asarray(v["error_y"], dtype=float))
+        inner = (e[1:-1] >= e[:-2]) & (e[1:-1] >= e[2:])
+        return float(e[1:-1][inner].max()) if inner.any() else 0.0
+
+    ref = run(1_000_001).values
+    print(f"ex3-7_largest_error_at_x = {ref['error_x'][int(abs(ref['error_y']).argmax())]:g} "
+          "(an end of the interval: every sample count has it exactly)")
+    for n in (11, 101, 1001, 10001, 100001):
+        t = per_call(lambda: run(n), number=3, repeat=3)
+        v = run(n).values
+        print(f"ex3-7_samples_{n}: {t * 1e3:.2f} ms ({t / t_base:.0f} x baseline), "
+              f"error_y_max off by {abs(v['error_y_max'] - ref['error_y_max']):.1e}, "
+              f"largest interior peak off by "
+              f"{abs(interior_peak(v) - interior_peak(ref)) / interior_peak(ref):.1e} (relative)")
+
 
 if __name__ == "__main__":
     main()

@@ -17,10 +17,12 @@ _T = {"en": {"pos": "Design in its prescribed positions", "err": "Structural err
              "x": "x", "ey": "error in y", "ephi": "error of the output angle / °",
              "burm": "Burmester curves", "centre": "centre-point curve",
              "circle": "circle-point curve", "poses": "poses",
-             "bpts": "Burmester points (centre ▲, circle ●)"},
+             "bpts": "Burmester points (centre ▲, circle ●)",
+             "lim": "Design at its two limit positions"},
       "zh": {"pos": "预定位置", "err": "结构误差", "x": "x", "ey": "y 的误差",
              "ephi": "输出角误差/°", "burm": "Burmester 曲线", "centre": "圆心点曲线",
-             "circle": "圆点曲线", "poses": "位置", "bpts": "Burmester 点 (圆心点 ▲, 圆点 ●)"}}
+             "circle": "圆点曲线", "poses": "位置", "bpts": "Burmester 点 (圆心点 ▲, 圆点 ●)",
+             "lim": "极限位置"}}
 
 
 def _shim(linkage):
@@ -32,10 +34,23 @@ def _drive(chk, q):
     return solve(chk.linkage, {chk.linkage.drivers[0].link: DriverMotion(q)}, order=0)
 
 
-def _positions_png(sol, outputs, name, title, unit, k, t):
+def _limit_inputs(sol):
+    """The crank angles of a design from K at its two limit positions (B1, B2), or None."""
+    des = sol.design
+    crank = des.linkage.drivers[0]
+    piv = next((el for el in des.linkage.elements
+                if getattr(el, "name", None) == crank.pivot and hasattr(el, "x")), None)
+    if piv is None or "B1" not in des.pivots or "B2" not in des.pivots:
+        return None
+    a = complex(piv.x, piv.y)
+    return np.array([np.angle(complex(*des.pivots[b]) - a) for b in ("B1", "B2")])
+
+
+def _positions_png(sol, outputs, name, title, unit, k, t, q=None):
     import matplotlib.pyplot as plt
     des, chk = sol.design, sol.check
-    q = np.asarray(chk.inputs, dtype=float)
+    limits_only = q is not None
+    q = np.asarray(chk.inputs if q is None else q, dtype=float)
     m = _drive(chk, q)
     fig, ax = plt.subplots(figsize=(6.5, 5.5))
     for i in range(len(q)):
@@ -45,7 +60,7 @@ def _positions_png(sol, outputs, name, title, unit, k, t):
         d.update(m, i)
         for line in d.bar_lines + d.block_lines:
             line.set_color(f"C{i % 10}")
-        for pname in des.points:
+        for pname in (des.points or (["C"] if "C" in m.points else [])):
             p = m.points[pname].p[i] * k
             ax.annotate(f"{pname}{i + 1}", (p.real, p.imag), textcoords="offset points",
                         xytext=(4, 4), fontsize=8, color=f"C{i % 10}")
@@ -60,7 +75,7 @@ def _positions_png(sol, outputs, name, title, unit, k, t):
             p = np.where(mp.feasible, p, np.nan)
             ax.plot(p.real, p.imag, ":", lw=1, color="0.4")
     limits(ax, m, k)
-    ax.set_title(plotting.text(title) + "\n" + t["pos"])
+    ax.set_title(plotting.text(title) + "\n" + (t["lim"] if limits_only else t["pos"]))
     ax.set_xlabel(unit)
     ax.set_ylabel(unit)
     plotting.save_png(fig, outputs, name)
@@ -158,6 +173,9 @@ def write(spec, solutions, outputs, lang, plots=True, animate=False):
         if plots:
             if des is not None and sol.check.inputs is not None and len(sol.check.inputs):
                 _positions_png(sol, outputs, f"positions{tag}.png", title, unit, k, t)
+            elif des is not None and _limit_inputs(sol) is not None:
+                _positions_png(sol, outputs, f"positions{tag}.png", title, unit, k, t,
+                               _limit_inputs(sol))
             if des is not None and "error_x" in des.values:
                 _error_png(sol, outputs, f"error{tag}.png", title, t)
             if sol.kind == "burmester":
