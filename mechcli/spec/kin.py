@@ -27,9 +27,12 @@ from mechcli.spec.reader import MAX_LENGTH, MIN_LENGTH, load_spec
 
 MECHANISMS = ("four_bar", "slider_crank", "guide_bar", "shaper", "general")
 QUANTITIES = ("position", "velocity", "acceleration")
-#: about 1.8 GB of results and temporaries at 2,000,001 positions for a four-bar
-#: (benchmarks/bench_kin.py); the shaper of 例 1-4 peaks at 2.8 GB (measured 2026-11-23)
-MAX_POSITIONS = 2_000_001
+#: the 1 GiB memory budget of every command: peak RSS measured 2026-11-23 with plots at
+#: 400,001 positions is 0.59 GB for the shaper of 例 1-4 and 0.62 GB for the two-driver
+#: five-bar (~1.46 kB per position + 35 MB); at 600,001 the five-bar peaks at 0.93 GB,
+#: the shaper with --animate at 0.89 GB (2,000,001 used to be allowed: 2.8 GB)
+MAX_POSITIONS = 600_001
+POSITIONS_WHY = "1 GiB budget at ~1.5 kB per position"
 
 
 @dataclasses.dataclass(frozen=True)
@@ -285,7 +288,7 @@ def _build_linkage(mech, frame, elements, paths):
                         msg) from None
 
 
-def _input(sec, linkage, followers, max_positions=MAX_POSITIONS, why=""):
+def _input(sec, linkage, followers, max_positions=MAX_POSITIONS, why=POSITIONS_WHY):
     first = linkage.drivers[0]
     rotary = first.rotary
     if rotary:
@@ -393,7 +396,7 @@ def read_mechanism(root):
     return kind, linkage, tuple(tracers), followers, guide_length
 
 
-def read_input(root, linkage, followers, max_positions=MAX_POSITIONS, why=""):
+def read_input(root, linkage, followers, max_positions=MAX_POSITIONS, why=POSITIONS_WHY):
     """Read ``[input]`` (the primary driver's program) for *linkage*.
 
     *max_positions* caps ``count`` (and the count a ``step`` gives); *why* is said

@@ -61,3 +61,11 @@ def test_package_data_of_new_and_schema_is_declared():
                             ("schemas", "*.json")):
         assert f"{folder}/{pattern}" in globs
         assert list((package / folder).glob(pattern)), folder
+
+
+def test_the_license_is_a_file_of_the_package():
+    """pyproject's license = "MIT" ships its text: LICENSE, named in license-files."""
+    _deps, project = _declared()
+    assert project["license"] == "MIT" and project["license-files"] == ["LICENSE"]
+    text = (ROOT / "LICENSE").read_text(encoding="utf-8")
+    assert text.startswith("MIT License") and "WITHOUT WARRANTY OF ANY KIND" in text
