@@ -42,6 +42,7 @@ def finish(run, command, report, results, outputs, warnings=()):
     except (SpecError, UnsolvableError):
         outputs.discard()
         raise
+    shown = list(report.notes)
     for w in warnings:
         report.notes.append(("警告: " if run.lang == "zh" else "warning: ") + w)
     outputs.text("report.txt", render_text(report))
@@ -49,11 +50,13 @@ def finish(run, command, report, results, outputs, warnings=()):
         click.echo(jsonout.dumps(command, run.spec_path, results, outputs.files, warnings))
         return
     if not run.quiet:
+        # the table on stdout; the warnings (also in report.txt) on stderr, where a
+        # batch or a pipe keeps them apart from the results
+        report.notes = shown
         print_rich(report)
         click.echo("written: " + ", ".join(str(f) for f in outputs.files))
-    else:
-        for w in warnings:
-            click.echo(f"mechcli: warning: {w}", err=True)
+    for w in warnings:
+        click.echo(f"mechcli: warning: {w}", err=True)
 
 
 def _check_finite(results, path=""):

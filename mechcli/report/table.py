@@ -73,6 +73,7 @@ def render_text(report: Report) -> str:
 def print_rich(report: Report, file=None):
     """Show the report on the terminal with rich tables."""
     from rich.console import Console
+    from rich.markup import escape
     from rich.table import Table
 
     natural = max((display_width(line) for line in render_text(report).splitlines()), default=80)
@@ -80,23 +81,25 @@ def print_rich(report: Report, file=None):
     # never squeeze numbers: widen past the terminal rather than truncate cells
     console = Console(file=file, highlight=False, width=max(probe.width, natural + 4 * max(
         (len(b.headers) for b in report.blocks), default=0) + 4))
-    console.print(f"[bold]{report.title}[/bold]")
+    # every text is the user's or ours, never rich markup: a title "door [/bold]" is text
+    console.print(f"[bold]{escape(report.title)}[/bold]")
     for block in report.blocks:
         # a table at least as wide as its heading: rich wraps a title to the table's width
         wide = display_width(block.heading) + 2 if block.heading else None
         if block.headers:
-            table = Table(title=block.heading or None, title_justify="left", min_width=wide)
-            for h in block.headers:
-                table.add_column(h, justify="right", no_wrap=True)
-            for row in block.rows:
-                table.add_row(*row)
-        else:
-            table = Table(title=block.heading or None, title_justify="left", show_header=False,
+            table = Table(title=escape(block.heading) or None, title_justify="left",
                           min_width=wide)
+            for h in block.headers:
+                table.add_column(escape(h), justify="right", no_wrap=True)
+            for row in block.rows:
+                table.add_row(*map(escape, row))
+        else:
+            table = Table(title=escape(block.heading) or None, title_justify="left",
+                          show_header=False, min_width=wide)
             table.add_column(justify="left")
             table.add_column(justify="right")
             for row in block.rows:
-                table.add_row(*row)
+                table.add_row(*map(escape, row))
         console.print(table)
     for note in report.notes:
-        console.print(note)
+        console.print(note, markup=False)

@@ -573,6 +573,13 @@ def _poses(M, phi, n):
         raise DescribedError("every pose has the same coupler point: the coupler turns about "
                              "it, and every point of the coupler is a circle point",
                              reason="coincident")
+    for i in range(len(Mz)):
+        for j in range(i + 1, len(Mz)):
+            # a pose repeated (phi one turn apart is the same pose): one equation short
+            if abs(Mz[j] - Mz[i]) <= COINCIDENT_TOL * L \
+                    and abs(_wrap(ph[j] - ph[i])) <= COINCIDENT_TOL:
+                raise DescribedError(f"poses {i + 1} and {j + 1} are the same pose",
+                                     reason="coincident", positions=(i + 1, j + 1))
     return (Mz - Mz[0]) / L, np.exp(1j * (ph - ph[0])), L, Mz
 
 
