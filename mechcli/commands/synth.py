@@ -22,14 +22,23 @@ def synth(spec_path, **opts):
     from mechcli.report.run import finish
     from mechcli.spec.synth import read_synth_spec
 
+    from mechcli.core.errors import ConvergenceError, UnsolvableError
+    from mechcli.spec.reader import MAX_LENGTH, MIN_LENGTH
+
     spec = read_synth_spec(spec_path, run.sets)
     solutions = []
     for prob in spec.cases:
         try:
-            solutions.append(solve_synthesis(prob.kind, prob.data))
+            sol = solve_synthesis(prob.kind, prob.data)
         except DescribedError as exc:   # worded in the spec's units and keys
             raise DescribedError(report.error_message(exc, spec, prob), exc.reason,
                                  **exc.values) from None
+        except ConvergenceError as exc:
+            raise ConvergenceError(f"[{prob.path}] max_iter, tol: {exc}") from None
+        bad = report.out_of_range(sol, MIN_LENGTH, MAX_LENGTH, spec, prob)
+        if bad:     # its linkage.toml would be refused by kin: no design
+            raise UnsolvableError(bad)
+        solutions.append(sol)
     outputs = Outputs(run.out_dir, digits=run.digits)
     u, unit = spec.header.scale, spec.header.unit
     for i, sol in enumerate(solutions):

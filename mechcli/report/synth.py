@@ -80,7 +80,7 @@ def case_results(sol, u):
     for name, p in des.pivots.items():
         r[name] = _xy(p, u)
     for key, val in des.values.items():
-        if key in VALUES:
+        if key in VALUES and not (key == "iterations" and des.values.get("method") == "matrix"):
             name, how = VALUES[key]
             r[name] = _value(how, val, u)
     if des.inputs is not None and len(des.inputs):
@@ -90,8 +90,10 @@ def case_results(sol, u):
         r["driver"] = {1: "AB", 3: "CD"}[chk.driver]
     r["type"] = chk.grashof_type
     r["crank_turns"] = chk.input_turns
-    if chk.gamma_min is not None:
-        r["gamma_min_deg"] = math.degrees(chk.gamma_min)
+    if des.kind == "four_bar":
+        r["cranks"] = list(chk.cranks)
+    # None (JSON null) when not checked: the motion has a defect, so there is no path
+    r["gamma_min_deg"] = None if chk.gamma_min is None else math.degrees(chk.gamma_min)
     r["residual_max"] = chk.residual_max
     r["residuals"] = [None if not math.isfinite(x) else float(x) for x in chk.residuals]
     r["direction"] = {1: "ccw", -1: "cw", 0: "reverses" if chk.start != chk.stop
@@ -117,12 +119,15 @@ def warnings(spec, solutions):
     import numpy as np
     out = []
     for i, (prob, sol) in enumerate(zip(spec.cases, solutions)):
-        where = f"case {i + 1}: " if spec.multi else ""
+        where = f"[{prob.path}] " if spec.multi else ""     # as the errors name a case
         chk = sol.check
         if chk is None:
             continue
-        for d in chk.defects:
+        for d in chk.defects[:3]:
             out.append(where + defect_message(d))
+        if len(chk.defects) > 3:
+            out.append(where + f"... and {len(chk.defects) - 3} more defects: "
+                       + ", ".join(defect_text(d) for d in chk.defects[3:]))
         alt = sol.other_driver
         if alt is not None and not alt.defects:
             name = {1: "AB", 3: "CD"}[alt.driver]
@@ -148,6 +153,9 @@ def defect_message(d):
     if d.kind == "branch":
         return (f"branch defect: position {d.position} is reached only in the other assembly "
                 "mode (the linkage would have to be taken apart on the way)")
+    if d.kind == "circuit" and d.position is None:
+        return ("circuit defect: the crank cannot turn a full revolution: a dead point at "
+                f"theta1 = {math.degrees(d.at):.4g} deg")
     if d.kind == "circuit":
         at = "" if d.at is None else f" (it stops at theta1 = {math.degrees(d.at):.4g} deg)"
         return (f"circuit defect: the crank cannot move to position {d.position} without "
@@ -203,7 +211,8 @@ def _blocks(prob, sol, u, unit, lang, prefix=""):
                          "最大结构误差 (输出角, °)"),
                         ("error_y_max", "max structural error in y", "最大结构误差 (y)"),
                         ("iterations", "iterations", "迭代次数")):
-        if key in v and v[key] is not None:
+        if key in v and v[key] is not None \
+                and not (key == "iterations" and v.get("method") == "matrix"):
             val = v[key]
             text = str(val) if isinstance(val, int) else \
                 _f(math.degrees(val) if en.endswith("[deg]") else val,
@@ -230,12 +239,19 @@ def _blocks(prob, sol, u, unit, lang, prefix=""):
             rows.append(row)
         blocks.append(Block(prefix + _label(lang, "Prescribed positions",
                                             "预定位置"), heads, rows))
-    rows = [[_label(lang, "type", "机构类型"), chk.grashof_type],
+    from mechcli.report.grashof import ZH_TYPES
+    kind_text = ZH_TYPES.get(chk.grashof_type, chk.grashof_type) if lang == "zh" \
+        else chk.grashof_type.replace("_", " ")
+    if chk.cranks and des.kind == "four_bar":
+        kind_text += _label(lang, f" (crank: link {', '.join(map(str, chk.cranks))})",
+                            f" (曲柄: 杆 {', '.join(map(str, chk.cranks))})")
+    rows = [[_label(lang, "type", "机构类型"), kind_text],
             [_label(lang, "largest residual (relative)", "最大残差 (相对)"),
              f"{chk.residual_max:.2e}"]]
-    if chk.gamma_min is not None:
-        rows.append([_label(lang, "smallest transmission angle [deg]", "最小传动角 (°)"),
-                     _f(math.degrees(chk.gamma_min))])
+    rows.append([_label(lang, "smallest transmission angle [deg]", "最小传动角 (°)"),
+                 _f(math.degrees(chk.gamma_min)) if chk.gamma_min is not None
+                 else _label(lang, "— (not checked: the motion has a defect)",
+                             "— (运动有缺陷, 未校验)")])
     rows.append([_label(lang, "defects", "缺陷"),
                  ", ".join((ZH_DEFECTS.get(d.kind, d.kind) if lang == "zh" else d.kind)
                            + ("" if d.position is None else f" @{d.position}")
@@ -376,14 +392,40 @@ def _toml_str(s):
 
 
 # --------------------------------------------------------------------- errors
+def out_of_range(sol, lo, hi, spec, prob):
+    """A message when a designed length or pivot coordinate lies outside [lo, hi] metres
+    (the lengths every spec, and so linkage.toml, accepts), else None: such a design
+    is degenerate (a pivot practically at infinity, a link of zero length)."""
+    des = sol.design
+    if des is None:
+        return None
+    u, unit = spec.header.scale, spec.header.unit
+    for key, val in des.lengths.items():
+        v = abs(float(val))
+        if key.startswith("l") and not lo <= v <= hi:
+            return (f"[{prob.path}]: the design has {key} = {v / u:.6g} {unit}: "
+                    + ("a pivot practically at infinity (nearly collinear or parallel "
+                       "positions?)" if v > hi else "a link of practically zero length")
+                    + f"; lengths must lie between {lo:g} m and {hi:g} m")
+    for name, (x, y) in des.pivots.items():
+        if max(abs(x), abs(y)) > hi:
+            return (f"[{prob.path}]: the design puts {name} at ({x / u:.6g}, {y / u:.6g}) "
+                    f"{unit}: practically at infinity (coordinates within ±{hi:g} m)")
+    return None
+
+
+
 #: core reason -> the spec keys it is about, per kind (the first that the problem has)
 _REASON_KEYS = {
-    "coincident": ("B", "C", "poses"), "not_rigid": ("B", "C"), "collinear": ("B", "C"),
-    "zero_link": ("B", "C", "poses"), "not_on_bisector": ("A", "D"),
+    "coincident": ("poses", "B", "C"), "not_rigid": ("B", "C"),
+    "collinear": ("B", "C", "poses"), "zero_link": ("A", "D", "B", "C", "poses"),
+    "not_on_bisector": ("A", "D"),
     "parallel": ("A_line", "D_line", "pivot_line"), "not_on_circle": ("A", "D"),
     "at_infinity": ("poses",), "degenerate": ("poses",), "no_rotation": ("poses",),
     "domain": ("x0",), "flat": ("function", "table_y"), "swing": ("swing", "alpha_m"),
-    "singular": ("theta1", "x", "s", "phi", "poses"), "no_solution": ("theta3", "s", "x0"),
+    "singular": ("theta1", "x", "s", "phi", "function"),
+    "no_solution": ("theta3", "s", "function"),
+    "no_motion": ("s",),
     "K": ("K",), "pivot_line_misses": ("pivot_line",), "pivot_line_unusable": ("pivot_line",),
     "crank_range": ("crank",), "coupler_range": ("coupler",), "frame_range": ("frame",),
     "offset": ("e",), "limit_angle": ("limit_angle",), "pairs": ("pairs",),
@@ -391,16 +433,11 @@ _REASON_KEYS = {
 
 
 def _reason_key(reason, prob):
-    keys = _REASON_KEYS.get(reason, ())
-    data = prob.data
-    for k in keys:
-        if k in data and data[k] is not None or k in ("line_A",):
+    """The first key of the problem's table that a core reason is about (None: none)."""
+    for k in _REASON_KEYS.get(reason, ()):
+        if k in prob.keys:
             return k
-    if reason == "collinear" or reason == "not_rigid":
-        return "B"
-    if reason == "parallel":
-        return "pivot_line" if data.get("line_A") == data.get("line_D") else "A_line"
-    return keys[0] if keys else None
+    return None
 
 
 def error_message(exc, spec, prob):
@@ -412,8 +449,9 @@ def error_message(exc, spec, prob):
     where = f"[{prob.path}]" + (f" {key}" if key else "")
     text = str(exc).replace(" (the range is in the error's lo, hi)", "")
     if reason == "domain":
+        why = str(exc).split(": ", 1)[-1]
         text = (f"x0 = {v['x0']:g} .. xm = {v['xm']:g} leaves the domain of the function "
-                f"(it is not defined at x = {v['x']:g})")
+                f"at x = {v['x']:g} ({why})")
     elif reason == "not_rigid":
         text += (": |BC| = " + ", ".join(f"{x / u:.6g}" for x in v["lengths"]) + f" {unit} "
                  f"differ by more than rigid_tol = {v['tol']:g} of the positions' size")

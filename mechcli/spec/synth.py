@@ -36,6 +36,7 @@ class Problem:
     kind: str
     path: str
     data: dict
+    keys: Tuple[str, ...] = ()     # the keys the spec's table has (for messages)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -116,6 +117,19 @@ def _deg(sec, name, default=..., lo=-36000.0, hi=36000.0):
     return None if v is None else math.radians(v)
 
 
+def _misspelt(sec, names, want, got="nothing"):
+    """A SpecError for a missing choice among *names*: it names a stray key of the table
+    that is close to one of them (``pivot_lin`` for ``pivot_line``) when there is one."""
+    import difflib
+    strays = [k for k in sec.data if k not in sec._known and k not in sec._declared]
+    for name in names:
+        near = difflib.get_close_matches(name, strays, n=1, cutoff=0.6)
+        if near:
+            return SpecError(sec.file, sec.key(near[0]), f"{want} (missing)",
+                             f"unknown key '{near[0]}'", name)
+    return sec.error(names[0], want, got)
+
+
 def _pivot(sec, name):
     """A fixed pivot given as a point ``name`` or a line ``name_line``."""
     point = _point(sec, name, None)
@@ -133,9 +147,9 @@ def _two_positions(sec):
     D, D_line = _pivot(sec, "D")
     for name, p, ln in (("A", A, A_line), ("D", D, D_line)):
         if p is None and ln is None and shared is None:
-            raise sec.error(name, f"{name} = [x, y], {name}_line = [a, b, c] or pivot_line "
-                            "(two positions leave each fixed pivot anywhere on a bisector)",
-                            "nothing")
+            raise _misspelt(sec, (name, f"{name}_line", "pivot_line"),
+                            f"{name} = [x, y], {name}_line = [a, b, c] or pivot_line "
+                            "(two positions leave each fixed pivot anywhere on a bisector)")
         if shared is not None and (p is not None or ln is not None):
             raise sec.error("pivot_line", f"pivot_line or {name}/{name}_line, not both",
                             "both")
@@ -310,16 +324,21 @@ def _quick_return(sec):
             return data
         data["swing"] = _deg(sec, "swing", lo=0.01, hi=179.99)
         given = [k for k in ("pivot_line", "crank", "coupler", "frame") if sec.has(k)]
+        want = "exactly one extra condition: pivot_line, crank, coupler or frame"
+        if not given:
+            raise _misspelt(sec, ("pivot_line", "crank", "coupler", "frame", "limit_angle"),
+                            want, "none")
         if len(given) != 1:
-            raise sec.error(given[1] if len(given) > 1 else "crank",
-                            "exactly one extra condition: pivot_line, crank, coupler or frame",
-                            ", ".join(given) or "none")
+            raise sec.error(given[1], want, ", ".join(given))
         cond = given[0]
         data[cond] = _line(sec, cond) if cond == "pivot_line" else sec.length(cond)
         # which of the two solutions (A left or right of the y axis); "best": larger γmin
         data["branch"] = sec.string("branch", "best", choices=["best", "left", "right"])
     elif linkage == "slider_crank":
         data["gamma_allowed"] = allowed
+        if sec.has("H") and (sec.has("crank") or sec.has("coupler")):
+            raise sec.error("crank", "either H and e (习题 3-16) or crank and coupler (the "
+                            "stroke is sought), not both", "H and crank/coupler")
         if sec.has("H"):
             data["H"] = sec.length("H")
             data["e"] = sec.length("e")
@@ -333,8 +352,10 @@ def _quick_return(sec):
                                 f"{data['coupler'] / sec.unit:g}")
     else:
         given = [k for k in ("crank", "frame") if sec.has(k)]
+        if not given:
+            raise _misspelt(sec, ("crank", "frame"), "exactly one of crank or frame", "none")
         if len(given) != 1:
-            raise sec.error("crank", "exactly one of crank or frame", ", ".join(given) or "none")
+            raise sec.error("frame", "exactly one of crank or frame", ", ".join(given))
         data[given[0]] = sec.length(given[0])
     return data
 
@@ -358,7 +379,7 @@ def _problem(sec):
         # which side link drives the design when it is checked and in linkage.toml
         data["driver"] = {"AB": 1, "CD": 3}[sec.string("driver", "AB", choices=["AB", "CD"])]
     sec.finish()
-    return Problem(kind, sec.path, data)
+    return Problem(kind, sec.path, data, tuple(sec.data))
 
 
 def read_synth_spec(path, overrides=()) -> SynthSpec:

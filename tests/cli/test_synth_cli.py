@@ -152,3 +152,77 @@ def test_four_poses_centre_point_curve_passes_the_fixed_pivots(tmp_path):
         # and the circle point of that sample is near the dyad's moving pivot B1 / C1
         assert abs(circ[i] - moving) < 3.0
     assert (tmp_path / "burmester.png").stat().st_size > 1000
+
+
+# -- found by an independent review of the first version --------------------------------
+@pytest.mark.parametrize("body, words", [
+    # a slider that never moves: was exit 0 with l1 = 5.6e-17 mm (kin refused linkage.toml)
+    ('kind = "slider_function"\ntheta1 = [60, 85, 120]\ns = [36, 36, 36]',
+     "[synthesis] s: the slider positions are all the same"),
+    # B nearly collinear: the circumcentre 5e10 mm away (kin refused linkage.toml)
+    ('kind = "three_positions"\nB = [[0, 0], [10, 1e-9], [20, 0]]\n'
+     'C = [[0, 10], [10, 10.000000001], [20, 10]]', "a pivot practically at infinity"),
+    # two equal poses (phi one turn apart): was exit 0 with meaningless curves
+    ('kind = "burmester"\nposes = [[0, 0, 0], [0, 0, 360], [1, 2, 30], [3, 1, 50]]',
+     "[synthesis] poses: poses 1 and 2 are the same pose"),
+    # exp of 1000 overflows: was a numpy RuntimeWarning and a wrong reason
+    ('kind = "function"\nmethod = "chebyshev"\nfunction = "exp"\nx0 = 0\nxm = 1000\n'
+     'alpha_m = 60\nphi_m = 90\nalpha0 = 86\nphi0 = 23.5', "(its values overflow)"),
+])
+def test_degenerate_designs_are_exit_3_naming_the_key(tmp_path, body, words):
+    spec = write(tmp_path, f'command = "synth"\n[synthesis]\n{body}\n')
+    proc = run_inprocess("synth", spec, "--quiet", "--no-plot", "--out", tmp_path / "o")
+    assert proc.returncode == 3, proc.stderr
+    assert words in one_line_error(proc)
+    assert not (tmp_path / "o").exists() or not any((tmp_path / "o").iterdir())
+
+
+def test_a_misspelt_condition_is_named_with_a_did_you_mean(tmp_path):
+    spec = write(tmp_path, 'command = "synth"\n[synthesis]\nkind = "quick_return"\nK = 1.25\n'
+                 'rocker = 290\nswing = 34\ncrnak = 77\n')
+    line = one_line_error(run_inprocess("synth", spec, "--quiet", "--out", tmp_path / "o"))
+    assert "[synthesis] crnak:" in line and "did you mean 'crank'?" in line
+
+
+def test_a_title_with_brackets_is_text_and_warnings_go_to_stderr(tmp_path):
+    """A title "door [/bold] closer" was rich markup: exit 1 after the files were
+    written.  The defect warnings of 例 3-4 went to stdout with the table."""
+    from tests.conftest import run_cli
+    text = (CH3 / "ex3-4.toml").read_text(encoding="utf-8").replace(
+        'title = "', 'title = "door [/bold] closer ', 1)
+    spec = write(tmp_path, text)
+    proc = run_cli("synth", spec, "--no-plot", "--out", tmp_path / "o")
+    assert proc.returncode == 0, proc.stderr
+    assert "door [/bold] closer" in proc.stdout
+    assert "branch defect" in proc.stderr and "branch defect" not in proc.stdout
+    assert "branch defect" in (tmp_path / "o" / "report.txt").read_text(encoding="utf-8")
+
+
+def test_the_boundary_slider_crank_has_a_dead_point_and_kin_still_runs(tmp_path):
+    """The slides' exam answer (a + e = b exactly) has a dead point at the crank's top:
+    reported as a circuit defect, and linkage.toml asks kin to skip it (partial)."""
+    doc = _json(CH3 / "slides-exam3-stroke.toml", "--out", tmp_path)
+    assert doc["results"]["defects"] == ["circuit"]
+    assert any("dead point at theta1 = 270 deg" in w for w in doc["warnings"])
+    assert "partial = true" in (tmp_path / "linkage.toml").read_text(encoding="utf-8")
+    proc = run_inprocess("kin", tmp_path / "linkage.toml", "--quiet", "--no-plot", "--out",
+                         tmp_path / "kin")
+    assert proc.returncode == 0, proc.stderr
+
+
+def test_no_driver_advice_for_a_function_generator(tmp_path):
+    """A function generator's input is its crank: `driver` is no key of its kind, so a
+    defect there must not advise driver = "CD" (it did, and the key was refused)."""
+    spec = write(tmp_path, 'command = "synth"\n[synthesis]\nkind = "function"\n'
+                 'method = "chebyshev"\nfunction = "polynomial"\ncoeffs = [0, 1, 0.5]\n'
+                 'x0 = 0\nxm = 1\nalpha_m = 60\nphi_m = 90\n')
+    doc = _json(spec, "--out", tmp_path / "o")
+    assert doc["results"]["defects"]            # this design has one (origins 0, 0)
+    assert not any("driver" in w for w in doc["warnings"])
+
+
+def test_ex3_3_is_an_antiparallelogram(tmp_path):
+    """【例 3-3】's design has parallelogram lengths (223.61, 100, 223.61, 100) but AB and CD
+    cross (at (66.7, 66.7) mm in position 1): the crossed assembly, an antiparallelogram."""
+    r = _json(CH3 / "ex3-3.toml", "--out", tmp_path)["results"]
+    assert r["type"] == "antiparallelogram" and r["cranks"] == [1, 3]

@@ -582,6 +582,9 @@ def slider_crank_function(theta1, s, *, e=None) -> LinkageDesign:
         raise ValueError(f"a slider-crank {'with a given offset ' if e is not None else ''}"
                          f"takes {need} precision points, got {q.size}")
     _check_distinct(q, sv)
+    if np.ptp(sv) <= SAME_POINT * max(float(np.max(np.abs(sv))), 1e-300):
+        raise DescribedError("the slider positions are all the same: the slider does not move",
+                             reason="no_motion")
     if e is None:
         X = _solve_linear(np.stack([sv * np.cos(q), np.sin(q), np.ones_like(q)], axis=-1),
                           sv * sv)
@@ -663,6 +666,9 @@ def rocker_slider(phi, s, *, e) -> LinkageDesign:
     if not math.isfinite(ev):
         raise ValueError(f"e must be finite, got {e!r}")
     _check_distinct(q, sv)
+    if np.ptp(sv) <= SAME_POINT * max(float(np.max(np.abs(sv))), 1e-300):
+        raise DescribedError("the slider positions are all the same: the slider does not move",
+                             reason="no_motion")
     c, sn = np.cos(q), np.sin(q)
     X = _solve_linear(np.stack([2 * (sv * c + ev * sn), 2 * (ev * c - sv * sn),
                                 np.ones_like(q)], axis=-1), sv * sv + ev * ev)

@@ -178,6 +178,15 @@ class Function:
             if lo < xs[0] or hi > xs[-1]:
                 bad = lo if lo < xs[0] else hi
                 why = "the interval leaves the table's points"
+        if bad is None:
+            # defined everywhere, but it may overflow (exp of 1000) or reach values no
+            # swing can scale: the ends and a grid must give finite values
+            grid = np.linspace(lo, hi, 1001)
+            with np.errstate(all="ignore"):
+                y = np.asarray(self(grid), dtype=float)
+            big = ~np.isfinite(y) | (np.abs(y) > 1e150)
+            if big.any():
+                bad, why = float(grid[int(np.argmax(big))]), "its values overflow"
         if bad is not None:
             raise DescribedError(
                 f"the function {FORMULAS[name]} is not defined on the whole interval: {why}",

@@ -12,6 +12,10 @@ from typing import Any, Optional
 
 from mechcli.core.synth.verify import Verification, verify
 
+#: the kinds whose four-bar only has to move a body: either side link may drive it
+#: (a function generator's input is its crank by definition)
+GUIDANCE = ("two_positions", "three_positions", "moving_pivots", "coupler_poses", "burmester")
+
 
 @dataclasses.dataclass(frozen=True, eq=False)
 class SynthSolution:
@@ -134,7 +138,7 @@ def solve_synthesis(kind, data) -> SynthSolution:
     driver = data.get("driver", 1)
     check = verify(design, driver)
     other = None
-    if check.defects and design.kind == "four_bar" and design.inputs is not None \
+    if check.defects and kind in GUIDANCE and design.inputs is not None \
             and len(design.inputs) > 1:
         other = verify(design, 4 - driver)
     return SynthSolution(kind, design, check, extra, other)

@@ -39,6 +39,8 @@ PATH_DENSITY = 4 * 180 / math.pi
 #: a residual above this (relative) is not round-off: the branch test compares
 BRANCH_TOL = 1e-6
 TWO_PI = 2 * math.pi
+#: sin γ at or below this is a dead point (the transmission angle is 0 to round-off)
+DEAD_POINT_SIN = 1e-9
 
 
 @dataclasses.dataclass(frozen=True)
@@ -87,6 +89,8 @@ class Verification:
     defects : tuple of Defect
     driver : int
         The driving link that was checked (1 the crank AB, 3 the rocker CD).
+    cranks : tuple of int
+        The links of a four-bar that turn fully relative to the frame.
     linkage, inputs
         The linkage that was moved (the design's own, or driven by its rocker)
         and its input at each prescribed position [rad] (None for a design from K).
@@ -104,6 +108,7 @@ class Verification:
     driver: int = 1
     linkage: Optional[Linkage] = None
     inputs: Optional[np.ndarray] = None
+    cranks: Tuple[int, ...] = ()
 
 
 def _flipped(linkage: Linkage) -> Linkage:
@@ -134,11 +139,18 @@ def _type(design, driver=1):
                                               analyse_slider_crank)
     L = design.lengths
     if design.kind == "four_bar":
+        # crossed: A and C on the same side of the diagonal BD in position 1 (AB and CD
+        # cross): a parallelogram's lengths then make an antiparallelogram
+        P = design.pivots
+        a, b, c, d = (complex(*P[k]) for k in ("A", "B1", "C1", "D"))
+        side = (lambda z: ((d - b).conjugate() * (z - b)).imag)
+        crossed = side(a) * side(c) > 0
         an = analyse_fourbar([L["l1"], L["l2"], L["l3"], L["l4"]], input_link=driver,
-                             require_closure=False)
+                             crossed=crossed, require_closure=False)
         mt = an.merit
         figures = {"K": float(mt.K[0]), "psi": float(mt.psi[0]), "theta": float(mt.theta[0])} \
             if mt.has_limits[0] else {}
+        figures["cranks"] = an.klass.cranks(0)
         return an.klass.types[0], bool(mt.input_turns[0]), float(mt.gamma_min[0]), figures
     if design.kind == "slider_crank":
         sc = analyse_slider_crank(L["l1"], L["l2"], L.get("e", 0.0))
@@ -267,6 +279,7 @@ def verify(design, driver=1) -> Verification:
         C = np.where(use_alt, alt.points["C"].p, own.points["C"].p)
         design = _driven_by_rocker(design, C)
     kind, turns, gamma_turn, figures = _type(design, driver)
+    cranks = tuple(figures.pop("cranks", ()))
     if design.inputs is None or len(design.inputs) == 0:
         # a design from K: the core's figures of the designed lengths against the targets
         targets = {k: design.values[k] for k in ("K", "psi") if k in design.values}
@@ -275,8 +288,21 @@ def verify(design, driver=1) -> Verification:
         res = np.array([abs(figures[k] - v) / max(abs(v), 1e-300) if k in figures
                         else np.nan for k, v in targets.items()])
         finite = res[np.isfinite(res)]
+        defects = ()
+        if turns:
+            # the crank must turn a full revolution on the engine without a dead point
+            # (a slider-crank with a + e = b exactly has one at the crank's top)
+            q = np.linspace(0.0, TWO_PI, int(TWO_PI * PATH_DENSITY) + 1)
+            m = solve(design.linkage, {design.linkage.drivers[0].link: DriverMotion(q, 1.0)},
+                      order=1)
+            sing = ~m.regular
+            if m.conditions:
+                sing |= m.conditions[0].sin_gamma <= DEAD_POINT_SIN
+            if sing.any():
+                defects = (Defect("circuit", None, float(q[int(np.argmax(sing))])),)
         return Verification(res, float(finite.max()) if finite.size else 0.0, kind, turns,
-                            gamma_turn, 1, 0.0, TWO_PI, (), driver, design.linkage, None)
+                            gamma_turn, 1, 0.0, TWO_PI, defects, driver, design.linkage, None,
+                            cranks)
     q = np.asarray(design.inputs, dtype=float)
     link = design.linkage.drivers[0].link
     m = solve(design.linkage, {link: DriverMotion(q)}, order=0)
@@ -302,4 +328,4 @@ def verify(design, driver=1) -> Verification:
     finite = res[np.isfinite(res)]
     return Verification(res, float(finite.max()) if finite.size else 0.0, kind, turns,
                         gamma, direction, start, stop, tuple(defects), driver, design.linkage,
-                        q)
+                        q, cranks)
