@@ -318,17 +318,10 @@ def freudenstein(theta1, theta3, *, alpha0=None, phi0=None, crank=1.0) -> Linkag
     elif a0 is not None or p0 is not None:
         raise ValueError("5 precision points determine both origins: give neither alpha0 "
                          "nor phi0")
-    _check_distinct(t1, t3)
     if N == 3:
-        A, rhs = _freudenstein_system(t1, t3, a0, p0)
-        P = _solve_linear(A, rhs)
-        ratios = _ratios(P, a0, p0)
-        if ratios is None:
-            raise DescribedError("the precision points give no real four-bar "
-                                 "(a link would have zero or infinite length)",
-                                 reason="no_solution", P0=float(P[0]), P1=float(P[1]),
-                                 P2=float(P[2]))
-        return _four_bar(t1, t3, P, ratios, crank, {"iterations": 0})
+        return _linear(t1, t3, a0, p0, crank, "the precision points give no real four-bar "
+                       "(a link would have zero or infinite length)")
+    _check_distinct(t1, t3)
     roots = _newton_roots(t1, t3, a0, p0)
     if not roots:
         raise DescribedError("the precision points give no real four-bar "
@@ -361,19 +354,26 @@ def chebyshev_points(x0, xm, n):
     return 0.5 * (xm + x0) - 0.5 * (xm - x0) * np.cos((2 * i - 1) * np.pi / (2 * n))
 
 
-def _least_squares(t1, t3, a0, p0, crank):
-    """Eq. (3-34) at N > 3 points with chosen origins, by linear least squares."""
+def _linear(t1, t3, a0, p0, crank, why):
+    """Eq. (3-34) with given origins: solved at 3 points, fitted by linear least squares
+    at more; *why* words a solution that is no four-bar."""
     _check_distinct(t1, t3)
     A, rhs = _freudenstein_system(t1, t3, a0, p0)
     P = _solve_linear(A, rhs)
     ratios = _ratios(P, a0, p0)
     if ratios is None:
-        raise DescribedError("the least-squares fit gives no real four-bar (the coupler's "
-                             "length squared is not positive, or a link is a point)",
-                             reason="no_solution", P0=float(P[0]), P1=float(P[1]),
+        raise DescribedError(why, reason="no_solution", P0=float(P[0]), P1=float(P[1]),
                              P2=float(P[2]))
-    rms = float(np.sqrt(np.mean((A @ P - rhs) ** 2)))
-    return _four_bar(t1, t3, P, ratios, crank, {"iterations": 0, "residual_rms": rms})
+    values = {"iterations": 0}
+    if len(t1) > 3:
+        values["residual_rms"] = float(np.sqrt(np.mean((A @ P - rhs) ** 2)))
+    return _four_bar(t1, t3, P, ratios, crank, values)
+
+
+def _least_squares(t1, t3, a0, p0, crank):
+    """Eq. (3-34) at N > 3 points with chosen origins, by linear least squares."""
+    return _linear(t1, t3, a0, p0, crank, "the least-squares fit gives no real four-bar (the "
+                   "coupler's length squared is not positive, or a link is a point)")
 
 
 def function_generator(f, x0, xm, *, alpha_m, phi_m, alpha0=None, phi0=None,
