@@ -177,6 +177,13 @@ def piece_grid(lo, hi, step, min_points=17):
     return np.linspace(lo, hi, n)
 
 
+#: splitting of the intervals that may hold a narrow peak (see maximize_piecewise): levels,
+#: new points per interval, and the most intervals split per level and piece
+DENSIFY_LEVELS = 4
+DENSIFY_FRACTIONS = np.arange(1, 8) / 8.0
+DENSIFY_MAX = 64
+
+
 def maximize_piecewise(pieces, step):
     """Maximum of a piecewise-smooth function from its value and slope.
 
@@ -196,8 +203,10 @@ def maximize_piecewise(pieces, step):
 
     Notes
     -----
-    A piece is skipped when no point of it can reach the best grid value
-    (grid value + step × max |g'| below it).  Each remaining grid maximum is
+    Intervals whose end values plus half their width times the larger end slope
+    exceed the best value so far are split in eight, up to four times (a peak
+    narrower than the grid).  A piece is skipped when no point of it can reach
+    the best grid value (grid value + step × max |g'| below it).  Each remaining grid maximum is
     bracketed between its grid neighbours and the root of dg/dx found by
     :func:`descending_root`; a maximum at a piece end (one-sided, e.g. a
     kink) is taken as is.
@@ -210,9 +219,30 @@ def maximize_piecewise(pieces, step):
     if not sampled:
         return None
     top = max(float(np.max(g)) for _, _, g, _ in sampled)
+    # a peak narrower than the grid (a pitch curve near a cusp: found by the cam
+    # property test) can hide between two samples: split, a few times, every interval
+    # whose ends' values and slopes say it might rise above the best value so far
+    for _level in range(DENSIFY_LEVELS):
+        split = False
+        for k, (func, grid, g, dg) in enumerate(sampled):
+            h = np.diff(grid)
+            bound = np.maximum(g[:-1], g[1:]) + 0.5 * h * np.maximum(np.abs(dg[:-1]),
+                                                                    np.abs(dg[1:]))
+            hot = np.flatnonzero((bound > top) & (h > 1e-12 * max(1.0, abs(grid[-1]))))
+            if hot.size == 0 or hot.size > DENSIFY_MAX:
+                continue
+            new = (grid[hot, None] + h[hot, None] * DENSIFY_FRACTIONS[None, :]).ravel()
+            gn, dgn = func(new)
+            order = np.argsort(np.concatenate([grid, new]), kind="stable")
+            sampled[k] = (func, np.concatenate([grid, new])[order],
+                          np.concatenate([g, gn])[order], np.concatenate([dg, dgn])[order])
+            top = max(top, float(np.max(gn)))
+            split = True
+        if not split:
+            break
     best = (None, -math.inf)
     for func, grid, g, dg in sampled:
-        h = grid[1] - grid[0]
+        h = float(np.max(np.diff(grid)))
         # no point of this piece can exceed a grid value by more than h max|g'|
         reach = h * float(np.max(np.abs(dg)))
         if float(np.max(g)) + reach < top:
