@@ -28,6 +28,8 @@ COMMANDS = {
             "Disc cams: motion laws, profiles, pressure angle, sizing (chapter 4)."),
     "synth": ("mechcli.commands.synth", "synth",
               "Linkage synthesis: guidance, function generation, design from K (ch. 3)."),
+    "flywheel": ("mechcli.commands.flywheel", "flywheel",
+                 "Machine dynamics: Je, Me, equation of motion, steady state, flywheel (ch. 6)."),
     "check": ("mechcli.commands.check", "check",
               "Run specs and compare every [expected] value (batches, CI, JUnit)."),
     "new": ("mechcli.commands.new", "new", "Write a commented starter spec for a command."),

@@ -12,7 +12,7 @@ from __future__ import annotations
 import click
 
 #: commands that have a starter template
-TEMPLATE_COMMANDS = ("kin", "force", "grashof", "cam", "gear", "synth")
+TEMPLATE_COMMANDS = ("kin", "force", "grashof", "cam", "gear", "synth", "flywheel")
 
 
 def _templates():
@@ -69,7 +69,7 @@ def _example_text(command, name):
 @click.option("--force", is_flag=True, help="Overwrite FILE if it exists.")
 @click.option("--list", "list_", is_flag=True, help="List the examples of COMMAND and exit.")
 def new(command, example, output, force, list_):
-    """Write a commented starter spec for COMMAND (kin, force, grashof, cam, gear, synth).
+    """Write a commented starter spec for COMMAND (kin, force, grashof, cam, gear, synth, flywheel).
 
     \b
       mechcli new kin -o linkage.toml && mechcli kin linkage.toml

@@ -63,6 +63,8 @@ OWN_CORE = {
     "mechcli.report.gear_plot": "mechcli.core.gear",
     "mechcli.report.grashof": "mechcli.core.grashof",
     "mechcli.report.synth": "mechcli.core.synth",
+    "mechcli.report.flywheel": "mechcli.core.flywheel",
+    "mechcli.report.flywheel_plots": "mechcli.core.flywheel",
     # the pictures draw the designed linkage with kin's drawing, posed by the engine
     "mechcli.report.synth_plots": "mechcli.core.linkage",
     # mechcli check reports plain dicts of the batch and calls no core function;

@@ -1,0 +1,39 @@
+"""``mechcli flywheel``: the equivalent model, the equation of motion, the steady state and
+the flywheel (chapter 6)."""
+
+from __future__ import annotations
+
+import click
+
+from mechcli.options import RunOptions, common_options
+
+
+@click.command("flywheel")
+@click.argument("spec_path", metavar="SPEC.toml")
+@common_options
+def flywheel(spec_path, **opts):
+    """Machine dynamics on the equivalent link: Je and Me from a linkage, a table or
+    constants; the motion from a start or the periodic steady state (δ, ΔWmax);
+    a flywheel added or sized for an allowed δ."""
+    run = RunOptions.from_click(spec_path, opts)
+    from mechcli.core.errors import DescribedError
+    from mechcli.core.flywheel.problems import solve_flywheel
+    from mechcli.report import flywheel as report
+    from mechcli.report.files import Outputs
+    from mechcli.report.run import finish
+    from mechcli.spec.flywheel import read_flywheel_spec
+
+    spec = read_flywheel_spec(spec_path, run.sets)
+    try:
+        sol = solve_flywheel(spec)
+    except DescribedError as exc:       # worded with the spec's keys
+        raise DescribedError(report.error_message(exc, spec), exc.reason,
+                             **exc.values) from None
+    outputs = Outputs(run.out_dir, digits=run.digits)
+    outputs.csv("flywheel.csv", report.columns(sol))
+    warnings = []
+    if run.plot and spec.plots:
+        from mechcli.report import flywheel_plots
+        warnings += flywheel_plots.write(spec, sol, outputs, run.lang)
+    finish(run, "flywheel", report.build_report(spec, sol, run.lang),
+           report.results(spec, sol), outputs, warnings)

@@ -1,0 +1,234 @@
+"""One problem of ``mechcli flywheel``: its models built and its motion solved.
+
+:func:`solve_flywheel` maps the spec's plain data (duck-typed: ``inertia``,
+``moment``, ``motion``, ``flywheel`` parts of SI numbers, as
+:mod:`mechcli.spec.flywheel` reads them) onto the models of
+:mod:`~.equivalent` and the solvers of :mod:`~.motion`.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from typing import Any, Optional
+
+import numpy as np
+
+from mechcli.core.errors import DescribedError
+from mechcli.core.flywheel import equivalent as eq
+from mechcli.core.flywheel import motion as mo
+
+#: the grid the loads of a linkage are sampled on for the moment table [points per turn]
+LOAD_SAMPLES = 3600
+
+
+@dataclasses.dataclass(frozen=True)
+class Model:
+    """The equivalent model on a grid, without a motion (Me at ω = 0 when it depends on ω)."""
+
+    phi: np.ndarray
+    Je: np.ndarray
+    dJe: np.ndarray
+    Me: np.ndarray
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class FlywheelSolution:
+    """Everything a flywheel problem gives.
+
+    Attributes
+    ----------
+    inertia, moment : the models (``inertia`` with any flywheel added)
+    motion : motion.Motion
+        The solved motion (one period for a steady state).
+    steady : motion.SteadyState or None
+    method : str
+        The method that solved it (``"auto"`` resolved).
+    J_F : float or None
+        A flywheel added (given) or sized for [δ] (exact, with the variable Je).
+    J_F_approx : float or None
+        The approximate flywheel of eq 6-29 for [δ].
+    J_F_delta : float or None
+        δ of the steady state with the sized flywheel.
+    omega_inf : float or None
+        The asymptotic speed of a motor line with constant Je.
+    """
+
+    inertia: Any
+    moment: Any
+    motion: Any
+    steady: Optional[Any]
+    method: str
+    J_F: Optional[float] = None
+    J_F_approx: Optional[float] = None
+    J_F_delta: Optional[float] = None
+    omega_inf: Optional[float] = None
+    mass: Optional[float] = None        # the flywheel's mass [kg] (rim or disc)
+    width: Optional[float] = None       # its width along the shaft [m]
+
+
+def build_inertia(part, linkage=None, bodies=None, followers=None):
+    """The inertia model of the spec's ``inertia`` part."""
+    if part.kind == "linkage":
+        return eq.LinkageInertia(linkage, bodies, followers=followers or None,
+                                 derivative=part.derivative, step=part.step)
+    if part.kind == "table":
+        return eq.TableInertia(np.asarray(part.phi), np.asarray(part.values), method=part.method)
+    if part.kind == "chain":
+        return eq.ChainInertia(part.members, masses=part.masses)
+    return eq.ConstantInertia(part.J)
+
+
+def _tables(part, linkage_moment):
+    """The φ-tables of the moment summed into one (phi, M, method)."""
+    tabs = []
+    if part.table is not None:
+        tabs.append((np.asarray(part.table[0]), np.asarray(part.table[1]), part.table[2]))
+    if part.resisting_table is not None:
+        r = part.resisting_table
+        tabs.append((np.asarray(r[0]), -np.asarray(r[1]), r[2]))
+    if linkage_moment is not None:
+        tabs.append(linkage_moment)
+    if not tabs:
+        return None
+    if len(tabs) == 1:
+        return tabs[0]
+    if all(np.array_equal(t[0], tabs[0][0]) for t in tabs) \
+            and len({t[2] for t in tabs}) == 1:
+        return tabs[0][0], sum(t[1] for t in tabs), tabs[0][2]
+    # linear tables on other angles: their sum is linear on the union of the angles
+    two_pi = 2 * np.pi
+
+    def open_table(phi, M):         # without a closing node one turn after the first
+        if np.isclose(phi[-1] - phi[0], two_pi, rtol=0, atol=1e-12):
+            return phi[:-1], M[:-1]
+        return phi, M
+
+    base = tabs[0][0][0]
+    grid = np.unique(np.concatenate([np.mod(open_table(t[0], t[1])[0] - base, two_pi)
+                                     for t in tabs])) + base
+    total = np.zeros_like(grid)
+    for phi, M, _m in tabs:
+        xp, fp = open_table(phi, M)
+        total += np.interp(grid, xp, fp, period=two_pi)
+    return grid, total, "linear"
+
+
+def build_moment(part, linkage=None, topo=None, bodies=None, gravity=None, loads=(),
+                 followers=None):
+    """The moment model of the spec's ``moment`` part (and the linkage's loads)."""
+    lm = None
+    if part.loads and linkage is not None:
+        phi = np.linspace(0.0, 2 * np.pi, LOAD_SAMPLES, endpoint=False)
+        M = eq.linkage_moment(linkage, topo, bodies, gravity, list(loads), phi,
+                              followers=followers or None)
+        lm = (phi, np.asarray(M, dtype=float), "linear")
+    constant = part.constant - part.resisting
+    if part.torques:
+        constant += eq.chain_moment(part.torques)
+    return mo.MomentModel(table=_tables(part, lm), linear=part.drive,
+                          harmonic=part.harmonic, segments=list(part.segments) or None,
+                          constant=constant)
+
+
+def _auto(kind, inertia, moment, end):
+    if kind == "steady":
+        return "DOP853"
+    if inertia.constant and not moment.depends_on_phi:
+        return "closed_form"
+    if not moment.depends_on_omega and end == "phi":
+        return "energy"
+    return "DOP853"
+
+
+def _shape(fly, J_F):
+    """The mass and width of a rim (mean radius, radial thickness) or a solid disc."""
+    mass = (mo.rim if fly.shape == "rim" else mo.disc)(J_F, fly.radius)
+    width = None
+    if fly.density and fly.shape == "disc":
+        width = mo.width(mass, fly.density, fly.radius)
+    elif fly.density and fly.thickness:
+        half = fly.thickness / 2
+        width = mo.width(mass, fly.density, fly.radius + half, fly.radius - half)
+    return {"mass": mass, "width": width}
+
+
+def solve_flywheel(spec):
+    """Build the models of a flywheel spec and solve its motion.
+
+    Raises
+    ------
+    DescribedError
+        ``stall``, ``unreachable``, ``no_steady_state``, ``not_periodic`` …
+        (see the models and solvers), and ``end`` when the chosen method cannot
+        stop at the requested end.
+    """
+    ms, fly = spec.motion, spec.flywheel
+    inertia = build_inertia(spec.inertia, spec.linkage, spec.bodies, spec.followers)
+    if fly.J:
+        inertia = inertia.plus(fly.J)
+    moment = None if spec.moment is None else build_moment(
+        spec.moment, spec.linkage, spec.topo, spec.bodies, spec.gravity, spec.loads,
+        spec.followers)
+    if ms.kind == "model":      # the equivalent model only, over one turn (例 6-1)
+        phi = np.linspace(ms.phi0, ms.phi0 + 2 * np.pi, ms.points)
+        Je, dJe = inertia(phi)
+        Me = np.zeros_like(phi) if moment is None else moment(phi, np.zeros_like(phi))
+        return FlywheelSolution(inertia, moment, Model(phi, np.asarray(Je, dtype=float),
+                                                       np.asarray(dJe, dtype=float),
+                                                       np.asarray(Me, dtype=float)),
+                                None, "none")
+    end = "phi" if ms.phi_end is not None else "omega" if ms.omega_end is not None else "t"
+    method = _auto(ms.kind, inertia, moment, end) if ms.method == "auto" else ms.method
+    kw = dict(rtol=ms.rtol, atol=ms.atol, step=ms.step)
+    if ms.kind == "steady":
+        if inertia.period is None and moment.period is None:
+            raise DescribedError("neither the inertia nor the moment varies with the angle: "
+                                 "the steady state is a constant speed", reason="not_periodic")
+        st = mo.steady_state(inertia, moment, omega_guess=ms.omega0, method=method,
+                             root=ms.root, tol=ms.tol, max_iter=ms.max_iter, points=ms.points,
+                             phi0=ms.phi0, **kw)
+        sol = dict(inertia=inertia, moment=moment, motion=st.motion, steady=st, method=method,
+                   J_F=fly.J or None)
+        if fly.delta is not None:
+            Je_mean = float(np.mean(inertia(st.motion.phi)[0]))
+            sol["J_F_approx"] = mo.flywheel_approx(st.dW_max, st.omega_mean, fly.delta,
+                                                   Je=Je_mean)
+            J_F = mo.flywheel_exact(inertia, moment, fly.delta, omega_guess=ms.omega0,
+                                    method=method, points=ms.points, **kw)
+            st2 = mo.steady_state(inertia.plus(J_F), moment, omega_guess=ms.omega0,
+                                  method=method, root=ms.root, tol=ms.tol,
+                                  max_iter=ms.max_iter, points=ms.points, phi0=ms.phi0, **kw)
+            sol.update(J_F=J_F, J_F_delta=st2.delta)
+        if fly.shape and sol["J_F"]:
+            sol.update(_shape(fly, sol["J_F"]))
+        return FlywheelSolution(**sol)
+    if method == "closed_form":
+        if not (inertia.constant and not moment.depends_on_phi):
+            raise DescribedError("the closed form needs a constant inertia and a moment "
+                                 "a − bω of the speed only", reason="method")
+        J = float(inertia(np.array([0.0]))[0][0])
+        a, b = moment.a + moment.constant, moment.b
+        if moment._harm is not None:        # a constant harmonic a0 adds to a
+            a += moment._harm[0]
+        mot = mo.linear_closed_form(J, a, b, 0.0, ms.omega0, omega_end=ms.omega_end,
+                                    t=ms.t_end, points=ms.points)
+        if end == "phi":
+            raise DescribedError("the closed form runs to a speed or a time, not an angle: "
+                                 "give omega_end or t_end", reason="end")
+        return FlywheelSolution(inertia, moment, mot, None, method,
+                                omega_inf=(a / b) if b else None)
+    if end != "phi":
+        raise DescribedError(f"method {method} runs to an angle: give phi_end_deg (omega_end "
+                             "and t_end need the closed form: a constant inertia and a "
+                             "moment of the speed only)", reason="end")
+    if method == "energy":
+        if moment.depends_on_omega:
+            raise DescribedError("the energy integral needs a moment of the angle only",
+                                 reason="method")
+        phi = np.linspace(ms.phi0, ms.phi_end, ms.points)
+        mot = mo.energy_solution(inertia, moment, ms.phi0, ms.omega0, phi)
+    else:
+        mot = mo.integrate(inertia, moment, ms.phi0, ms.omega0, ms.phi_end, method=method,
+                           points=ms.points, **kw)
+    extra = _shape(fly, fly.J) if fly.shape and fly.J else {}
+    return FlywheelSolution(inertia, moment, mot, None, method, J_F=fly.J or None, **extra)

@@ -1,0 +1,69 @@
+"""Pictures of ``mechcli flywheel`` (imports matplotlib): Je and dJe/dφ (图 6-4), Me and
+the work ΔW(φ), ω(φ) and ω(t) (图 6-6 … 6-11)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from mechcli.report import plotting
+
+_T = {"en": {"je": "Equivalent inertia", "me": "Equivalent moment and work",
+             "w": "Speed of the equivalent link", "phi": "φ / °", "t": "t / s"},
+      "zh": {"je": "等效转动惯量", "me": "等效力矩与盈亏功", "w": "等效构件角速度",
+             "phi": "转角 φ/°", "t": "时间 t/s"}}
+
+
+def write(spec, sol, outputs, lang):
+    """Write ``flywheel.png`` (2×2: Je and dJe/dφ; Me and W; ω(φ); ω(t)).  Returns warnings."""
+    import matplotlib.pyplot as plt
+    warnings = []
+    used = plotting.setup(lang)
+    if used != lang:
+        warnings.append("no CJK font installed: plot labels are in English")
+    t = _T[used]
+    m = sol.motion
+    deg = np.degrees(m.phi)
+    if not hasattr(m, "omega"):      # the equivalent model only: 图 6-4
+        fig, ax = plt.subplots(figsize=(7, 4.5))
+        ax.plot(deg, m.Je, "-", color="C0")
+        ax2 = ax.twinx()
+        ax2.plot(deg, m.dJe, "--", color="C1")
+        ax2.grid(False)
+        ax.set_title(plotting.text(spec.header.title) + "\n" + t["je"])
+        ax.set_xlabel(t["phi"])
+        ax.set_ylabel("Je / kg·m²  (—)")
+        ax2.set_ylabel("dJe/dφ / kg·m²/rad  (- -)")
+        plotting.save_png(fig, outputs, "flywheel.png")
+        return warnings
+    fig, axs = plt.subplots(2, 2, figsize=(11, 8))
+    ax = axs[0, 0]
+    ax.plot(deg, m.Je, "-", color="C0", label="Je / kg·m²")
+    ax2 = ax.twinx()
+    ax2.plot(deg, m.dJe, "--", color="C1", label="dJe/dφ / kg·m²/rad")
+    ax2.grid(False)
+    ax.set_title(t["je"])
+    ax.set_xlabel(t["phi"])
+    ax.set_ylabel("Je / kg·m²")
+    ax2.set_ylabel("dJe/dφ / kg·m²/rad")
+    ax = axs[0, 1]
+    E = 0.5 * np.asarray(m.Je) * np.asarray(m.omega) ** 2
+    ax.plot(deg, m.Me, "-", color="C2", label="Me / N·m")
+    ax2 = ax.twinx()
+    ax2.plot(deg, E - E[0], "--", color="C3", label="ΔW / J")
+    ax2.grid(False)
+    ax.set_title(t["me"])
+    ax.set_xlabel(t["phi"])
+    ax.set_ylabel("Me / N·m")
+    ax2.set_ylabel("ΔW / J")
+    axs[1, 0].plot(deg, m.omega, "-", color="C0")
+    axs[1, 0].set_title(t["w"])
+    axs[1, 0].set_xlabel(t["phi"])
+    axs[1, 0].set_ylabel("ω / rad·s⁻¹")
+    axs[1, 1].plot(m.t, m.omega, "-", color="C4")
+    axs[1, 1].set_title(t["w"])
+    axs[1, 1].set_xlabel(t["t"])
+    axs[1, 1].set_ylabel("ω / rad·s⁻¹")
+    fig.suptitle(plotting.text(spec.header.title))
+    fig.tight_layout()
+    plotting.save_png(fig, outputs, "flywheel.png")
+    return warnings
