@@ -146,8 +146,33 @@ def main():
         good, _ = example(tag, added, quick, t_base)
         ok &= good
     flywheel(quick, t_base)
+    linkage_samples(t_base)
     if not ok:
         sys.exit(1)
+
+
+def linkage_samples(t_base):
+    """The ``[inertia] samples`` knob: a linkage's Je, dJe sampled per turn and interpolated
+    by cubic Hermite for the integrators (configs/ch6/linkage-motor.toml, steady state),
+    δ against 36,000 samples, with the time of the whole solve."""
+    import dataclasses
+    from pathlib import Path
+
+    from mechcli.core.flywheel.problems import solve_flywheel
+    from mechcli.spec.flywheel import read_flywheel_spec
+
+    cfg = Path(__file__).resolve().parent.parent / "configs" / "ch6" / "linkage-motor.toml"
+    spec = read_flywheel_spec(cfg)
+
+    def run(n):
+        sp = dataclasses.replace(spec, inertia=dataclasses.replace(spec.inertia, samples=n))
+        return solve_flywheel(sp).steady.delta
+
+    ref = run(36000)
+    for n in (360, 1800, 3600, 7200):
+        t, d = best_of(lambda: run(n), 1)
+        print(f"linkage_motor_samples_{n}: delta off by {abs(d - ref):.1e}, "
+              f"{t * 1e3:.0f} ms ({t / t_base:.0f} x baseline)")
 
 
 if __name__ == "__main__":

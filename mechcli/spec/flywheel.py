@@ -43,6 +43,7 @@ class InertiaSpec:
     masses: tuple = ()           # chain: (m, v/omega1 [m/rad])
     derivative: str = "exact"    # linkage: dJe/dphi exact or by central differences
     step: float = 1e-5           # linkage: difference step [rad]
+    samples: int = 3600          # linkage: angles per turn of the Hermite table the motion uses
 
 
 @dataclasses.dataclass(frozen=True)
@@ -142,8 +143,11 @@ def _inertia(root, has_linkage):
         derivative = sec.string("derivative", "exact", choices=["exact", "difference"])
         # difference step [deg]: 1e-6 .. 1 (the benchmark measures its error)
         step = math.radians(sec.number("step_deg", 1e-3, lo=1e-6, hi=1.0))
+        # the motion interpolates Je, dJe between exact samples (error ~h^4; the
+        # benchmark measures it): 360 .. 360,000 per turn
+        samples = sec.integer("samples", 3600, lo=360, hi=360000)
         sec.finish()
-        return InertiaSpec("linkage", derivative=derivative, step=step)
+        return InertiaSpec("linkage", derivative=derivative, step=step, samples=samples)
     if sec.has("phi_deg"):
         phi, vals, method = _table(sec, "J", 1e-300, MAX_INERTIA, "a positive inertia [kg m²]")
         sec.finish()

@@ -539,3 +539,46 @@ def linkage_moment(linkage, topo, bodies, gravity, programs, phi, *, followers=N
         if np.any(ld.torque):
             Me = Me + ld.torque * k.omega
     return np.array(np.broadcast_to(Me, shape))
+
+
+class SampledInertia(InertiaModel):
+    """A periodic inertia model sampled once, then interpolated by cubic Hermite.
+
+    The equation of motion evaluates Je and dJe/dφ tens of thousands of times; a
+    :class:`LinkageInertia` costs an engine solve each time.  This samples the model's
+    exact ``(Je, dJe)`` at ``samples`` equally spaced angles over its period and
+    interpolates: Je by the cubic Hermite of the values and slopes (error about
+    h⁴/384·max|Je⁗| for the step h), dJe/dφ by that cubic's derivative (error about
+    h³/72·max|Je⁗|), so the pair stays consistent.
+
+    Parameters
+    ----------
+    model : InertiaModel
+        A periodic model (``model.period`` not None).
+    samples : int
+        Angles per period (3600: every 0.1°).
+    """
+
+    def __init__(self, model, samples=3600):
+        if model.period is None:
+            raise ValueError("only a periodic inertia model can be sampled")
+        self.period, self.constant, self.samples = model.period, False, int(samples)
+        self.h = self.period / self.samples
+        grid = np.arange(self.samples) * self.h
+        J, dJ = model(grid)
+        self._J, self._dJ = np.asarray(J, dtype=float), np.asarray(dJ, dtype=float)
+        self.added = 0.0        # model(grid) already holds model.added
+
+    def _evaluate(self, phi):
+        u = np.mod(phi, self.period) / self.h
+        i = np.minimum(np.floor(u).astype(int), self.samples - 1)
+        t = u - i
+        j = (i + 1) % self.samples
+        y0, y1 = self._J[i], self._J[j]
+        m0, m1 = self._dJ[i] * self.h, self._dJ[j] * self.h
+        t2, t3 = t * t, t * t * t
+        J = (2 * t3 - 3 * t2 + 1) * y0 + (t3 - 2 * t2 + t) * m0 \
+            + (-2 * t3 + 3 * t2) * y1 + (t3 - t2) * m1
+        dJ = ((6 * t2 - 6 * t) * y0 + (3 * t2 - 4 * t + 1) * m0
+              + (-6 * t2 + 6 * t) * y1 + (3 * t2 - 2 * t) * m1) / self.h
+        return J, dJ

@@ -125,9 +125,34 @@ def build_moment(part, linkage=None, topo=None, bodies=None, gravity=None, loads
     constant = part.constant - part.resisting
     if part.torques:
         constant += eq.chain_moment(part.torques)
-    return mo.MomentModel(table=_tables(part, lm), linear=part.drive,
-                          harmonic=part.harmonic, segments=list(part.segments) or None,
-                          constant=constant)
+    terms = dict(linear=part.drive, harmonic=part.harmonic,
+                 segments=list(part.segments) or None, constant=constant)
+    model = mo.MomentModel(table=_tables(part, lm), **terms)
+    if lm is not None:
+        # the loads' Me is smooth between the angles where a load switches on or off: the
+        # integrators stop there (and at the user's own knots), not at every sample
+        own = mo.MomentModel(table=_tables(part, None), **terms).breaks
+        knots = np.concatenate([own[0], _switches(linkage, loads, lm[0], followers)])
+        model.breaks = (np.unique(knots), own[1] if len(own[0]) else 0.0, own[2])
+    return model
+
+
+def _switches(linkage, loads, phi, followers):
+    """The sample angles at which a load's program switches (its window, velocity sign or
+    stroke band): where the loads' Me may jump."""
+    from mechcli.core.linkage.kinematics import Sweep
+    if not any(p.conditional for p in loads):
+        return np.empty(0)
+    sweep = Sweep(linkage.drivers[0].link, phi, 1.0, 0.0, followers or {})
+    from mechcli.core.linkage.engine import solve
+    m = solve(linkage, sweep.inputs(phi), order=1)
+    out = []
+    for p in loads:
+        if p.conditional:
+            on = np.asarray(p.active(phi, m), dtype=bool)
+            change = np.flatnonzero(on != np.roll(on, 1))
+            out.append(phi[change])
+    return np.concatenate(out) if out else np.empty(0)
 
 
 def _auto(kind, inertia, moment, end):
@@ -179,6 +204,12 @@ def solve_flywheel(spec):
                                 None, "none")
     end = "phi" if ms.phi_end is not None else "omega" if ms.omega_end is not None else "t"
     method = _auto(ms.kind, inertia, moment, end) if ms.method == "auto" else ms.method
+    if isinstance(inertia, eq.LinkageInertia) and inertia.period is not None \
+            and method not in ("energy", "closed_form"):
+        # the integrators call Je tens of thousands of times: sample the linkage once
+        # (every 0.1° by default, exact Je and dJe there) and interpolate by cubic
+        # Hermite; the energy integral evaluates the exact model on its grid
+        inertia = eq.SampledInertia(inertia, spec.inertia.samples)
     kw = dict(rtol=ms.rtol, atol=ms.atol, step=ms.step)
     if ms.kind == "steady":
         if inertia.period is None and moment.period is None:
