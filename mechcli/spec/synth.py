@@ -219,12 +219,17 @@ def _function(sec):
         data["exponent"] = sec.number("exponent", lo=-100.0, hi=100.0)
     if name == "polynomial":
         coeffs = sec.numbers("coeffs")      # c0 + c1 x + c2 x^2 + ... (ascending powers)
-        if len(coeffs) > 16:
-            raise sec.error("coeffs", "at most 16 coefficients", f"{len(coeffs)}")
+        if len(coeffs) > 16 or any(abs(c) > 1e12 for c in coeffs):
+            raise sec.error("coeffs", "at most 16 coefficients within ±1e12",
+                            f"{len(coeffs)} coefficients, largest {max(map(abs, coeffs)):g}")
         data["coeffs"] = tuple(coeffs)
     if name == "table":
         data["table_x"] = tuple(sec.numbers("table_x"))
         data["table_y"] = tuple(sec.numbers("table_y", size=len(data["table_x"])))
+        for key in ("table_x", "table_y"):     # as x0, xm: squares stay finite
+            big = [v for v in data[key] if abs(v) > 1e12]
+            if big:
+                raise sec.error(key, "values within ±1e12", f"{big[0]:g}")
         data["interpolation"] = sec.string("interpolation", "cubic",
                                            choices=["cubic", "linear"])
         tx = data["table_x"]
@@ -287,20 +292,29 @@ def _origins(sec, count, both):
     return a0, p0
 
 
+def _lengths_list(sec, name, size):
+    """*size* slider positions in the spec's unit -> metres (each within ±MAX_LENGTH)."""
+    vals = sec.numbers(name, size=size)
+    lim = MAX_LENGTH / sec.unit
+    for i, v in enumerate(vals):
+        if abs(v) > lim:
+            raise SpecError(sec.file, sec.key(f"{name}[{i}]"), f"a position within ±{lim:g}",
+                            f"{v:g}")
+    return tuple(v * sec.unit for v in vals)
+
+
 def _slider_function(sec):
     """Crank angle <-> slider position: 3 pairs (the offset e is found), or 2 pairs
     with a given offset e (习题 3-12)."""
     e = sec.coordinate("e", None)
     count = 2 if e is not None else 3
     theta1 = _angles(sec, "theta1", (count, count))
-    s = sec.numbers("s", size=count)
-    return dict(theta1=theta1, s=tuple(v * sec.unit for v in s), e=e)
+    return dict(theta1=theta1, s=_lengths_list(sec, "s", count), e=e)
 
 
 def _rocker_slider(sec):
     """Rocker angle <-> slider position, 3 pairs, the guide's offset e given (习题 3-9)."""
-    return dict(phi=_angles(sec, "phi", (3, 3)),
-                s=tuple(v * sec.unit for v in sec.numbers("s", size=3)),
+    return dict(phi=_angles(sec, "phi", (3, 3)), s=_lengths_list(sec, "s", 3),
                 e=sec.coordinate("e"))
 
 
