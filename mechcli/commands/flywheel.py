@@ -29,6 +29,10 @@ def flywheel(spec_path, **opts):
     except DescribedError as exc:       # worded with the spec's keys
         raise DescribedError(report.error_message(exc, spec), exc.reason,
                              **exc.values) from None
+    from mechcli.core.errors import UnsolvableError
+    bad = report.non_finite(sol)
+    if bad:     # an extreme spec: the motion overflows; nothing is written
+        raise UnsolvableError(bad)
     outputs = Outputs(run.out_dir, digits=run.digits)
     outputs.csv("flywheel.csv", report.columns(sol))
     warnings = []

@@ -88,6 +88,19 @@ def columns(sol):
             ("W_J", E - E[0]), ("omega_rad_s", m.omega), ("alpha_rad_s2", m.alpha)]
 
 
+def non_finite(sol):
+    """A message naming the first quantity of the solution that is not finite (the
+    inputs are too extreme for floating point), else None."""
+    import numpy as np
+    for name, col in columns(sol):
+        a = np.asarray(col, dtype=float)
+        if not np.all(np.isfinite(a)):
+            i = int(np.argmax(~np.isfinite(a)))
+            return (f"the motion leaves the range of floating-point numbers ({name} at row "
+                    f"{i + 1}): the inertia, moments or speeds are too extreme")
+    return None
+
+
 def build_report(spec, sol, lang):
     """The motion at up to 25 angles, then the figures of the run."""
     import numpy as np

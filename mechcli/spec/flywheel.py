@@ -27,6 +27,8 @@ from mechcli.spec.reader import load_spec
 #: already beyond any machine; angles within a hundred turns)
 MAX_OMEGA = 1e6
 MAX_ANGLE_DEG = 36000.0
+#: the smallest inertia [kg m^2] (a watch wheel is ~1e-10; below, ω² overflows with any moment)
+MIN_INERTIA = 1e-12
 #: output grid: points over the solved interval (the CSV rows and the plots)
 MAX_POINTS = 100_001
 METHODS = ("auto", "DOP853", "RK45", "Radau", "book", "energy", "closed_form")
@@ -149,13 +151,14 @@ def _inertia(root, has_linkage):
         sec.finish()
         return InertiaSpec("linkage", derivative=derivative, step=step, samples=samples)
     if sec.has("phi_deg"):
-        phi, vals, method = _table(sec, "J", 1e-300, MAX_INERTIA, "a positive inertia [kg m²]")
+        phi, vals, method = _table(sec, "J", MIN_INERTIA, MAX_INERTIA,
+                                   "a positive inertia [kg m²]")
         sec.finish()
         return InertiaSpec("table", phi=phi, values=vals, method=method)
     if sec.has("member") or sec.has("mass"):
         members = []
         for t in sec.tables("member", []):
-            members.append((t.number("J", positive=True, hi=MAX_INERTIA),
+            members.append((t.number("J", lo=MIN_INERTIA, hi=MAX_INERTIA),
                             t.number("ratio", lo=-1e6, hi=1e6)))
             t.finish()
         masses = []
@@ -165,7 +168,7 @@ def _inertia(root, has_linkage):
             t.finish()
         sec.finish()
         return InertiaSpec("chain", members=tuple(members), masses=tuple(masses))
-    J = sec.number("J", positive=True, hi=MAX_INERTIA)
+    J = sec.number("J", lo=MIN_INERTIA, hi=MAX_INERTIA)
     sec.finish()
     return InertiaSpec("constant", J=J)
 
