@@ -39,5 +39,8 @@ def flywheel(spec_path, **opts):
     if run.plot and spec.plots:
         from mechcli.report import flywheel_plots
         warnings += flywheel_plots.write(spec, sol, outputs, run.lang)
+    if run.animate and hasattr(sol.motion, "omega"):
+        from mechcli.report import flywheel_plots
+        flywheel_plots.animate(spec, sol, outputs, run.lang)
     finish(run, "flywheel", report.build_report(spec, sol, run.lang),
            report.results(spec, sol), outputs, warnings)

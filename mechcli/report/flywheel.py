@@ -36,6 +36,11 @@ def results(spec, sol):
     Me = np.asarray(m.Me, dtype=float)
     if sol.moment is not None:
         r["Me_min_N_m"], r["Me_max_N_m"] = float(Me.min()), float(Me.max())
+    if sol.swing is not None:
+        r["delta_from_dW"], r["omega_max_from_dW_rad_s"], r["omega_min_from_dW_rad_s"] = \
+            (float(x) for x in sol.swing)
+    if sol.J_F is not None:
+        r["J_F_kg_m2"] = float(sol.J_F)
     if not hasattr(m, "omega"):       # the equivalent model only
         return r
     w = np.asarray(m.omega, dtype=float)
@@ -136,6 +141,9 @@ def build_report(spec, sol, lang):
             ("delta_avg", "δ (with eq. 6-27)", "δ (式 6-27)", 6),
             ("dW_max_J", "ΔWmax [J]", "最大盈亏功 ΔWmax/J", 4),
             ("J_F_kg_m2", "flywheel J_F [kg m2]", "飞轮转动惯量 J_F", 4),
+            ("delta_from_dW", "δ from ΔWmax (eq. 6-29)", "由 ΔWmax 得 δ", 6),
+            ("omega_max_from_dW_rad_s", "ω max (eq. 6-28) [rad/s]", "ωmax (式 6-28)", 6),
+            ("omega_min_from_dW_rad_s", "ω min (eq. 6-28) [rad/s]", "ωmin (式 6-28)", 6),
             ("J_F_approx_kg_m2", "J_F by eq. 6-29 [kg m2]", "J_F (式 6-29)", 4),
             ("J_F_delta", "δ with J_F", "加飞轮后 δ", 6),
             ("flywheel_mass_kg", "flywheel mass [kg]", "飞轮质量/kg", 3),

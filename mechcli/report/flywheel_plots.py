@@ -8,9 +8,10 @@ import numpy as np
 from mechcli.report import plotting
 
 _T = {"en": {"je": "Equivalent inertia", "me": "Equivalent moment and work",
-             "w": "Speed of the equivalent link", "phi": "φ / °", "t": "t / s"},
+             "w": "Speed of the equivalent link", "phi": "φ / °", "t": "t / s",
+             "iter": "period-map evaluation", "conv": "Convergence of the steady state"},
       "zh": {"je": "等效转动惯量", "me": "等效力矩与盈亏功", "w": "等效构件角速度",
-             "phi": "转角 φ/°", "t": "时间 t/s"}}
+             "phi": "转角 φ/°", "t": "时间 t/s", "iter": "迭代次数", "conv": "稳定运转的收敛"}}
 
 
 def write(spec, sol, outputs, lang):
@@ -66,4 +67,57 @@ def write(spec, sol, outputs, lang):
     fig.suptitle(plotting.text(spec.header.title))
     fig.tight_layout()
     plotting.save_png(fig, outputs, "flywheel.png")
+    if sol.steady is not None and sol.steady.history:
+        _convergence(spec, sol, outputs, t)
     return warnings
+
+
+def _convergence(spec, sol, outputs, t):
+    """convergence.png: |ω(T) − ω0| of every period the search integrated."""
+    import matplotlib.pyplot as plt
+    hist = sol.steady.history
+    res = [abs(w1 - w0) if w1 is not None else np.nan for w0, w1 in hist]
+    fig, ax = plt.subplots(figsize=(6.5, 4))
+    floor = 1e-17
+    ax.semilogy(range(1, len(res) + 1), [max(r, floor) for r in res], "o-", color="C0")
+    ax.set_xlabel(t["iter"])
+    ax.set_ylabel("|ω(φ0 + T) − ω0| / rad·s⁻¹")
+    ax.set_title(plotting.text(spec.header.title) + "\n" + t["conv"]
+                 + f" ({sol.steady.root})")
+    plotting.save_png(fig, outputs, "convergence.png")
+
+
+def animate(spec, sol, outputs, lang, frames=72):
+    """flywheel.gif: the mechanism (when the spec has one) and the cursor on ω(φ)."""
+    import matplotlib.pyplot as plt
+    import types
+
+    from mechcli.core.linkage import DriverMotion, solve
+    from mechcli.report.kin_plots import Drawing, limits
+    plotting.setup(lang)
+    m = sol.motion
+    deg = np.degrees(m.phi)
+    idx = np.unique(np.linspace(0, len(m.phi) - 1, frames).round().astype(int))
+    has_link = spec.linkage is not None
+    fig, axs = plt.subplots(1, 2 if has_link else 1, figsize=(9 if has_link else 5, 4), dpi=80)
+    ax_w = axs[-1] if has_link else axs
+    ax_w.plot(deg, m.omega, "-", color="C0")
+    cursor, = ax_w.plot([], [], "o", color="C3", ms=7)
+    ax_w.set_xlabel("φ / °")
+    ax_w.set_ylabel("ω / rad·s⁻¹")
+    drawing = None
+    if has_link:
+        k = 1 / spec.header.scale
+        mo = solve(spec.linkage, {1: DriverMotion(np.asarray(m.phi)[idx])}, order=0)
+        drawing = Drawing(axs[0], types.SimpleNamespace(linkage=spec.linkage,
+                                                        guide_length=None), mo, 1 / k)
+        limits(axs[0], mo, k)
+    fig.suptitle(plotting.text(spec.header.title))
+    pics = []
+    for j, i in enumerate(idx):
+        cursor.set_data([deg[i]], [m.omega[i]])
+        if drawing is not None and bool(mo.feasible[j]):
+            drawing.update(mo, j)
+        pics.append(plotting.canvas_frame(fig))
+    plt.close(fig)
+    plotting.save_gif(pics, outputs, "flywheel.gif")

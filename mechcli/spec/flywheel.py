@@ -87,6 +87,8 @@ class FlywheelPart:
     radius: Optional[float] = None     # a rim's mean radius, a disc's radius [m]
     density: Optional[float] = None    # [kg/m^3]: the width of a disc, or of a rim
     thickness: Optional[float] = None  # a rim's radial thickness [m]
+    dW: Optional[float] = None         # a given largest energy swing ΔWmax [J] (eq. 6-28)
+    omega_mean: Optional[float] = None   # ... and the mean speed [rad/s]
 
 
 @dataclasses.dataclass(frozen=True)
@@ -300,11 +302,17 @@ def _flywheel(root):
                         "(shape = \"rim\")", f"{thickness:g} m")
     if shape is not None and radius is None:
         raise sec.error("radius", f"the {shape}'s radius (with shape)", "nothing")
+    # eq. 6-28 from numbers: the speeds a given energy swing leaves (J_e + J)
+    dW = sec.number("dW", None, positive=True, hi=1e15)
+    omega_mean = sec.number("omega_mean", None, positive=True, hi=MAX_OMEGA)
+    if (dW is None) != (omega_mean is None):
+        raise sec.error("omega_mean" if dW is not None else "dW",
+                        "dW and omega_mean together (eq. 6-28)", "one of them")
     if J > 0 and delta is not None:
         raise sec.error("delta", "either J (a given flywheel) or delta (size one), not both",
                         "both")
     sec.finish()
-    return FlywheelPart(J, delta, shape, radius, density, thickness)
+    return FlywheelPart(J, delta, shape, radius, density, thickness, dW, omega_mean)
 
 
 def read_flywheel_spec(path, overrides=()) -> FlywheelSpec:

@@ -92,3 +92,15 @@ def test_pictures(tmp_path):
     proc = run_inprocess("flywheel", CH6 / "ex6-2.toml", "--quiet", "--out", tmp_path)
     assert proc.returncode == 0, proc.stderr
     assert (tmp_path / "flywheel.png").stat().st_size > 10_000
+
+
+def test_steady_state_convergence_plot_and_animation(tmp_path):
+    """例 6-4 by shooting: convergence.png of the period-map evaluations (3: the guess 5,
+    its image, the root), and --animate a 72-frame GIF of the ω(φ) cursor."""
+    from PIL import Image
+    proc = run_inprocess("flywheel", CH6 / "ex6-4.toml", "--quiet", "--animate", "--out",
+                         tmp_path)
+    assert proc.returncode == 0, proc.stderr
+    assert (tmp_path / "convergence.png").stat().st_size > 10_000
+    with Image.open(tmp_path / "flywheel.gif") as im:
+        assert im.n_frames == 72

@@ -64,7 +64,8 @@ OWN_CORE = {
     "mechcli.report.grashof": "mechcli.core.grashof",
     "mechcli.report.synth": "mechcli.core.synth",
     "mechcli.report.flywheel": "mechcli.core.flywheel",
-    "mechcli.report.flywheel_plots": "mechcli.core.flywheel",
+    # the animation poses the linkage with kin's drawing
+    "mechcli.report.flywheel_plots": "mechcli.core.linkage",
     # the pictures draw the designed linkage with kin's drawing, posed by the engine
     "mechcli.report.synth_plots": "mechcli.core.linkage",
     # mechcli check reports plain dicts of the batch and calls no core function;
@@ -77,6 +78,7 @@ OWN_CORE = {
 REPORT_CORE_FUNCTIONS = {
     "mechcli.report.kin_plots": {"solve"},  # poses of the linkage for the animation frames
     "mechcli.report.synth_plots": {"solve"},  # the design in its positions and frames
+    "mechcli.report.flywheel_plots": {"solve"},  # the mechanism in the animation frames
     "mechcli.report.force_plots": {"balancing_symbol"},
     "mechcli.report.cam_plots": {"working_outline"},
     "mechcli.report.gear": {"degrees_minutes_seconds", "format_dms"},

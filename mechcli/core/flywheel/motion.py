@@ -491,6 +491,9 @@ class SteadyState:
         ``"shooting"``, ``"repeat"`` or ``"mean"`` (Me(φ) only: ω0 chosen for the mean).
     nfev : int
         Right-hand-side evaluations of all the periods integrated.
+    history : tuple of (float, float or None)
+        Every speed the period map was evaluated at and the speed one period later
+        (None: the start stalls), in order: the convergence of the search.
     """
 
     motion: Motion
@@ -508,6 +511,7 @@ class SteadyState:
     residual: float
     root: str
     nfev: int = 0
+    history: tuple = ()
 
 
 # --------------------------------------------------------------------------- energy integral
@@ -1100,13 +1104,14 @@ def steady_state(inertia, moment, *, omega_guess, method="DOP853", rtol=1e-10, a
     if not moment.depends_on_omega:
         return _steady_energy(inertia, moment, phi0, T, float(omega_guess), tol, max_iter,
                               points)
-    cache, count = {}, [0, 0]
+    cache, count, history = {}, [0, 0], []
 
     def advance(w0):
         """ω at the period end (``None`` on a stall), memoised."""
         if w0 in cache:
             return cache[w0][0]
         count[0] += 1
+        history.append(w0)
         try:
             if method == "book":
                 ph, om, *_ = _book(inertia, moment, phi0, w0, phi0 + T, step)
@@ -1168,14 +1173,16 @@ def steady_state(inertia, moment, *, omega_guess, method="DOP853", rtol=1e-10, a
             iterations = count[0]
     advance(w0)
     w_end, run = cache[w0]
+    trail = tuple((w, cache[w][0]) for w in history)
     if method == "book":
         m = _book_motion(inertia, moment, phi0, w0, phi0 + T, step)
         imax, imin = int(np.argmax(m.omega)), int(np.argmin(m.omega))
         mean = float(np.trapezoid(m.omega, m.phi)) / T
         W = np.concatenate(([0.0], np.cumsum(0.5 * (m.Me[1:] + m.Me[:-1]) * np.diff(m.phi))))
-        return _summary(m, w0, m.omega[imax], m.omega[imin], m.phi[imax], m.phi[imin], mean,
-                        float(W.max() - W.min()), iterations, abs(w_end - w0), root,
-                        count[1])
+        return dataclasses.replace(_summary(
+            m, w0, m.omega[imax], m.omega[imin], m.phi[imax], m.phi[imin], mean,
+            float(W.max() - W.min()), iterations, abs(w_end - w0), root, count[1]),
+            history=trail)
     phi = _grid(phi0, phi0 + T, points)
     m = _motion_from_run(run, inertia, moment, phi, method, rtol, atol)
     m = dataclasses.replace(m, nfev=run.nfev)
@@ -1188,8 +1195,9 @@ def steady_state(inertia, moment, *, omega_guess, method="DOP853", rtol=1e-10, a
     E = m.energy
     _, e_max = _extreme(run.E, phi, int(np.argmax(E)), 1.0)
     _, e_min = _extreme(run.E, phi, int(np.argmin(E)), -1.0)
-    return _summary(m, w0, w_max, w_min, p_max, p_min, mean, e_max - e_min, iterations,
-                    abs(w_end - w0), root, count[1])
+    return dataclasses.replace(_summary(m, w0, w_max, w_min, p_max, p_min, mean,
+                                        e_max - e_min, iterations, abs(w_end - w0), root,
+                                        count[1]), history=trail)
 
 
 def _bracket(F, g, f_g, max_iter):

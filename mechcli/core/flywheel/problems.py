@@ -64,6 +64,7 @@ class FlywheelSolution:
     omega_inf: Optional[float] = None
     mass: Optional[float] = None        # the flywheel's mass [kg] (rim or disc)
     width: Optional[float] = None       # its width along the shaft [m]
+    swing: Optional[tuple] = None       # (δ, ωmax, ωmin) from a given ΔWmax (eq. 6-28)
 
 
 def build_inertia(part, linkage=None, bodies=None, followers=None):
@@ -177,6 +178,13 @@ def _shape(fly, J_F):
     return {"mass": mass, "width": width}
 
 
+def speeds_from_swing(J, dW, omega_mean):
+    """Eqs. 6-28, 6-29 from numbers: δ = ΔWmax/(J ωm²) for the whole inertia J, and
+    ωmax, ωmin = ωm (1 ± δ/2)."""
+    delta = dW / (J * omega_mean ** 2)
+    return delta, omega_mean * (1 + delta / 2), omega_mean * (1 - delta / 2)
+
+
 def solve_flywheel(spec):
     """Build the models of a flywheel spec and solve its motion.
 
@@ -198,10 +206,13 @@ def solve_flywheel(spec):
         phi = np.linspace(ms.phi0, ms.phi0 + 2 * np.pi, ms.points)
         Je, dJe = inertia(phi)
         Me = np.zeros_like(phi) if moment is None else moment(phi, np.zeros_like(phi))
+        swing = None
+        if fly.dW is not None:  # Je's mean (with the flywheel J) carries the swing
+            swing = speeds_from_swing(float(np.mean(Je)), fly.dW, fly.omega_mean)
         return FlywheelSolution(inertia, moment, Model(phi, np.asarray(Je, dtype=float),
                                                        np.asarray(dJe, dtype=float),
                                                        np.asarray(Me, dtype=float)),
-                                None, "none")
+                                None, "none", J_F=fly.J or None, swing=swing)
     end = "phi" if ms.phi_end is not None else "omega" if ms.omega_end is not None else "t"
     method = _auto(ms.kind, inertia, moment, end) if ms.method == "auto" else ms.method
     if isinstance(inertia, eq.LinkageInertia) and inertia.period is not None \
