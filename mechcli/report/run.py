@@ -55,8 +55,9 @@ def finish(run, command, report, results, outputs, warnings=()):
         report.notes = shown
         print_rich(report)
         click.echo("written: " + ", ".join(str(f) for f in outputs.files))
+    where = f"{run.spec_path}: " if run.spec_path else ""    # traceable in a parallel batch
     for w in warnings:
-        click.echo(f"mechcli: warning: {w}", err=True)
+        click.echo(f"mechcli: warning: {where}{w}", err=True)
 
 
 def _check_finite(results, path=""):

@@ -226,3 +226,12 @@ def test_ex3_3_is_an_antiparallelogram(tmp_path):
     cross (at (66.7, 66.7) mm in position 1): the crossed assembly, an antiparallelogram."""
     r = _json(CH3 / "ex3-3.toml", "--out", tmp_path)["results"]
     assert r["type"] == "antiparallelogram" and r["cranks"] == [1, 3]
+
+
+def test_warnings_name_their_spec(tmp_path):
+    """A warning on stderr starts with the spec's path, so that a line of a parallel batch
+    can be traced to its spec (issue 18 item 5)."""
+    proc = run_inprocess("synth", CH3 / "ex3-4.toml", "--quiet", "--no-plot", "--out", tmp_path)
+    lines = [ln for ln in proc.stderr.splitlines() if ln.strip()]
+    assert lines and all(ln.startswith(f"mechcli: warning: {CH3 / 'ex3-4.toml'}: ")
+                         for ln in lines)
