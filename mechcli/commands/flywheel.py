@@ -35,7 +35,9 @@ def flywheel(spec_path, **opts):
         raise UnsolvableError(bad)
     outputs = Outputs(run.out_dir, digits=run.digits)
     outputs.csv("flywheel.csv", report.columns(sol))
-    warnings = []
+    warnings = report.warnings(spec, sol)
+    if run.animate and not hasattr(sol.motion, "omega"):
+        warnings.append("no animation: the spec asks for no motion (no [motion] table)")
     if run.plot and spec.plots:
         from mechcli.report import flywheel_plots
         warnings += flywheel_plots.write(spec, sol, outputs, run.lang)

@@ -93,6 +93,23 @@ def columns(sol):
             ("W_J", E - E[0]), ("omega_rad_s", m.omega), ("alpha_rad_s2", m.alpha)]
 
 
+def warnings(spec, sol):
+    """What the user must know beside the numbers."""
+    out = []
+    st = sol.steady
+    if st is not None and sol.omega_balance is not None:
+        off = abs(st.omega_mean - sol.omega_balance)
+        if off > 1e-6 * abs(sol.omega_balance):
+            out.append(f"the steady state is ill-conditioned: its mean speed "
+                       f"{st.omega_mean:.9g} rad/s misses the {sol.omega_balance:.9g} rad/s "
+                       "the energy balance requires (the motor's damping changes ω too little "
+                       "per period for the integrator's tolerance): tighten rtol/atol")
+    if st is not None and spec.flywheel.delta is not None:
+        out.append("delta, the speeds and the CSV describe the machine without the sized "
+                   f"flywheel; with J_F = {sol.J_F:.6g} kg m², δ = {sol.J_F_delta:.6g}")
+    return out
+
+
 def non_finite(sol):
     """A message naming the first quantity of the solution that is not finite (the
     inputs are too extreme for floating point), else None."""
@@ -170,13 +187,14 @@ def error_message(exc, spec):
              "too_few": "[inertia] phi_deg", "not_uniform": "[inertia] phi_deg",
              "not_positive": "[inertia] J", "end": "[motion]", "method": "[motion] method",
              "no_flywheel_needed": "[flywheel] delta", "cannot_assemble": "[mechanism]",
-             "dead_point": "[mechanism]"}.get(reason, "")
+             "dead_point": "[mechanism]", "stiff": "[motion] method",
+             "moment_not_periodic": "[moment]", "inertia_vanishes": "[[link]]"}.get(reason, "")
     text = str(exc)
     if reason == "stall" and "phi" in v:
         text += f" (at phi = {math.degrees(v['phi']):.6g} deg)"
     if reason == "unreachable" and "omega_inf" in v:
         text += (f" (the speed tends to {v['omega_inf']:.6g} rad/s and never reaches "
                  f"{v['omega_end']:.6g})")
-    if reason in ("cannot_assemble", "dead_point") and "angle" in v:
+    if reason in ("cannot_assemble", "dead_point", "inertia_vanishes") and "angle" in v:
         text += f" (at phi = {math.degrees(v['angle']):.6g} deg)"
     return f"{where}: {text}" if where else text

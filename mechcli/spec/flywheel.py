@@ -198,6 +198,17 @@ def _moment(root, has_loads):
             kw[name] = _table(t, "M", -MAX_FORCE, MAX_FORCE, "a moment [N m]",
                               ("linear", "cubic"))
             t.finish()
+    for name in ("table", "resisting_table"):
+        if name in kw:
+            phi_t, M_t, _m = kw[name]
+            if abs(phi_t[-1] - phi_t[0] - 2 * math.pi) <= 1e-9 and M_t[-1] != M_t[0]:
+                raise SpecError(sec.file, sec.key(f"{name}.M"), "a last moment equal to the "
+                                "first (phi_deg spans a whole turn: the table is periodic)",
+                                f"{M_t[0]:g} and {M_t[-1]:g}")
+            if phi_t[-1] - phi_t[0] > 2 * math.pi + 1e-9:
+                raise SpecError(sec.file, sec.key(f"{name}.phi_deg"),
+                                "angles within one turn", f"a span of "
+                                f"{math.degrees(phi_t[-1] - phi_t[0]):g}°")
     if "table" in kw and "resisting_table" in kw and kw["table"][0] != kw[
             "resisting_table"][0] and "cubic" in (kw["table"][2], kw["resisting_table"][2]):
         raise sec.error("resisting_table", "the same phi_deg as [moment.table] when either "
@@ -224,6 +235,11 @@ def _moment(root, has_loads):
         sign = -1.0 if s.boolean("resisting", False) else 1.0
         segs.append((phi[0], phi[1], sign * M[0], sign * M[1]))
         s.finish()
+    for a, b in zip(sorted(segs), sorted(segs)[1:]):
+        if b[0] < a[1] - 1e-12:
+            raise sec.error("segment", "segments that do not overlap",
+                            f"[{math.degrees(a[0]):g}, {math.degrees(a[1]):g}]° and "
+                            f"[{math.degrees(b[0]):g}, {math.degrees(b[1]):g}]°")
     kw["segments"] = tuple(segs)
     torques = []
     for t in sec.tables("torque", []):
@@ -245,7 +261,8 @@ def _motion(root):
                           None, points, "shooting", 1e-10, 200)
     kind = sec.string("kind", "start", choices=["start", "steady"])
     phi0 = math.radians(sec.number("phi0_deg", 0.0, lo=-MAX_ANGLE_DEG, hi=MAX_ANGLE_DEG))
-    omega0 = sec.number("omega0", lo=-MAX_OMEGA, hi=MAX_OMEGA)
+    # the equivalent link turns forward: ω0 = 0 (a start from rest) up to 1e6 rad/s
+    omega0 = sec.number("omega0", lo=0.0, hi=MAX_OMEGA)
     phi_end = omega_end = t_end = None
     if kind == "start":
         ends = [k for k in ("phi_end_deg", "omega_end", "t_end") if sec.has(k)]
@@ -260,7 +277,7 @@ def _motion(root):
                 raise sec.error("phi_end_deg", f"an angle above phi0_deg = "
                                 f"{math.degrees(phi0):g}", f"{math.degrees(phi_end):g}")
         elif ends[0] == "omega_end":
-            omega_end = sec.number("omega_end", lo=-MAX_OMEGA, hi=MAX_OMEGA)
+            omega_end = sec.number("omega_end", lo=0.0, hi=MAX_OMEGA)
         else:
             t_end = sec.number("t_end", positive=True, hi=1e9)
     elif omega0 <= 0:
@@ -274,6 +291,9 @@ def _motion(root):
     if method == "book" and step is None:
         raise sec.error("step_deg", "the fixed step of method = \"book\" [deg] (the book: 15)",
                         "nothing")
+    if step is not None and abs(360.0 / step - round(360.0 / step)) > 1e-9 * 360.0 / step:
+        raise sec.error("step_deg", "a step that divides 360° into whole steps (the book: 15)",
+                        f"{step:g}")
     points = sec.integer("points", 361, lo=2, hi=MAX_POINTS)
     root_method = sec.string("root", "shooting", choices=["shooting", "repeat"])
     # the steady state's periodicity |omega(T) - omega(0)| [rad/s]

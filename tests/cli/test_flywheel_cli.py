@@ -104,3 +104,84 @@ def test_steady_state_convergence_plot_and_animation(tmp_path):
     assert (tmp_path / "convergence.png").stat().st_size > 10_000
     with Image.open(tmp_path / "flywheel.gif") as im:
         assert im.n_frames == 72
+
+
+# -- found by an independent review of the first version --------------------------------
+def test_closed_form_to_a_time_writes_the_whole_run(tmp_path):
+    """例 6-3 to t = 0.1 s: 201 rows from the start at rest (was one row at t_end, so
+    omega_min was the final speed)."""
+    doc = _json(CH6 / "ex6-3.toml", "--out", tmp_path)
+    r = doc["results"]
+    assert r["omega_min_rad_s"] == 0.0 and r["omega_final_rad_s"] == pytest.approx(89.346302,
+                                                                                    abs=5e-7)
+    with open(tmp_path / "flywheel.csv", encoding="utf-8") as f:
+        rows = list(csv.DictReader(f))
+    assert len(rows) == 201 and float(rows[0]["t_s"]) == 0.0
+
+
+def test_constant_inertia_and_moment_to_an_angle(tmp_path):
+    """J = 2, Me = 10 − 4 = 6 N m, ω0 = 10, to 720°: ½·2·ω² = ½·2·100 + 6·4π, by hand
+    ω = √(100 + 24π) = 13.0300 rad/s (was exit 1: the closed form was chosen)."""
+    spec = write(tmp_path, 'command = "flywheel"\n[inertia]\nJ = 2\n[moment]\nconstant = 10\n'
+                 'resisting = 4\n[motion]\nomega0 = 10\nphi_end_deg = 720\n')
+    r = _json(spec, "--out", tmp_path / "o")["results"]
+    assert r["method"] == "energy"
+    assert r["omega_final_rad_s"] == pytest.approx(math.sqrt(100 + 24 * math.pi), rel=1e-12)
+
+
+@pytest.mark.parametrize("body, code, words", [
+    # a moment table over a turn whose last value is not its first (was exit 1)
+    ('[inertia]\nJ = 1\n[moment.table]\nphi_deg = [0, 180, 360]\nM = [10, -10, 5]\n'
+     '[motion]\nomega0 = 10\nphi_end_deg = 90', 2, "[moment.table] M"),
+    # overlapping segments (was exit 1)
+    ('[inertia]\nJ = 1\n[[moment.segment]]\nphi_deg = [0, 200]\nM = [1, 1]\n'
+     '[[moment.segment]]\nphi_deg = [100, 360]\nM = [1, 1]\n[motion]\nomega0 = 10\n'
+     'phi_end_deg = 90', 2, "[moment] segment"),
+    # a negative start speed (was exit 1)
+    ('[inertia]\nJ = 1\n[moment]\nconstant = 1\n[motion]\nomega0 = -100\nphi_end_deg = 90',
+     2, "[motion] omega0"),
+    # a steady state of a moment that is not periodic (was a false message / exit 1)
+    ('[inertia]\nJ = 1\n[moment]\nconstant = 75\n[[moment.segment]]\nphi_deg = [0, 180]\n'
+     'M = [150, 0]\nresisting = true\n[motion]\nkind = "steady"\nomega0 = 10', 3,
+     "the moment is not periodic"),
+    # a book step that does not divide the turn (was silently 6.667°)
+    ('[inertia]\nJ = 1\n[moment]\nconstant = 1\n[motion]\nomega0 = 1\nphi_end_deg = 90\n'
+     'method = "book"\nstep_deg = 7', 2, "[motion] step_deg"),
+])
+def test_more_bad_specs_are_one_line(tmp_path, body, code, words):
+    spec = write(tmp_path, f'command = "flywheel"\n{body}\n')
+    proc = run_inprocess("flywheel", spec, "--quiet", "--no-plot", "--out", tmp_path / "o")
+    assert proc.returncode == code, proc.stderr
+    assert words in one_line_error(proc)
+
+
+def test_a_vanishing_inertia_is_exit_3_with_the_angle(tmp_path):
+    """A centred slider-crank whose only mass is the slider: Je = m v² is 0 at the dead
+    points (0° and 180°): ω would be unbounded (was exit 0 with ω = 5e17)."""
+    spec = write(tmp_path, 'command = "flywheel"\n[mechanism]\ntype = "slider_crank"\nl1 = 0.1\n'
+                 'l2 = 0.3\n[[link]]\nnumber = 3\nmass = 10\n[moment]\nconstant = 100\n'
+                 '[motion]\nomega0 = 10\nphi_end_deg = 360\n')
+    proc = run_inprocess("flywheel", spec, "--quiet", "--no-plot", "--out", tmp_path / "o")
+    assert proc.returncode == 3, proc.stderr
+    line = one_line_error(proc)
+    assert "[[link]]" in line and "inertia vanishes" in line
+
+
+def test_an_ill_conditioned_steady_state_is_flagged(tmp_path):
+    """J = 1e12 against a motor line 1000 − ω with a harmonic 500 sin φ: the energy
+    balance fixes ωm = 1000 rad/s exactly, which the shooting cannot resolve at the
+    default tolerance: a warning names both numbers (it was silent)."""
+    spec = write(tmp_path, 'command = "flywheel"\n[inertia]\nJ = 1e12\n[moment]\n'
+                 'drive = [1000, 1]\n[moment.harmonic]\na = [500]\n[motion]\nkind = "steady"\n'
+                 'omega0 = 900\n')
+    doc = _json(spec, "--out", tmp_path / "o")
+    assert any("ill-conditioned" in w and "1000 rad/s" in w for w in doc["warnings"])
+
+
+def test_the_approximate_flywheel_uses_the_work_at_the_mean_speed(tmp_path):
+    """Eq. 6-29 as taught: ΔWmax of Me(φ, ωm) at the mean speed (913.36 J for the shaper of
+    例 6-4), not the swing of the machine's own fluctuating motion: J_F ≈ 549.06 kg m²
+    against the exact 504.63 (was 77.27)."""
+    r = _json(CH6 / "flywheel-sizing.toml", "--out", tmp_path)["results"]
+    assert r["J_F_approx_kg_m2"] == pytest.approx(549.06, abs=0.01)
+    assert r["J_F_kg_m2"] == pytest.approx(504.63, abs=0.01)

@@ -758,6 +758,11 @@ def _solver_class(method):
     return {"RK45": RK45, "DOP853": DOP853, "Radau": Radau}[method]
 
 
+#: steps of one integration at most (each keeps a dense output of ~1 kB): a stiff equation
+#: under an explicit method would otherwise run for hours and take gigabytes
+MAX_STEPS = 200_000
+
+
 def _ode(inertia, moment, phi0, omega0, phi_end, method, rtol, atol):
     """Integrate ``dE/dφ = Me(φ, ω)``, ``ω = sqrt(2E/Je)`` (eq 6-5) piece by piece.
 
@@ -802,6 +807,12 @@ def _ode(inertia, moment, phi0, omega0, phi_end, method, rtol, atol):
             los.append(t_old)
             his.append(solver.t)
             dense.append(d)
+            if len(dense) > MAX_STEPS:
+                raise DescribedError(
+                    f"the integrator needs more than {MAX_STEPS:,} steps per run: the "
+                    "equation is stiff (a steep motor line on a light machine) -- use "
+                    'method = "Radau", or looser rtol', reason="stiff", steps=len(dense),
+                    phi=float(solver.t))
         nfev += solver.nfev
         E = float(solver.y[0])
     his[-1] = phi_end

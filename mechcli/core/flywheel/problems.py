@@ -65,6 +65,7 @@ class FlywheelSolution:
     mass: Optional[float] = None        # the flywheel's mass [kg] (rim or disc)
     width: Optional[float] = None       # its width along the shaft [m]
     swing: Optional[tuple] = None       # (δ, ωmax, ωmin) from a given ΔWmax (eq. 6-28)
+    omega_balance: Optional[float] = None   # ωm by the energy balance (Me linear in ω)
 
 
 def build_inertia(part, linkage=None, bodies=None, followers=None):
@@ -119,6 +120,7 @@ def build_moment(part, linkage=None, topo=None, bodies=None, gravity=None, loads
     """The moment model of the spec's ``moment`` part (and the linkage's loads)."""
     lm = None
     if part.loads and linkage is not None:
+        loads = _with_band_limits(linkage, loads, followers)
         phi = np.linspace(0.0, 2 * np.pi, LOAD_SAMPLES, endpoint=False)
         M = eq.linkage_moment(linkage, topo, bodies, gravity, list(loads), phi,
                               followers=followers or None)
@@ -133,9 +135,29 @@ def build_moment(part, linkage=None, topo=None, bodies=None, gravity=None, loads
         # the loads' Me is smooth between the angles where a load switches on or off: the
         # integrators stop there (and at the user's own knots), not at every sample
         own = mo.MomentModel(table=_tables(part, None), **terms).breaks
-        knots = np.concatenate([own[0], _switches(linkage, loads, lm[0], followers)])
+        knots = np.concatenate([own[0], _switches(linkage, _with_band_limits(
+            linkage, loads, followers), lm[0], followers)])
         model.breaks = (np.unique(knots), own[1] if len(own[0]) else 0.0, own[2])
     return model
+
+
+def _with_band_limits(linkage, loads, followers):
+    """Loads acting over a band of a slide's stroke (例 2-4's cutting force) get the
+    stroke's absolute limits, refined on the exact solution as ``force`` does."""
+    if not any(p.band is not None for p in loads):
+        return loads
+    from mechcli.core.linkage.kinematics import Sweep, analyse_sweep
+    q = np.linspace(0.0, 2 * np.pi, 721)
+    slides = [p.slide for p in loads if p.band is not None]
+    kin = analyse_sweep(linkage, Sweep(linkage.drivers[0].link, q, 1.0, 0.0,
+                                       followers or {}), slides, 1, extremes=True)
+    out = []
+    for p in loads:
+        if p.band is not None:
+            hi, lo = kin.extremes[p.slide.symbol]
+            p = p.with_band_limits(lo.value, hi.value)
+        out.append(p)
+    return out
 
 
 def _switches(linkage, loads, phi, followers):
@@ -156,14 +178,39 @@ def _switches(linkage, loads, phi, followers):
     return np.concatenate(out) if out else np.empty(0)
 
 
-def _auto(kind, inertia, moment, end):
-    if kind == "steady":
-        return "DOP853"
-    if inertia.constant and not moment.depends_on_phi:
+def _auto(kind, inertia, moment, end, omega0):
+    """The method for the problem: exact where a closed form or the energy integral
+    applies, else DOP853 -- or Radau when the motor's damping b makes the equation stiff
+    (b/(Je ω) per radian large: a steep motor line on a light machine)."""
+    if kind == "start" and end != "phi":
         return "closed_form"
-    if not moment.depends_on_omega and end == "phi":
+    if kind == "start" and not moment.depends_on_omega:
         return "energy"
+    if moment.depends_on_omega and moment.b > 0:
+        Je_min = float(np.min(inertia(np.linspace(0, 2 * np.pi, 361))[0]))
+        if moment.b / (Je_min * max(abs(omega0), 1e-300)) > STIFF:
+            return "Radau"
     return "DOP853"
+
+
+#: b/(Je ω) [1/rad] above which the automatic method is the stiff Radau
+STIFF = 50.0
+
+
+def _swing_at_mean(moment, phi0, omega_m, n=7201):
+    """ΔWmax of eq. 6-29 as taught: the swing of the work of Me(φ, ωm) at the mean speed
+    over a period (the φ-part exactly, minus b ωm φ)."""
+    phi = np.linspace(phi0, phi0 + 2 * np.pi, n)
+    W = moment.energy(phi0, phi) - moment.b * omega_m * (phi - phi0)
+    return float(np.max(W) - np.min(W))
+
+
+def balance_mean(moment, phi0):
+    """The integral mean speed a steady state must have when Me is linear in ω with b > 0:
+    the work over a period vanishes, so ωm = (1/2π)∫(Me + bω) dφ / b; None otherwise."""
+    if not (moment.depends_on_omega and moment.b > 0):
+        return None
+    return float(moment.energy(phi0, phi0 + 2 * np.pi)) / (2 * np.pi * moment.b)
 
 
 def _shape(fly, J_F):
@@ -199,6 +246,13 @@ def solve_flywheel(spec):
     inertia = build_inertia(spec.inertia, spec.linkage, spec.bodies, spec.followers)
     if fly.J:
         inertia = inertia.plus(fly.J)
+    if not inertia.constant and inertia.period is not None:
+        grid = np.linspace(0.0, inertia.period, 3601)
+        Je = np.asarray(inertia(grid)[0], dtype=float)
+        if float(Je.min()) <= 1e-9 * float(Je.max()):
+            raise DescribedError("the equivalent inertia vanishes: no link with mass moves "
+                                 "there (ω would be unbounded)", reason="inertia_vanishes",
+                                 angle=float(grid[int(np.argmin(Je))]))
     moment = None if spec.moment is None else build_moment(
         spec.moment, spec.linkage, spec.topo, spec.bodies, spec.gravity, spec.loads,
         spec.followers)
@@ -214,7 +268,8 @@ def solve_flywheel(spec):
                                                        np.asarray(Me, dtype=float)),
                                 None, "none", J_F=fly.J or None, swing=swing)
     end = "phi" if ms.phi_end is not None else "omega" if ms.omega_end is not None else "t"
-    method = _auto(ms.kind, inertia, moment, end) if ms.method == "auto" else ms.method
+    method = _auto(ms.kind, inertia, moment, end, ms.omega0) if ms.method == "auto" \
+        else ms.method
     if isinstance(inertia, eq.LinkageInertia) and inertia.period is not None \
             and method not in ("energy", "closed_form"):
         # the integrators call Je tens of thousands of times: sample the linkage once
@@ -223,6 +278,10 @@ def solve_flywheel(spec):
         inertia = eq.SampledInertia(inertia, spec.inertia.samples)
     kw = dict(rtol=ms.rtol, atol=ms.atol, step=ms.step)
     if ms.kind == "steady":
+        if moment.depends_on_phi and moment.period is None:
+            raise DescribedError("the moment is not periodic (segments that do not join end "
+                                 "to end over a turn): there is no steady state",
+                                 reason="moment_not_periodic")
         if inertia.period is None and moment.period is None:
             raise DescribedError("neither the inertia nor the moment varies with the angle: "
                                  "the steady state is a constant speed", reason="not_periodic")
@@ -230,11 +289,12 @@ def solve_flywheel(spec):
                              root=ms.root, tol=ms.tol, max_iter=ms.max_iter, points=ms.points,
                              phi0=ms.phi0, **kw)
         sol = dict(inertia=inertia, moment=moment, motion=st.motion, steady=st, method=method,
-                   J_F=fly.J or None)
+                   J_F=fly.J or None, omega_balance=balance_mean(moment, ms.phi0))
         if fly.delta is not None:
             Je_mean = float(np.mean(inertia(st.motion.phi)[0]))
-            sol["J_F_approx"] = mo.flywheel_approx(st.dW_max, st.omega_mean, fly.delta,
-                                                   Je=Je_mean)
+            sol["J_F_approx"] = mo.flywheel_approx(
+                _swing_at_mean(moment, ms.phi0, st.omega_mean), st.omega_mean, fly.delta,
+                Je=Je_mean)
             J_F = mo.flywheel_exact(inertia, moment, fly.delta, omega_guess=ms.omega0,
                                     method=method, points=ms.points, **kw)
             st2 = mo.steady_state(inertia.plus(J_F), moment, omega_guess=ms.omega0,
@@ -252,8 +312,9 @@ def solve_flywheel(spec):
         a, b = moment.a + moment.constant, moment.b
         if moment._harm is not None:        # a constant harmonic a0 adds to a
             a += moment._harm[0]
+        times = None if ms.t_end is None else np.linspace(0.0, ms.t_end, ms.points)
         mot = mo.linear_closed_form(J, a, b, 0.0, ms.omega0, omega_end=ms.omega_end,
-                                    t=ms.t_end, points=ms.points)
+                                    t=times, points=ms.points)
         if end == "phi":
             raise DescribedError("the closed form runs to a speed or a time, not an angle: "
                                  "give omega_end or t_end", reason="end")
