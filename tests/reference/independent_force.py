@@ -475,6 +475,11 @@ def kinetostatics(prob, kin, active):
             power += t
             power_abs += np.abs(t)
     x = np.linalg.solve(A, b[..., None])[..., 0]
+    # the equations are met: residual at round-off of the largest load (a singular or
+    # mis-assembled system would leave it large)
+    scale = max(1.0, float(np.max(np.abs(b))))
+    assert float(np.max(np.abs(np.einsum("nij,nj->ni", A, x) - b))) <= 1e-9 * scale, \
+        "kinetostatic equations not met"
     out = dict(Mb=x[:, 0])
     power += x[:, 0] * prob.omega1
     power_abs += np.abs(x[:, 0] * prob.omega1)

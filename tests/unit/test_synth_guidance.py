@@ -207,7 +207,9 @@ def test_ex3_5_from_the_books_fsolve_start():
     d = coupler_poses(EX34_M, EX34_PHI, EX34_A, EX34_D, method="nonlinear",
                       guess=[EX34_M[0], (c0.real, c0.imag)])
     check_ex3_4(d)
-    assert 1 <= d.values["iterations"] <= 100
+    # the equations are linear in B1, C1 once A and D are given: levenberg-marquardt needs
+    # 2 Jacobian evaluations from this start (measured; the same as from the default start)
+    assert d.values["iterations"] == 2
 
 
 def test_ex3_4_matrix_and_nonlinear_agree_to_round_off():

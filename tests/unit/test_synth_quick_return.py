@@ -500,6 +500,10 @@ def test_limit_angle_error_range():
         crank_rocker_from_K_limit_angle(3.0, 75.0, 100.0, deg(45))
     assert err.value.reason == "limit_angle"
     K_hi = err.value.values["K_hi"]
-    assert 1.5 < K_hi < 3.0
+    # independent: bisection on K of "can the design be made" (60 halvings between 1.72
+    # and 3, 2026-11-23) gives 1.7369994258271675 -- the grid alone gave 1.7223
+    assert K_hi == pytest.approx(1.7369994258271675, rel=1e-9)
+    with pytest.raises(DescribedError):        # just above it: no design
+        crank_rocker_from_K_limit_angle(K_hi * (1 + 1e-7), 75.0, 100.0, deg(45))
     d = crank_rocker_from_K_limit_angle(1 + 0.98 * (K_hi - 1), 75.0, 100.0, deg(45))
     assert core_fourbar(d)[1].K[0] == pytest.approx(1 + 0.98 * (K_hi - 1), rel=RTOL)

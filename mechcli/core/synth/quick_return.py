@@ -39,6 +39,7 @@ from mechcli.core.errors import DescribedError
 from mechcli.core.grashof.fourbar import (CHANGE_POINT_RTOL, analyse_fourbar,
                                           analyse_guide_bar, analyse_slider_crank)
 from mechcli.core.linkage.presets import guide_bar as guide_bar_linkage
+from mechcli.core.refine import golden_section_max
 from mechcli.core.synth.design import LinkageDesign, four_bar_design, slider_crank_design
 
 Point = Tuple[float, float]
@@ -454,8 +455,8 @@ def crank_rocker_from_K_limit_angle(K: float, rocker: float, frame: float,
     DescribedError
         reason ``"limit_angle"``: no crank-rocker of this kind (values ``K``,
         ``theta``, ``limit_angle``, ``limit``, and ``K_hi``, the largest K a
-        crank-rocker with this rocker, frame and limit position reaches, found
-        on a grid of 4096 cranks: approximate).
+        crank-rocker with this rocker, frame and limit position reaches: the
+        best of 4096 cranks refined by golden section).
 
     Notes
     -----
@@ -521,21 +522,33 @@ def crank_rocker_from_K_limit_angle(K: float, rocker: float, frame: float,
 
 
 def _limit_angle_K_hi(c, d, s1, delta, limit):
-    """Largest K (sampled) of the crank-rockers with AC1 = s1 at ∠ADC1 = delta."""
+    """Largest K of the crank-rockers with AC1 = s1 at ∠ADC1 = delta: the best of 4096
+    cranks per kind, refined by golden section between its grid neighbours (K is -inf
+    where the crank-rocker ceases, so an edge maximum is approached from inside)."""
     kinds = ("extended", "folded") if limit == "best" else (limit,)
     best = 1.0
     for kind in kinds:
+        def K_of(a, kind=kind):
+            a = np.atleast_1d(np.asarray(a, dtype=float))
+            b = s1 - a if kind == "extended" else s1 + a
+            L = np.stack([a, b, np.full_like(a, c), np.full_like(a, d)], axis=1)
+            an = analyse_fourbar(L, require_closure=False)
+            m = an.merit
+            th3 = m.theta3_ext if kind == "extended" else m.theta3_fold
+            ok = m.has_limits & (np.abs(th3 - (math.pi - delta)) < 1e-9) \
+                & (np.array(an.klass.types) == "crank_rocker") & (a > 0) & (b > 0)
+            return np.where(ok, m.K, -np.inf)
+
         hi = s1 / 2 if kind == "extended" else max(c, d, s1)
         a = np.linspace(0, hi, 4098)[1:-1]
-        b = s1 - a if kind == "extended" else s1 + a
-        L = np.stack([a, b, np.full_like(a, c), np.full_like(a, d)], axis=1)
-        an = analyse_fourbar(L, require_closure=False)
-        m = an.merit
-        th3 = m.theta3_ext if kind == "extended" else m.theta3_fold
-        ok = m.has_limits & (np.abs(th3 - (math.pi - delta)) < 1e-9) \
-            & (np.array(an.klass.types) == "crank_rocker")
-        if ok.any():
-            best = max(best, float(m.K[ok].max()))
+        K = K_of(a)
+        if not np.isfinite(K).any():
+            continue
+        i = int(np.argmax(K))
+        lo_i, hi_i = max(i - 1, 0), min(i + 1, a.size - 1)
+        _x, k = golden_section_max(K_of, np.array([a[lo_i]]), np.array([a[hi_i]]),
+                                   iterations=80, rtol=1e-14)
+        best = max(best, float(K[i]), float(k[0]) if np.isfinite(k[0]) else 1.0)
     return best
 
 
