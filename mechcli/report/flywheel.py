@@ -39,9 +39,9 @@ def results(spec, sol):
     if sol.swing is not None:
         r["delta_from_dW"], r["omega_max_from_dW_rad_s"], r["omega_min_from_dW_rad_s"] = \
             (float(x) for x in sol.swing)
-    if sol.J_F is not None:
-        r["J_F_kg_m2"] = float(sol.J_F)
     if not hasattr(m, "omega"):       # the equivalent model only
+        if sol.J_F is not None:
+            r["J_F_kg_m2"] = float(sol.J_F)
         return r
     w = np.asarray(m.omega, dtype=float)
     r["omega_max_rad_s"], r["omega_min_rad_s"] = float(w.max()), float(w.min())
@@ -64,18 +64,11 @@ def results(spec, sol):
                  delta=float(st.delta), delta_avg=float(st.delta_avg),
                  dW_max_J=float(st.dW_max), iterations=int(st.iterations),
                  periodicity_residual_rad_s=float(st.residual), root=st.root)
-    if sol.J_F is not None:
-        r["J_F_kg_m2"] = float(sol.J_F)
-    if sol.J_F_approx is not None:
-        r["J_F_approx_kg_m2"] = float(sol.J_F_approx)
-    if sol.J_F_delta is not None:
-        r["J_F_delta"] = float(sol.J_F_delta)
-    if sol.omega_inf is not None:
-        r["omega_inf_rad_s"] = float(sol.omega_inf)
-    if sol.mass is not None:
-        r["flywheel_mass_kg"] = float(sol.mass)
-    if sol.width is not None:
-        r["flywheel_width_m"] = float(sol.width)
+    for key, val in (("J_F_kg_m2", sol.J_F), ("J_F_approx_kg_m2", sol.J_F_approx),
+                     ("J_F_delta", sol.J_F_delta), ("omega_inf_rad_s", sol.omega_inf),
+                     ("flywheel_mass_kg", sol.mass), ("flywheel_width_m", sol.width)):
+        if val is not None:
+            r[key] = float(val)
     return r
 
 

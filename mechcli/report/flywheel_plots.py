@@ -90,7 +90,6 @@ def _convergence(spec, sol, outputs, t):
 def animate(spec, sol, outputs, lang, frames=72):
     """flywheel.gif: the mechanism (when the spec has one) and the cursor on ω(φ)."""
     import matplotlib.pyplot as plt
-    import types
 
     from mechcli.core.linkage import DriverMotion, solve
     from mechcli.report.kin_plots import Drawing, limits
@@ -109,8 +108,7 @@ def animate(spec, sol, outputs, lang, frames=72):
     if has_link:
         k = 1 / spec.header.scale
         mo = solve(spec.linkage, {1: DriverMotion(np.asarray(m.phi)[idx])}, order=0)
-        drawing = Drawing(axs[0], types.SimpleNamespace(linkage=spec.linkage,
-                                                        guide_length=None), mo, 1 / k)
+        drawing = Drawing(axs[0], spec.linkage, mo, 1 / k)
         limits(axs[0], mo, k)
     fig.suptitle(plotting.text(spec.header.title))
     pics = []

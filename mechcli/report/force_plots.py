@@ -198,7 +198,7 @@ def animate_reactions(spec, result, sweep, outputs, t):
     f = length / peak if peak > 0 else 0.0
 
     fig, ax = plt.subplots(figsize=(6.4, 5.2), dpi=80)
-    d = Drawing(ax, spec, motion, spec.header.scale)
+    d = Drawing(ax, spec.linkage, motion, spec.header.scale, spec.guide_length)
     for tr in spec.tracers:
         p = broken(result.kin, motion.points[tr.name].p * k)
         ax.plot(p.real, p.imag, ":", lw=1, color="C3")

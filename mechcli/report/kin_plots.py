@@ -72,11 +72,13 @@ def _link_segments(linkage):
 
 
 class Drawing:
-    """Artists for one mechanism drawing, updated frame by frame."""
+    """Artists for one mechanism drawing, updated frame by frame (any linkage: kin's,
+    force's, a synthesized design, a flywheel's machine); ``guide_length`` draws a
+    guide bar that long instead of just past its blocks."""
 
-    def __init__(self, ax, spec, motion, scale):
-        self.spec, self.ax, self.k = spec, ax, 1 / scale
-        self.bars, self.blocks, self.guides, self.grounds = _link_segments(spec.linkage)
+    def __init__(self, ax, linkage, motion, scale, guide_length=None):
+        self.ax, self.k = ax, 1 / scale
+        self.bars, self.blocks, self.guides, self.grounds = _link_segments(linkage)
         self.bar_lines = [ax.plot([], [], "-", color="C0", lw=2)[0] for _ in self.bars]
         self.guide_lines = [ax.plot([], [], "-", color="0.4", lw=1)[0] for _ in self.guides]
         self.block_lines = [ax.plot([], [], "-", color="C1", lw=1.5)[0] for _ in self.blocks]
@@ -91,7 +93,7 @@ class Drawing:
         for i, g in enumerate(self.guides):
             if g.ray:
                 s = np.abs(motion.slides[g.slide].s)
-                self.reach[i] = spec.guide_length or 1.15 * float(np.max(s))
+                self.reach[i] = guide_length or 1.15 * float(np.max(s))
         self.size = 0.06 * extent(motion) * self.k
 
     def update(self, motion, i):
@@ -166,7 +168,7 @@ def write(spec, quantities, result, sweep, outputs, lang, plots=True, animate=Fa
         at = spec.output.draw_at
         m1 = solve(spec.linkage, sweep.inputs(np.array([at])), order=0)
         if bool(m1.regular[0]):
-            d = Drawing(ax, spec, result.motion, scale)
+            d = Drawing(ax, spec.linkage, result.motion, scale, spec.guide_length)
             d.update(m1, 0)
         else:
             warnings.append(f"mechanism not drawn: it cannot be assembled at draw_at = "
@@ -207,7 +209,7 @@ def _animate(spec, result, sweep, outputs, t, k):
     m = solve(spec.linkage, sweep.inputs(qs), order=0)
     keep = np.flatnonzero(m.regular)
     fig, ax = plt.subplots(figsize=(5.5, 4.5), dpi=80)
-    d = Drawing(ax, spec, result.motion, 1 / k)
+    d = Drawing(ax, spec.linkage, result.motion, 1 / k, spec.guide_length)
     for tr in spec.tracers:
         p = result.motion.points[tr.name].p * k
         ax.plot(p.real, p.imag, ":", lw=1, color="C3")

@@ -5,7 +5,6 @@ generator, the Burmester curves, and ``--animate`` a GIF of the design moving.""
 from __future__ import annotations
 
 import math
-import types
 
 import numpy as np
 
@@ -23,10 +22,6 @@ _T = {"en": {"pos": "Design in its prescribed positions", "err": "Structural err
              "ephi": "输出角误差/°", "burm": "Burmester 曲线", "centre": "圆心点曲线",
              "circle": "圆点曲线", "poses": "位置", "bpts": "Burmester 点 (圆心点 ▲, 圆点 ●)",
              "lim": "极限位置"}}
-
-
-def _shim(linkage):
-    return types.SimpleNamespace(linkage=linkage, guide_length=None)
 
 
 def _drive(chk, q):
@@ -56,7 +51,7 @@ def _positions_png(sol, outputs, name, title, unit, k, t, q=None):
     for i in range(len(q)):
         if not m.feasible[i]:
             continue
-        d = Drawing(ax, _shim(chk.linkage), m, 1 / k)
+        d = Drawing(ax, chk.linkage, m, 1 / k)
         d.update(m, i)
         for line in d.bar_lines + d.block_lines:
             line.set_color(f"C{i % 10}")
@@ -136,7 +131,7 @@ def _burmester_png(sol, prob, outputs, name, title, unit, k, t):
 
 def _animate(sol, outputs, name, title, k, frames=72):
     import matplotlib.pyplot as plt
-    des, chk = sol.design, sol.check
+    chk = sol.check
     a, b = chk.start, chk.stop
     if a == b:
         a, b = 0.0, 2 * math.pi
@@ -146,7 +141,7 @@ def _animate(sol, outputs, name, title, k, frames=72):
     if keep.size == 0:
         return
     fig, ax = plt.subplots(figsize=(5.5, 4.5), dpi=80)
-    d = Drawing(ax, _shim(chk.linkage), m, 1 / k)
+    d = Drawing(ax, chk.linkage, m, 1 / k)
     limits(ax, m, k)
     ax.set_title(plotting.text(title))
     pics = []

@@ -14,13 +14,12 @@ from __future__ import annotations
 
 import dataclasses
 import math
-import types
 from pathlib import Path
 from typing import Optional, Tuple
 
 from mechcli.spec.common import Header, read_expected, read_header
 from mechcli.spec.errors import SpecError
-from mechcli.spec.force import MAX_FORCE, MAX_INERTIA, _bodies, _loads
+from mechcli.spec.force import MAX_FORCE, MAX_INERTIA, read_bodies, read_gravity, read_loads
 from mechcli.spec.reader import load_spec
 
 #: the largest |ω| [rad/s] and angle [deg] a spec may give (a 1e6 rad/s shaft is
@@ -355,19 +354,13 @@ def read_flywheel_spec(path, overrides=()) -> FlywheelSpec:
         except ForceModelError as exc:
             raise SpecError(root.file, "mechanism", "a linkage whose pairs can carry forces",
                             str(exc)) from None
-        bodies = _bodies(root, topo, linkage.frame)
+        bodies = read_bodies(root, topo, linkage.frame)
         if not bodies:
             raise root.error("link", "[[link]] tables with the masses and inertias of the "
                              "moving links", "none")
-        if root.has("gravity"):
-            g = root.table("gravity")
-            gval = g.number("g", 9.81, nonneg=True, hi=1e6)
-            ang = math.radians(g.number("angle", -90.0))
-            g.finish()
-            gravity = (gval * math.cos(ang), gval * math.sin(ang))
+        gravity = read_gravity(root)
         quantities = default_quantities(linkage, 2, list(linkage.point_names))
-        loads = tuple(_loads(root, topo, linkage.frame, types.SimpleNamespace(rotary=True),
-                             quantities))
+        loads = tuple(read_loads(root, topo, linkage.frame, True, quantities))
     inertia = _inertia(root, linkage is not None)
     motion = _motion(root)
     has_loads = bool(loads) or (linkage is not None and any(gravity))

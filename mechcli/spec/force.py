@@ -134,7 +134,22 @@ def _place(sec, key, from_key, topo, link, allow_mid):
     return origin or topo.frames[link][0], xy[0] * sec.unit, xy[1] * sec.unit
 
 
-def _bodies(root, topo, frame):
+def read_gravity(root):
+    """``[gravity] g, angle`` -> (gx, gy) [m/s^2]; (0, 0) without the table."""
+    if not root.has("gravity"):
+        return (0.0, 0.0)
+    g = root.table("gravity")
+    gval = g.number("g", 9.81, nonneg=True, hi=MAX_G)
+    ang = math.radians(g.number("angle", -90.0))
+    g.finish()
+    grav = (gval * math.cos(ang), gval * math.sin(ang))
+    if abs(grav[0]) < 1e-15 * max(gval, 1.0):
+        grav = (0.0, grav[1])
+    return grav
+
+
+def read_bodies(root, topo, frame):
+    """``[[link]]`` tables -> ``{link: Body}`` (mass, J about the centre of mass, com)."""
     bodies = {}
     for t in root.tables("link", []):
         n = _link_number(t, "number", topo, frame)
@@ -154,7 +169,8 @@ def _bodies(root, topo, frame):
     return bodies
 
 
-def _loads(root, topo, frame, inp, quantities):
+def read_loads(root, topo, frame, rotary, quantities):
+    """``[[load]]`` tables -> LoadProgram tuple (windows in degrees of a rotary input)."""
     from mechcli.core.linkage.kinetostatics import Load
 
     by_symbol = {q.symbol: q for q in quantities}
@@ -162,7 +178,7 @@ def _loads(root, topo, frame, inp, quantities):
                         ("angvel", "velocity"))
     slides = sorted(s[1:] for s, q in by_symbol.items() if q.kind == "length"
                     and q.symbol.startswith("s"))
-    unit = math.pi / 180 if inp.rotary else root.unit
+    unit = math.pi / 180 if rotary else root.unit
     out, names = [], set()
     for i, t in enumerate(root.tables("load", [])):
         name = t.name("name", f"load{i + 1}")
@@ -203,7 +219,7 @@ def _loads(root, topo, frame, inp, quantities):
                                f"{len(ys)} values for {len(xs)} points")
             if any(b <= a for a, b in zip(xs, xs[1:])):
                 raise ft.error("at", "increasing input positions", repr(xs))
-            if inp.rotary and xs[-1] - xs[0] > 360.0:
+            if rotary and xs[-1] - xs[0] > 360.0:
                 raise ft.error("at", "input angles spanning at most 360° (the table is "
                                "periodic)", repr(xs))
             ft.finish()
@@ -214,8 +230,8 @@ def _loads(root, topo, frame, inp, quantities):
             w = t.table("when")
             if w.has("window"):
                 lo, hi = w.numbers("window", size=2)
-                if (lo >= hi) if not inp.rotary else (lo == hi):
-                    raise w.error("window", "[lo, hi] with lo < hi" if not inp.rotary else
+                if (lo >= hi) if not rotary else (lo == hi):
+                    raise w.error("window", "[lo, hi] with lo < hi" if not rotary else
                                   "[lo, hi] with lo != hi (lo > hi wraps through 360°)",
                                   repr([lo, hi]))
                 window = (lo * unit, hi * unit)
@@ -254,7 +270,7 @@ def _loads(root, topo, frame, inp, quantities):
             w.finish()
         t.finish()
         load = Load(name, link, fx, fy, torque, origin, along, normal, relative)
-        out.append(LoadProgram(load, window, inp.rotary, velocity, sign, slide, band, table))
+        out.append(LoadProgram(load, window, rotary, velocity, sign, slide, band, table))
     return tuple(out)
 
 
@@ -288,18 +304,10 @@ def load_force_spec(path, overrides=()) -> ForceSpec:
         raise SpecError(root.file, "mechanism", "a linkage whose pairs can carry forces",
                         str(exc)) from None
     inp = read_input(root, linkage, followers, MAX_POSITIONS, POSITIONS_WHY)
-    grav = (0.0, 0.0)
-    if root.has("gravity"):
-        g = root.table("gravity")
-        gval = g.number("g", 9.81, nonneg=True, hi=MAX_G)
-        ang = math.radians(g.number("angle", -90.0))
-        g.finish()
-        grav = (gval * math.cos(ang), gval * math.sin(ang))
-        if abs(grav[0]) < 1e-15 * max(gval, 1.0):
-            grav = (0.0, grav[1])
-    bodies = _bodies(root, topo, linkage.frame)
+    grav = read_gravity(root)
+    bodies = read_bodies(root, topo, linkage.frame)
     quantities = default_quantities(linkage, 2, [p for p in linkage.point_names])
-    loads = _loads(root, topo, linkage.frame, inp, quantities)
+    loads = read_loads(root, topo, linkage.frame, inp.rotary, quantities)
     out = _output(root.table("output") if root.has("output") else _empty(root, "output"), inp)
     expected = read_expected(root)
     root.finish()

@@ -1312,8 +1312,6 @@ def flywheel_exact(inertia, moment, delta, *, omega_guess, method="DOP853", rtol
     ConvergenceError
         No bracket or no convergence.
     """
-    from scipy.optimize import brentq
-
     inertia = _as_inertia(inertia)
     if mean not in ("integral", "average"):
         raise ValueError(f"unknown mean {mean!r}")
@@ -1349,7 +1347,7 @@ def flywheel_exact(inertia, moment, delta, *, omega_guess, method="DOP853", rtol
     # safeguarded secant on h (nearly linear): a root bracket [lo, hi] once h changes sign,
     # bisection whenever the secant leaves it
     lo, h_lo = 0.0, 1.0 / target - 1.0 / d0
-    hi = h_hi = None
+    hi = None
     a, h_a, b = 0.0, h_lo, J1
     for _ in range(max_iter):
         h_b = h(b)
@@ -1358,7 +1356,7 @@ def flywheel_exact(inertia, moment, delta, *, omega_guess, method="DOP853", rtol
         if h_b > 0:
             lo, h_lo = b, h_b
         else:
-            hi, h_hi = b, h_b
+            hi = b
         step = -h_b * (b - a) / (h_b - h_a) if h_b != h_a else math.inf
         a, h_a = b, h_b
         nxt = b + step

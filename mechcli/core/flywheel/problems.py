@@ -309,9 +309,8 @@ def solve_flywheel(spec):
             raise DescribedError("the closed form needs a constant inertia and a moment "
                                  "a − bω of the speed only", reason="method")
         J = float(inertia(np.array([0.0]))[0][0])
-        a, b = moment.a + moment.constant, moment.b
-        if moment._harm is not None:        # a constant harmonic a0 adds to a
-            a += moment._harm[0]
+        # Me = a − bω with a every term but −bω (constant here: no φ dependence)
+        a, b = float(moment.phi_part(0.0)), moment.b
         times = None if ms.t_end is None else np.linspace(0.0, ms.t_end, ms.points)
         mot = mo.linear_closed_form(J, a, b, 0.0, ms.omega0, omega_end=ms.omega_end,
                                     t=times, points=ms.points)

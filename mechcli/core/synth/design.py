@@ -15,8 +15,9 @@ from typing import Dict, Mapping, Optional, Tuple
 
 import numpy as np
 
-from mechcli.core.linkage.elements import RRP, RRR, Crank, Ground, PointOnLink
+from mechcli.core.linkage.elements import RRR, Crank, Ground, PointOnLink
 from mechcli.core.linkage.engine import Linkage
+from mechcli.core.linkage.presets import slider_crank
 
 Point = Tuple[float, float]
 
@@ -145,8 +146,7 @@ def slider_crank_design(l1, l2, e=0.0, *, branch=1, inputs=None, slides=None,
     lengths = {"l1": float(l1), "l2": float(l2), "e": float(e)}
     if H is not None:
         lengths["H"] = float(H)
-    link = Linkage(4, (Ground("A", 0.0, 0.0), Crank(1, "A", "B", float(l1)),
-                       RRP("C", "B", 2, float(l2), 3, 4, "A", 0.0, float(e), branch, "3")))
+    link = slider_crank(float(l1), float(l2), float(e), branch)   # the kin preset
     return LinkageDesign("slider_crank", link, lengths, {"A": (0.0, 0.0)},
                          None if inputs is None else np.asarray(inputs, dtype=float),
                          {}, {}, dict(slides or {}), dict(values or {}))
