@@ -59,6 +59,16 @@ def run_inprocess(*args):
     return subprocess.CompletedProcess(["mechcli", *argv], code, out.getvalue(), err.getvalue())
 
 
+def run_json(command, *args):
+    """``mechcli COMMAND ARGS --json --no-plot`` in this process; the JSON document of a
+    run that must succeed (exit 0)."""
+    import json
+
+    proc = run_inprocess(command, *args, "--json", "--no-plot")
+    assert proc.returncode == 0, proc.stderr
+    return json.loads(proc.stdout)
+
+
 @pytest.fixture(autouse=True)
 def _close_figures():
     """In-process runs share one matplotlib state: close every figure a test left open

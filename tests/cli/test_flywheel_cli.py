@@ -2,20 +2,17 @@
 the exits of problems without solution."""
 
 import csv
-import json
 import math
 
 import pytest
 
-from tests.conftest import CONFIGS, one_line_error, run_inprocess, write_spec as write
+from tests.conftest import CONFIGS, one_line_error, run_inprocess, run_json, write_spec as write
 
 CH6 = CONFIGS / "ch6"
 
 
 def _json(*args):
-    proc = run_inprocess("flywheel", *args, "--json", "--no-plot")
-    assert proc.returncode == 0, proc.stderr
-    return json.loads(proc.stdout)
+    return run_json("flywheel", *args)
 
 
 def test_steady_state_json_and_csv(tmp_path):

@@ -2,19 +2,16 @@
 defects on the engine, cases, exit codes and messages."""
 
 import json
-import math
 
 import pytest
 
-from tests.conftest import CONFIGS, one_line_error, run_inprocess, write_spec as write
+from tests.conftest import CONFIGS, one_line_error, run_inprocess, run_json, write_spec as write
 
 CH3 = CONFIGS / "ch3"
 
 
 def _json(*args):
-    proc = run_inprocess("synth", *args, "--json", "--no-plot")
-    assert proc.returncode == 0, proc.stderr
-    return json.loads(proc.stdout)
+    return run_json("synth", *args)
 
 
 def test_ex3_3_json_contract_and_book_values(tmp_path):
