@@ -20,5 +20,5 @@ from mechcli.core.linkage.elements import (  # noqa: F401
     Pivot, PointOnLink, SliderDriver)
 from mechcli.core.linkage.engine import (  # noqa: F401
     DriverMotion, DyadCondition, LinkMotion, Linkage, LinkageDefinitionError, LinkageMotion,
-    PointMotion, SlideMotion, kinematic_coefficients, solve)
+    PointMotion, SlideMotion, kinematic_coefficients, solve, stack)
 from mechcli.core.linkage.presets import four_bar, guide_bar, shaper, slider_crank  # noqa: F401

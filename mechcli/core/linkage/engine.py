@@ -174,6 +174,50 @@ class Linkage:
         return functools.reduce(np.maximum, sizes, 1e-300)
 
 
+def stack(linkages) -> "Linkage":
+    """One batched linkage from M linkages of the same structure.
+
+    Every numeric parameter (lengths, coordinates, angles, branch) becomes an
+    array of shape ``(M, 1)``, so :func:`solve` against inputs of shape
+    ``(N,)`` or ``(M, N)`` moves all M designs at once (results ``(M, N)``).
+    The linkages must have the same elements in the same order, with the same
+    points, links and names; only their numbers may differ.  This is how a
+    population of candidate designs (``optimize``, the atlas) is one engine
+    call.
+
+    Raises
+    ------
+    ValueError
+        If the list is empty, a parameter is already an array, or two
+        linkages differ in anything but numbers.
+    """
+    linkages = list(linkages)
+    if not linkages:
+        raise ValueError("stack needs at least one linkage")
+    first = linkages[0]
+    for k, lk in enumerate(linkages[1:], 1):
+        if lk.frame != first.frame or len(lk.elements) != len(first.elements):
+            raise ValueError(f"linkage {k} differs in structure from linkage 0")
+    elements = []
+    for i, el in enumerate(first.elements):
+        numeric = _fields(el)
+        for k, lk in enumerate(linkages):
+            other = lk.elements[i]
+            if type(other) is not type(el) or any(
+                    getattr(other, f.name) != getattr(el, f.name)
+                    for f in dataclasses.fields(el) if f.name not in numeric):
+                raise ValueError(f"element {i} ({el.kind}) of linkage {k} differs from linkage "
+                                 "0 in more than its numbers")
+        values = {}
+        for f in numeric:
+            column = [getattr(lk.elements[i], f) for lk in linkages]
+            if any(np.ndim(v) for v in column):
+                raise ValueError(f"element {i} ({el.kind}) {f} is already an array")
+            values[f] = np.asarray(column, dtype=float)[:, None]
+        elements.append(dataclasses.replace(el, **values))
+    return Linkage(first.frame, tuple(elements))
+
+
 def _fields(el):
     return [f for f in el.lengths_ + el.angles_ + ("branch",) if hasattr(el, f)]
 
