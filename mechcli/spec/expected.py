@@ -398,15 +398,26 @@ def lookup(results, name, default=_MISSING):
     key ``l1``); *default* (or a private sentinel) when there is none."""
     if name in results:
         return results[name]
-    node = results
-    for part in name.split("."):
-        if isinstance(node, dict) and part in node:
-            node = node[part]
-        elif isinstance(node, (list, tuple)) and part.isdigit() and int(part) < len(node):
-            node = node[int(part)]
-        else:
-            return default
-    return node
+    return _walk(results, name.split("."), default)
+
+
+def _walk(node, parts, default):
+    """Follow *parts* into *node*; a dict key may itself hold dots (``optimize``'s
+    ``x`` is keyed by dotted spec paths: ``"x.mechanism.l2"``), so the longest
+    joined run of parts that is a key is tried first."""
+    if not parts:
+        return node
+    if isinstance(node, dict):
+        for k in range(len(parts), 0, -1):
+            key = ".".join(parts[:k])
+            if key in node:
+                found = _walk(node[key], parts[k:], default)
+                if found is not default:
+                    return found
+        return default
+    if isinstance(node, (list, tuple)) and parts[0].isdigit() and int(parts[0]) < len(node):
+        return _walk(node[int(parts[0])], parts[1:], default)
+    return default
 
 
 def has_result(results, name):

@@ -293,9 +293,14 @@ def _output(sec, inp):
 
 def load_force_spec(path, overrides=()) -> ForceSpec:
     """Read and validate a ``mechcli force`` spec (exit 2 on any error)."""
+    return read_force_root(load_spec(path, overrides))
+
+
+def read_force_root(root) -> ForceSpec:
+    """:func:`load_force_spec` on a root table already loaded (``optimize``
+    reads its problem's tables this way)."""
     from mechcli.core.linkage.kinematics import default_quantities
 
-    root = load_spec(path, overrides)
     header = read_header(root, "force", default_unit="mm")
     kind, linkage, tracers, followers, guide_length = read_mechanism(root)
     try:

@@ -414,7 +414,12 @@ def load_kin_spec(path, overrides=()) -> KinSpec:
     SpecError
         With the file, key, expectation and what was found.
     """
-    root = load_spec(path, overrides)
+    return read_kin_root(load_spec(path, overrides))
+
+
+def read_kin_root(root) -> KinSpec:
+    """:func:`load_kin_spec` on a root table already loaded (``optimize``
+    reads its problem's tables this way)."""
     header = read_header(root, "kin", default_unit="mm")
     kind, linkage, tracers, followers, guide_length = read_mechanism(root)
     inp = read_input(root, linkage, followers)

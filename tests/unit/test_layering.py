@@ -49,6 +49,7 @@ SPEC_CORE_FUNCTIONS = {
     "four_bar", "slider_crank", "guide_bar", "shaper",  # presets (issue 11)
     "topology",            # the pair model of a linkage (which pairs carry forces)
     "default_quantities",  # the names of the quantities a linkage has
+    "stack",               # one batched linkage of a population (optimize's candidates)
 }
 
 #: report module -> the core package of its command (functions only from there)
@@ -64,6 +65,8 @@ OWN_CORE = {
     "mechcli.report.grashof": "mechcli.core.grashof",
     "mechcli.report.synth": "mechcli.core.synth",
     "mechcli.report.flywheel": "mechcli.core.flywheel",
+    "mechcli.report.optimize": "mechcli.core.optimize",
+    "mechcli.report.optimize_plots": "mechcli.core.optimize",
     # the animation poses the linkage with kin's drawing
     "mechcli.report.flywheel_plots": "mechcli.core.linkage",
     # the pictures draw the designed linkage with kin's drawing, posed by the engine

@@ -1,0 +1,237 @@
+"""``mechcli optimize``: constrained and global optimization of a linkage
+(chapter 7) on the engine, a whole population per engine call."""
+
+from __future__ import annotations
+
+import click
+
+from mechcli.options import RunOptions, common_options
+
+
+class ResultTerms:
+    """Objective and constraints read from another command's ``--json``
+    results, one design at a time (``force``'s max |Mb| …).  Picklable."""
+
+    def __init__(self, spec, objective, bounds):
+        from mechcli.spec.optimize import Candidates
+        self.spec = spec
+        self.keys = Candidates(spec).keys
+        self.objective = objective          # (key, sign) or None
+        self.bounds = bounds                # [(key, lo, hi)]
+
+    def results(self, x):
+        from mechcli.spec.optimize import problem_root, read_problem, with_values
+        spec = self.spec
+        root = problem_root(spec.problem_file, with_values(spec.problem_data,
+                                                           dict(zip(self.keys, x))))
+        prob = read_problem(spec.problem, root)
+        return problem_results(spec.problem, prob)
+
+    def names(self):
+        out = []
+        for key, lo, hi in self.bounds:
+            if lo is not None:
+                out.append(f"{key}>=")
+            if hi is not None:
+                out.append(f"{key}<=")
+        return out
+
+    def __call__(self, X):
+        import numpy as np
+
+        from mechcli.core.errors import UnsolvableError
+        from mechcli.spec.errors import SpecError
+        M = len(X)
+        f = np.zeros(M) if self.objective else None
+        g = np.zeros((M, len(self.names())))
+        ok = np.ones(M, dtype=bool)
+        for k, x in enumerate(X):
+            try:
+                r = self.results(x)
+            except (UnsolvableError, SpecError, ArithmeticError):
+                ok[k] = False
+                continue
+            if self.objective:
+                key, sign = self.objective
+                f[k] = sign * float(r[key])
+            j = 0
+            for key, lo, hi in self.bounds:
+                if lo is not None:
+                    g[k, j] = lo - float(r[key])
+                    j += 1
+                if hi is not None:
+                    g[k, j] = float(r[key]) - hi
+                    j += 1
+        return f, g, ok
+
+
+def problem_results(problem, prob):
+    """The ``--json`` results of ``problem`` (kin or force) on its spec, computed
+    in-process without writing anything."""
+    if problem == "kin":
+        from mechcli.core.linkage.kinematics import analyse_sweep, default_quantities
+        from mechcli.report import kin as rk
+        q = default_quantities(prob.linkage, prob.output.order, [t.name for t in prob.tracers])
+        res = analyse_sweep(prob.linkage, prob.input.sweep(), q, prob.output.order,
+                            partial=prob.input.partial)
+        return rk.scalar_results(prob, q, res)
+    from mechcli.core.linkage.force_analysis import analyse_forces
+    from mechcli.report import force as rf
+    res = analyse_forces(prob.linkage, prob.topology, prob.input.sweep(), prob.bodies,
+                         prob.gravity, prob.loads, partial=prob.input.partial)
+    return rf.scalar_results(prob, res)
+
+
+def build_problem(spec):
+    """The core problem of a spec: the vectorized evaluator on the engine (goal,
+    engine constraints) plus, where asked, another command's results."""
+    import numpy as np
+
+    from mechcli.core.optimize import linkage_problem as lp
+    from mechcli.core.optimize.problem import Problem, Variable
+    from mechcli.spec.optimize import Candidates
+
+    cands = Candidates(spec)
+    base = cands.linkage_of(cands.starts)
+    driver = base.drivers[0].link
+    size = float(base.scale())
+    obj = spec.objective
+    goal = None
+    if obj["kind"] == "function":
+        if "dphi" in obj:
+            dphi, dpsi = obj["dphi"], obj["dpsi"]
+        else:
+            dphi, dpsi = function_targets(spec)
+        goal = lp.FunctionGoal(obj["output"], obj["phi0"], np.asarray(dphi, dtype=float),
+                               np.asarray(dpsi, dtype=float), obj["psi0"], obj["measure"],
+                               1.0 if not isinstance(obj["output"], str) else size)
+    elif obj["kind"] == "path":
+        goal = lp.PathGoal(obj["point"], obj["targets"], obj["angles"], obj["theta0"],
+                           obj["measure"])
+    engine, scales, bounds = [], [], []
+    for c in spec.constraints:
+        if c["kind"] == "transmission":
+            engine.append(lp.Transmission(c["min"], c["max"], c["over"], c["joints"]))
+            scales += [1.0, 1.0]
+        elif c["kind"] == "assembly":
+            engine.append(lp.Assembly(c["over"]))
+            scales.append(1.0)
+        elif c["kind"] == "crank":
+            engine.append(lp.CrankConditions())
+            scales += [size] * 6
+        else:
+            bounds.append((c["key"], c["min"], c["max"]))
+    extra, extra_names = None, ()
+    if obj["kind"] == "result" or bounds:
+        objective = ((obj["key"], -1.0 if obj["goal"] == "maximize" else 1.0)
+                     if obj["kind"] == "result" else None)
+        extra = ResultTerms(spec, objective, bounds)
+        check_result_keys(spec, extra)
+        extra_names = extra.names()
+        for key, lo, hi in bounds:
+            scales += [max(abs(v), 1e-300) if v else 1.0 for v in (lo, hi) if v is not None]
+    evaluator = lp.LinkageEvaluator(cands, driver, goal, engine, spec.method.samples, extra,
+                                    extra_names)
+    variables = [Variable(v.key, v.lo, v.hi, v.start) for v in spec.variables]
+    return Problem(variables, evaluator, evaluator.names, scales=scales), evaluator
+
+
+def function_targets(spec):
+    """(dphi, dpsi) [rad] of a named function: x from x0 to xm maps linearly onto
+    the input swing phi_m, y onto the output swing psi_m (§3.5's scaling)."""
+    import numpy as np
+
+    from mechcli.core.errors import DescribedError
+    from mechcli.core.synth.functions import make_function
+    from mechcli.spec.errors import SpecError
+    obj = spec.objective
+    f = make_function(obj["function"], exponent=obj.get("exponent"), coeffs=obj.get("coeffs"))
+    try:
+        f.check_domain(obj["x0"], obj["xm"])
+    except DescribedError as exc:
+        raise SpecError(str(spec.path), "objective.x0", "an interval inside the function's "
+                        "domain", str(exc)) from None
+    n = obj["n"]
+    x = obj["x0"] + (obj["xm"] - obj["x0"]) * np.arange(1, n + 1) / n
+    y0, ym = float(f(obj["x0"])), float(f(obj["xm"]))
+    if not np.isfinite(y0) or not np.isfinite(ym) or y0 == ym:
+        raise SpecError(str(spec.path), "objective.xm", "an interval where f(x0) != f(xm)",
+                        f"f(x0) = {y0:g}, f(xm) = {ym:g}")
+    dphi = obj["phi_m"] * np.arange(1, n + 1) / n
+    dpsi = obj["psi_m"] * (f(x) - y0) / (ym - y0)
+    return dphi, dpsi
+
+
+def check_result_keys(spec, terms):
+    """Every result key names a numeric result of the problem at the start."""
+    import difflib
+
+    from mechcli.core.errors import UnsolvableError
+    from mechcli.spec.errors import SpecError
+    try:
+        r = terms.results(terms.spec and [v.start for v in spec.variables])
+    except UnsolvableError as exc:
+        raise UnsolvableError(f"the start design cannot be analysed by `{spec.problem}`: "
+                              f"{exc}") from None
+    wanted = ([("objective.key", spec.objective["key"])] if spec.objective["kind"] == "result"
+              else []) + [(f"{c['path']}.key", c["key"]) for c in spec.constraints
+                          if c["kind"] == "result"]
+    numeric = [k for k, v in r.items() if isinstance(v, (int, float)) and not isinstance(v, bool)]
+    for where, key in wanted:
+        if key not in numeric:
+            near = difflib.get_close_matches(key, numeric, n=1, cutoff=0.5)
+            raise SpecError(str(spec.path), where,
+                            f"a numeric result of `mechcli {spec.problem} --json`",
+                            f"'{key}'" + (f"; did you mean '{near[0]}'?" if near else ""))
+
+
+@click.command("optimize")
+@click.argument("spec_path", metavar="SPEC.toml")
+@common_options
+def optimize(spec_path, **opts):
+    """Optimization of a linkage (chapter 7): function or path generation, or any
+    scalar result of kin/force, under transmission-angle, crank and assembly
+    constraints, by SLSQP, trust-constr, Nelder-Mead, differential evolution,
+    golden section or Brent."""
+    run = RunOptions.from_click(spec_path, opts)
+    from mechcli.core.errors import ConvergenceError, DescribedError
+    from mechcli.core.optimize.methods import minimize
+    from mechcli.report import optimize as report
+    from mechcli.report.files import Outputs
+    from mechcli.report.run import finish
+    from mechcli.spec.optimize import read_optimize_spec
+
+    spec = read_optimize_spec(spec_path, run.sets)
+    problem, evaluator = build_problem(spec)
+    executor = None
+    if spec.method.workers > 1:
+        from concurrent.futures import ProcessPoolExecutor
+        executor = ProcessPoolExecutor(spec.method.workers)
+        problem.mapper = executor.map
+        problem.chunk = max(1, 64)
+    m = spec.method
+    try:
+        result = minimize(problem, m.name, tol=m.tol, maxiter=m.maxiter, popsize=m.popsize,
+                          seed=m.seed, starts=m.starts, polish=m.polish, central=m.central)
+    except DescribedError as exc:       # worded with the spec's keys
+        raise DescribedError(report.error_message(exc, spec, problem), exc.reason,
+                             **exc.values) from None
+    except ConvergenceError as exc:
+        raise ConvergenceError(report.convergence_message(exc, spec, problem)) from None
+    finally:
+        if executor is not None:
+            executor.shutdown()
+    details = evaluator.details(result.x[None, :]) if hasattr(evaluator, "details") else {}
+    outputs = Outputs(run.out_dir, digits=run.digits)
+    outputs.csv("history.csv", report.history_columns(spec, result))
+    from mechcli.spec.optimize import with_values
+    optimum = with_values(spec.problem_data, {v.key: float(x)
+                                              for v, x in zip(spec.variables, result.x)})
+    outputs.text("optimum.toml", report.optimum_toml(spec, result, optimum))
+    warnings = report.warnings(spec, result)
+    if run.plot or run.animate:
+        from mechcli.report import optimize_plots
+        warnings += optimize_plots.write(spec, problem, result, details, outputs, run.lang,
+                                         plots=run.plot, animate=bool(run.animate))
+    finish(run, "optimize", report.build_report(spec, problem, result, details, run.lang),
+           report.results(spec, problem, result, details), outputs, warnings)

@@ -1,0 +1,313 @@
+"""The methods: every one minimizes a :class:`~.problem.Problem` and returns a
+:class:`~.problem.Result`.
+
+* ``slsqp``, ``trust-constr`` (``scipy.optimize.minimize``): constraints as
+  they are, gradients by finite differences whose stencil is ONE population
+  evaluation (the n + 1 or 2n + 1 designs of the stencil are one engine call);
+* ``nelder-mead``: bounds, constraints as an extreme barrier (a design that
+  violates one is worse than every feasible design);
+* ``differential_evolution``: global, the whole population one vectorized
+  evaluation per generation; constraints by the feasibility rule (feasible
+  beats infeasible, infeasible ranked by violation); the best design is
+  polished by SLSQP;
+* ``golden``: the book's golden section on one variable
+  (:func:`mechcli.core.refine.golden_section_max`), ``brent``: bounded Brent
+  (``scipy.optimize.minimize_scalar``);
+* multi-start: a local method from the given start and ``starts - 1`` more
+  points of a Latin hypercube (seeded), keeping the best feasible end.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+
+import numpy as np
+
+from mechcli.core.errors import ConvergenceError, DescribedError
+from mechcli.core.optimize.problem import Problem, Result
+
+#: method names
+METHODS = ("slsqp", "trust-constr", "nelder-mead", "differential_evolution", "golden",
+           "brent")
+LOCAL = ("slsqp", "trust-constr", "nelder-mead")
+SCALAR = ("golden", "brent")
+
+#: an infeasible design's value in the barrier and penalty forms: above every
+#: feasible (scaled) value, ordered by violation
+_WALL = 1e6
+
+
+class _Smooth:
+    """f, g and their finite-difference gradients at x, from one population
+    evaluation of the stencil (cached on x)."""
+
+    def __init__(self, problem, central=True):
+        self.p = problem
+        self.central = central
+        self.key = None
+        span = np.where(np.isfinite(problem.hi - problem.lo), problem.hi - problem.lo, 1.0)
+        self.h_floor = 1e-9 * np.maximum(span, 1e-12)
+
+    def _at(self, x):
+        x = np.asarray(x, dtype=float)
+        key = x.tobytes()
+        if key == self.key:
+            return
+        n = x.size
+        # step ~ eps^(1/3) (central) or eps^(1/2) (forward) of the variable's size
+        rel = 6e-6 if self.central else 1.5e-8
+        h = np.maximum(rel * np.maximum(np.abs(x), 1.0), self.h_floor)
+        rows = [x]
+        for i in range(n):
+            e = np.zeros(n)
+            e[i] = h[i]
+            rows.append(x + e)
+            if self.central:
+                rows.append(x - e)
+        ev = self.p.evaluate(np.array(rows))
+        # the method's cost counts designs, the stencil's are its gradient
+        f, g, ok = ev.f, ev.g, ev.ok
+        self.f0, self.g0, self.ok0 = float(f[0]), g[0].copy(), bool(ok[0])
+        df = np.zeros(n)
+        dg = np.zeros((g.shape[1], n))
+        for i in range(n):
+            if self.central:
+                jp, jm = 1 + 2 * i, 2 + 2 * i
+                if ok[jp] and ok[jm]:
+                    df[i] = (f[jp] - f[jm]) / (2 * h[i])
+                    dg[:, i] = (g[jp] - g[jm]) / (2 * h[i])
+                elif ok[jp] and ok[0]:
+                    df[i] = (f[jp] - f[0]) / h[i]
+                    dg[:, i] = (g[jp] - g[0]) / h[i]
+                elif ok[jm] and ok[0]:
+                    df[i] = (f[0] - f[jm]) / h[i]
+                    dg[:, i] = (g[0] - g[jm]) / h[i]
+            else:
+                j = 1 + i
+                if ok[j] and ok[0]:
+                    df[i] = (f[j] - f[0]) / h[i]
+                    dg[:, i] = (g[j] - g[0]) / h[i]
+        self.df, self.dg = df, dg
+        self.key = key
+
+    def f(self, x):
+        self._at(x)
+        if not self.ok0:          # finite and worse than any evaluable design
+            return _WALL * (1.0 + abs(self.f0)) + float(self.p.violation(self.g0, False))
+        return self.f0
+
+    def grad(self, x):
+        self._at(x)
+        return self.df
+
+    def g(self, x):
+        self._at(x)
+        return self.g0
+
+    def jac(self, x):
+        self._at(x)
+        return self.dg
+
+
+def _finish(problem, x, method, message, converged, iterations, started, starts=(), extra=None):
+    f, g, ok = problem.one(x)
+    feasible = bool(problem.feasible(g, ok))
+    return Result(np.asarray(x, dtype=float), f, g, problem.active(g), feasible,
+                  bool(converged and feasible), message, method, int(iterations),
+                  problem.evaluations, time.perf_counter() - started, tuple(problem.history),
+                  tuple(starts), extra)
+
+
+def _record(problem, iteration, x):
+    f, g, ok = problem.one(x)
+    problem.record(iteration, x, f, problem.violation(g, ok))
+
+
+def _local(problem, method, x0, tol, maxiter, central=True):
+    from scipy import optimize
+
+    sm = _Smooth(problem, central)
+    bounds = optimize.Bounds(problem.lo, problem.hi)
+    it = [0]
+
+    def cb(xk, *args):
+        it[0] += 1
+        _record(problem, it[0], np.asarray(getattr(xk, "x", xk)))
+
+    k = len(problem.constraint_names)
+    if method == "slsqp":
+        cons = ([{"type": "ineq", "fun": lambda x: -sm.g(x), "jac": lambda x: -sm.jac(x)}]
+                if k else [])
+        res = optimize.minimize(sm.f, x0, jac=sm.grad, method="SLSQP", bounds=bounds,
+                                constraints=cons, callback=cb,
+                                options={"ftol": tol, "maxiter": maxiter})
+        nit = res.nit
+        converged = res.status == 0
+    elif method == "trust-constr":
+        cons = ([optimize.NonlinearConstraint(sm.g, -np.inf, 0.0, jac=sm.jac,
+                                              hess=optimize.BFGS())] if k else [])
+        res = optimize.minimize(sm.f, x0, jac=sm.grad, hess=optimize.BFGS(),
+                                method="trust-constr", bounds=bounds, constraints=cons,
+                                callback=lambda xk, state=None: cb(xk),
+                                options={"gtol": tol, "xtol": tol, "maxiter": maxiter})
+        nit = res.nit
+        converged = res.status in (1, 2)
+    else:   # nelder-mead with an extreme barrier
+        ref = max(abs(problem.one(x0)[0]), 1e-300)
+
+        def barrier(x):
+            f, g, ok = problem.one(x)
+            if problem.feasible(g, ok):
+                return f
+            return _WALL * (ref + abs(f) if ok else ref) + float(problem.violation(g, ok))
+
+        res = optimize.minimize(barrier, x0, method="Nelder-Mead", bounds=bounds, callback=cb,
+                                options={"xatol": tol * max(1.0, float(np.max(np.abs(x0)))),
+                                         "fatol": tol * ref, "maxiter": maxiter,
+                                         "adaptive": problem.n > 3})
+        nit = res.nit
+        converged = res.status == 0
+    return np.clip(res.x, problem.lo, problem.hi), converged, nit, str(res.message)
+
+
+def _check_start(problem, x0, method):
+    f, g, ok = problem.one(x0)
+    # SLSQP and trust-constr walk from an infeasible start to the feasible
+    # region (the book's 例 7-1 starts at x0 = [6, 2.5], which violates g7);
+    # Nelder-Mead's barrier cannot, and no method starts where nothing can
+    # be evaluated
+    if not ok or (method == "nelder-mead" and not problem.feasible(g, ok)):
+        bad = [n for n, v, s in zip(problem.constraint_names, g, problem.scales)
+               if v > Problem.FEASIBLE_TOL * s]
+        raise DescribedError(
+            f"the start is {'not evaluable' if not ok else 'infeasible'} for the local method "
+            f"{method}", "infeasible_start", x=np.asarray(x0, dtype=float), violated=bad,
+            evaluable=ok, g=g)
+
+
+def _de(problem, tol, maxiter, popsize, seed, polish, central):
+    from scipy import optimize
+
+    ev0 = problem.evaluate(problem.start[None, :])
+    ref = abs(float(ev0.f[0])) if ev0.ok[0] and ev0.f[0] != 0 else 1.0
+    it = [0]
+
+    def fun(xt):                        # xt: (n, S), vectorized
+        ev = problem.evaluate(xt.T)
+        feas = problem.feasible(ev.g, ev.ok)
+        pen = _WALL + problem.violation(ev.g, ev.ok)
+        return np.where(feas, ev.f / ref, pen)
+
+    def cb(intermediate_result):
+        it[0] += 1
+        _record(problem, it[0], intermediate_result.x)
+
+    res = optimize.differential_evolution(
+        fun, list(zip(problem.lo, problem.hi)), popsize=popsize, tol=tol, maxiter=maxiter,
+        seed=seed, polish=False, vectorized=True, updating="deferred", callback=cb,
+        init="latinhypercube", x0=problem.start)
+    x = res.x
+    converged = bool(res.success)
+    message = str(res.message)
+    f, g, ok = problem.one(x)
+    if polish and problem.feasible(g, ok):
+        xp, conv_p, nit_p, msg_p = _local(problem, "slsqp", x, 1e-12, 200, central)
+        fp, gp, okp = problem.one(xp)
+        if problem.feasible(gp, okp) and fp <= f:
+            x = xp
+            message += f"; polished by SLSQP ({nit_p} iterations)"
+    return x, converged, it[0], message
+
+
+def _scalar(problem, method, tol, maxiter):
+    from mechcli.core.refine import golden_section_max
+    lo, hi = float(problem.lo[0]), float(problem.hi[0])
+    if method == "golden":
+        # the book's golden section (例 7-2): shrink [lo, hi] by 0.618 per step
+        # until it is shorter than tol (in the variable's numbers)
+        steps = max(1, math.ceil(math.log(max(tol, 1e-15) / (hi - lo)) / math.log(0.6180339887)))
+        steps = min(steps, maxiter)
+
+        def neg(x):
+            ev = problem.evaluate(np.asarray(x, dtype=float).reshape(-1, 1))
+            feas = problem.feasible(ev.g, ev.ok)
+            return np.where(feas, -ev.f, -(_WALL + problem.violation(ev.g, ev.ok)))
+
+        x, _ = golden_section_max(neg, np.array([lo]), np.array([hi]), iterations=steps,
+                                  rtol=0.0)
+        _record(problem, steps, x)
+        return np.array([float(x[0])]), True, steps, f"golden section, {steps} steps"
+    from scipy import optimize
+
+    def f1(x):
+        f, g, ok = problem.one(np.array([x]))
+        return f if problem.feasible(g, ok) else _WALL + float(problem.violation(g, ok))
+
+    res = optimize.minimize_scalar(f1, bounds=(lo, hi), method="bounded",
+                                   options={"xatol": tol, "maxiter": maxiter})
+    _record(problem, res.nit, np.array([res.x]))
+    return np.array([res.x]), bool(res.success), res.nit, str(res.message)
+
+
+def minimize(problem: Problem, method="slsqp", *, tol=1e-10, maxiter=1000, popsize=15,
+             seed=None, starts=1, polish=True, central=True) -> Result:
+    """Minimize ``problem`` by ``method`` (one of :data:`METHODS`).
+
+    Raises
+    ------
+    DescribedError
+        ``reason="infeasible_start"`` for a local method whose start violates a
+        constraint or cannot be evaluated; ``"infeasible"`` when no feasible
+        design was found; ``"scalar"`` for golden/brent with more than one
+        variable.
+    ConvergenceError
+        The method stopped at ``maxiter`` without converging.
+    """
+    if method not in METHODS:
+        raise ValueError(f"method must be one of {METHODS}, got {method!r}")
+    started = time.perf_counter()
+    problem.started = started
+    x0 = problem.start
+    starts_out = []
+    if method in SCALAR:
+        if problem.n != 1:
+            raise DescribedError(f"{method} searches one variable, the problem has {problem.n}",
+                                 "scalar", n=problem.n)
+        x, converged, nit, message = _scalar(problem, method, tol, maxiter)
+    elif method == "differential_evolution":
+        x, converged, nit, message = _de(problem, tol, maxiter, popsize, seed, polish, central)
+    else:
+        _check_start(problem, x0, method)
+        x, converged, nit, message = _local(problem, method, x0, tol, maxiter, central)
+        if starts > 1:
+            from scipy.stats import qmc
+            more = qmc.scale(qmc.LatinHypercube(d=problem.n, seed=seed).random(starts - 1),
+                             problem.lo, problem.hi)
+            f, g, ok = problem.one(x)
+            starts_out.append((x0, x, f, bool(problem.feasible(g, ok))))
+            best = (f if problem.feasible(g, ok) else math.inf, x, converged, nit, message)
+            for s in more:
+                fs, gs, oks = problem.one(s)
+                if not problem.feasible(gs, oks) and method == "nelder-mead":
+                    starts_out.append((s, s, fs, False))
+                    continue
+                xs, cs, ns, ms = _local(problem, method, s, tol, maxiter, central)
+                fe, ge, oke = problem.one(xs)
+                feas = bool(problem.feasible(ge, oke))
+                starts_out.append((s, xs, fe, feas))
+                if feas and fe < best[0]:
+                    best = (fe, xs, cs, ns, ms)
+                nit += ns
+            _, x, converged, _, message = best
+            message += f"; best of {starts} starts"
+    result = _finish(problem, x, method, message, converged, nit, started, starts_out)
+    if not result.feasible:
+        raise DescribedError(f"{method} found no feasible design", "infeasible",
+                             x=result.x, g=result.g, f=result.f)
+    if not converged:
+        exc = ConvergenceError(f"{method} did not converge within {maxiter} iterations: "
+                               f"{message}")
+        exc.result = result
+        raise exc
+    return result

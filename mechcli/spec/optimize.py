@@ -1,0 +1,459 @@
+"""``mechcli optimize`` problem files -> :class:`OptimizeSpec`.
+
+An optimize spec is a problem spec of another command (``problem = "kin"``
+or ``"force"``; its tables inline, or from ``base = "other.toml"``) plus the
+tables of the optimization:
+
+* ``[[variable]]``: ``key`` (a dotted path of the problem, as ``--set`` names
+  it: ``mechanism.l2``, ``mechanism.ground.D.0``, ``mechanism.point.0.along``;
+  or ``objective.phi0``/``psi0``/``theta0``), ``lo``, ``hi``, ``start``;
+* ``[objective]``: ``kind = "function" | "path" | "result"``;
+* ``[[constraint]]``: ``kind = "transmission" | "crank" | "assembly" | "result"``;
+* ``[method]``: ``name``, ``tol``, ``maxiter``, ``popsize``, ``seed``,
+  ``starts``, ``polish``, ``gradient``, ``samples``, ``workers``.
+
+Variables are in the problem's numbers (its length unit, degrees).  See
+docs/optimize.md.
+"""
+
+from __future__ import annotations
+
+import copy
+import dataclasses
+import math
+from pathlib import Path
+from typing import Optional, Tuple
+
+import numpy as np
+
+from mechcli.spec.common import Header, read_expected, read_header
+from mechcli.spec.errors import SpecError
+from mechcli.spec.reader import MAX_LENGTH, REQUIRED, Section, apply_override, load_spec
+
+#: commands whose specs can be optimized
+PROBLEMS = ("kin", "force")
+#: top-level keys that belong to the optimization, not to the problem
+OWN_KEYS = ("command", "title", "units", "description", "problem", "base", "variable",
+            "objective", "constraint", "method", "expected")
+OBJECTIVES = ("function", "path", "result")
+CONSTRAINTS = ("transmission", "crank", "assembly", "result")
+METHODS = ("slsqp", "trust-constr", "nelder-mead", "differential_evolution", "golden",
+           "brent")
+MEASURES = ("sum_squares", "rms", "mean_abs", "max_abs")
+FUNCTIONS = ("log10", "ln", "sqrt", "power", "sin", "cos", "tan", "exp", "reciprocal",
+             "polynomial")
+#: goal parameters that may be design variables, and whether they are angles
+GOAL_VARIABLES = {"phi0": True, "psi0": True, "theta0": True}
+#: most design variables (a DE population is 15 x n designs per generation)
+MAX_VARIABLES = 32
+
+
+@dataclasses.dataclass(frozen=True)
+class VariableSpec:
+    key: str            # the dotted path
+    lo: float
+    hi: float
+    start: float
+    goal: bool          # a parameter of [objective] (phi0, psi0, theta0)
+
+
+@dataclasses.dataclass(frozen=True)
+class MethodSpec:
+    name: str
+    tol: float
+    maxiter: int
+    popsize: int
+    seed: Optional[int]
+    starts: int
+    polish: bool
+    central: bool
+    samples: int
+    workers: int
+    surface: bool
+    surface_points: int
+
+
+@dataclasses.dataclass(frozen=True)
+class OptimizeSpec:
+    header: Header
+    problem: str                 # "kin" | "force"
+    problem_file: str            # the file the problem's tables come from (messages)
+    problem_data: dict           # the problem's tables (overrides applied), command set
+    base: Optional[Path]
+    variables: Tuple[VariableSpec, ...]
+    objective: dict              # kind and its keys, converted (rad, m)
+    constraints: Tuple[dict, ...]
+    method: MethodSpec
+    expected: dict
+    path: Path
+    unit: float                  # metres per length unit of the problem
+
+
+def _merge(base, over):
+    out = copy.deepcopy(base)
+    for k, v in over.items():
+        if isinstance(v, dict) and isinstance(out.get(k), dict):
+            out[k] = _merge(out[k], v)
+        else:
+            out[k] = copy.deepcopy(v)
+    return out
+
+
+def _resolve(data, key):
+    """The value at dotted ``key`` of ``data``, or raise KeyError with the part
+    that is missing."""
+    node = data
+    for part in key.split("."):
+        if isinstance(node, list):
+            if not part.isdigit() or int(part) >= len(node):
+                raise KeyError(part)
+            node = node[int(part)]
+        elif isinstance(node, dict) and part in node:
+            node = node[part]
+        else:
+            raise KeyError(part)
+    return node
+
+
+def _numeric_paths(data, prefix=""):
+    out = []
+    if isinstance(data, dict):
+        for k, v in data.items():
+            out += _numeric_paths(v, f"{prefix}.{k}" if prefix else k)
+    elif isinstance(data, list):
+        for i, v in enumerate(data):
+            out += _numeric_paths(v, f"{prefix}.{i}")
+    elif isinstance(data, (int, float)) and not isinstance(data, bool):
+        out.append(prefix)
+    return out
+
+
+def problem_root(spec_file, data, unit_name=None):
+    """A root Section over a deep copy of the problem's tables."""
+    root = Section(copy.deepcopy(data), spec_file, "")
+    root.overridden = frozenset()
+    return root
+
+
+def read_problem(problem, root):
+    """The problem command's spec read from ``root`` (full validation)."""
+    if problem == "kin":
+        from mechcli.spec.kin import read_kin_root
+        return read_kin_root(root)
+    from mechcli.spec.force import read_force_root
+    return read_force_root(root)
+
+
+def _variables(root, problem_file, data, objective_data):
+    out = []
+    tables = root.tables("variable")
+    if not tables:
+        raise root.error("variable", "at least one [[variable]] table", "none")
+    if len(tables) > MAX_VARIABLES:
+        raise root.error("variable", f"at most {MAX_VARIABLES} design variables",
+                         f"{len(tables)}")
+    seen = set()
+    for t in tables:
+        key = t.string("key")
+        parts = key.split(".")
+        goal = parts[0] == "objective"
+        if goal:
+            if len(parts) != 2 or parts[1] not in GOAL_VARIABLES:
+                raise t.error("key", "objective." + "/".join(GOAL_VARIABLES)
+                              + " (the goal parameters that may vary)", f"'{key}'")
+            value = objective_data.get(parts[1])
+        else:
+            if parts[0] in OWN_KEYS:
+                raise t.error("key", "a key of the problem's tables (mechanism..., input...)",
+                              f"'{key}'")
+            try:
+                value = _resolve(data, key)
+            except KeyError as exc:
+                import difflib
+                near = difflib.get_close_matches(key, _numeric_paths(data), n=1, cutoff=0.6)
+                hint = f"; did you mean '{near[0]}'?" if near else ""
+                raise t.error("key", "a numeric key of the problem spec (e.g. mechanism.l2)",
+                              f"'{key}' (no key '{exc.args[0]}' there{hint})") from None
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
+            raise t.error("key", "the path of a number",
+                          f"'{key}' = {value!r}" if value is not None else f"'{key}' (unset)")
+        if key in seen:
+            raise t.error("key", "each variable once", f"'{key}' twice")
+        seen.add(key)
+        lo = t.number("lo", lo=-1e12, hi=1e12)
+        hi = t.number("hi", lo=-1e12, hi=1e12)
+        if not hi > lo:
+            raise t.error("hi", f"a number above lo = {lo:g}", f"{hi:g}")
+        start = t.number("start", float(value), lo=-1e12, hi=1e12)
+        if not lo <= start <= hi:
+            raise t.error("start", f"a start within [lo, hi] = [{lo:g}, {hi:g}]",
+                          f"{start:g}" + ("" if t.has("start") else f" (the value of {key})"))
+        t.finish()
+        out.append(VariableSpec(key, lo, hi, start, goal))
+    return tuple(out)
+
+
+def _deg(sec, name, default=REQUIRED, lo=-36000.0, hi=36000.0):
+    v = sec.number(name, default, lo=lo, hi=hi)
+    return None if v is None else math.radians(v)
+
+
+def _function_objective(sec):
+    data = {"kind": "function"}
+    out = sec.raw("output", 3)
+    if isinstance(out, bool) or not isinstance(out, (int, str)) or (
+            isinstance(out, int) and out < 1):
+        raise sec.error("output", "a link number (its angle) or a slide name ('3', 'E')",
+                        repr(out))
+    data["output"] = out
+    phi0 = sec.raw("phi0", "output_min")
+    if isinstance(phi0, str):
+        if phi0 not in ("output_min", "output_max"):
+            raise sec.error("phi0", "'output_min', 'output_max' (the input's limit position "
+                            "where the output is least/greatest) or an angle in degrees",
+                            repr(phi0))
+        data["phi0"] = phi0
+    else:
+        data["phi0"] = _deg(sec, "phi0")
+    psi0 = sec.raw("psi0", "actual")
+    if isinstance(psi0, str):
+        if psi0 != "actual":
+            raise sec.error("psi0", "'actual' (the output at phi0) or a number", repr(psi0))
+        data["psi0"] = None
+    else:
+        data["psi0"] = (_deg(sec, "psi0") if not isinstance(out, str)
+                        else sec.coordinate("psi0"))
+    data["measure"] = sec.string("measure", "sum_squares", choices=list(MEASURES))
+    if sec.has("phi") or sec.has("psi"):
+        # a table of corresponding positions, relative to phi0 and psi0 (习题 7-2)
+        phi = sec.numbers("phi")
+        psi = sec.numbers("psi", size=len(phi))
+        if not 1 <= len(phi) <= 10000:
+            raise sec.error("phi", "1 to 10000 input angles", f"{len(phi)}")
+        data["dphi"] = np.radians(phi)
+        data["dpsi"] = np.radians(psi) if not isinstance(out, str) else np.asarray(psi) * sec.unit
+        return data
+    name = sec.string("function", choices=list(FUNCTIONS))
+    data["function"] = name
+    if name == "power":
+        data["exponent"] = sec.number("exponent", lo=-100.0, hi=100.0)
+    if name == "polynomial":
+        coeffs = sec.numbers("coeffs")
+        if not 1 <= len(coeffs) <= 16 or any(abs(c) > 1e12 for c in coeffs):
+            raise sec.error("coeffs", "1 to 16 coefficients within ±1e12", f"{coeffs!r}")
+        data["coeffs"] = tuple(coeffs)
+    data["x0"] = sec.number("x0", lo=-1e12, hi=1e12)
+    data["xm"] = sec.number("xm", lo=-1e12, hi=1e12)
+    if not data["xm"] > data["x0"]:
+        raise sec.error("xm", f"a number above x0 = {data['x0']:g}", f"{data['xm']:g}")
+    data["n"] = sec.integer("n", 30, lo=2, hi=100000)
+    phi_m = sec.number("phi_m", lo=-360.0, hi=360.0)
+    if phi_m == 0:
+        raise sec.error("phi_m", "a non-zero input swing in degrees (negative: clockwise)", "0")
+    data["phi_m"] = math.radians(phi_m)
+    if isinstance(out, str):
+        data["psi_m"] = sec.coordinate("psi_m")
+    else:
+        data["psi_m"] = _deg(sec, "psi_m", lo=-360.0, hi=360.0)
+    return data
+
+
+def _path_objective(sec):
+    data = {"kind": "path", "point": sec.name("point")}
+    xs = sec.numbers("x")
+    ys = sec.numbers("y", size=len(xs))
+    if not 1 <= len(xs) <= 10000:
+        raise sec.error("x", "1 to 10000 target points", f"{len(xs)}")
+    lim = MAX_LENGTH / sec.unit
+    if any(abs(v) > lim for v in xs + ys):
+        raise sec.error("x", f"coordinates within ±{lim:g}", "a larger one")
+    data["targets"] = np.column_stack([xs, ys]) * sec.unit
+    if sec.has("angles"):
+        data["angles"] = np.radians(sec.numbers("angles", size=len(xs)))
+    else:
+        data["angles"] = None
+    data["theta0"] = _deg(sec, "theta0", 0.0)
+    data["measure"] = sec.string("measure", "sum_squares", choices=list(MEASURES))
+    return data
+
+
+def _result_objective(sec):
+    return {"kind": "result", "key": sec.string("key"),
+            "goal": sec.string("goal", "minimize", choices=["minimize", "maximize"])}
+
+
+def _constraint(t):
+    kind = t.string("kind", choices=list(CONSTRAINTS))
+    c = {"kind": kind, "path": t.path}
+    if kind == "transmission":
+        c["min"] = _deg(t, "min", 0.0, lo=0.0, hi=90.0)
+        c["max"] = _deg(t, "max", math.degrees(math.pi - c["min"]), lo=90.0, hi=180.0)
+        c["over"] = t.string("over", "revolution", choices=["revolution", "range"])
+        c["joints"] = tuple(t.strings("joints", []))
+    elif kind == "assembly":
+        c["over"] = t.string("over", "revolution", choices=["revolution", "range"])
+    elif kind == "result":
+        c["key"] = t.string("key")
+        c["min"] = t.number("min", None)
+        c["max"] = t.number("max", None)
+        if c["min"] is None and c["max"] is None:
+            raise t.error("max", "a bound: min, max or both", "neither")
+    t.finish()
+    return c
+
+
+def _method(sec, nvar):
+    name = sec.string("name", "slsqp" if nvar > 1 else "brent", choices=list(METHODS))
+    # tol: ftol of SLSQP, gtol/xtol of trust-constr, xatol of NM/golden/Brent,
+    # tol of DE (relative spread of the population); error-vs-cost in
+    # benchmarks/bench_optimize.py
+    default_tol = {"differential_evolution": 1e-8, "golden": 1e-5}.get(name, 1e-10)
+    return MethodSpec(
+        name=name,
+        tol=sec.number("tol", default_tol, lo=1e-15, hi=1.0),
+        maxiter=sec.integer("maxiter", 1000, lo=1, hi=1_000_000),
+        popsize=sec.integer("popsize", 15, lo=4, hi=1000),
+        seed=sec.integer("seed", 1, lo=0, hi=2**32 - 1),
+        starts=sec.integer("starts", 1, lo=1, hi=1000),
+        polish=sec.boolean("polish", True),
+        central=sec.string("gradient", "central", choices=["central", "forward"]) == "central",
+        samples=sec.integer("samples", 360, lo=12, hi=100000),
+        workers=sec.integer("workers", 1, lo=1, hi=256),
+        surface=sec.boolean("surface", nvar == 2),
+        surface_points=sec.integer("surface_points", 41, lo=5, hi=401),
+    )
+
+
+def read_optimize_spec(path, overrides=()) -> OptimizeSpec:
+    """Read and validate a ``mechcli optimize`` spec (exit 2 on any error)."""
+    root = load_spec(path, overrides)
+    file = root.file
+    problem = root.string("problem", None, choices=list(PROBLEMS))
+    base = root.string("base", None)
+    own = {k: v for k, v in root.data.items() if k not in OWN_KEYS}
+    for k in own:           # the problem's tables: validated by the problem's reader
+        root.raw(k, None)
+    base_path = None
+    if base is not None:
+        base_path = (Path(file).parent / base)
+        base_root = load_spec(base_path)
+        bdata = dict(base_root.data)
+        base_cmd = bdata.get("command", "kin")
+        if problem is None:
+            problem = base_cmd
+        if base_cmd != problem or problem not in PROBLEMS:
+            raise root.error("base", f"a {' or '.join(PROBLEMS)} spec"
+                             + (f" (problem = '{problem}')" if root.has("problem") else ""),
+                             f"a '{base_cmd}' spec")
+        data = _merge({k: v for k, v in bdata.items() if k not in ("expected", "command")},
+                      own)
+        problem_file = str(base_path)
+    else:
+        problem = problem or "kin"
+        data = own
+        problem_file = file
+        if "units" in root.data:
+            data = dict(data, units=root.data["units"])
+    if "units" not in data and "units" in root.data:
+        data["units"] = root.data["units"]
+    data = dict(data, command=problem)
+    header = read_header(root, "optimize", default_unit=data.get("units", "mm"))
+    # the problem itself must be a valid spec of its command
+    prob = read_problem(problem, problem_root(problem_file, data))
+    obj_sec = root.table("objective")
+    obj_sec.unit = prob.header.scale
+    kind = obj_sec.string("kind", choices=list(OBJECTIVES))
+    variables = _variables(root, problem_file, data, obj_sec.data)
+    if kind == "function":
+        objective = _function_objective(obj_sec)
+    elif kind == "path":
+        objective = _path_objective(obj_sec)
+    else:
+        objective = _result_objective(obj_sec)
+    objective["path"] = "objective"
+    obj_sec.finish()
+    constraints = []
+    for t in root.tables("constraint", []):
+        t.unit = prob.header.scale
+        constraints.append(_constraint(t))
+    method_sec = root.table("method") if root.has("method") else Section({}, file, "method")
+    method = _method(method_sec, len(variables))
+    method_sec.finish()
+    expected = read_expected(root, overrides)
+    root.finish()
+    spec = OptimizeSpec(header, problem, problem_file, data, base_path, variables, objective,
+                        tuple(constraints), method, expected, Path(file), prob.header.scale)
+    _check_bounds(spec)
+    return spec
+
+
+def _check_bounds(spec):
+    """Each variable's lo and hi (the others at their starts) must be values the
+    problem's reader accepts: a bound outside a key's own range is exit 2 here,
+    never a failed design deep inside the search."""
+    for i, v in enumerate(spec.variables):
+        if v.goal:
+            continue
+        for side in ("lo", "hi"):
+            x = {w.key: w.start for w in spec.variables}
+            x[v.key] = getattr(v, side)
+            try:
+                read_problem(spec.problem, problem_root(spec.problem_file,
+                                                        with_values(spec.problem_data, x)))
+            except SpecError as exc:
+                raise SpecError(str(spec.path), f"variable[{i}].{side}",
+                                f"a value that {v.key} accepts", f"{getattr(v, side):g}: "
+                                f"{exc.expected} expected there") from None
+
+
+def with_values(data, values):
+    """A deep copy of the problem's tables with ``{dotted key: value}`` set."""
+    d = copy.deepcopy(data)
+    for key, value in values.items():
+        if key.split(".")[0] == "objective":
+            continue
+        old = _resolve(d, key)
+        apply_override("", d, key, int(value) if isinstance(old, int) and float(
+            value).is_integer() and abs(value) < 2**53 else float(value))
+    return d
+
+
+class Candidates:
+    """``candidates(X) -> (linkage, ok, params)`` for a population: every row's
+    problem tables read (as ``--set`` would) into a linkage, the linkages
+    stacked into one batched linkage.  Picklable (for ``--workers``)."""
+
+    def __init__(self, spec: OptimizeSpec):
+        self.problem = spec.problem
+        self.file = spec.problem_file
+        self.data = spec.problem_data
+        self.keys = [v.key for v in spec.variables]
+        self.goal = [(i, v.key.split(".")[1]) for i, v in enumerate(spec.variables) if v.goal]
+        self.starts = [v.start for v in spec.variables]
+
+    def linkage_of(self, x):
+        from mechcli.spec.kin import read_mechanism
+        root = problem_root(self.file, with_values(self.data, dict(zip(self.keys, x))))
+        read_header(root, self.problem, default_unit="mm")
+        return read_mechanism(root)[1]
+
+    def __call__(self, X):
+        from mechcli.core.linkage import stack
+        X = np.atleast_2d(X)
+        linkages, ok = [], np.ones(len(X), dtype=bool)
+        fallback = None
+        for k, x in enumerate(X):
+            try:
+                lk = self.linkage_of(x)
+                fallback = fallback or lk
+            except SpecError:
+                lk = None
+                ok[k] = False
+            linkages.append(lk)
+        if fallback is None:
+            fallback = self.linkage_of(self.starts)
+        linkages = [lk if lk is not None else fallback for lk in linkages]
+        params = {}
+        for i, name in self.goal:
+            params[name] = np.radians(X[:, i]) if GOAL_VARIABLES[name] else X[:, i]
+        return stack(linkages), ok, params
