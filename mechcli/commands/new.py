@@ -12,7 +12,7 @@ from __future__ import annotations
 import click
 
 #: commands that have a starter template
-TEMPLATE_COMMANDS = ("kin", "force", "grashof", "cam", "gear", "synth", "flywheel")
+TEMPLATE_COMMANDS = ("kin", "force", "grashof", "cam", "gear", "synth", "flywheel", "optimize")
 
 
 def _templates():

@@ -158,19 +158,19 @@ def error_message(exc, spec, problem):
         what = ("cannot be evaluated (the linkage does not assemble over its range)"
                 if not v.get("evaluable", True) else
                 "violates " + ", ".join(v.get("violated", [])))
-        return (f"{spec.path}: [[variable]] start: the start {what}; {spec.method.name} needs "
+        return (f"[[variable]] start: the start {what}; {spec.method.name} needs "
                 f"a feasible start: change the starts, or use name = \"differential_evolution\"")
     if reason == "infeasible":
-        return (f"{spec.path}: [method] {spec.method.name} found no feasible design within the "
+        return (f"[method] {spec.method.name} found no feasible design within the "
                 f"bounds (best violates the constraints); widen the bounds, relax the "
                 f"constraints, or try differential_evolution")
     if reason == "scalar":
-        return (f"{spec.path}: [method] name: {spec.method.name} searches one variable, the "
+        return (f"[method] name: {spec.method.name} searches one variable, the "
                 f"spec has {v.get('n')}")
     if reason == "not_four_bar":
-        return (f"{spec.path}: [[constraint]] kind = \"crank\": the book's g1...g6 need a "
+        return (f"[[constraint]] kind = \"crank\": the book's g1...g6 need a "
                 f"four-bar (one crank and one RRR dyad)")
-    return f"{spec.path}: {exc}"
+    return str(exc)
 
 
 def convergence_message(exc, spec, problem):
@@ -180,5 +180,8 @@ def convergence_message(exc, spec, problem):
         best = " (best so far: " + ", ".join(
             f"{v.name} = {x:.6g}" for v, x in zip(problem.variables, res.x)) + \
             f"; f = {res.f:.6g})"
-    return (f"{spec.path}: [method] maxiter = {spec.method.maxiter}: {exc}{best}; raise "
-            f"maxiter or loosen tol")
+    if "maxiter" in str(exc):
+        return (f"[method] maxiter = {spec.method.maxiter}: {exc}{best}; raise "
+                f"maxiter or loosen tol")
+    return (f"[method] name = \"{spec.method.name}\": {exc}{best}; try another start, "
+            f"method or tol")

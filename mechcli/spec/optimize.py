@@ -304,6 +304,10 @@ def _constraint(t):
 
 def _method(sec, nvar):
     name = sec.string("name", "slsqp" if nvar > 1 else "brent", choices=list(METHODS))
+    if name in ("golden", "brent") and nvar != 1:
+        raise sec.error("name", "a method for several variables (slsqp, trust-constr, "
+                        "nelder-mead, differential_evolution): golden and brent search one",
+                        f"'{name}' with {nvar} variables")
     # tol: ftol of SLSQP, gtol/xtol of trust-constr, xatol of NM/golden/Brent,
     # tol of DE (relative spread of the population); error-vs-cost in
     # benchmarks/bench_optimize.py

@@ -35,7 +35,7 @@ from pathlib import Path
 from mechcli.spec.errors import SpecError
 from mechcli.spec.reader import REQUIRED, Section
 
-COMMANDS = ("kin", "force", "grashof", "cam", "gear", "synth", "flywheel")
+COMMANDS = ("kin", "force", "grashof", "cam", "gear", "synth", "flywheel", "optimize")
 PROBE_FILE = "<mechcli-schema-probe>.toml"
 #: most reader runs per command (each takes well under a millisecond to a few ms)
 MAX_RUNS = 1500
@@ -117,6 +117,9 @@ def _reader(command):
     if command == "flywheel":
         from mechcli.spec.flywheel import read_flywheel_spec
         return read_flywheel_spec
+    if command == "optimize":
+        from mechcli.spec.optimize import read_optimize_spec
+        return read_optimize_spec
     if command == "cam":
         from mechcli.spec.cam import read_cam_spec
         from mechcli.spec.reader import load_spec

@@ -18,7 +18,7 @@ from tests.conftest import run_inprocess
 ROOT = Path(__file__).resolve().parents[2]
 CONFIGS = ROOT / "configs"
 HOMEWORK = ROOT / "examples" / "homework"
-COMMANDS = ("kin", "force", "grashof", "cam", "gear", "synth", "flywheel")
+COMMANDS = ("kin", "force", "grashof", "cam", "gear", "synth", "flywheel", "optimize")
 
 
 def read_rows(path):

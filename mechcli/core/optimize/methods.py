@@ -144,6 +144,7 @@ def _local(problem, method, x0, tol, maxiter, central=True):
                                 options={"ftol": tol, "maxiter": maxiter})
         nit = res.nit
         converged = res.status == 0
+        capped = res.status == 9
     elif method == "trust-constr":
         cons = ([optimize.NonlinearConstraint(sm.g, -np.inf, 0.0, jac=sm.jac,
                                               hess=optimize.BFGS())] if k else [])
@@ -153,6 +154,7 @@ def _local(problem, method, x0, tol, maxiter, central=True):
                                 options={"gtol": tol, "xtol": tol, "maxiter": maxiter})
         nit = res.nit
         converged = res.status in (1, 2)
+        capped = res.status == 0
     else:   # nelder-mead with an extreme barrier
         ref = max(abs(problem.one(x0)[0]), 1e-300)
 
@@ -168,7 +170,9 @@ def _local(problem, method, x0, tol, maxiter, central=True):
                                          "adaptive": problem.n > 3})
         nit = res.nit
         converged = res.status == 0
-    return np.clip(res.x, problem.lo, problem.hi), converged, nit, str(res.message)
+        capped = res.status in (1, 2)
+    message = str(res.message) + (" (maxiter reached)" if capped else "")
+    return np.clip(res.x, problem.lo, problem.hi), converged, nit, message
 
 
 def _check_start(problem, x0, method):
@@ -209,7 +213,8 @@ def _de(problem, tol, maxiter, popsize, seed, polish, central):
         init="latinhypercube", x0=problem.start)
     x = res.x
     converged = bool(res.success)
-    message = str(res.message)
+    message = str(res.message) + (" (maxiter reached)" if not converged and res.nit >= maxiter
+                                  else "")
     f, g, ok = problem.one(x)
     if polish and problem.feasible(g, ok):
         xp, conv_p, nit_p, msg_p = _local(problem, "slsqp", x, 1e-12, 200, central)
@@ -217,6 +222,9 @@ def _de(problem, tol, maxiter, popsize, seed, polish, central):
         if problem.feasible(gp, okp) and fp <= f:
             x = xp
             message += f"; polished by SLSQP ({nit_p} iterations)"
+            # a population stopped by maxiter whose best design SLSQP polishes to a
+            # converged local optimum ends converged (the message keeps both)
+            converged = converged or conv_p
     return x, converged, it[0], message
 
 
@@ -303,11 +311,19 @@ def minimize(problem: Problem, method="slsqp", *, tol=1e-10, maxiter=1000, popsi
             message += f"; best of {starts} starts"
     result = _finish(problem, x, method, message, converged, nit, started, starts_out)
     if not result.feasible:
-        raise DescribedError(f"{method} found no feasible design", "infeasible",
+        if not converged and "maxiter" in message:
+            exc = ConvergenceError(f"{method} did not converge within {maxiter} iterations: "
+                                   f"{message}")
+            exc.result = result
+            raise exc
+        raise DescribedError(f"{method} found no feasible design ({message})", "infeasible",
                              x=result.x, g=result.g, f=result.f)
     if not converged:
         exc = ConvergenceError(f"{method} did not converge within {maxiter} iterations: "
-                               f"{message}")
+                               f"{message}" if "maxiter" in message else
+                               f"{method} stopped without converging: {message}")
         exc.result = result
         raise exc
+        raise DescribedError(f"{method} found no feasible design", "infeasible",
+                             x=result.x, g=result.g, f=result.f)
     return result
