@@ -434,6 +434,68 @@ class Candidates:
         self.keys = [v.key for v in spec.variables]
         self.goal = [(i, v.key.split(".")[1]) for i, v in enumerate(spec.variables) if v.goal]
         self.starts = [v.start for v in spec.variables]
+        self.lo = np.array([v.lo for v in spec.variables])
+        self.hi = np.array([v.hi for v in spec.variables])
+        self.affine = None
+        self._probe()
+
+    # -- the fast path: parameters affine in the variables --------------------
+    @staticmethod
+    def _slots(linkage):
+        return [(i, f) for i, el in enumerate(linkage.elements)
+                for f in el.lengths_ + el.angles_ + ("branch",) if hasattr(el, f)]
+
+    def _params(self, x):
+        lk = self.linkage_of(x)
+        return lk, np.array([float(getattr(lk.elements[i], f)) for i, f in self._slots(lk)])
+
+    def _probe(self):
+        """Most readers map a variable to the engine's parameters by a constant
+        factor (a unit, degrees to radians): then a population's linkages are
+        ``p0 + J (x - x0)``, one matrix product, instead of one reading per
+        design.  The map is measured on the variables' axes and accepted only
+        if it predicts the parameters at two other points of the box to 1e-12
+        (else every design is read, as ``--set`` would)."""
+        x0 = np.array(self.starts, dtype=float)
+        try:
+            base, p0 = self._params(x0)
+            cols = []
+            for i in range(len(x0)):
+                h = 0.5 * (self.hi[i] - x0[i]) if self.hi[i] - x0[i] >= x0[i] - self.lo[i] \
+                    else -0.5 * (x0[i] - self.lo[i])
+                x = x0.copy()
+                x[i] += h
+                cols.append((self._params(x)[1] - p0) / h)
+            J = np.column_stack(cols) if cols else np.zeros((p0.size, 0))
+            rng = np.random.default_rng(0)
+            for _ in range(2):
+                x = self.lo + rng.random(len(x0)) * (self.hi - self.lo)
+                p = self._params(x)[1]
+                if not np.allclose(p, p0 + J @ (x - x0), rtol=1e-12,
+                                   atol=1e-12 * max(1.0, float(np.max(np.abs(p0))))):
+                    return
+        except SpecError:
+            return
+        slots = self._slots(base)
+        if any(f == "branch" and np.any(J[k] != 0) for k, (i, f) in enumerate(slots)):
+            return
+        self.affine = (base, slots, x0, p0, J)
+
+    def _affine_linkage(self, X):
+        import dataclasses as dc
+
+        from mechcli.core.linkage import Linkage
+        base, slots, x0, p0, J = self.affine
+        P = p0[None, :] + (X - x0[None, :]) @ J.T          # (M, parameters)
+        fields = {}
+        for k, (i, f) in enumerate(slots):
+            if f != "branch" and np.any(J[k] != 0):
+                fields.setdefault(i, {})[f] = P[:, k][:, None]
+        if not fields:              # only goal variables vary: one linkage, broadcast
+            fields = {slots[0][0]: {slots[0][1]: np.full((len(X), 1), p0[0])}} if slots else {}
+        els = [dc.replace(el, **fields[i]) if i in fields else el
+               for i, el in enumerate(base.elements)]
+        return Linkage(base.frame, tuple(els))
 
     def linkage_of(self, x):
         from mechcli.spec.kin import read_mechanism
@@ -444,6 +506,11 @@ class Candidates:
     def __call__(self, X):
         from mechcli.core.linkage import stack
         X = np.atleast_2d(X)
+        params = {}
+        for i, name in self.goal:
+            params[name] = np.radians(X[:, i]) if GOAL_VARIABLES[name] else X[:, i]
+        if self.affine is not None:
+            return self._affine_linkage(X), np.ones(len(X), dtype=bool), params
         linkages, ok = [], np.ones(len(X), dtype=bool)
         fallback = None
         for k, x in enumerate(X):
@@ -457,7 +524,4 @@ class Candidates:
         if fallback is None:
             fallback = self.linkage_of(self.starts)
         linkages = [lk if lk is not None else fallback for lk in linkages]
-        params = {}
-        for i, name in self.goal:
-            params[name] = np.radians(X[:, i]) if GOAL_VARIABLES[name] else X[:, i]
         return stack(linkages), ok, params
