@@ -148,10 +148,15 @@ def _local(problem, method, x0, tol, maxiter, central=True):
     elif method == "trust-constr":
         cons = ([optimize.NonlinearConstraint(sm.g, -np.inf, 0.0, jac=sm.jac,
                                               hess=optimize.BFGS())] if k else [])
-        res = optimize.minimize(sm.f, x0, jac=sm.grad, hess=optimize.BFGS(),
-                                method="trust-constr", bounds=bounds, constraints=cons,
-                                callback=lambda xk, state=None: cb(xk),
-                                options={"gtol": tol, "xtol": tol, "maxiter": maxiter})
+        import warnings
+        with warnings.catch_warnings():
+            # BFGS's note on a linear constraint (its update is skipped: harmless)
+            warnings.filterwarnings("ignore", message="delta_grad == 0.0")
+            res = optimize.minimize(sm.f, x0, jac=sm.grad, hess=optimize.BFGS(),
+                                    method="trust-constr", bounds=bounds, constraints=cons,
+                                    callback=lambda xk, state=None: cb(xk),
+                                    options={"gtol": tol, "xtol": tol, "barrier_tol": tol,
+                                             "maxiter": maxiter})
         nit = res.nit
         converged = res.status in (1, 2)
         capped = res.status == 0
