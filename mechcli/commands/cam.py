@@ -33,16 +33,23 @@ class FiniteFloat(click.FloatRange):
 def cam(spec, step, points, **opts):
     """Design and check a disc cam from SPEC.toml (chapter 4, 例 7-2)."""
     run = RunOptions.from_click(spec, opts)
-    from mechcli.core.cam.design import design_cam
-    from mechcli.core.cam.geometry import CamError
-    from mechcli.report.cam import cam_report, error_message
+    from mechcli.report.cam import cam_report
     from mechcli.spec.cam import read_cam_spec
     from mechcli.spec.reader import load_spec
 
     cs = read_cam_spec(load_spec(spec, run.sets), step, points)
+    cam_report(run, cs, design_of(cs))
+
+
+def design_of(cs):
+    """The cam of a read spec (also ``optimize``'s cam problems); a core error
+    worded in the spec's units and keys."""
+    from mechcli.core.cam.design import design_cam
+    from mechcli.core.cam.geometry import CamError
+    from mechcli.report.cam import error_message
     sz = cs.sizing
     try:
-        design = design_cam(
+        return design_cam(
             cs.motion, cs.contact, cs.r0, cs.follower_args, cs.segments, cs.stroke,
             angular=cs.angular, step=cs.step, alpha_rise=cs.limits.alpha_rise,
             alpha_return=cs.limits.alpha_return, size_base_radius=bool(sz and sz.base_radius),
@@ -50,4 +57,3 @@ def cam(spec, step, points, **opts):
             round_up=sz.round_up if sz else 0.0, forbid_undercut=cs.limits.forbid_undercut)
     except CamError as exc:  # worded in the spec's units and keys
         raise type(exc)(error_message(exc, cs), exc.reason, **exc.values) from exc
-    cam_report(run, cs, design)

@@ -30,6 +30,8 @@ def f_scale(spec):
     if obj["kind"] == "path":
         k = 1.0 / spec.unit
         return (k * k if sq else k), (f"{_unit_name(spec)}^2" if sq else _unit_name(spec))
+    if obj["kind"] == "pressure_angle":
+        return (-180 / math.pi if obj["goal"] == "maximize" else 180 / math.pi), "deg"
     if obj["kind"] == "function":
         if isinstance(obj["output"], str):
             return 1.0, "1"     # slide deviations are divided by the linkage's size
@@ -72,6 +74,15 @@ def results(spec, problem, result, details):
     if "dist" in details:
         r["distance_max"] = float(details["dist"][0].max()) / spec.unit
         r["distance_rms"] = float((details["dist"][0] ** 2).mean() ** 0.5) / spec.unit
+    if details.get("exact") is not None:
+        # 例 7-2: the golden section's maximum beside cam's exact refinement
+        ex = details["exact"]
+        r["alpha_max_deg"] = r["f"]
+        r["delta_deg"] = float(result.x[0])
+        r["alpha_exact_deg"] = math.degrees(ex.value)
+        r["delta_exact_deg"] = math.degrees(ex.delta)
+        r["delta_error_deg"] = float(result.x[0]) - math.degrees(ex.delta)
+        r["alpha_error_deg"] = r["f"] - math.degrees(ex.value)
     if result.starts:
         r["starts"] = len(result.starts)
     return r
@@ -144,6 +155,11 @@ def build_report(spec, problem, result, details, lang):
         kv.append([_label(lang, "largest deviation [deg]", "最大偏差/(°)"),
                    f"{r['deviation_max_deg']:.4f}"])
         kv.append([_label(lang, "phi0 [deg]", "φ0/(°)"), f"{r['phi0_deg']:.4f}"])
+    if "alpha_exact_deg" in r:
+        kv.append([_label(lang, "cam's exact maximum [deg] at [deg]", "精确最大压力角/(°) 及转角"),
+                   f"{r['alpha_exact_deg']:.6f} at {r['delta_exact_deg']:.6f}"])
+        kv.append([_label(lang, "difference in the cam angle [deg]", "转角误差/(°)"),
+                   f"{r['delta_error_deg']:.2e}"])
     if "distance_max" in r:
         kv.append([_label(lang, f"largest distance [{spec.header.unit}]", "最大距离"),
                    f"{r['distance_max']:.6g}"])

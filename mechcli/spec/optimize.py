@@ -31,11 +31,11 @@ from mechcli.spec.errors import SpecError
 from mechcli.spec.reader import MAX_LENGTH, REQUIRED, Section, apply_override, load_spec
 
 #: commands whose specs can be optimized
-PROBLEMS = ("kin", "force")
+PROBLEMS = ("kin", "force", "cam")
 #: top-level keys that belong to the optimization, not to the problem
 OWN_KEYS = ("command", "title", "units", "description", "problem", "base", "variable",
             "objective", "constraint", "method", "expected")
-OBJECTIVES = ("function", "path", "result")
+OBJECTIVES = ("function", "path", "result", "pressure_angle")
 CONSTRAINTS = ("transmission", "crank", "assembly", "result")
 METHODS = ("slsqp", "trust-constr", "nelder-mead", "differential_evolution", "golden",
            "brent")
@@ -43,7 +43,7 @@ MEASURES = ("sum_squares", "rms", "mean_abs", "max_abs")
 FUNCTIONS = ("log10", "ln", "sqrt", "power", "sin", "cos", "tan", "exp", "reciprocal",
              "polynomial")
 #: goal parameters that may be design variables, and whether they are angles
-GOAL_VARIABLES = {"phi0": True, "psi0": True, "theta0": True}
+GOAL_VARIABLES = {"phi0": True, "psi0": True, "theta0": True, "delta": True}
 #: most design variables (a DE population is 15 x n designs per generation)
 MAX_VARIABLES = 32
 
@@ -140,6 +140,9 @@ def read_problem(problem, root):
     if problem == "kin":
         from mechcli.spec.kin import read_kin_root
         return read_kin_root(root)
+    if problem == "cam":
+        from mechcli.spec.cam import read_cam_spec
+        return read_cam_spec(root)
     from mechcli.spec.force import read_force_root
     return read_force_root(root)
 
@@ -162,6 +165,8 @@ def _variables(root, problem_file, data, objective_data):
                 raise t.error("key", "objective." + "/".join(GOAL_VARIABLES)
                               + " (the goal parameters that may vary)", f"'{key}'")
             value = objective_data.get(parts[1])
+            if value is None and t.has("start"):     # a goal variable needs no value there
+                value = t.raw("start")
         else:
             if parts[0] in OWN_KEYS:
                 raise t.error("key", "a key of the problem's tables (mechanism..., input...)",
@@ -372,11 +377,27 @@ def read_optimize_spec(path, overrides=()) -> OptimizeSpec:
         objective = _function_objective(obj_sec)
     elif kind == "path":
         objective = _path_objective(obj_sec)
+    elif kind == "pressure_angle":
+        # 例 7-2: the cam angle is the one variable (key = "objective.delta", degrees)
+        if problem != "cam":
+            raise obj_sec.error("kind", "a goal of a kin or force problem (function, path, "
+                                "result)", f"'pressure_angle' with problem = '{problem}'")
+        objective = {"kind": kind, "goal": obj_sec.string("goal", "maximize",
+                                                            choices=["maximize", "minimize"])}
+        if [v.key for v in variables] != ["objective.delta"]:
+            raise root.error("variable", "one [[variable]] with key = \"objective.delta\" "
+                             "(the cam angle in degrees)",
+                             ", ".join(v.key for v in variables))
     else:
         objective = _result_objective(obj_sec)
+    if problem == "cam" and kind != "pressure_angle":
+        raise obj_sec.error("kind", "'pressure_angle' for a cam problem", f"'{kind}'")
     objective["path"] = "objective"
     obj_sec.finish()
     constraints = []
+    if problem == "cam" and root.has("constraint"):
+        raise root.error("constraint", "no constraints for a cam problem (the cam angle's "
+                         "bounds are the variable's lo and hi)", "[[constraint]] tables")
     for t in root.tables("constraint", []):
         t.unit = prob.header.scale
         constraints.append(_constraint(t))
@@ -437,7 +458,8 @@ class Candidates:
         self.lo = np.array([v.lo for v in spec.variables])
         self.hi = np.array([v.hi for v in spec.variables])
         self.affine = None
-        self._probe()
+        if self.problem != "cam":
+            self._probe()
 
     # -- the fast path: parameters affine in the variables --------------------
     @staticmethod
