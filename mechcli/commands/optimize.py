@@ -91,6 +91,8 @@ def build_problem(spec):
     from mechcli.core.optimize.problem import Problem, Variable
     from mechcli.spec.optimize import Candidates
 
+    if spec.problem == "cam":
+        return cam_problem(spec)
     cands = Candidates(spec)
     base = cands.linkage_of(cands.starts)
     driver = base.drivers[0].link
@@ -98,6 +100,14 @@ def build_problem(spec):
     obj = spec.objective
     goal = None
     if obj["kind"] == "function":
+        out = obj["output"]
+        names = (base.rotating_links if not isinstance(out, str) else base.slide_names)
+        if out not in names:
+            from mechcli.spec.errors import SpecError
+            raise SpecError(str(spec.path), "objective.output",
+                            "a link whose angle the linkage reports, or a slide: one of "
+                            + ", ".join(repr(n) for n in base.rotating_links + base.slide_names),
+                            repr(out))
         if "dphi" in obj:
             dphi, dpsi = obj["dphi"], obj["dpsi"]
         else:
@@ -134,6 +144,24 @@ def build_problem(spec):
                                     extra_names)
     variables = [Variable(v.key, v.lo, v.hi, v.start) for v in spec.variables]
     return Problem(variables, evaluator, evaluator.names, scales=scales), evaluator
+
+
+def cam_problem(spec):
+    """例 7-2: the pressure angle over the cam angle (the one variable, degrees),
+    with the cam command's exact refinement of the same maximum beside it."""
+    import math
+
+    from mechcli.commands.cam import design_of
+    from mechcli.core.optimize.cam_problem import PressureAngle
+    from mechcli.core.optimize.problem import Problem, Variable
+    from mechcli.spec.optimize import problem_root, read_problem
+    cs = read_problem("cam", problem_root(spec.problem_file, spec.problem_data))
+    design = design_of(cs)
+    ev = PressureAngle(design.follower, design.program, spec.objective["goal"] == "maximize",
+                       math.pi / 180)
+    v = spec.variables[0]
+    ev.exact = design.checks.alpha_rise        # cam's refinement (root of dα/dδ)
+    return Problem([Variable(v.key, v.lo, v.hi, v.start)], ev), ev
 
 
 def function_targets(spec):
@@ -187,8 +215,10 @@ def check_result_keys(spec, terms):
 
 @click.command("optimize")
 @click.argument("spec_path", metavar="SPEC.toml")
+@click.option("--workers", type=click.IntRange(1, 256), default=None,
+              help="Local processes evaluating the population (overrides [method] workers).")
 @common_options
-def optimize(spec_path, **opts):
+def optimize(spec_path, workers=None, **opts):
     """Optimization of a linkage (chapter 7): function or path generation, or any
     scalar result of kin/force, under transmission-angle, crank and assembly
     constraints, by SLSQP, trust-constr, Nelder-Mead, differential evolution,
@@ -204,11 +234,13 @@ def optimize(spec_path, **opts):
     spec = read_optimize_spec(spec_path, run.sets)
     problem, evaluator = build_problem(spec)
     executor = None
-    if spec.method.workers > 1:
+    workers = workers or spec.method.workers
+    if workers > 1:
+        # the population's chunks go to local processes through one map-like function
         from concurrent.futures import ProcessPoolExecutor
-        executor = ProcessPoolExecutor(spec.method.workers)
+        executor = ProcessPoolExecutor(workers)
         problem.mapper = executor.map
-        problem.chunk = max(1, 64)
+        problem.chunk = 64
     m = spec.method
     try:
         result = minimize(problem, m.name, tol=m.tol, maxiter=m.maxiter, popsize=m.popsize,
@@ -221,7 +253,8 @@ def optimize(spec_path, **opts):
     finally:
         if executor is not None:
             executor.shutdown()
-    details = evaluator.details(result.x[None, :]) if hasattr(evaluator, "details") else {}
+    details = (evaluator.details(result.x[None, :]) if hasattr(evaluator, "details")
+               else {"exact": getattr(evaluator, "exact", None)})
     outputs = Outputs(run.out_dir, digits=run.digits)
     outputs.csv("history.csv", report.history_columns(spec, result))
     from mechcli.spec.optimize import with_values
@@ -230,8 +263,38 @@ def optimize(spec_path, **opts):
     outputs.text("optimum.toml", report.optimum_toml(spec, result, optimum))
     warnings = report.warnings(spec, result)
     if run.plot or run.animate:
+        # everything the pictures show is solved here; the report only draws
+        import math
+
+        import numpy as np
+
+        from mechcli.core.linkage import DriverMotion, solve
+        from mechcli.core.optimize.problem import grid
         from mechcli.report import optimize_plots
+        problem.mapper = map            # the pool (if any) is shut down
+        surface = poses = None
+        if run.plot and spec.method.surface and problem.n == 2:
+            surface = grid(problem, 0, 1, result.x, count=spec.method.surface_points,
+                           span=optimize_plots.surface_span(problem, result))
+        goal = getattr(evaluator, "goal", None)
+        if "linkage" in details and hasattr(evaluator, "candidates"):
+            lk = evaluator.candidates.linkage_of(result.x)
+            drv = lk.drivers[0]
+            rotary = bool(getattr(drv, "rotary", True))
+            if rotary:
+                q = np.linspace(0.0, 2 * math.pi, 361)
+            else:                       # a slide input: the problem's own sweep
+                from mechcli.spec.optimize import problem_root, read_problem
+                prob = read_problem(spec.problem, problem_root(spec.problem_file, optimum))
+                q = np.linspace(prob.input.start, prob.input.stop, 361)
+            poses = {"linkage": lk, "q": q, "rotary": rotary,
+                     "motion": solve(lk, {drv.link: DriverMotion(q)}, order=0), "at": None,
+                     "size": float(getattr(goal, "scale", 1.0))}
+            if getattr(goal, "angles", None) is not None and "theta0" in details:
+                qa = float(details["theta0"][0]) + np.asarray(goal.angles, dtype=float)
+                poses["at"] = solve(lk, {drv.link: DriverMotion(qa)}, order=0)
         warnings += optimize_plots.write(spec, problem, result, details, outputs, run.lang,
-                                         plots=run.plot, animate=bool(run.animate))
+                                         plots=run.plot, animate=bool(run.animate),
+                                         surface=surface, poses=poses, goal=goal)
     finish(run, "optimize", report.build_report(spec, problem, result, details, run.lang),
            report.results(spec, problem, result, details), outputs, warnings)

@@ -307,7 +307,7 @@ def _constraint(t):
     return c
 
 
-def _method(sec, nvar):
+def _method(sec, nvar, kind=None):
     name = sec.string("name", "slsqp" if nvar > 1 else "brent", choices=list(METHODS))
     if name in ("golden", "brent") and nvar != 1:
         raise sec.error("name", "a method for several variables (slsqp, trust-constr, "
@@ -328,7 +328,8 @@ def _method(sec, nvar):
         central=sec.string("gradient", "central", choices=["central", "forward"]) == "central",
         samples=sec.integer("samples", 360, lo=12, hi=100000),
         workers=sec.integer("workers", 1, lo=1, hi=256),
-        surface=sec.boolean("surface", nvar == 2),
+        # a result goal runs its command once per grid point: no surface unless asked
+        surface=sec.boolean("surface", nvar == 2 and kind != "result"),
         surface_points=sec.integer("surface_points", 41, lo=5, hi=401),
     )
 
@@ -402,7 +403,7 @@ def read_optimize_spec(path, overrides=()) -> OptimizeSpec:
         t.unit = prob.header.scale
         constraints.append(_constraint(t))
     method_sec = root.table("method") if root.has("method") else Section({}, file, "method")
-    method = _method(method_sec, len(variables))
+    method = _method(method_sec, len(variables), kind)
     method_sec.finish()
     expected = read_expected(root, overrides)
     root.finish()

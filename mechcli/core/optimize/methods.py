@@ -245,11 +245,14 @@ def _scalar(problem, method, tol, maxiter):
         def neg(x):
             ev = problem.evaluate(np.asarray(x, dtype=float).reshape(-1, 1))
             feas = problem.feasible(ev.g, ev.ok)
+            # every step evaluates one new point: it is the step's row of the history
+            problem.record(len(problem.history), np.ravel(x)[:1], float(ev.f[0]),
+                           float(problem.violation(ev.g, ev.ok)[0]))
             return np.where(feas, -ev.f, -(_WALL + problem.violation(ev.g, ev.ok)))
 
         x, _ = golden_section_max(neg, np.array([lo]), np.array([hi]), iterations=steps,
                                   rtol=0.0)
-        _record(problem, steps, x)
+        _record(problem, len(problem.history), x)
         return np.array([float(x[0])]), True, steps, f"golden section, {steps} steps"
     from scipy import optimize
 

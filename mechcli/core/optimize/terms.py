@@ -137,11 +137,11 @@ def function_deviation(pop: Population, output, phi0, dphi, dpsi, psi0=None, sca
     val = np.broadcast_to(val, q.shape)
     ok = np.all(m.feasible, axis=-1)
     base = val[:, :1] if psi0 is None else _column(psi0, M)[:, None]
-    if isinstance(output, str):
-        moved = (val[:, 1:] - base) / scale
+    if isinstance(output, str):     # a slide [m]: the deviation over the linkage's size
+        dev = (val[:, 1:] - base - np.asarray(dpsi, dtype=float)[None, :]) / scale
     else:
-        moved = _wrap(val[:, 1:] - base)
-    dev = np.where(ok[:, None], moved - np.asarray(dpsi, dtype=float)[None, :], 0.0)
+        dev = _wrap(val[:, 1:] - base) - np.asarray(dpsi, dtype=float)[None, :]
+    dev = np.where(ok[:, None], dev, 0.0)
     return dev, val[:, 1:], q[:, 1:], ok
 
 
