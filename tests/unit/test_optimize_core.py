@@ -192,3 +192,20 @@ def test_stack_refuses_linkages_of_different_structure():
     for k, single in enumerate([four_bar(1, 4, 3, 5), four_bar(1, 4.5, 3, 5, branch=-1)]):
         ms = solve(single, {1: DriverMotion(np.array([0.7]), 1.0, 0.0)}, order=0)
         assert m.links[3].theta[k, 0] == ms.links[3].theta[0]
+
+
+def test_slide_goal_deviation_is_in_one_unit():
+    # a slider-crank's slide moved by exactly the target: zero deviation; 1 mm more
+    # target: -1 mm over the linkage's size (scale)
+    from mechcli.core.linkage import slider_crank
+    lk = slider_crank(np.array([[0.05]]), np.array([[0.2]]))
+    pop = terms.Population(lk, 1)
+    dphi = np.radians([30.0, 60.0, 90.0])
+    m = solve(lk, {1: DriverMotion(np.concatenate([[0.0], dphi]), 1.0, 0.0)}, order=0)
+    s = m.slides["3"].s.ravel()
+    moved = s[1:] - s[0]
+    dev, *_ = terms.function_deviation(pop, "3", np.array([0.0]), dphi, moved, scale=0.2)
+    assert dev[0] == pytest.approx(0.0, abs=1e-15)
+    dev, *_ = terms.function_deviation(pop, "3", np.array([0.0]), dphi, moved + 0.001,
+                                       scale=0.2)
+    assert dev[0] == pytest.approx(np.full(3, -0.001 / 0.2), abs=1e-14)
