@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import dataclasses
+import hashlib
+import re
 from pathlib import Path
 
 import click
@@ -39,6 +41,8 @@ class RunOptions:
         ``KEY=VALUE`` overrides.
     digits : int
         Significant digits of CSV numbers (``--digits``; 17 is round-trip exact).
+    columns : tuple of str
+        ``--columns``: the only table columns shown (after each table's first).
     """
 
     spec_path: Path | None
@@ -51,13 +55,19 @@ class RunOptions:
     traceback: bool = False
     sets: tuple = ()
     digits: int = DEFAULT_DIGITS
+    columns: tuple = ()
 
     @classmethod
     def from_click(cls, spec_path, opts, stem=None):
+        from mechcli.report import run as report_run
+
         spec = Path(spec_path) if spec_path else None
         out = opts.pop("out", None)
+        sets = tuple(opts.get("sets", ()) or ())
+        name = stem or (spec.stem if spec else "mechcli")
+        report_run.begin(spec.stem if spec else name)
         if out is None:
-            out = Path("out") / (stem or (spec.stem if spec else "mechcli"))
+            out = Path("out") / default_dir_name(name, sets, None if spec else _quick_form())
         return cls(
             spec_path=spec,
             out_dir=Path(out),
@@ -69,6 +79,8 @@ class RunOptions:
             traceback=opts.pop("traceback", False),
             sets=tuple(opts.pop("sets", ()) or ()),
             digits=opts.pop("digits", None) or DEFAULT_DIGITS,
+            columns=tuple(c.strip() for c in (opts.pop("columns", None) or "").split(",")
+                          if c.strip()),
         )
 
     @property
@@ -76,11 +88,76 @@ class RunOptions:
         return not (self.quiet or self.json)
 
 
+#: the characters a default output folder's name keeps from the quick-form values
+_PLAIN = re.compile(r"[^A-Za-z0-9.+-]+")
+#: a longer derived name is replaced by a hash (file systems allow 255 bytes)
+_NAME_MAX = 64
+
+
+def _short_hash(parts):
+    return hashlib.sha256("\0".join(parts).encode("utf-8")).hexdigest()[:8]
+
+
+def default_dir_name(stem, sets=(), quick=None):
+    """The folder under ``out/`` a run writes to without ``--out``.
+
+    A spec run writes ``<stem>``; with ``--set`` overrides ``<stem>+<hash>``, the
+    first 8 hex digits of the SHA-256 of the overrides, so a sweep never overwrites
+    the base run nor another point of the sweep; a run without a spec file
+    (``grashof --lengths 28,52,50,72``) names its folder after the values given,
+    ``grashof-28_52_50_72`` (or a hash of them when that is long).
+
+    Parameters
+    ----------
+    stem : str
+        The spec's stem, or the command's name for a file-less run.
+    sets : sequence of str
+        The ``--set KEY=VALUE`` overrides, in order.
+    quick : sequence of (str, object) or None
+        The quick-form options of a file-less run: option name, value.
+    """
+    name = stem
+    if quick:
+        parts = [_PLAIN.sub("_", str(v)).strip("_") if k == "lengths" else
+                 _PLAIN.sub("_", f"{k}{v}").strip("_") for k, v in quick]
+        tail = "-".join(p for p in parts if p)
+        if tail:
+            name += "-" + (tail if len(tail) <= _NAME_MAX else
+                           _short_hash([f"{k}={v}" for k, v in quick]))
+    sets = [s.strip() for s in sets]
+    if sets:
+        name += "+" + _short_hash(sets)
+    return name
+
+
+def _quick_form():
+    """``[(option, value)]`` of the command's own options that were given (the quick
+    form of a file-less run), from the click context; [] outside one."""
+    ctx = click.get_current_context(silent=True)
+    if ctx is None:
+        return []
+    shared = {"out", "json_out", "no_plot", "animate", "lang", "quiet", "traceback",
+              "digits", "sets", "columns"}
+    given = []
+    for param in ctx.command.params:
+        value = ctx.params.get(param.name)
+        if param.name in shared or value in (None, False, (), "") \
+                or not isinstance(param, click.Option):
+            continue
+        if ctx.get_parameter_source(param.name) != click.core.ParameterSource.COMMANDLINE:
+            continue
+        long = next((o for o in param.opts if o.startswith("--")), param.name)
+        given.append((long.lstrip("-"), value))
+    return given
+
+
 def common_options(func):
     """Decorate a click command with the options every subcommand shares."""
     opts = [
-        click.option("--out", type=click.Path(file_okay=False, path_type=Path), default=None,
-                     help="Output directory [default: out/<spec stem>/]."),
+        click.option("--out", "-o", "out", type=click.Path(file_okay=False, path_type=Path),
+                     default=None,
+                     help="Output directory [default: out/<spec stem>/, "
+                          "out/<spec stem>+<hash of the --set values>/ with --set]."),
         click.option("--json", "json_out", is_flag=True,
                      help="Print scalar results and written files as JSON."),
         click.option("--no-plot", is_flag=True, help="Do not write PNG plots."),
@@ -93,6 +170,9 @@ def common_options(func):
         click.option("--digits", type=click.IntRange(1, EXACT_DIGITS), default=DEFAULT_DIGITS,
                      show_default=True, metavar="N",
                      help="Significant digits of CSV numbers (17: round-trip exact)."),
+        click.option("--columns", metavar="COL,COL",
+                     help="Only these columns in the tables (terminal and report.txt), "
+                          "e.g. theta3,omega3; the CSV keeps every column."),
         click.option("--set", "sets", multiple=True, metavar="KEY=VALUE",
                      help="Override a spec key (dotted path, TOML value); repeatable."),
     ]

@@ -133,6 +133,53 @@ def write_csv(path, columns, digits=DEFAULT_DIGITS):
     return write_text(path, "\n".join(lines) + "\n")
 
 
+def _os_reason(where, exc):
+    """``PATH: reason`` for an OS error at *where*, naming the regular file that stands
+    where a folder should be (``--out notes.txt/sub``)."""
+    import errno
+
+    reason = exc.strerror or str(exc)
+    if exc.errno == errno.ENOTDIR:
+        for parent in [Path(where), *Path(where).parents]:
+            if parent.exists() and not parent.is_dir():
+                return f"{where}: {reason} ({parent} is a file, not a folder)"
+    if exc.errno in (errno.EACCES, errno.EPERM, errno.EROFS):
+        reason = f"{reason} (no permission to write there)"
+    return f"{where}: {reason}"
+
+
+#: the manifest of the last run into an output folder
+MANIFEST = "outputs.json"
+#: its layout; a manifest of another layout (or none) is not read
+MANIFEST_FORMAT = 1
+
+
+def file_sha256(path):
+    """SHA-256 (hex) of a file's bytes."""
+    import hashlib
+
+    h = hashlib.sha256()
+    with open(path, "rb") as fh:
+        for chunk in iter(lambda: fh.read(1 << 20), b""):
+            h.update(chunk)
+    return h.hexdigest()
+
+
+def read_manifest(out_dir):
+    """The file entries (``[{"name", "bytes", "sha256"}]``) of the manifest in *out_dir*
+    that mechcli wrote, or ``[]`` when there is none or it is not mechcli's."""
+    import json
+
+    try:
+        doc = json.loads((Path(out_dir) / MANIFEST).read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return []
+    if not isinstance(doc, dict) or doc.get("generator") != "mechcli" \
+            or doc.get("format") != MANIFEST_FORMAT or not isinstance(doc.get("files"), list):
+        return []
+    return doc["files"]
+
+
 class Outputs:
     """Collects the files a run writes, in order, for ``--json`` and the summary.
 
@@ -180,7 +227,7 @@ class Outputs:
             if where is None or Path(where).name.startswith(f".{path.name}."):
                 where = path
             raise OutputPathError(f"a folder where mechcli can write {name}",
-                                  f"{where}: {exc.strerror or exc}") from None
+                                  _os_reason(where, exc)) from None
         return self.files[-1]
 
     def text(self, name, text):
@@ -193,6 +240,61 @@ class Outputs:
     def csv(self, name, columns, digits=None):
         digits = self.digits if digits is None else digits
         return self._write(name, write_csv, columns, digits)
+
+    def manifest(self, info):
+        """Write ``outputs.json``, the manifest of this run, and remove what the previous
+        run into this folder wrote and this one did not.
+
+        The manifest is *info* (command, spec hash, ``--set`` overrides, versions) plus
+        ``files``: the name, size and SHA-256 of every file this run wrote.  A file the
+        previous manifest lists and this run did not write is stale (a ``kin.gif`` of an
+        earlier ``--animate`` beside a new ``kin.csv``): it is removed when it is still
+        the file mechcli wrote (same SHA-256), and kept otherwise.  Nothing the previous
+        manifest does not list is ever touched, nor a name that is not a plain file
+        name in this folder.
+
+        Returns
+        -------
+        path : Path
+            The manifest.
+        removed, kept : list of str
+            Stale files removed, and stale files kept because they changed since.
+        """
+        import json
+
+        previous = read_manifest(self.out_dir)
+        entries = [{"name": f.name, "bytes": f.stat().st_size, "sha256": file_sha256(f)}
+                   for f in self.files]
+        doc = {"generator": "mechcli", "format": MANIFEST_FORMAT, **info, "files": entries}
+        path = self._write_quiet(MANIFEST, json.dumps(doc, ensure_ascii=False, indent=2) + "\n")
+        written = {e["name"] for e in entries} | {MANIFEST}
+        removed, kept = [], []
+        for old in previous:
+            name = old.get("name") if isinstance(old, dict) else None
+            if not isinstance(name, str) or name in written:
+                continue
+            try:
+                stale = self.path(name)
+            except OutputPathError:
+                continue
+            if stale.is_symlink() or not stale.is_file():
+                continue
+            if file_sha256(stale) != old.get("sha256"):
+                kept.append(name)
+                continue
+            try:
+                stale.unlink()
+                removed.append(name)
+            except OSError:
+                kept.append(name)
+        return path, removed, kept
+
+    def _write_quiet(self, name, text):
+        """Write *name* as :meth:`text` does (an OS error is an :class:`OutputPathError`),
+        without listing it among the run's files."""
+        path = self.text(name, text)
+        self.files.remove(path)
+        return path
 
     def discard(self):
         """Remove the files this run wrote (each was complete: see :func:`_atomic`),

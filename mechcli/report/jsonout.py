@@ -26,8 +26,10 @@ def _clean(value):
     return value
 
 
-def dumps(command, spec, results, files, warnings=()):
-    """JSON text: ``{"command", "spec", "results", "warnings", "files"}``."""
+def dumps(command, spec, results, files, warnings=(), manifest=None, removed=()):
+    """JSON text: ``{"command", "spec", "results", "warnings", "files", "manifest",
+    "removed"}``: *manifest* is the path of ``outputs.json`` (which lists *files*), and
+    *removed* the names of the stale files of an earlier run it removed."""
     doc = {
         "command": command,
         "spec": None if spec is None else str(spec),
@@ -35,4 +37,7 @@ def dumps(command, spec, results, files, warnings=()):
         "warnings": list(warnings),
         "files": [str(f) for f in files],
     }
+    if manifest is not None:
+        doc["manifest"] = str(manifest)
+        doc["removed"] = list(removed)
     return json.dumps(doc, ensure_ascii=False, indent=2)

@@ -6,7 +6,66 @@ from __future__ import annotations
 import click
 
 from mechcli.report import jsonout
-from mechcli.report.table import print_rich, render_text
+from mechcli.report.table import print_rich, render_text, terminal_width
+
+
+def _is_terminal():
+    import sys
+    try:
+        return sys.stdout.isatty()
+    except (AttributeError, ValueError):   # replaced or closed
+        return False
+
+
+class _Current:
+    """What the report layer knows of the run in progress (one run per process at a
+    time: the CLI, or the in-process runs of the tests, one after another)."""
+
+    #: the spec's stem (``ex1-1``), or the command's name for a file-less run
+    stem = None
+    #: one-line notices the pictures raised (no CJK font, glyphs missing), in order
+    notices: list = []
+
+
+def begin(stem):
+    """Start a run: remember the spec stem (figure titles fall back to it when their
+    Chinese cannot be drawn) and forget the notices of any earlier run."""
+    _Current.stem = stem
+    _Current.notices = []
+
+
+def current_stem():
+    """The stem given to :func:`begin`, or None outside a run."""
+    return _Current.stem
+
+
+def notice(text):
+    """Add a warning for this run, once however often it is raised."""
+    if text not in _Current.notices:
+        _Current.notices.append(text)
+
+
+#: every warning about missing CJK glyphs starts so; :func:`finish` keeps one of them
+NO_CJK = "no CJK font found"
+
+
+def _merge_warnings(warnings):
+    """The command's warnings and the pictures' notices, each once, with everything said
+    about a missing CJK font in ONE line (the most telling: labels before titles)."""
+    out, cjk = [], []
+    for w in [*warnings, *_Current.notices]:
+        if w.startswith(("no CJK font", NO_CJK)):
+            cjk.append(w)
+        elif w not in out:
+            out.append(w)
+    _Current.notices = []
+    if cjk:
+        labels = any("label" in w for w in cjk)
+        out.insert(0, f"{NO_CJK}: " + (
+            "figures are labelled in English and Chinese in titles is left out"
+            if labels else "Chinese in figure titles is left out (the spec name stands for it)")
+            + "; install a CJK font (e.g. Noto Sans CJK SC or WenQuanYi Micro Hei) to draw it")
+    return out
 
 
 def finish(run, command, report, results, outputs, warnings=()):
@@ -42,22 +101,85 @@ def finish(run, command, report, results, outputs, warnings=()):
     except (SpecError, UnsolvableError):
         outputs.discard()
         raise
+    if run.columns:
+        from mechcli.report.table import select_columns
+        try:
+            report = select_columns(report, run.columns)
+        except ValueError as exc:
+            outputs.discard()
+            raise click.UsageError(str(exc)) from None
+    warnings = _merge_warnings(warnings)
     shown = list(report.notes)
     for w in warnings:
         report.notes.append(("警告: " if run.lang == "zh" else "warning: ") + w)
     outputs.text("report.txt", render_text(report))
+    manifest, removed, kept = outputs.manifest(manifest_info(run, command))
+    if kept:
+        warnings.append(f"kept {', '.join(kept)} in {outputs.out_dir}: written by an earlier "
+                        "run and changed since, so not this run's output")
     if run.json:
-        click.echo(jsonout.dumps(command, run.spec_path, results, outputs.files, warnings))
+        click.echo(jsonout.dumps(command, run.spec_path, results, outputs.files, warnings,
+                                 manifest=manifest, removed=removed))
         return
     if not run.quiet:
         # the table on stdout; the warnings (also in report.txt) on stderr, where a
         # batch or a pipe keeps them apart from the results
         report.notes = shown
-        print_rich(report)
+        if _is_terminal():
+            print_rich(report)
+        else:   # a pipe, a file, a Makefile: the plain text, without importing rich
+            click.echo(render_text(report, width=terminal_width()), nl=False)
         click.echo("written: " + ", ".join(str(f) for f in outputs.files))
+        if removed:
+            click.echo("removed (stale, from an earlier run): " + ", ".join(removed))
     where = f"{run.spec_path}: " if run.spec_path else ""    # traceable in a parallel batch
     for w in warnings:
         click.echo(f"mechcli: warning: {where}{w}", err=True)
+
+
+def library_versions():
+    """``{"mechcli", "python", "numpy", "scipy", "matplotlib"}`` versions (None for a
+    library that is not installed), from the loaded module when there is one."""
+    import importlib.metadata
+    import platform
+    import sys
+
+    from mechcli import __version__
+
+    out = {"mechcli": __version__, "python": platform.python_version()}
+    for lib in ("numpy", "scipy", "matplotlib"):
+        mod = sys.modules.get(lib)
+        version = getattr(mod, "__version__", None)
+        if version is None:
+            try:
+                version = importlib.metadata.version(lib)
+            except importlib.metadata.PackageNotFoundError:
+                version = None
+        out[lib] = version
+    return out
+
+
+def manifest_info(run, command):
+    """What ``outputs.json`` says of a run besides its files: the command, the spec and
+    its SHA-256 (None without a file), the ``--set`` overrides, the options that change
+    the outputs, and the versions of mechcli and the libraries."""
+    from mechcli.report.files import file_sha256
+
+    spec_hash = None
+    if run.spec_path is not None:
+        try:
+            spec_hash = file_sha256(run.spec_path)
+        except OSError:   # read a moment ago by the command; gone now: say so by None
+            spec_hash = None
+    return {
+        "command": command,
+        "spec": None if run.spec_path is None else str(run.spec_path),
+        "spec_sha256": spec_hash,
+        "sets": [s.strip() for s in run.sets],
+        "options": {"lang": run.lang, "plot": run.plot, "animate": run.animate,
+                    "digits": run.digits},
+        "versions": library_versions(),
+    }
 
 
 def _check_finite(results, path=""):

@@ -3,12 +3,28 @@
 A :class:`Report` is a title, a list of :class:`Block` (a heading plus either a
 table or key/value lines) and notes.  ``render_text`` gives the plain text the
 book prints; ``print_rich`` shows the same on a terminal through rich.
+
+Wide tables are split as the book splits them: into blocks that each repeat the
+first column (the input angle) and hold whole groups of columns -- positions,
+velocities, accelerations (told apart by the unit: ``/s``, ``/s²``), the reaction
+of one joint (``FR16x``, ``FR16y``, ``FR16``, ``MR16``) -- each block fitting
+the width: :data:`REPORT_WIDTH` in ``report.txt``, the terminal's on screen
+(:func:`terminal_width`).  :func:`select_columns` keeps only the columns a user
+names (``--columns theta3,omega3``).
 """
 
 from __future__ import annotations
 
 import dataclasses
+import os
+import re
+import sys
 import unicodedata
+
+#: the widest line of a table in ``report.txt`` (a page, a projector, a diff)
+REPORT_WIDTH = 100
+#: the terminal width when stdout is not a terminal and ``COLUMNS`` is not set
+DEFAULT_WIDTH = 80
 
 
 @dataclasses.dataclass
@@ -47,10 +63,144 @@ def _pad(text, width, left=False):
     return text + " " * gap if left else " " * gap + text
 
 
-def render_text(report: Report) -> str:
-    """Plain-text report as written to ``report.txt``."""
+def terminal_width(stream=None):
+    """Columns of the terminal: ``COLUMNS`` when set, the terminal's own width when
+    *stream* (stdout) is one, else :data:`DEFAULT_WIDTH`."""
+    env = os.environ.get("COLUMNS", "")
+    if env.strip().isdigit() and int(env) > 0:
+        return int(env)
+    stream = sys.stdout if stream is None else stream
+    try:
+        if stream.isatty():
+            return os.get_terminal_size(stream.fileno()).columns
+    except (AttributeError, OSError, ValueError):
+        pass
+    return DEFAULT_WIDTH
+
+
+#: Greek symbols of the headers and the names a user types for them
+_GREEK = {"θ": "theta", "ω": "omega", "α": "alpha", "γ": "gamma", "δ": "delta", "φ": "phi",
+          "ψ": "psi", "ε": "epsilon", "β": "beta", "μ": "mu", "τ": "tau", "ρ": "rho"}
+
+
+def column_symbol(header):
+    """The symbol of a column header: ``theta3`` of ``theta3/°`` or ``θ3/(°)``,
+    ``FR16x`` of ``FR16x/N``, ``xF`` of ``xF [mm]``."""
+    sym = re.split(r"\s*[/\[(]", header.strip(), maxsplit=1)[0].strip()
+    return "".join(_GREEK.get(c, c) for c in sym)
+
+
+def _column_group(header):
+    """What a column belongs with: the joint of a reaction, else the order of the
+    quantity told by its unit (position, velocity ``/s``, acceleration ``/s²``)."""
+    sym = column_symbol(header)
+    m = re.match(r"[FM]R(\d+)", sym)
+    if m:
+        return "R" + m.group(1)
+    unit = header[len(header.split("/", 1)[0]):]
+    if re.search(r"s(²|\^2|2)\)?\s*$", unit) or sym.startswith("alpha"):
+        return "acceleration"
+    if re.search(r"/\s*\(?\s*s\)?\s*$", unit) or sym.startswith("omega"):
+        return "velocity"
+    return "position"
+
+
+def split_block(block, width, gap=2, edge=0):
+    """*block* as blocks no wider than *width*, each repeating the first column.
+
+    A table is split only when it is wider; the columns after the first go in
+    groups (:func:`_column_group`), a group whole into one block when it fits
+    there.  *gap* is the width between two columns and *edge* the width the
+    table's frame adds (rich: 3 and 4; plain text: 2 and 0).
+    """
+    if not block.headers or len(block.headers) < 3:
+        return [block]
+    cols = [max([display_width(h)] + [display_width(r[i]) for r in block.rows])
+            for i, h in enumerate(block.headers)]
+    total = sum(cols) + gap * (len(cols) - 1) + edge
+    if total <= width:
+        return [block]
+    groups = []
+    for i in range(1, len(cols)):
+        g = _column_group(block.headers[i])
+        if groups and groups[-1][0] == g:
+            groups[-1][1].append(i)
+        else:
+            groups.append((g, [i]))
+    base = cols[0] + edge
+    parts, cur, used = [], [], base
+    for _, idx in groups:
+        need = sum(cols[i] + gap for i in idx)
+        if cur and used + need > width:
+            parts.append(cur)
+            cur, used = [], base
+        if used + need <= width:
+            cur += idx
+            used += need
+            continue
+        for i in idx:   # a group wider than the page on its own: column by column
+            if cur and used + cols[i] + gap > width:
+                parts.append(cur)
+                cur, used = [], base
+            cur.append(i)
+            used += cols[i] + gap
+    if cur:
+        parts.append(cur)
+    if len(parts) == 1:
+        return [block]
+    out = []
+    for k, idx in enumerate(parts, 1):
+        keep = [0] + idx
+        heading = f"{block.heading} ({k}/{len(parts)})" if block.heading \
+            else f"({k}/{len(parts)})"
+        out.append(Block(heading, [block.headers[i] for i in keep],
+                         [[r[i] for i in keep] for r in block.rows]))
+    return out
+
+
+def select_columns(report, names):
+    """*report* with only the table columns *names* (symbols as :func:`column_symbol`
+    gives them: ``theta3``, ``omega3``, ``FR16``), after each table's first column.
+
+    Tables holding none of them are left out; key/value blocks stay.  Raises
+    :class:`ValueError` naming a column no table has (with the nearest one).
+    """
+    import difflib
+
+    wanted = ["".join(_GREEK.get(c, c) for c in n.strip()) for n in names if n.strip()]
+    if not wanted:
+        return report
+    have = {}
+    for b in report.blocks:
+        for h in b.headers[1:]:
+            have.setdefault(column_symbol(h), h)
+            have.setdefault(column_symbol(h).lower(), h)
+    for n in wanted:
+        if n not in have and n.lower() not in have:
+            near = difflib.get_close_matches(n, list(have), n=1, cutoff=0.5)
+            known = sorted({column_symbol(h) for b in report.blocks for h in b.headers[1:]})
+            raise ValueError(f"--columns: expected column names of this run's tables ("
+                             f"{', '.join(known) or 'none'}), got '{n}'"
+                             + (f" (did you mean '{near[0]}'?)" if near else ""))
+    keys = {n for n in wanted} | {n.lower() for n in wanted}
+    blocks = []
+    for b in report.blocks:
+        if not b.headers:
+            blocks.append(b)
+            continue
+        idx = [i for i, h in enumerate(b.headers) if i and (
+            column_symbol(h) in keys or column_symbol(h).lower() in keys)]
+        if idx:
+            keep = [0] + idx
+            blocks.append(Block(b.heading, [b.headers[i] for i in keep],
+                                [[r[i] for i in keep] for r in b.rows]))
+    return Report(report.title, blocks, list(report.notes))
+
+
+def render_text(report: Report, width=REPORT_WIDTH) -> str:
+    """Plain-text report as written to ``report.txt``: tables split to *width*."""
     out = [report.title, "=" * max(20, display_width(report.title)), ""]
-    for block in report.blocks:
+    for block in (b for whole in report.blocks for b in split_block(whole, width)):
         if block.heading:
             out.append(block.heading)
         if block.headers:
@@ -70,22 +220,27 @@ def render_text(report: Report) -> str:
     return "\n".join(out).rstrip() + "\n"
 
 
-def print_rich(report: Report, file=None):
-    """Show the report on the terminal with rich tables."""
+def print_rich(report: Report, file=None, width=None):
+    """Show the report on the terminal with rich tables, split to the terminal's
+    *width* (:func:`terminal_width` unless given)."""
     from rich.console import Console
     from rich.markup import escape
     from rich.table import Table
 
-    natural = max((display_width(line) for line in render_text(report).splitlines()), default=80)
-    probe = Console(file=file)
-    # never squeeze numbers: widen past the terminal rather than truncate cells
-    console = Console(file=file, highlight=False, width=max(probe.width, natural + 4 * max(
-        (len(b.headers) for b in report.blocks), default=0) + 4))
+    width = width or terminal_width(file)
+    blocks = [b for whole in report.blocks for b in split_block(whole, width, gap=3, edge=4)]
+    # never squeeze numbers: widen past the terminal rather than truncate cells (only a
+    # table whose first two columns are already wider than the terminal needs it); a
+    # key/value block wraps its labels instead, a long title or note wraps as text
+    need = max([sum(max([display_width(h)] + [display_width(r[i]) for r in b.rows]) + 3
+                    for i, h in enumerate(b.headers)) + 1 for b in blocks if b.headers],
+               default=0)
+    console = Console(file=file, highlight=False, width=max(width, need))
     # every text is the user's or ours, never rich markup: a title "door [/bold]" is text
     console.print(f"[bold]{escape(report.title)}[/bold]")
-    for block in report.blocks:
+    for block in blocks:
         # a table at least as wide as its heading: rich wraps a title to the table's width
-        wide = display_width(block.heading) + 2 if block.heading else None
+        wide = min(display_width(block.heading) + 2, width) if block.heading else None
         if block.headers:
             table = Table(title=escape(block.heading) or None, title_justify="left",
                           min_width=wide)
@@ -97,7 +252,7 @@ def print_rich(report: Report, file=None):
             table = Table(title=escape(block.heading) or None, title_justify="left",
                           show_header=False, min_width=wide)
             table.add_column(justify="left")
-            table.add_column(justify="right")
+            table.add_column(justify="right", no_wrap=True)
             for row in block.rows:
                 table.add_row(*map(escape, row))
         console.print(table)

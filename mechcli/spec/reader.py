@@ -72,6 +72,24 @@ def _describe(value):
     return repr(value)
 
 
+def _symbol(key):
+    """``(first letter, trailing digits)`` of a key such as ``l2`` or ``omega1``, or None
+    when the key does not end in digits."""
+    m = re.fullmatch(r"([^\W\d_]).*?(\d+)", str(key))
+    return (m.group(1).lower(), m.group(2)) if m else None
+
+
+def _same_symbol(name, candidates):
+    """``[candidate]`` when exactly one of *candidates* spells *name* out with the same
+    first letter and the same link number (``lenght2``, ``length2``, ``len2`` for ``l2``),
+    where :func:`difflib.get_close_matches` finds them too far apart; else ``[]``."""
+    sym = _symbol(name)
+    if sym is None:
+        return []
+    hits = [c for c in candidates if c != name and _symbol(c) == sym]
+    return hits if len(hits) == 1 else []
+
+
 def parse_override(file, text):
     """Split ``KEY=VALUE``; VALUE in TOML syntax (bare words become strings)."""
     key, sep, raw = text.partition("=")
@@ -228,7 +246,8 @@ class Section:
             # a missing key next to a misspelled one: report the misspelling
             import difflib
             strays = [k for k in self.data if k not in self._known and k not in self._declared]
-            near = difflib.get_close_matches(name, strays, n=1, cutoff=0.5)
+            near = (difflib.get_close_matches(name, strays, n=1, cutoff=0.5)
+                    or _same_symbol(name, strays))
             if near:
                 # say both: the required key that is missing, and the stray that may be it
                 raise SpecError(self.file, self.key(near[0]),
@@ -480,7 +499,8 @@ class Section:
             self.recorder.finished(self)
         for name in self.data:
             if name not in self._known:
-                hint = closest(name, sorted(self._known))
+                hint = closest(name, sorted(self._known)) \
+                    or next(iter(_same_symbol(name, self._known)), None)
                 raise SpecError(self.file, self.key(name),
                                 "a known key" + (f" of [{self.path}]" if self.path else ""),
                                 f"unknown key '{name}'", hint)

@@ -1,0 +1,143 @@
+"""Chinese renders (issue 18, item 1): with a CJK font every Chinese label is drawn from
+it, glyph by glyph after DejaVu Sans, and matplotlib warns of no missing glyph; without
+one, titles keep the spec's stem and their English part, and the run says so once."""
+
+import importlib.util
+import json
+import warnings
+from pathlib import Path
+
+import pytest
+
+from tests.conftest import CONFIGS, run_inprocess
+
+EX1_1 = CONFIGS / "ch1" / "ex1-1.toml"
+#: the font file of the test extra's font package (``pip install -e '.[test]'``)
+FONT_PACKAGE, FONT_FILE = "paperang_p2_fonts_cjk", "fonts/wqy-microhei.ttc"
+
+
+def _packaged_font():
+    """The CJK font file the test extra installs, found without importing its package."""
+    spec = importlib.util.find_spec(FONT_PACKAGE)
+    for folder in (spec.submodule_search_locations or []) if spec else []:
+        path = Path(folder) / FONT_FILE
+        if path.is_file():
+            return path
+    return None
+
+
+@pytest.fixture
+def cjk_font():
+    """A CJK font known to matplotlib for this test (the system's, else the test
+    extra's, registered and then forgotten again); skip when there is none."""
+    from matplotlib import font_manager
+
+    from mechcli.report import plotting
+
+    fonts = font_manager.fontManager.ttflist
+    before = len(fonts)
+    if plotting.cjk_font() is None:
+        path = _packaged_font()
+        if path is None:
+            pytest.skip("no CJK font: neither installed on this machine nor from the test "
+                        f"extra's package {FONT_PACKAGE} (pip install -e '.[test]')")
+        font_manager.fontManager.addfont(str(path))
+        font_manager.fontManager._findfont_cached.cache_clear()
+    family = plotting.cjk_font()
+    assert family is not None
+    yield family
+    del fonts[before:]
+    font_manager.fontManager._findfont_cached.cache_clear()
+
+
+def test_a_zh_figure_draws_every_glyph(cjk_font):
+    """Rendering Chinese, Greek and ASCII in one figure raises no "Glyph missing"
+    warning (an error here, under filterwarnings = error, even without the filter)."""
+    from mechcli.report import plotting
+
+    assert plotting.setup("zh") == "zh"
+    assert list(plotting.plt.rcParams["font.family"]) == ["DejaVu Sans", cjk_font]
+    fig, ax = plotting.plt.subplots()
+    ax.set_title("例 1-1 铰链四杆机构 (four-bar linkage)")
+    ax.set_xlabel("曲柄转角 θ1 / °")
+    ax.set_ylabel("角速度 ω3 / rad/s")
+    ax.plot([0, 1], [0, 1], label="连杆点 F 轨迹")
+    ax.legend()
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        fig.canvas.draw()
+    plotting.plt.close(fig)
+    glyphs = [str(w.message) for w in caught if "Glyph" in str(w.message)]
+    assert glyphs == []
+    assert plotting.text("例 1-1 铰链四杆机构") == "例 1-1 铰链四杆机构"
+
+
+@pytest.mark.parametrize("lang", ["zh", "en"])
+def test_a_zh_run_with_a_cjk_font_warns_of_nothing(tmp_path, cjk_font, lang):
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        proc = run_inprocess("kin", EX1_1, "--lang", lang, "--json", "--no-animate",
+                             "-o", tmp_path)
+    assert proc.returncode == 0, proc.stderr
+    doc = json.loads(proc.stdout)
+    assert doc["warnings"] == []
+    assert [str(w.message) for w in caught] == []
+    assert (tmp_path / "kin.png").stat().st_size > 10_000
+
+
+@pytest.fixture
+def no_cjk_font(monkeypatch):
+    from mechcli.report import plotting
+    monkeypatch.setattr(plotting, "cjk_font", lambda: None)
+
+
+@pytest.mark.parametrize("lang, says", [
+    ("en", "Chinese in figure titles is left out (the spec name stands for it)"),
+    ("zh", "figures are labelled in English and Chinese in titles is left out"),
+])
+def test_without_a_cjk_font_one_warning_and_no_glyph_flood(tmp_path, no_cjk_font, lang, says):
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        proc = run_inprocess("kin", EX1_1, "--lang", lang, "--json", "--animate",
+                             "-o", tmp_path)
+    assert proc.returncode == 0, proc.stderr
+    doc = json.loads(proc.stdout)
+    cjk = [w for w in doc["warnings"] if "CJK" in w]
+    assert cjk == [f"no CJK font found: {says}; install a CJK font (e.g. Noto Sans CJK SC "
+                   "or WenQuanYi Micro Hei) to draw it"]
+    assert [str(w.message) for w in caught] == []
+    assert (tmp_path / "kin.gif").is_file()
+
+
+def test_without_a_cjk_font_the_warning_goes_to_stderr_once(tmp_path, no_cjk_font):
+    proc = run_inprocess("kin", EX1_1, "-q", "--animate", "-o", tmp_path)
+    assert proc.returncode == 0, proc.stderr
+    lines = proc.stderr.splitlines()
+    assert [ln for ln in lines if "CJK" in ln] == [
+        f"mechcli: warning: {EX1_1}: no CJK font found: Chinese in figure titles is left out "
+        "(the spec name stands for it); install a CJK font (e.g. Noto Sans CJK SC or "
+        "WenQuanYi Micro Hei) to draw it"]
+    assert "Glyph" not in proc.stderr
+
+
+@pytest.mark.parametrize("title, stem, shown", [
+    ("例 1-1 铰链四杆机构 (four-bar linkage)", "ex1-1", "ex1-1: four-bar linkage"),
+    ("习题 1-2 铰链四杆机构连杆点 F (coupler point)", "exercise1-2", "exercise1-2: F (coupler point)"),
+    ("习题 3-1 铰链四杆机构: l1 = 28, l2 = 52 (杆 4 机架, AB 原动件)", "exercise3-1",
+     "exercise3-1: l1 = 28, l2 = 52 (4, AB)"),
+    ("【例 5-3】 standard spur gear z = 35 (图 5-7)", "ex5-3", "ex5-3: standard spur gear z = 35 (5-7)"),
+    ("回转导杆机构", "rotating", "rotating"),
+    ("例 3-1 铰链四杆机构类型判断 (1): 100、150、170、110", "ex3-1", "ex3-1: (1): 100 150 170 110"),
+])
+def test_title_without_cjk_keeps_the_stem_and_the_english(title, stem, shown):
+    from mechcli.report import plotting
+    assert plotting.title_without_cjk(title, stem) == shown
+
+
+def test_text_without_a_font_uses_the_runs_stem(no_cjk_font):
+    from mechcli.report import plotting, run
+    run.begin("ex1-1")
+    assert plotting.text("例 1-1 铰链四杆机构 (four-bar linkage)") == "ex1-1: four-bar linkage"
+    assert plotting.text("load '重物W' acts") == "load 'W' acts"   # a label keeps its shape
+    assert plotting.text("crank angle θ1 / °") == "crank angle θ1 / °"
+    run.begin(None)

@@ -1,0 +1,96 @@
+"""Tables fit the terminal and the page (issue 18, item 2): wide tables split into blocks
+that repeat the input angle and keep groups of columns whole; ``--columns`` chooses."""
+
+import json
+
+import pytest
+
+from mechcli.report.table import (REPORT_WIDTH, Block, Report, display_width, render_text,
+                                  split_block)
+from tests.conftest import CONFIGS, one_line_error, run_inprocess
+
+EX1_2 = CONFIGS / "ch1" / "exercise1-2.toml"   # kin with a traced point: 14 columns
+EX2_4 = CONFIGS / "ch2" / "ex2-4.toml"         # force of the shaper: 25 columns
+
+
+def _table_lines(text):
+    return [ln for ln in text.splitlines() if not ln.startswith(("written:", "removed"))]
+
+
+@pytest.mark.parametrize("columns, blocks", [("80", 3), ("120", 2)])
+def test_kin_table_fits_the_terminal(tmp_path, monkeypatch, columns, blocks):
+    monkeypatch.setenv("COLUMNS", columns)
+    proc = run_inprocess("kin", EX1_2, "--no-plot", "-o", tmp_path)
+    assert proc.returncode == 0, proc.stderr
+    lines = _table_lines(proc.stdout)
+    assert max(display_width(ln) for ln in lines) <= int(columns)
+    heads = [ln.strip() for ln in lines if ln.startswith("Results (every 30°")]
+    assert heads == [f"Results (every 30°, lengths in mm) ({k}/{blocks})"
+                     for k in range(1, blocks + 1)]
+    # the input angle starts every block; the first row's ω3 (−10.47 rad/s at θ1 = 0) is there
+    assert sum("theta1/°" in ln for ln in lines) == blocks
+    assert any("0.00" in ln and "-10.4700" in ln for ln in lines)
+
+
+@pytest.mark.parametrize("spec, command, before", [(EX1_2, "kin", 170), (EX2_4, "force", 241)])
+def test_report_txt_tables_fit_100_columns(tmp_path, spec, command, before):
+    proc = run_inprocess(command, spec, "-q", "--no-plot", "-o", tmp_path)
+    assert proc.returncode == 0, proc.stderr
+    text = (tmp_path / "report.txt").read_text(encoding="utf-8")
+    widest = max(display_width(ln) for ln in text.splitlines())
+    assert widest <= REPORT_WIDTH < before
+
+
+def test_force_blocks_keep_each_joint_whole(tmp_path):
+    proc = run_inprocess("force", EX2_4, "-q", "--no-plot", "-o", tmp_path)
+    assert proc.returncode == 0, proc.stderr
+    text = (tmp_path / "report.txt").read_text(encoding="utf-8").splitlines()
+    headers = [ln.split() for ln in text if ln.startswith("theta1/°")]
+    assert len(headers) >= 3 and all(h[0] == "theta1/°" for h in headers)
+    for h in headers:
+        joints = {c[:4] for c in h[1:] if c.startswith(("FR", "MR"))}
+        for j in joints:   # FR23x, FR23y, FR23 and MR23 of a joint stand in one block
+            assert sum(c.startswith(("FR" + j[2:], "MR" + j[2:])) for c in h[1:]) \
+                == sum(c.startswith(("FR" + j[2:], "MR" + j[2:]))
+                       for hh in headers for c in hh[1:])
+    # every column once, in the original order
+    flat = [c for h in headers for c in h[1:]]
+    assert flat[:2] == ["Mb/N·m", "FR16x/N"] and len(flat) == len(set(flat)) == 24
+
+
+def test_split_block_groups_by_unit_order_and_joint():
+    headers = ["theta1/°", "theta2/°", "xF/mm", "omega2/rad/s", "vxF/mm/s",
+               "alpha2/rad/s²", "axF/mm/s²"]
+    rows = [["0.00", "51.3178", "69.6938", "-10.4700", "555.8260", "81.9158", "-11988.5973"]]
+    parts = split_block(Block("R", headers, rows), 40)
+    assert [p.headers for p in parts] == [
+        ["theta1/°", "theta2/°", "xF/mm"], ["theta1/°", "omega2/rad/s", "vxF/mm/s"],
+        ["theta1/°", "alpha2/rad/s²", "axF/mm/s²"]]
+    assert [p.heading for p in parts] == ["R (1/3)", "R (2/3)", "R (3/3)"]
+    assert parts[2].rows == [["0.00", "81.9158", "-11988.5973"]]
+    assert split_block(Block("R", headers, rows), 200) == [Block("R", headers, rows)]
+    text = render_text(Report("t", [Block("R", headers, rows)]), width=40)
+    assert max(map(display_width, text.splitlines())) <= 40
+
+
+def test_columns_chooses_what_the_tables_show(tmp_path):
+    proc = run_inprocess("kin", EX1_2, "-q", "--no-plot", "-o", tmp_path,
+                         "--columns", "theta3, ω3")
+    assert proc.returncode == 0, proc.stderr
+    lines = (tmp_path / "report.txt").read_text(encoding="utf-8").splitlines()
+    i = lines.index("Results (every 30°, lengths in mm)")
+    assert lines[i + 1].split() == ["theta1/°", "theta3/°", "omega3/rad/s"]
+    assert lines[i + 3].split() == ["0.00", "69.5127", "-10.4700"]
+    # the CSV keeps every column
+    assert (tmp_path / "kin.csv").read_text().splitlines()[0].count(",") == 13
+
+
+def test_unknown_column_is_a_usage_error(tmp_path):
+    proc = run_inprocess("kin", EX1_2, "-q", "--no-plot", "-o", tmp_path, "--columns", "omga3")
+    assert proc.returncode == 2
+    line = one_line_error(proc)
+    assert "--columns: expected column names of this run's tables (" in line
+    assert line.endswith("got 'omga3' (did you mean 'omega3'?)")
+    proc = run_inprocess("kin", EX1_2, "--json", "--no-plot", "-o", tmp_path,
+                         "--columns", "omga3")
+    assert proc.returncode == 2 and json.loads(proc.stdout)["exit_code"] == 2
