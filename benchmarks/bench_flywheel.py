@@ -16,7 +16,7 @@ nothing of mechcli).  The default setting must give δ within 1e-6 of the refere
 Then the flywheel for [δ] = 0.06 by eq 6-30 (ΔWmax at constant speed) and by
 ``flywheel_exact`` (the steady state with the variable Je), with its time.
 
-Usage: python benchmarks/bench_flywheel.py [--quick]
+Usage: python benchmarks/bench_flywheel.py [--quick] [--json]
 """
 
 from __future__ import annotations
@@ -29,6 +29,8 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from _figures import run  # noqa: E402  (prints the figures, or JSON with --json)
 
 from mechcli.core.flywheel.equivalent import TableInertia  # noqa: E402
 from mechcli.core.flywheel.motion import (MomentModel, flywheel_approx,  # noqa: E402
@@ -171,9 +173,10 @@ def linkage_samples(t_base):
     ref = run(36000)
     for n in (360, 1800, 3600, 7200):
         t, d = best_of(lambda: run(n), 1)
-        print(f"linkage_motor_samples_{n}: delta off by {abs(d - ref):.1e}, "
-              f"{t * 1e3:.0f} ms ({t / t_base:.0f} x baseline)")
+        print(f"linkage_motor_samples_{n}_delta_error: {abs(d - ref):.1e} 1")
+        print(f"linkage_motor_samples_{n}_time: {t * 1e3:.0f} ms")
+        print(f"linkage_motor_samples_{n}_time_over_baseline: {t / t_base:.0f} x")
 
 
 if __name__ == "__main__":
-    main()
+    run(main)

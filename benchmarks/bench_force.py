@@ -4,7 +4,7 @@ Prints `name: value unit` lines.  Compare ratios within one run: machines are
 shared and noisy.  Target (issue #6): 36,001 positions of 例 2-4 (the shaper
 six-bar, 15 unknowns) solved in <= 50 ms of compute.
 
-Usage: python benchmarks/bench_force.py [--quick]
+Usage: python benchmarks/bench_force.py [--quick] [--json]
 """
 
 from __future__ import annotations
@@ -19,6 +19,8 @@ import numpy as np
 
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from _figures import run  # noqa: E402  (prints the figures, or JSON with --json)
 
 from benchmarks.bench_kin import best_of  # noqa: E402
 from mechcli._alloc import keep_heap_warm  # noqa: E402
@@ -55,10 +57,28 @@ def main(quick=False):
 
     pipe = ForceEvaluator(spec.linkage, spec.topology, sweep, spec.bodies, spec.gravity, progs)
     t = best_of(force_only, rep)
-    print(f"kinetostatics, 36,001 positions (given the motion): {t * 1e3:.1f} ms  (target <= 50)")
-    print(f"  with condition numbers of every block: {best_of(force_cond, rep) * 1e3:.1f} ms")
-    print(f"kinematics + loads + kinetostatics, 36,001 positions: "
-          f"{best_of(lambda: pipe(q), rep) * 1e3:.1f} ms")
+    print(f"ex2-4_forces_36001_given_motion: {t * 1e3:.1f} ms (target <= 50)")
+    print(f"ex2-4_forces_36001_given_motion_with_condition: "
+          f"{best_of(force_cond, rep) * 1e3:.1f} ms")
+    print(f"ex2-4_pipeline_36001: {best_of(lambda: pipe(q), rep) * 1e3:.1f} ms "
+          "(kinematics + loads + kinetostatics)")
+    # the fixed cost of one call (issue 17: <= 0.5 ms), against one position solve
+    q1 = q[:1]
+    m1 = solve(spec.linkage, sweep.inputs(q1), 2)
+    u1 = solve(spec.linkage, unit.inputs(q1), 1)
+    l1 = [p.evaluate(q1, m1)[0] for p in progs]
+    t_pos = best_of(lambda: solve(spec.linkage, sweep.inputs(q1), 2), 50)
+    t_one = best_of(lambda: solve_forces(spec.topology, m1, spec.bodies, l1, spec.gravity, u1,
+                                         condition=False), 50)
+    t_one_c = best_of(lambda: solve_forces(spec.topology, m1, spec.bodies, l1, spec.gravity,
+                                           u1, condition=True), 50)
+    t_pipe1 = best_of(lambda: pipe(q1, condition=True), 50)
+    print(f"position_solve_1_position: {t_pos * 1e3:.3f} ms")
+    print(f"ex2-4_forces_1_position: {t_one * 1e3:.3f} ms")
+    print(f"ex2-4_forces_1_position_over_position_solve: {t_one / t_pos:.2f} x")
+    print(f"ex2-4_forces_1_position_with_condition: {t_one_c * 1e3:.3f} ms")
+    print(f"ex2-4_pipeline_1_position: {t_pipe1 * 1e3:.3f} ms")
+    print(f"ex2-4_pipeline_1_position_over_position_solve: {t_pipe1 / t_pos:.2f} x")
     # accuracy vs cost: the mean and the extremes against the step of the sweep
     ref = None
     for step in (0.01, 0.1, 0.5, 1.0, 5.0, 10.0):
@@ -71,16 +91,27 @@ def main(quick=False):
         mean, mx = res.mean["Mb"], res.extremes["Mb"][0].value
         if ref is None:
             ref = (mean, mx)
-        print(f"step {step:5.2f} deg: analyse {dt * 1e3:7.1f} ms, mean Mb {mean:.9f} "
-              f"(diff {abs(mean - ref[0]):.1e}), max Mb {mx:.9f} (diff {abs(mx - ref[1]):.1e})")
+        tag = f"ex2-4_step_{step:g}deg"
+        print(f"{tag}_analyse: {dt * 1e3:.1f} ms")
+        print(f"{tag}_mean_Mb: {mean:.9f} N_m")
+        print(f"{tag}_mean_Mb_diff: {abs(mean - ref[0]):.1e} N_m (to the 0.01 deg step)")
+        print(f"{tag}_max_Mb: {mx:.9f} N_m")
+        print(f"{tag}_max_Mb_diff: {abs(mx - ref[1]):.1e} N_m (to the 0.01 deg step)")
     with tempfile.TemporaryDirectory() as tmp:
-        for args, label in (([], "with PNGs"), (["--no-plot"], "--no-plot"),
-                            (["--animate"], "with PNGs and 72-frame GIF")):
+        base = best_of(lambda: subprocess.run([sys.executable, "-c", "import numpy"],
+                                              check=True), 1 if quick else 3)
+        print(f"process_import_numpy: {base:.3f} s")
+        for args, label in (([], "png"), (["--no-plot"], "no_plot"),
+                            (["--animate"], "png_gif72")):
             cmd = [sys.executable, "-m", "mechcli", "force",
                    str(ROOT / "configs" / "ch2" / "ex2-4.toml"), "--out", tmp, "-q", *args]
             t = best_of(lambda: subprocess.run(cmd, check=True), 1 if quick else 3)
-            print(f"mechcli force ex2-4 {label}: {t:.2f} s")
+            print(f"process_force_ex2-4_{label}: {t:.2f} s")
+            print(f"process_force_ex2-4_{label}_over_import_numpy: {t / base:.1f} x")
 
 
 if __name__ == "__main__":
-    main("--quick" in sys.argv)
+    def _all():
+        main("--quick" in sys.argv)
+
+    run(_all)

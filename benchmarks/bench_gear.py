@@ -15,7 +15,7 @@ Prints ``name: value unit`` lines:
   import neither numpy nor rich.  Then the in-process time of spec -> solve ->
   report.
 
-Run: ``python benchmarks/bench_gear.py [--runs N]``
+Run: ``python benchmarks/bench_gear.py [--runs N] [--json]``
 """
 
 from __future__ import annotations
@@ -34,6 +34,8 @@ import numpy as np
 
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from _figures import run  # noqa: E402  (prints the figures, or JSON with --json)
 
 from mechcli.core.errors import ConvergenceError  # noqa: E402
 from mechcli.core.gear.spur import spur_gear  # noqa: E402
@@ -80,9 +82,9 @@ def inverse():
     print(f"inverse_book_diverges_above_theta: {limit:.5g} rad")
     try:
         inverse_involute(limit * 1.001, method="book")
-        print("inverse_book_above_limit: converged 1")
+        print("inverse_book_above_limit_converges: 1 bool")
     except ConvergenceError:
-        print("inverse_book_above_limit: ConvergenceError 1")
+        print("inverse_book_above_limit_converges: 0 bool (ConvergenceError)")
     t0 = time.perf_counter()
     for _ in range(20):
         inverse_involute(theta)
@@ -143,4 +145,4 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    run(main)

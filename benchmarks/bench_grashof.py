@@ -4,7 +4,7 @@ Prints ``name: value unit`` lines.  Targets (issue 3): the quick form's process
 time within 1.5x ``python -c "import numpy"``; 100 000 length sets classified
 (type, cranks, θ, ψ, K, γ) in under 1 s of compute.
 
-Run: ``python benchmarks/bench_grashof.py [--runs N]``
+Run: ``python benchmarks/bench_grashof.py [--runs N] [--json]``
 """
 
 from __future__ import annotations
@@ -18,6 +18,8 @@ import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from _figures import run  # noqa: E402  (prints the figures, or JSON with --json)
 
 
 def _process_time(argv, runs):
@@ -72,4 +74,4 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    run(main)

@@ -9,7 +9,7 @@ four-bars x 361 positions, positions + velocities + accelerations in one
 batched call, <= 1.2x a plain numpy closed form of the same batch timed in the
 same run.
 
-Usage: python benchmarks/bench_kin.py [--quick]
+Usage: python benchmarks/bench_kin.py [--quick] [--json]
 """
 
 from __future__ import annotations
@@ -25,6 +25,8 @@ import numpy as np
 
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from _figures import run  # noqa: E402  (prints the figures, or JSON with --json)
 
 from mechcli._alloc import keep_heap_warm  # noqa: E402
 from mechcli.core.linkage.kinematics import Sweep, analyse_sweep, default_quantities  # noqa: E402
@@ -179,4 +181,4 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    run(main)

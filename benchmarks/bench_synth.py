@@ -11,7 +11,7 @@ of one circumcentre's two bisector equations) timed in the same run.
 * Burmester points of five poses (target: <= 50 ms per solve), and the curves
   of four poses at the default resolution and at `samples` = 4001.
 
-Usage: python benchmarks/bench_synth.py [--quick]
+Usage: python benchmarks/bench_synth.py [--quick] [--json]
 """
 
 from __future__ import annotations
@@ -24,6 +24,8 @@ import numpy as np
 
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from _figures import run  # noqa: E402  (prints the figures, or JSON with --json)
 
 from mechcli.core.linkage import DriverMotion, solve  # noqa: E402
 from mechcli.core.synth.design import four_bar_design  # noqa: E402
@@ -91,9 +93,10 @@ def main():
         d = nonlinear(tol)
         err = max(abs(complex(*a.pivots[k]) - complex(*d.pivots[k])) for k in ("B1", "C1"))
         t = per_call(lambda: nonlinear(tol), number // 20, repeat)
-        print(f"ex3-5_tol_{tol:.0e}: iterations {d.values['iterations']}, "
-              f"{t / t_mat:.1f} x matrix, error {err / a.size:.1e} 1, "
-              f"residual {d.values['residual']:.1e} 1")
+        print(f"ex3-5_tol_{tol:.0e}_iterations: {d.values['iterations']} 1")
+        print(f"ex3-5_tol_{tol:.0e}_over_matrix: {t / t_mat:.1f} x")
+        print(f"ex3-5_tol_{tol:.0e}_error: {err / a.size:.1e} 1 (relative to the size)")
+        print(f"ex3-5_tol_{tol:.0e}_residual: {d.values['residual']:.1e} 1")
 
     M, phi = five_poses()
     t_five = per_call(lambda: burmester_points(M, phi), max(number // 50, 5), repeat)
@@ -135,7 +138,7 @@ def structural_error_samples(t_base):
         return float(e[1:-1][inner].max()) if inner.any() else 0.0
 
     ref = run(1_000_001).values
-    print(f"ex3-7_largest_error_at_x = {ref['error_x'][int(abs(ref['error_y']).argmax())]:g} "
+    print(f"ex3-7_largest_error_at_x: {ref['error_x'][int(abs(ref['error_y']).argmax())]:g} "
           "(an end of the interval: every sample count has it exactly)")
     for n in (11, 101, 1001, 10001, 100001):
         t = per_call(lambda: run(n), number=3, repeat=3)
@@ -147,4 +150,4 @@ def structural_error_samples(t_base):
 
 
 if __name__ == "__main__":
-    main()
+    run(main)

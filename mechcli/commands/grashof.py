@@ -81,7 +81,7 @@ def build(spec, lang, digits=10):
     solution : GrashofSolution
     """
     from mechcli.core.grashof.analysis import solve_grashof
-    from mechcli.core.grashof.fourbar import ClosureError
+    from mechcli.core.grashof.chain import ClosureError
     from mechcli.report import grashof as report
 
     try:

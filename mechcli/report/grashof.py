@@ -59,44 +59,43 @@ def interval_text(ranges):
 
 # --------------------------------------------------------------------- four-bar
 def fourbar_results(prob, an, inversions, ranges, scale):
-    """Results dict of one four-bar (row 0 of a :class:`FourBarAnalysis`)."""
+    """Results dict of one four-bar (a :class:`~mechcli.core.grashof.chain.FourBarChain`)."""
     kl, m = an.klass, an.merit
-    L = an.lengths[0] / scale
-    t = kl.types[0]
-    cranks = kl.cranks(0)
+    L = [x / scale for x in an.lengths]
+    t = kl.type
+    cranks = list(kl.cranks)
     if t.endswith("crank_rocker"):
         crank = cranks[0]
     elif cranks:
-        crank = int(an.input[0]) if int(an.input[0]) in cranks else cranks[0]
+        crank = an.input if an.input in cranks else cranks[0]
     else:
         crank = None
     r = {
-        "type": t, "crank": crank, "cranks": cranks, "grashof": bool(kl.grashof[0]),
-        "change_point": bool(kl.change_point[0]),
-        "longest": float(L.max()), "shortest": float(L.min()),
-        "longest_link": int(kl.longest[0]), "shortest_link": int(kl.shortest[0]),
-        "excess": float(kl.excess[0] / scale),
-        "frame": int(an.frame[0]), "input": int(an.input[0]), "coupler": int(an.coupler[0]),
-        "output": int(an.output[0]),
-        "input_turns": bool(m.input_turns[0]), "output_turns": bool(m.output_turns[0]),
+        "type": t, "crank": crank, "cranks": cranks, "grashof": kl.grashof,
+        "change_point": kl.change_point,
+        "longest": max(L), "shortest": min(L),
+        "longest_link": kl.longest, "shortest_link": kl.shortest,
+        "excess": kl.excess / scale,
+        "frame": an.frame, "input": an.input, "coupler": an.coupler, "output": an.output,
+        "input_turns": m.input_turns, "output_turns": m.output_turns,
     }
-    if m.has_limits[0]:
-        r.update(theta_deg=_deg(m.theta[0]), psi_deg=_deg(m.psi[0]), K=float(m.K[0]),
-                 theta1_ext_deg=_deg(m.theta1_ext[0]), theta1_fold_deg=_deg(m.theta1_fold[0]),
-                 theta3_ext_deg=_deg(m.theta3_ext[0]), theta3_fold_deg=_deg(m.theta3_fold[0]))
-    if not m.input_turns[0]:
-        r.update(input_min_deg=_deg(m.input_lo[0]), input_max_deg=_deg(m.input_hi[0]))
-    r.update(gamma_min_deg=_deg(m.gamma_min[0]), gamma_min_at_deg=_deg(m.gamma_min_at[0]),
-             gamma_max_deg=_deg(m.gamma_max[0]), gamma_max_at_deg=_deg(m.gamma_max_at[0]))
-    if m.has_gamma0[0]:
-        r["gamma_at_0_deg"] = _deg(m.gamma0[0])
-    if m.has_gamma180[0]:
-        r["gamma_at_180_deg"] = _deg(m.gamma180[0])
+    if m.has_limits:
+        r.update(theta_deg=_deg(m.theta), psi_deg=_deg(m.psi), K=m.K,
+                 theta1_ext_deg=_deg(m.theta1_ext), theta1_fold_deg=_deg(m.theta1_fold),
+                 theta3_ext_deg=_deg(m.theta3_ext), theta3_fold_deg=_deg(m.theta3_fold))
+    if not m.input_turns:
+        r.update(input_min_deg=_deg(m.input_lo), input_max_deg=_deg(m.input_hi))
+    r.update(gamma_min_deg=_deg(m.gamma_min), gamma_min_at_deg=_deg(m.gamma_min_at),
+             gamma_max_deg=_deg(m.gamma_max), gamma_max_at_deg=_deg(m.gamma_max_at))
+    if m.has_gamma0:
+        r["gamma_at_0_deg"] = _deg(m.gamma0)
+    if m.has_gamma180:
+        r["gamma_at_180_deg"] = _deg(m.gamma180)
     r["dead_points_output_driving"] = [
-        _deg(m.dead_theta3[0, j]) for j in (0, 1) if m.dead_output[0, j]]
+        _deg(m.dead_theta3[j]) for j in (0, 1) if m.dead_output[j]]
     for k, inv in enumerate(inversions, start=1):
-        r[f"inversion_frame{k}"] = inv.types[0]
-        r[f"inversion_frame{k}_cranks"] = inv.cranks(0)
+        r[f"inversion_frame{k}"] = inv.type
+        r[f"inversion_frame{k}_cranks"] = list(inv.cranks)
     for link, rs in ranges.items():
         by_type = {}
         for x in rs:
@@ -229,6 +228,24 @@ def fourbar_csv(an, scale, closes_mask=None, digits=DEFAULT_DIGITS):
              col(m.gamma_min * deg, ok), col(m.gamma_min_at * deg, ok),
              col(m.gamma_max * deg, ok)]
     return CSV_HEADER + "\n" + "\n".join(map(",".join, zip(*cols))) + "\n"
+
+
+def chain_csv(an, scale, digits=DEFAULT_DIGITS):
+    """``grashof.csv`` text of one four-bar (a :class:`~mechcli.core.grashof.chain.FourBarChain`):
+    the row :func:`fourbar_csv` writes for it, made without numpy."""
+    kl, m = an.klass, an.merit
+    num = f"{{:.{digits}g}}".format
+    deg = 180.0 / math.pi
+    crank = an.input if an.input in kl.cranks else (kl.cranks[0] if kl.cranks else 0)
+
+    def lim(x):
+        return num(x) if m.has_limits else ""
+
+    row = [num(x / scale) for x in an.lengths]
+    row += [str(an.frame), str(an.input), kl.type, f"{crank:d}" if crank > 0 else "",
+            "true" if kl.grashof else "false", lim(m.theta * deg), lim(m.psi * deg), lim(m.K),
+            num(m.gamma_min * deg), num(m.gamma_min_at * deg), num(m.gamma_max * deg)]
+    return CSV_HEADER + "\n" + ",".join(row) + "\n"
 
 
 def batch_results(an, closes_mask):
@@ -496,11 +513,11 @@ def write_limits_png(r, scale_unit, outputs, lang, title):
 def driven_lengths(spec, solution):
     """((a, b, c, d) in spec units, unit) of a solved four-bar: input, coupler, output, frame."""
     m, sc = solution.result.merit, spec.header.scale
-    return tuple(float(x[0]) / sc for x in (m.a, m.b, m.c, m.d)), spec.header.unit
+    return tuple(x / sc for x in (m.a, m.b, m.c, m.d)), spec.header.unit
 
 
 def closure_message(exc, unit):
-    """The user's text of a :class:`~mechcli.core.grashof.fourbar.ClosureError` (its numbers
+    """The user's text of a :class:`~mechcli.core.grashof.chain.ClosureError` (its numbers
     are in the spec's unit, see :func:`~mechcli.core.grashof.analysis.solve_grashof`)."""
     u = f" {unit}" if unit else ""
     length, limit = f"{exc.length:.6g}{u}", f"{exc.limit:.6g}{u}"
@@ -547,7 +564,7 @@ def _present(spec, sol, lang, digits=DEFAULT_DIGITS):
             warnings.append("s + l = p + q: a change-point linkage (it can fold flat; "
                             "the motion branch is undetermined there)")
         return (r, fourbar_report(title, lang, r, unit, bool(sol.ranges)),
-                fourbar_csv(res, scale, digits=digits), warnings)
+                chain_csv(res, scale, digits=digits), warnings)
     if spec.kind == "slider_crank":   # solved in the spec's unit
         r = slider_results(res, 1.0)
         if res.boundary:

@@ -1,14 +1,20 @@
-"""Solve one ``mechcli grashof`` problem: the closed forms of :mod:`.fourbar`,
+"""Solve one ``mechcli grashof`` problem: the closed forms of :mod:`.chain`,
 :mod:`.fivebar` and :mod:`.mobility` chosen by the kind of problem.
 
-Only numpy is imported (through :mod:`.fourbar`), so the quick form starts fast.
+One four-bar, slider-crank or guide-bar is solved in pure Python (:mod:`.chain`):
+``mechcli grashof --lengths`` does not import numpy.  numpy (:mod:`.fourbar`) is
+imported only for a transmission-angle curve, a five-bar or a batch.
 """
 
 from __future__ import annotations
 
 import dataclasses
+from typing import TYPE_CHECKING
 
-from mechcli.core.grashof import fourbar as gf
+from mechcli.core.grashof import chain
+
+if TYPE_CHECKING:   # numpy is imported only when a curve is made
+    from mechcli.core.grashof.fourbar import TransmissionCurve
 
 #: kinds of problem :func:`solve_grashof` accepts
 KINDS = ("fourbar", "slider_crank", "guide_bar", "fivebar", "rrrrp", "mobility")
@@ -23,15 +29,15 @@ class GrashofSolution:
     kind : str
         One of :data:`KINDS`.
     result : object
-        :class:`~.fourbar.FourBarAnalysis` (``fourbar``, lengths [m]),
-        :class:`~.fourbar.SliderCrank`, :class:`~.fourbar.GuideBar` or
+        :class:`~.chain.FourBarChain` (``fourbar``, lengths [m]),
+        :class:`~.chain.SliderCrank`, :class:`~.chain.GuideBar` or
         :class:`~.fivebar.RRRRPCrank` (lengths in the caller's unit, see
         :func:`solve_grashof`), :class:`~.fivebar.FiveBarClass` (``fivebar``,
         lengths [m]) or :class:`~.mobility.Mobility`.
-    inversions : tuple of FourBarClass
+    inversions : tuple of ChainType
         Four-bar only: the type with link 1, 2, 3, 4 as the frame.
     ranges : dict
-        Four-bar only: link number -> list of :class:`~.fourbar.LengthRange` [m].
+        Four-bar only: link number -> list of :class:`~.chain.LengthRange` [m].
     curve : TransmissionCurve or None
         γ(θ1) when a curve step was asked (four-bar, slider-crank, guide-bar).
     """
@@ -40,7 +46,7 @@ class GrashofSolution:
     result: object
     inversions: tuple = ()
     ranges: dict = dataclasses.field(default_factory=dict)
-    curve: gf.TransmissionCurve | None = None
+    curve: TransmissionCurve | None = None
 
 
 def transmission_curve(kind, problem, step):
@@ -57,11 +63,13 @@ def transmission_curve(kind, problem, step):
     """
     import numpy as np
 
+    from mechcli.core.grashof import fourbar as gf
+
     n = int(round(2 * np.pi / step))
     th = np.linspace(0.0, n * step, n + 1)
     p = problem
     if kind == "fourbar":
-        i, c, o = gf.driven_links(p.frame, p.input)
+        i, c, o = chain.driven_links(p.frame, p.input)
         L = p.lengths
         return gf.fourbar_transmission(L[i - 1], L[c - 1], L[o - 1], L[p.frame - 1], th)
     if kind == "slider_crank":
@@ -111,18 +119,18 @@ def solve_grashof(kind, problem, scale=1.0):
 
 def _solve(kind, p, scale):
     if kind in ("fourbar", "fivebar"):
-        gf.check_closure([x / scale for x in p.lengths])
+        chain.check_chain_closure([x / scale for x in p.lengths])
     if kind == "fourbar":
-        an = gf.analyse_fourbar(p.lengths, p.frame, p.input, p.crossed, p.rtol)
-        invs = gf.classify_inversions(p.lengths, p.rtol, p.crossed)
-        ranges = {k: gf.length_ranges(p.lengths, k, p.frame, p.rtol) for k in p.vary}
-        return GrashofSolution(kind, an, tuple(invs), ranges)
+        an = chain.analyse_chain(p.lengths, p.frame, p.input, p.crossed, p.rtol)
+        invs = chain.chain_inversions(p.lengths, p.rtol, p.crossed)
+        ranges = {k: chain.length_ranges(p.lengths, k, p.frame, p.rtol) for k in p.vary}
+        return GrashofSolution(kind, an, invs, ranges)
     if kind == "slider_crank":
-        sc = gf.analyse_slider_crank(p.crank / scale, p.coupler / scale, p.offset / scale,
+        sc = chain.analyse_slider_crank(p.crank / scale, p.coupler / scale, p.offset / scale,
                                      p.rtol)
         return GrashofSolution(kind, sc)
     if kind == "guide_bar":
-        gb = gf.analyse_guide_bar(p.crank / scale, p.frame / scale, p.offset / scale, p.rtol)
+        gb = chain.analyse_guide_bar(p.crank / scale, p.frame / scale, p.offset / scale, p.rtol)
         return GrashofSolution(kind, gb)
     if kind == "fivebar":
         from mechcli.core.grashof.fivebar import classify_fivebar
@@ -149,6 +157,8 @@ def classify_batch(lengths, frame, input_link):
     closes : ndarray of bool
         Every link shorter than the sum of the others.
     """
+    from mechcli.core.grashof import fourbar as gf
+
     return (gf.analyse_fourbar(lengths, frame, input_link, require_closure=False),
             gf.closes(lengths))
 

@@ -13,7 +13,8 @@ import dataclasses
 import numpy as np
 
 from mechcli.core.errors import UnsolvableError
-from mechcli.core.grashof.fourbar import CHANGE_POINT_RTOL, ClosureError, check_closure
+from mechcli.core.grashof.chain import CHANGE_POINT_RTOL, ClosureError
+from mechcli.core.grashof.fourbar import check_closure
 
 FIVEBAR_TYPES = ("triple_crank", "double_crank", "single_crank", "no_crank")
 

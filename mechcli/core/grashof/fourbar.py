@@ -2,7 +2,9 @@
 
 Everything here is closed form and vectorized over arrays of length sets: a
 batch of 100 000 four-bars is classified by a handful of numpy operations.
-Only numpy is imported (no scipy) so ``mechcli grashof --lengths`` starts fast.
+One length set (``mechcli grashof --lengths``) is classified by the pure-Python
+twin :mod:`.chain`, which does not import numpy; the scalar slider-crank,
+guide-bar and length ranges live there and are re-exported here.
 
 Conventions (book chapter 3 §1, fig. 3-1): the links of a four-bar chain are
 numbered 1..4 around the loop, link *k* joined to links *k-1* and *k+1*
@@ -21,54 +23,9 @@ import dataclasses
 import numpy as np
 
 from mechcli.core.errors import UnsolvableError
-
-#: type names, index = integer type code used in batch arrays
-TYPES = (
-    "crank_rocker",
-    "double_crank",
-    "double_rocker",
-    "parallelogram",
-    "antiparallelogram",
-    "change_point_crank_rocker",
-    "change_point_double_crank",
-    "change_point_double_rocker",
-)
-_CODE = {name: i for i, name in enumerate(TYPES)}
-
-#: default relative tolerance of the change-point test s + l = p + q
-CHANGE_POINT_RTOL = 1e-9
-
-
-class ClosureError(UnsolvableError):
-    """The lengths cannot form a closed loop (one link as long as all others together).
-
-    The message holds no numbers with units: the caller words them from the
-    attributes (lengths in the unit of the call).
-
-    Attributes
-    ----------
-    chain : str
-        ``"chain"`` (a closed loop of links), ``"slider-crank"``, ``"guide-bar"``
-        or ``"RRRRP"``.
-    length : float
-        The link (``chain``) or the offset that is too long.
-    limit : float
-        The sum it must be shorter than: the other links; crank + coupler;
-        crank + frame; l1 + l2 + l3.
-    link : int or None
-        Link number of a ``chain``.
-    set_index : int or None
-        1-based length set, when a batch of several sets was checked.
-    """
-
-    def __init__(self, chain, length, limit, link=None, set_index=None):
-        what = f"link {link}" if link is not None else "the offset"
-        super().__init__(f"the {chain} cannot close: {what} is not shorter than "
-                         + ("the sum of the other links" if chain == "chain" else
-                            "the sum of the other lengths")
-                         + (f" (length set {set_index})" if set_index is not None else ""))
-        self.chain, self.length, self.limit = chain, float(length), float(limit)
-        self.link, self.set_index = link, set_index
+from mechcli.core.grashof.chain import (_CODE, CHANGE_POINT_RTOL, TYPES, ClosureError,
+                                        GuideBar, LengthRange, SliderCrank, analyse_guide_bar,
+                                        analyse_slider_crank, driven_links, length_ranges)
 
 
 def _lengths_array(lengths, n):
@@ -247,23 +204,6 @@ def classify_inversions(lengths, rtol=CHANGE_POINT_RTOL, crossed=False):
     crank-rockers, one double crank and one double rocker.
     """
     return [classify_fourbar(lengths, frame=k, crossed=crossed, rtol=rtol) for k in (1, 2, 3, 4)]
-
-
-def driven_links(frame, input_link):
-    """(input, coupler, output) link numbers for a frame and an input next to it.
-
-    Raises
-    ------
-    ValueError
-        If the input is the frame or not joined to it.
-    """
-    f0 = frame - 1
-    nb = ((f0 + 1) % 4 + 1, (f0 + 3) % 4 + 1)
-    if input_link not in nb:
-        raise ValueError(f"the input link must be joined to the frame {frame}: one of {nb}")
-    output = nb[1] if input_link == nb[0] else nb[0]
-    coupler = (f0 + 2) % 4 + 1
-    return input_link, coupler, output
 
 
 def _acos(x):
@@ -524,285 +464,6 @@ def analyse_fourbar(lengths, frame=4, input_link=1, crossed=False, rtol=CHANGE_P
                            klass=klass, merit=merit)
 
 
-# --------------------------------------------------------------------------- ranges
-@dataclasses.dataclass(frozen=True)
-class LengthRange:
-    """One interval of a varied link length with a constant type.
-
-    Attributes
-    ----------
-    type : str
-        Basic type (change-point ends are folded into the neighbouring type).
-    crank : int or None
-        The crank link of a crank-rocker.
-    lo, hi : float
-        Interval ends [m].
-    lo_closed, hi_closed : bool
-        Whether the ends belong to the interval.
-    """
-
-    type: str
-    crank: int | None
-    lo: float
-    hi: float
-    lo_closed: bool
-    hi_closed: bool
-
-
-_BASIC = {"change_point_crank_rocker": "crank_rocker",
-          "change_point_double_crank": "double_crank",
-          "change_point_double_rocker": "double_rocker"}
-
-
-def length_ranges(lengths, vary, frame=4, rtol=CHANGE_POINT_RTOL):
-    """Intervals of one link's length giving each type, the other three fixed.
-
-    Parameters
-    ----------
-    lengths : sequence of 4 float
-        l1..l4 [m]; the entry of the varied link is ignored.
-    vary : int
-        Link number (1..4) whose length varies over (0, sum of the others).
-    frame : int
-        Frame link number.
-
-    Returns
-    -------
-    list of LengthRange
-        Adjacent, covering (0, sum of the others); a change point s + l = p + q
-        belongs to the neighbouring Grashof type (book eq. 3-1 has "<="), a
-        parallelogram is a one-point interval of its own.
-
-    Notes
-    -----
-    The type can only change where the varied length equals another length
-    (the shortest/longest link changes) or where s + l = p + q; those
-    candidate points split (0, Σ) into pieces whose type is constant and is
-    read at the midpoint (slides exam problems 2 and 4; Hrones–Nelson's
-    ranges example).
-    """
-    fixed = [float(x) for k, x in enumerate(lengths) if k != vary - 1]
-    total = sum(fixed)
-    cand = {0.0, total}
-    cand.update(fixed)
-    for i in range(3):
-        j, k = [m for m in range(3) if m != i]
-        for x in (fixed[j] + fixed[k] - fixed[i], fixed[i] + fixed[j] - fixed[k],
-                  fixed[i] + fixed[k] - fixed[j]):
-            if 0 < x < total:
-                cand.add(x)
-    pts = sorted(cand)
-    mids = [(u + v) / 2 for u, v in zip(pts[:-1], pts[1:]) if v - u > rtol * total]
-    inner = pts[1:-1]
-    xs = np.array(mids + inner)
-    L = np.tile(np.asarray(lengths, dtype=float), (len(xs), 1))
-    L[:, vary - 1] = xs
-    kl = classify_fourbar(L, frame=frame, rtol=rtol)
-    labels = []
-    for i, code in enumerate(kl.code.tolist()):
-        name = _BASIC.get(TYPES[code], TYPES[code])
-        cr = kl.cranks(i)
-        labels.append((name, cr[0] if name == "crank_rocker" and cr else None))
-    nm = len(mids)
-    # walk left to right: piece, point, piece, point, ...
-    seq = []
-    mid_i, pt_i = 0, 0
-    for u, v in zip(pts[:-1], pts[1:]):
-        if v - u > rtol * total:
-            seq.append(("open", u, v, labels[mid_i]))
-            mid_i += 1
-        if 0 < v < total:
-            seq.append(("point", v, v, labels[nm + pt_i]))
-            pt_i += 1
-    out = []
-    for kind, u, v, lab in seq:
-        if out and (out[-1].type, out[-1].crank) == lab:
-            prev = out[-1]
-            out[-1] = dataclasses.replace(prev, hi=v, hi_closed=(kind == "point"))
-            continue
-        out.append(LengthRange(type=lab[0], crank=lab[1], lo=u, hi=v,
-                               lo_closed=(kind == "point"), hi_closed=(kind == "point")))
-    return out
-
-
-# ---------------------------------------------------------------- slider-crank, guide-bar
-@dataclasses.dataclass(frozen=True)
-class SliderCrank:
-    """Offset slider-crank: crank a about A, coupler b, slider pin on the line y = e.
-
-    Attributes
-    ----------
-    crank_exists : bool
-        a + |e| <= b.
-    boundary : bool
-        a + |e| = b within tolerance (the coupler reaches 90° to the guide).
-    stroke : float
-        H [m].
-    x_ext, x_fold : float
-        Slider positions at the limit (dead) positions [m].
-    theta1_ext, theta1_fold : float
-        Crank angles there [rad].
-    theta, K : float
-        Limit-position angle [rad] and time ratio.
-    alpha_max, alpha_max_at : float
-        Maximum pressure angle on the slider (crank driving) and the crank
-        angle where it occurs [rad].
-    """
-
-    a: float
-    b: float
-    e: float
-    crank_exists: bool
-    boundary: bool
-    stroke: float
-    x_ext: float
-    x_fold: float
-    theta1_ext: float
-    theta1_fold: float
-    theta: float
-    K: float
-    alpha_max: float
-    alpha_max_at: float
-
-
-def analyse_slider_crank(a, b, e=0.0, rtol=CHANGE_POINT_RTOL):
-    """Crank condition, stroke, θ, K and pressure angle of an offset slider-crank.
-
-    Parameters
-    ----------
-    a, b : float
-        Crank and coupler lengths [m].
-    e : float
-        Offset of the slider path from the crank pivot [m] (path y = e).
-
-    Returns
-    -------
-    SliderCrank
-
-    Raises
-    ------
-    ClosureError
-        |e| >= a + b: the coupler never reaches the slider path.
-
-    Notes
-    -----
-    Slides §2-2: the crank exists iff a + e <= b.  Limit positions with crank
-    and coupler in line: x = sqrt((b ± a)² − e²), θ = |arcsin(e/(b − a)) −
-    arcsin(e/(b + a))|, H = x_ext − x_fold, K = (π + θ)/(π − θ).  The pressure
-    angle on the slider is the angle of the coupler to the path,
-    sin α = (a sin θ1 − e)/b, greatest at θ1 = 270° (e >= 0) where
-    sin α = (a + e)/b.  Exam problem 3 of the slides (a = 20, b = 60, K = 2,
-    H = 69.28) has e = 40 = b − a: the boundary case.
-    """
-    a, b, e = float(a), float(b), float(e)
-    if abs(e) >= a + b:
-        raise ClosureError("slider-crank", abs(e), a + b)
-    slack = b - (a + abs(e))
-    boundary = abs(slack) <= rtol * (a + b)
-    exists = slack >= 0 or boundary
-    if not exists:
-        return SliderCrank(a, b, e, False, False, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
-    s_e = e / (a + b)
-    s_f = min(1.0, max(-1.0, e / (b - a))) if b > a else 0.0
-    x_e = np.sqrt(max((a + b) ** 2 - e ** 2, 0.0))
-    x_f = np.sqrt(max((b - a) ** 2 - e ** 2, 0.0))
-    t_e, t_f = np.arcsin(s_e), np.arcsin(s_f)
-    theta = abs(t_f - t_e)
-    K = (np.pi + theta) / (np.pi - theta)
-    alpha_max = np.arcsin(min(1.0, (a + abs(e)) / b))
-    at = 1.5 * np.pi if e >= 0 else 0.5 * np.pi
-    return SliderCrank(a, b, e, True, bool(boundary), float(x_e - x_f), float(x_e), float(x_f),
-                       float(t_e % (2 * np.pi)), float((t_f + np.pi) % (2 * np.pi)),
-                       float(theta), float(K), float(alpha_max), at)
-
-
-@dataclasses.dataclass(frozen=True)
-class GuideBar:
-    """Guide-bar (导杆机构): crank a about A, guide pivoted at C, frame AC = d.
-
-    Attributes
-    ----------
-    kind : str
-        ``oscillating``, ``rotating``, ``boundary`` (a + e = d or d + e = a)
-        or ``no_crank`` (|d − a| < e: the crank cannot turn).
-    theta, psi, K : float
-        For an oscillating guide: θ = ψ [rad] and the time ratio (K = 0 when
-        θ = 180°, the boundary a = d, where it is unbounded).
-    gamma_min, gamma_max : float
-        Transmission angle on the guide, crank driving [rad]: 90° − arcsin(e/CB).
-    """
-
-    a: float
-    d: float
-    e: float
-    kind: str
-    theta: float
-    psi: float
-    K: float
-    gamma_min: float
-    gamma_max: float
-
-
-def analyse_guide_bar(a, d, e=0.0, rtol=CHANGE_POINT_RTOL):
-    """Oscillating or rotating guide, θ = ψ, K and transmission angle.
-
-    Parameters
-    ----------
-    a : float
-        Crank length AB [m].
-    d : float
-        Frame length AC (crank pivot to guide pivot) [m].
-    e : float
-        Offset of the guide line from its pivot C [m] (0: the guide passes through C).
-
-    Returns
-    -------
-    GuideBar
-
-    Raises
-    ------
-    ClosureError
-        e >= a + d: the guide line never comes near enough to the crank pin B.
-
-    Notes
-    -----
-    Slides §2-2: a + e <= d gives an oscillating guide (crank exists, the guide
-    rocks), d + e <= a a rotating guide.  Extreme guide directions where the
-    guide line touches the crank circle: cos β = (±a − e)/d, hence
-    ψ = arccos((−a − e)/d) − arccos((a − e)/d) and θ = ψ (the crank is normal
-    to the guide at both limits); for e = 0, ψ = 2 arcsin(a/d).  The force of
-    the block on the guide is normal to the guide and the velocity of the
-    guide's point at B is normal to CB, so γ = 90° − arcsin(e/CB), CB between
-    |d − a| and d + a.  Slides fill-in 1: ψ = 30° gives K = 1.4.
-    """
-    a, d, e = float(a), float(d), abs(float(e))
-    if e >= a + d:
-        raise ClosureError("guide-bar", e, a + d)
-    tol = rtol * (a + d)
-    if a + e < d - tol:
-        kind = "oscillating"
-    elif d + e < a - tol:
-        kind = "rotating"
-    elif abs(a + e - d) <= tol or abs(d + e - a) <= tol:
-        kind = "boundary"
-    else:
-        kind = "no_crank"
-    theta = psi = 0.0
-    K = 1.0
-    if kind == "oscillating" or (kind == "boundary" and a <= d):
-        lo = np.arccos(min(1.0, max(-1.0, (a - e) / d)))
-        hi = np.arccos(min(1.0, max(-1.0, (-a - e) / d)))
-        theta = psi = float(hi - lo)
-        # a boundary guide-bar (a = d, e = 0) swings 180°: K is unbounded, reported as 0
-        K = float((np.pi + theta) / (np.pi - theta)) if theta < np.pi * (1 - 1e-9) else 0.0
-    if kind == "no_crank":
-        return GuideBar(a, d, e, kind, 0.0, 0.0, 0.0, 0.0, 0.0)
-    cb_lo, cb_hi = abs(d - a), d + a
-    g_min = np.pi / 2 - np.arcsin(min(1.0, e / cb_lo)) if cb_lo > 0 else 0.0
-    g_max = np.pi / 2 - np.arcsin(min(1.0, e / cb_hi))
-    return GuideBar(a, d, e, kind, theta, psi, K, float(g_min), float(g_max))
-
-
 # ------------------------------------------------------------ transmission curves
 @dataclasses.dataclass(frozen=True)
 class TransmissionCurve:
@@ -867,3 +528,11 @@ def guide_transmission(a, d, e, theta1):
     ratio = np.where(ok & (cb > 0), abs(e) / np.where(cb > 0, cb, 1.0), 0.0)
     gamma = np.where(ok, np.pi / 2 - np.arcsin(np.minimum(ratio, 1.0)), 0.0)
     return TransmissionCurve(th, gamma, ok)
+
+
+__all__ = ["CHANGE_POINT_RTOL", "TYPES", "ClosureError", "UnsolvableError", "check_closure",
+           "closes", "FourBarClass", "classify_fourbar", "classify_inversions", "driven_links",
+           "FourBarMerit", "fourbar_merit", "FourBarAnalysis", "analyse_fourbar", "LengthRange",
+           "length_ranges", "SliderCrank", "analyse_slider_crank", "GuideBar",
+           "analyse_guide_bar", "TransmissionCurve", "fourbar_transmission",
+           "slider_transmission", "guide_transmission"]

@@ -17,7 +17,7 @@ from mechcli.core.linkage.kinematics import SEARCH_STEP, Sweep, analyse_sweep
 from mechcli.core.linkage.kinetostatics import COND_FLAG, ForceResult, solve_forces
 from mechcli.core.linkage.engine import solve
 from mechcli.core.refine import (bisect, gauss_legendre, golden_section_max, mean_rms,
-                                 true_runs)
+                                 sorted_union, true_runs)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -249,7 +249,7 @@ def analyse_forces(linkage, topo, sweep: Sweep, bodies, gravity, programs, parti
     for a, b in runs:
         if b - a < 2:
             continue
-        x, w = gauss_legendre(np.union1d(qs[a:b], [c for c in cuts if qs[a] < c < qs[b - 1]]))
+        x, w = gauss_legendre(sorted_union(qs[a:b], [c for c in cuts if qs[a] < c < qs[b - 1]]))
         xs.append(x)
         ws.append(w)
         span += qs[b - 1] - qs[a]

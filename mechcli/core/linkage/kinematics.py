@@ -19,7 +19,7 @@ import numpy as np
 
 from mechcli.core.errors import AssemblyError
 from mechcli.core.linkage.engine import DriverMotion, Linkage, LinkageMotion, solve
-from mechcli.core.refine import bisect, true_runs
+from mechcli.core.refine import bisect, bracketed_root, sorted_union, true_runs
 
 #: sin(gamma) below which an interior minimum is flagged as near a dead point
 NEAR_TOGGLE_SIN = 0.05
@@ -319,9 +319,11 @@ def refine_extremes(linkage, sweep, order, quantities, values, domain, iteration
 
     Every local extremum of the grid within each run (the run ends included,
     searched out to the refined assembly limits) is a candidate; each is
-    refined by bisection on the sign of the exact derivative (the next-order
-    quantity of the engine), or of a central difference (h = 1e-5 rad) for
-    quantities without one; the best refined value wins, reported with the
+    refined on the exact derivative (the next-order quantity of the engine),
+    or on a central difference (h = 1e-5 rad) for quantities without one: by
+    a safeguarded secant where the derivative changes sign across the
+    bracket (:func:`~mechcli.core.refine.bracketed_root`, a few solves), by
+    bisection on its sign otherwise; the best refined value wins, reported with the
     input where it was evaluated.
     """
     q = domain.q
@@ -360,10 +362,38 @@ def refine_extremes(linkage, sweep, order, quantities, values, domain, iteration
                for qi, *_ in targets]
     signs = np.array([t[1] for t in targets])
 
-    def rising(mid):
-        return signs * _derivative_probe(linkage, sweep, order, getters, mid, h)[0] > 0
+    def slope(idx):
+        """Signed derivative of the targets ``idx`` (> 0: the extreme lies further on);
+        called with several inputs per target (the probes of :func:`bracketed_root`)."""
+        g, sg = [getters[i] for i in idx], signs[idx]
 
-    lo, hi = bisect(lo, hi, rising, 1e-13, iterations)
+        def f(x):
+            rep = x.size // len(idx)
+            return np.tile(sg, rep) * _derivative_probe(linkage, sweep, order, g * rep, x, h)[0]
+        return f
+
+    # The first step of a bisection on the sign of the derivative, with the derivative
+    # at both ends too (one solve): the half that bisection keeps either has a sign
+    # change (closed by a safeguarded secant: a few solves instead of ~40) or the
+    # derivative has one sign over it, and bisection would close on its far end
+    # (the end of a run, or no extreme inside): taken directly, as bisection's
+    # last bracket.
+    n_t = len(targets)
+    mid = 0.5 * (lo + hi)
+    d = slope(np.arange(n_t))(np.concatenate([lo, mid, hi]))
+    d_lo, d_mid, d_hi = d[:n_t], d[n_t:2 * n_t], d[2 * n_t:]
+    up = d_mid > 0                       # bisection's keep_lo at the midpoint
+    lo, d_lo = np.where(up, mid, lo), np.where(up, d_mid, d_lo)
+    hi, d_hi = np.where(up, hi, mid), np.where(up, d_hi, d_mid)
+    proper = (d_lo > 0) & ~(d_hi > 0)
+    tol = 1e-13 * np.maximum(1.0, np.abs(lo))
+    to_hi = ~proper & (d_lo > 0)         # rising throughout: bisection closes on hi
+    lo = np.where(to_hi, hi - np.copysign(tol, hi - lo), lo)
+    hi = np.where(~proper & ~to_hi, lo + np.copysign(tol, hi - lo), hi)
+    if proper.any():
+        idx = np.flatnonzero(proper)
+        lo[idx], hi[idx] = bracketed_root(lo[idx], hi[idx], slope(idx), 1e-13, iterations,
+                                          d_lo[idx], d_hi[idx])
     at = 0.5 * (lo + hi)
     m = solve(linkage, sweep.inputs(at), order=order)
     best = {}
@@ -494,7 +524,7 @@ def analyse_sweep(linkage: Linkage, sweep: Sweep, quantities, order: int,
     fine_step = SEARCH_STEP if rotary else span / 720
     if q_out.size > 1 and np.max(np.diff(q_out)) > fine_step * (1 + 1e-9):
         n = int(np.ceil(span / fine_step)) + 1
-        q_all = np.union1d(q_out, np.linspace(q_out[0], q_out[-1], n))
+        q_all = sorted_union(q_out, np.linspace(q_out[0], q_out[-1], n))
     else:
         q_all = q_out
     out_idx = np.searchsorted(q_all, q_out)

@@ -125,6 +125,9 @@ def solve_forces(topo: Topology, motion: LinkageMotion, bodies: Dict[int, Body],
     gx, gy = gravity
 
     def arr(x):
+        # the common case, an array over the positions already: a view, no broadcast_to
+        if type(x) is np.ndarray and x.dtype == np.float64 and x.shape in (n, (flat,)):
+            return x.reshape(flat)
         return np.broadcast_to(np.asarray(x, dtype=float), n).reshape(flat)
 
     for what, obj, fields in ([(f"body of link {k}", b, ("mass", "inertia", "along", "normal"))
@@ -283,14 +286,21 @@ def solve_forces(topo: Topology, motion: LinkageMotion, bodies: Dict[int, Body],
                 if r in row_pos:
                     b[row_pos[r]] = b[row_pos[r]] - coef * val
         if condition:
-            full = [[np.broadcast_to(np.abs(v), (flat,)) for v in row] for row in A]
-            nrm = np.max([sum(full[i][j] for i in range(k)) for j in range(k)], axis=0)
-            b = [np.concatenate([bi[None, :], np.eye(k)[i][:, None] + np.zeros((1, flat))])
-                 for i, bi in enumerate(b)]
+            # 1-norm of the block: largest column sum of |A| (floats stay floats)
+            nrm = np.zeros(flat)
+            for j in range(k):
+                np.maximum(nrm, sum(abs(A[i][j]) for i in range(k)), out=nrm)
+            # the inverse's columns solved with the right-hand side: rows 1..k of X
+            eye = np.zeros((k, k + 1, flat))
+            for i in range(k):
+                eye[i, 1 + i] = 1.0
+                eye[i, 0] = b[i]
+            b = list(eye)
         X, sing = gauss(A, b)
         if condition:
-            inv_nrm = np.max([sum(np.abs(X[i][1 + j]) for i in range(k)) for j in range(k)],
-                             axis=0)
+            inv_nrm = np.zeros(flat)
+            for j in range(k):
+                np.maximum(inv_nrm, sum(np.abs(X[i][1 + j]) for i in range(k)), out=inv_nrm)
             c_blk = nrm * inv_nrm
             if sing is not None:
                 c_blk = np.where(sing, np.inf, c_blk)
