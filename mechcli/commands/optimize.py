@@ -93,18 +93,23 @@ def build_problem(spec):
 
     if spec.problem == "cam":
         return cam_problem(spec)
+    from mechcli.core.errors import DescribedError
+    from mechcli.core.optimize import terms
+    from mechcli.spec.errors import SpecError
     cands = Candidates(spec)
     base = cands.linkage_of(cands.starts)
     driver = base.drivers[0].link
-    size = float(base.scale())
+    followers = cands.followers
     obj = spec.objective
+    file = str(spec.path)
+    if obj["kind"] in ("function", "path"):
+        _check_variables_move(spec, cands)
     goal = None
     if obj["kind"] == "function":
         out = obj["output"]
         names = (base.rotating_links if not isinstance(out, str) else base.slide_names)
         if out not in names:
-            from mechcli.spec.errors import SpecError
-            raise SpecError(str(spec.path), "objective.output",
+            raise SpecError(file, "objective.output",
                             "a link whose angle the linkage reports, or a slide: one of "
                             + ", ".join(repr(n) for n in base.rotating_links + base.slide_names),
                             repr(out))
@@ -112,21 +117,37 @@ def build_problem(spec):
             dphi, dpsi = obj["dphi"], obj["dpsi"]
         else:
             dphi, dpsi = function_targets(spec)
+        # a slide's deviation stays in metres (shown in the spec's unit)
         goal = lp.FunctionGoal(obj["output"], obj["phi0"], np.asarray(dphi, dtype=float),
-                               np.asarray(dpsi, dtype=float), obj["psi0"], obj["measure"],
-                               1.0 if not isinstance(obj["output"], str) else size)
+                               np.asarray(dpsi, dtype=float), obj["psi0"], obj["measure"])
     elif obj["kind"] == "path":
         goal = lp.PathGoal(obj["point"], obj["targets"], obj["angles"], obj["theta0"],
                            obj["measure"])
     engine, scales, bounds = [], [], []
+    size = float(base.scale())
     for c in spec.constraints:
         if c["kind"] == "transmission":
+            rrr = base.transmission_joints
+            if not rrr:
+                raise SpecError(file, f"{c['path']}.kind", "a linkage with an RRR dyad "
+                                "(the transmission angle is the angle at its joint)",
+                                "no RRR dyad in the mechanism")
+            bad = [j for j in c["joints"] if j not in rrr]
+            if bad:
+                raise SpecError(file, f"{c['path']}.joints", "joints of RRR dyads: "
+                                + ", ".join(rrr), ", ".join(bad))
             engine.append(lp.Transmission(c["min"], c["max"], c["over"], c["joints"]))
             scales += [1.0, 1.0]
         elif c["kind"] == "assembly":
             engine.append(lp.Assembly(c["over"]))
             scales.append(1.0)
         elif c["kind"] == "crank":
+            try:
+                terms.four_bar_lengths(base)
+            except DescribedError:
+                raise SpecError(file, f"{c['path']}.kind", "a four-bar (one crank and one RRR "
+                                "dyad) for the book's g1 ... g6; use kind = \"assembly\" for "
+                                "other linkages", "'crank'") from None
             engine.append(lp.CrankConditions())
             scales += [size] * 6
         else:
@@ -141,9 +162,28 @@ def build_problem(spec):
         for key, lo, hi in bounds:
             scales += [max(abs(v), 1e-300) if v else 1.0 for v in (lo, hi) if v is not None]
     evaluator = lp.LinkageEvaluator(cands, driver, goal, engine, spec.method.samples, extra,
-                                    extra_names)
+                                    extra_names, followers=followers)
     variables = [Variable(v.key, v.lo, v.hi, v.start) for v in spec.variables]
     return Problem(variables, evaluator, evaluator.names, scales=scales), evaluator
+
+
+def _check_variables_move(spec, cands):
+    """A variable of the problem's tables must move the linkage (input.omega1 does not
+    change a position goal): exit 2 instead of a variable that stays at its start."""
+    import numpy as np
+
+    from mechcli.spec.errors import SpecError
+    x0 = np.array(cands.starts, dtype=float)
+    base = cands.parameters(x0)
+    for i, v in enumerate(spec.variables):
+        if v.goal:
+            continue
+        x = x0.copy()
+        x[i] = v.hi if v.hi != x0[i] else v.lo
+        if np.array_equal(cands.parameters(x), base):
+            raise SpecError(str(spec.path), f"variable[{i}].key", "a number that changes the "
+                            "linkage (a length, coordinate or angle of [mechanism])",
+                            f"'{v.key}', which moves nothing the goal depends on")
 
 
 def cam_problem(spec):
@@ -261,7 +301,7 @@ def optimize(spec_path, workers=None, **opts):
     optimum = with_values(spec.problem_data, {v.key: float(x)
                                               for v, x in zip(spec.variables, result.x)})
     outputs.text("optimum.toml", report.optimum_toml(spec, result, optimum))
-    warnings = report.warnings(spec, result)
+    warnings = report.warnings(spec, result, details)
     if run.plot or run.animate:
         # everything the pictures show is solved here; the report only draws
         import math

@@ -50,6 +50,8 @@ def scalar_results(spec, res):
         if not sym.startswith("FR") and sym != "Fsh":
             out[f"{sym}_min_{u}"] = lo.value + 0.0
             out[f"{sym}_min_at_{at_u}"] = lo.at * fin
+            # the peak magnitude (optimize's "max |Mb|" goal)
+            out[f"{sym}_abs_max_{u}"] = max(abs(hi.value), abs(lo.value))
     for sym in res.mean:
         u = _unit(sym)
         out[f"{sym}_mean_{u}"] = res.mean[sym]

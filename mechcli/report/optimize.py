@@ -33,8 +33,9 @@ def f_scale(spec):
     if obj["kind"] == "pressure_angle":
         return (-180 / math.pi if obj["goal"] == "maximize" else 180 / math.pi), "deg"
     if obj["kind"] == "function":
-        if isinstance(obj["output"], str):
-            return 1.0, "1"     # slide deviations are divided by the linkage's size
+        if isinstance(obj["output"], str):      # a slide's deviations [m] in the length unit
+            k = 1.0 / spec.unit
+            return (k * k if sq else k), (f"{_unit_name(spec)}^2" if sq else _unit_name(spec))
         return 1.0, ("rad^2" if sq else "rad")
     return (-1.0 if obj["goal"] == "maximize" else 1.0), "as the result"
 
@@ -69,7 +70,7 @@ def results(spec, problem, result, details):
         dev = details["dev"][0]
         angle = not isinstance(spec.objective["output"], str)
         r["deviation_max_deg" if angle else "deviation_max"] = float(
-            max(abs(float(d)) for d in dev) * (180 / math.pi if angle else 1.0))
+            max(abs(float(d)) for d in dev) * (180 / math.pi if angle else 1.0 / spec.unit))
         r["phi0_deg"] = math.degrees(float(details["phi0"][0]))
     if "dist" in details:
         r["distance_max"] = float(details["dist"][0].max()) / spec.unit
@@ -96,7 +97,9 @@ def history_columns(spec, result):
             ("evaluations", np.array([r.evaluations for r in h], dtype=float)),
             ("time_s", np.array([r.time_s for r in h])),
             ("f", np.array([r.f * k for r in h])),
-            ("violation", np.array([r.violation for r in h]))]
+            ("violation", np.array([r.violation for r in h])),
+            # 0: the design could not be evaluated (its f is a placeholder 0)
+            ("evaluable", np.array([1.0 if r.evaluable else 0.0 for r in h]))]
     for i, v in enumerate(spec.variables):
         cols.append((_column_name(v.key), np.array([r.x[i] for r in h])))
     return cols
@@ -119,8 +122,18 @@ def optimum_toml(spec, result, data):
     return dumps(data, note)
 
 
-def warnings(spec, result):
+def warnings(spec, result, details=None):
     out = []
+    ex = (details or {}).get("exact")
+    if ex is not None:
+        k, _ = f_scale(spec)
+        found = float(result.f) * k
+        exact = math.degrees(ex.value)
+        if abs(found - exact) > 1e-6 * max(1.0, abs(exact)):
+            out.append(f"the search found a local maximum {found:.6g} deg at "
+                       f"{float(result.x[0]):.6g} deg; `mechcli cam` finds the largest, "
+                       f"{exact:.6g} deg at {math.degrees(ex.delta):.6g} deg (narrow lo/hi "
+                       f"around one maximum, or trust cam's refinement)")
     lo = [v for v, x in zip(spec.variables, result.x) if x <= v.lo + 1e-9 * max(1, abs(v.lo))]
     hi = [v for v, x in zip(spec.variables, result.x) if x >= v.hi - 1e-9 * max(1, abs(v.hi))]
     for v in lo:
@@ -177,9 +190,18 @@ def error_message(exc, spec, problem):
         return (f"[[variable]] start: the start {what}; {spec.method.name} needs "
                 f"a feasible start: change the starts, or use name = \"differential_evolution\"")
     if reason == "infeasible":
-        return (f"[method] {spec.method.name} found no feasible design within the "
-                f"bounds (best violates the constraints); widen the bounds, relax the "
-                f"constraints, or try differential_evolution")
+        g = v.get("g")
+        bad = ([f"{n} by {val:.3g}" for n, val, s in zip(problem.constraint_names,
+                                                         _g_shown(spec, problem, g),
+                                                         problem.scales)
+                if val > 0] if g is not None else [])
+        best = ", ".join(f"{var.name} = {x:.6g}" for var, x in zip(problem.variables,
+                                                                 v.get("x", [])))
+        other = ("" if spec.method.name == "differential_evolution"
+                 else ", or try differential_evolution")
+        return (f"[method] {spec.method.name} found no feasible design within the bounds "
+                f"(the best, {best}, violates {', '.join(bad) or 'the constraints'}); widen "
+                f"the bounds or relax the constraints{other}")
     if reason == "scalar":
         return (f"[method] name: {spec.method.name} searches one variable, the "
                 f"spec has {v.get('n')}")

@@ -44,6 +44,9 @@ FUNCTIONS = ("log10", "ln", "sqrt", "power", "sin", "cos", "tan", "exp", "recipr
              "polynomial")
 #: goal parameters that may be design variables, and whether they are angles
 GOAL_VARIABLES = {"phi0": True, "psi0": True, "theta0": True, "delta": True}
+#: keys that hold a choice, not a measure: never design variables
+DISCRETE = ("branch", "link", "links", "frame", "block", "slider", "guide", "guide_link",
+            "count", "step", "table_step", "digits", "frames", "ratio", "samples")
 #: most design variables (a DE population is 15 x n designs per generation)
 MAX_VARIABLES = 32
 
@@ -179,6 +182,10 @@ def _variables(root, problem_file, data, objective_data):
                 hint = f"; did you mean '{near[0]}'?" if near else ""
                 raise t.error("key", "a numeric key of the problem spec (e.g. mechanism.l2)",
                               f"'{key}' (no key '{exc.args[0]}' there{hint})") from None
+        if parts[-1] in DISCRETE or (len(parts) > 1 and parts[-2] in DISCRETE
+                                     and parts[-1].isdigit()):
+            raise t.error("key", "a continuous number (a length, coordinate or angle): "
+                          "links, branches and counts are not design variables", f"'{key}'")
         if isinstance(value, bool) or not isinstance(value, (int, float)):
             raise t.error("key", "the path of a number",
                           f"'{key}' = {value!r}" if value is not None else f"'{key}' (unset)")
@@ -346,6 +353,9 @@ def read_optimize_spec(path, overrides=()) -> OptimizeSpec:
     base_path = None
     if base is not None:
         base_path = (Path(file).parent / base)
+        if not base_path.is_file():
+            raise root.error("base", "an existing spec file (relative to this one)",
+                             f"'{base}' (no such file: {base_path})")
         base_root = load_spec(base_path)
         bdata = dict(base_root.data)
         base_cmd = bdata.get("command", "kin")
@@ -368,8 +378,14 @@ def read_optimize_spec(path, overrides=()) -> OptimizeSpec:
         data["units"] = root.data["units"]
     data = dict(data, command=problem)
     header = read_header(root, "optimize", default_unit=data.get("units", "mm"))
-    # the problem itself must be a valid spec of its command
-    prob = read_problem(problem, problem_root(problem_file, data))
+    # the problem itself must be a valid spec of its command; a key this file gives
+    # (or --set) is reported against this file, a key of the base against the base
+    try:
+        prob = read_problem(problem, problem_root(problem_file, data))
+    except SpecError as exc:
+        if base_path is not None and (exc.key or "").split(".")[0].split("[")[0] in own:
+            raise SpecError(file, exc.key, exc.expected, exc.got, exc.suggestion) from None
+        raise
     obj_sec = root.table("objective")
     obj_sec.unit = prob.header.scale
     kind = obj_sec.string("kind", choices=list(OBJECTIVES))
@@ -395,6 +411,21 @@ def read_optimize_spec(path, overrides=()) -> OptimizeSpec:
         raise obj_sec.error("kind", "'pressure_angle' for a cam problem", f"'{kind}'")
     objective["path"] = "objective"
     obj_sec.finish()
+    for i, v in enumerate(variables):
+        if not v.goal:
+            continue
+        name = v.key.split(".")[1]
+        used = {"phi0": kind == "function" and not isinstance(objective.get("phi0"), str),
+                "psi0": kind == "function" and objective.get("psi0") is not None,
+                "theta0": kind == "path" and objective.get("angles") is not None,
+                "delta": kind == "pressure_angle"}[name]
+        if not used:
+            need = {"phi0": "[objective] phi0 given as an angle (not output_min/output_max)",
+                    "psi0": "[objective] psi0 given as an angle (not actual)",
+                    "theta0": "a path goal with angles = [...]",
+                    "delta": "kind = \"pressure_angle\""}[name]
+            raise SpecError(file, f"variable[{i}].key", f"a goal parameter the goal uses "
+                            f"({v.key} needs {need})", f"'{v.key}', which would not move")
     constraints = []
     if problem == "cam" and root.has("constraint"):
         raise root.error("constraint", "no constraints for a cam problem (the cam angle's "
@@ -459,7 +490,11 @@ class Candidates:
         self.lo = np.array([v.lo for v in spec.variables])
         self.hi = np.array([v.hi for v in spec.variables])
         self.affine = None
+        self.followers = {}
         if self.problem != "cam":
+            # secondary drivers (a five-bar's second crank) follow the first by
+            # their ratio and phase, which are not design variables (DISCRETE)
+            self.followers = dict(self._read(self.starts)[3])
             self._probe()
 
     # -- the fast path: parameters affine in the variables --------------------
@@ -521,10 +556,17 @@ class Candidates:
         return Linkage(base.frame, tuple(els))
 
     def linkage_of(self, x):
+        return self._read(x)[1]
+
+    def _read(self, x):
         from mechcli.spec.kin import read_mechanism
         root = problem_root(self.file, with_values(self.data, dict(zip(self.keys, x))))
         read_header(root, self.problem, default_unit="mm")
-        return read_mechanism(root)[1]
+        return read_mechanism(root)
+
+    def parameters(self, x):
+        """The engine's numbers of the design x (every element parameter)."""
+        return self._params(x)[1]
 
     def __call__(self, X):
         from mechcli.core.linkage import stack

@@ -145,3 +145,71 @@ def test_workers_give_the_same_answer(tmp_path):
                    "--set", "method.name=differential_evolution", "--set", "method.maxiter=20")
     assert _x(one) == _x(two)
     assert one["results"]["evaluations"] == two["results"]["evaluations"]
+
+
+# -- regressions from the independent review -------------------------------------------
+def _spec(tmp_path, old_new, name="s.toml"):
+    text = EX71.read_text(encoding="utf-8").split("[expected]")[0]
+    for old, new in old_new:
+        assert old in text, old
+        text = text.replace(old, new)
+    p = tmp_path / name
+    p.write_text(text, encoding="utf-8")
+    return p
+
+
+def test_the_answer_does_not_depend_on_the_unit_of_the_lengths(tmp_path):
+    # 例 7-1 is dimensionless: every length x 1e4 gives x* x 1e4 and the same f (the
+    # variables and f are scaled inside the local method)
+    big = _spec(tmp_path, [("l1 = 1\n", "l1 = 10000\n"), ("l2 = 6 ", "l2 = 60000 "),
+                           ("l3 = 2.5\n", "l3 = 25000\n"), ("l4 = 5\n", "l4 = 50000\n"),
+                           ("lo = 1\nhi = 20", "lo = 10000\nhi = 200000")])
+    doc = run_json("optimize", big, "--out", tmp_path / "o")
+    x = doc["results"]["x"]
+    assert x["mechanism.l2"] == pytest.approx(1e4 * BOOK_X[0], abs=1e4 * 5e-5)
+    assert x["mechanism.l3"] == pytest.approx(1e4 * BOOK_X[1], abs=1e4 * 5e-5)
+    assert doc["results"]["f"] == pytest.approx(BOOK_F, abs=5e-5)
+
+
+def test_a_variable_that_moves_nothing_is_refused(tmp_path):
+    line = _fails(tmp_path, 'variable.0.key="input.omega1"')
+    assert "moves nothing" in line and "input.omega1" in line
+
+
+def test_discrete_keys_are_not_variables(tmp_path):
+    line = _fails(tmp_path, 'variable.0.key="mechanism.l1"', 'variable.1.key="input.step"')
+    assert "input.step" in line and "not design variables" in line
+
+
+def test_a_goal_variable_the_goal_does_not_use_is_refused(tmp_path):
+    spec = _spec(tmp_path, [('key = "mechanism.l3"\nlo = 1\nhi = 20',
+                             'key = "objective.phi0"\nlo = 0\nhi = 90\nstart = 30')])
+    proc = run_inprocess("optimize", spec, "--out", tmp_path / "o", "--no-plot")
+    assert proc.returncode == 2
+    assert "objective.phi0" in one_line_error(proc) and "output_min" in proc.stderr
+
+
+def test_transmission_joint_that_is_not_an_rrr_joint(tmp_path):
+    line = _fails(tmp_path, 'constraint.1.joints=["Q"]')
+    assert "joints" in line and "C" in line
+
+
+def test_two_transmission_constraints_keep_both_in_the_json(tmp_path):
+    spec = _spec(tmp_path, [("[method]", '[[constraint]]\nkind = "transmission"\nmin = 30\n'
+                             "over = \"range\"\n\n[method]")])
+    r = run_json("optimize", spec, "--out", tmp_path / "o")["results"]["constraints"]
+    assert {"gamma_min", "gamma_max", "gamma_min_2", "gamma_max_2"} <= set(r)
+    assert r["gamma_min"]["value"] != r["gamma_min_2"]["value"]
+
+
+def test_history_marks_designs_that_could_not_be_evaluated(tmp_path):
+    # SLSQP's first step from the book's start leaves the crank-rockers (l3 = 13)
+    run_json("optimize", EX71, "--out", tmp_path)
+    rows = [dict(zip(*(line.split(",") for line in pair)))
+            for pair in [((tmp_path / "history.csv").read_text().splitlines()[0], row)
+                         for row in (tmp_path / "history.csv").read_text().splitlines()[1:]]]
+    assert {float(r["evaluable"]) for r in rows} <= {0.0, 1.0}
+    assert float(rows[-1]["evaluable"]) == 1.0
+    for r in rows:
+        if float(r["evaluable"]) == 0.0:
+            assert float(r["violation"]) >= 1.0

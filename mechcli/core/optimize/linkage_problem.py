@@ -77,7 +77,9 @@ class CrankConditions:
     """The book's g1 … g6: the four-bar's link 1 is a crank (式 7-8 … 7-11)."""
 
 
-def constraint_names(constraints):
+def constraint_names(constraints, extra=()):
+    """One name per column of g; a name met again gets ``_2``, ``_3`` … (the
+    first keeps the plain name: ``gamma_min``)."""
     names = []
     for c in constraints:
         if isinstance(c, Transmission):
@@ -86,7 +88,12 @@ def constraint_names(constraints):
             names.append(f"assembly_{c.over}")
         elif isinstance(c, CrankConditions):
             names += list(terms.CRANK_NAMES)
-    return names
+    names += list(extra)
+    out, seen = [], {}
+    for n in names:
+        seen[n] = seen.get(n, 0) + 1
+        out.append(n if seen[n] == 1 else f"{n}_{seen[n]}")
+    return out
 
 
 class LinkageEvaluator:
@@ -112,14 +119,15 @@ class LinkageEvaluator:
     """
 
     def __init__(self, candidates: Callable, driver: int, goal=None, constraints=(),
-                 samples: int = 360, extra=None, extra_names=()):
+                 samples: int = 360, extra=None, extra_names=(), followers=None):
         self.candidates = candidates
         self.driver = driver
+        self.followers = dict(followers or {})
         self.goal = goal
         self.constraints = tuple(constraints)
         self.samples = int(samples)
         self.extra = extra
-        self.names = constraint_names(self.constraints) + list(extra_names)
+        self.names = constraint_names(self.constraints, extra_names)
 
     # -- the goal ---------------------------------------------------------
     def _function(self, pop, goal, params):
@@ -130,6 +138,9 @@ class LinkageEvaluator:
         psi0 = params.get("psi0", goal.psi0)
         dev, psi, q, ok = terms.function_deviation(pop, goal.output, phi0, goal.dphi,
                                                    goal.dpsi, psi0, goal.scale)
+        # the goal's range includes phi0 itself (the constraints' "range")
+        q = np.concatenate([np.asarray(phi0, dtype=float).reshape(-1, 1)
+                            * np.ones((q.shape[0], 1)), q], axis=1)
         return terms.measure(dev, goal.measure), ok & ok0, q
 
     def _path(self, pop, goal, params):
@@ -143,7 +154,7 @@ class LinkageEvaluator:
     def details(self, X):
         """Per-design details for the report: deviations and inputs (M, N)."""
         linkage, built, params = self.candidates(np.atleast_2d(X))
-        pop = terms.Population(linkage, self.driver, self.samples)
+        pop = terms.Population(linkage, self.driver, self.samples, self.followers)
         goal = self.goal
         out = {"linkage": linkage}
         if isinstance(goal, FunctionGoal):
@@ -165,7 +176,7 @@ class LinkageEvaluator:
         X = np.atleast_2d(np.asarray(X, dtype=float))
         M = X.shape[0]
         linkage, built, params = self.candidates(X)
-        pop = terms.Population(linkage, self.driver, self.samples)
+        pop = terms.Population(linkage, self.driver, self.samples, self.followers)
         ok = np.asarray(built, dtype=bool).copy()
         f = np.zeros(M)
         q_range = None

@@ -42,12 +42,15 @@ class _Smooth:
     """f, g and their finite-difference gradients at x, from one population
     evaluation of the stencil (cached on x)."""
 
-    def __init__(self, problem, central=True):
+    def __init__(self, problem, central=True, size=None):
         self.p = problem
         self.central = central
         self.key = None
         span = np.where(np.isfinite(problem.hi - problem.lo), problem.hi - problem.lo, 1.0)
         self.h_floor = 1e-9 * np.maximum(span, 1e-12)
+        # each variable's typical size: the steps are relative to it, never to 1 (a
+        # length in metres and one in millimetres get the same relative step)
+        self.size = np.ones(problem.n) if size is None else np.asarray(size, dtype=float)
 
     def _at(self, x):
         x = np.asarray(x, dtype=float)
@@ -57,7 +60,7 @@ class _Smooth:
         n = x.size
         # step ~ eps^(1/3) (central) or eps^(1/2) (forward) of the variable's size
         rel = 6e-6 if self.central else 1.5e-8
-        h = np.maximum(rel * np.maximum(np.abs(x), 1.0), self.h_floor)
+        h = np.maximum(rel * np.maximum(np.abs(x), self.size), self.h_floor)
         rows = [x]
         for i in range(n):
             e = np.zeros(n)
@@ -93,8 +96,6 @@ class _Smooth:
 
     def f(self, x):
         self._at(x)
-        if not self.ok0:          # finite and worse than any evaluable design
-            return _WALL * (1.0 + abs(self.f0)) + float(self.p.violation(self.g0, False))
         return self.f0
 
     def grad(self, x):
@@ -121,38 +122,68 @@ def _finish(problem, x, method, message, converged, iterations, started, starts=
 
 def _record(problem, iteration, x):
     f, g, ok = problem.one(x)
-    problem.record(iteration, x, f, problem.violation(g, ok))
+    problem.record(iteration, x, f, problem.violation(g, ok), ok)
+
+
+def sizes(problem, x0):
+    """Each variable's typical size: |start|, or a tenth of its bounds' span
+    when the start is 0 (1 when that is not finite either)."""
+    x0 = np.abs(np.asarray(x0, dtype=float))
+    span = problem.hi - problem.lo
+    alt = np.where(np.isfinite(span) & (span > 0), 0.1 * span, 1.0)
+    return np.where(x0 > 0, x0, alt)
 
 
 def _local(problem, method, x0, tol, maxiter, central=True):
+    """A local method on the scaled problem: u = x / size (every variable of
+    order 1), F = f / |f(start)|, G = g / scale; so tol means the same whatever
+    the unit of the lengths (a four-bar in metres or in millimetres)."""
     from scipy import optimize
 
-    sm = _Smooth(problem, central)
-    bounds = optimize.Bounds(problem.lo, problem.hi)
+    size = sizes(problem, x0)
+    f0, _, ok0 = problem.one(x0)
+    fref = abs(f0) if ok0 and np.isfinite(f0) and f0 != 0 else 1.0
+    sm = _Smooth(problem, central, size)
+    cs = problem.scales
+    bounds = optimize.Bounds(problem.lo / size, problem.hi / size)
+    u0 = np.asarray(x0, dtype=float) / size
     it = [0]
 
-    def cb(xk, *args):
+    def F(u):
+        v = sm.f(u * size)
+        return v / fref if sm.ok0 else _WALL + float(problem.violation(sm.g0, False))
+
+    def DF(u):
+        return sm.grad(u * size) * size / fref
+
+    def G(u):
+        return sm.g(u * size) / cs
+
+    def DG(u):
+        return sm.jac(u * size) * size[None, :] / cs[:, None]
+
+    def cb(uk, *args):
         it[0] += 1
-        _record(problem, it[0], np.asarray(getattr(xk, "x", xk)))
+        _record(problem, it[0], np.asarray(getattr(uk, "x", uk)) * size)
 
     k = len(problem.constraint_names)
     if method == "slsqp":
-        cons = ([{"type": "ineq", "fun": lambda x: -sm.g(x), "jac": lambda x: -sm.jac(x)}]
+        cons = ([{"type": "ineq", "fun": lambda u: -G(u), "jac": lambda u: -DG(u)}]
                 if k else [])
-        res = optimize.minimize(sm.f, x0, jac=sm.grad, method="SLSQP", bounds=bounds,
+        res = optimize.minimize(F, u0, jac=DF, method="SLSQP", bounds=bounds,
                                 constraints=cons, callback=cb,
                                 options={"ftol": tol, "maxiter": maxiter})
         nit = res.nit
         converged = res.status == 0
         capped = res.status == 9
     elif method == "trust-constr":
-        cons = ([optimize.NonlinearConstraint(sm.g, -np.inf, 0.0, jac=sm.jac,
+        cons = ([optimize.NonlinearConstraint(G, -np.inf, 0.0, jac=DG,
                                               hess=optimize.BFGS())] if k else [])
         import warnings
         with warnings.catch_warnings():
             # BFGS's note on a linear constraint (its update is skipped: harmless)
             warnings.filterwarnings("ignore", message="delta_grad == 0.0")
-            res = optimize.minimize(sm.f, x0, jac=sm.grad, hess=optimize.BFGS(),
+            res = optimize.minimize(F, u0, jac=DF, hess=optimize.BFGS(),
                                     method="trust-constr", bounds=bounds, constraints=cons,
                                     callback=lambda xk, state=None: cb(xk),
                                     options={"gtol": tol, "xtol": tol, "barrier_tol": tol,
@@ -161,23 +192,21 @@ def _local(problem, method, x0, tol, maxiter, central=True):
         converged = res.status in (1, 2)
         capped = res.status == 0
     else:   # nelder-mead with an extreme barrier
-        ref = max(abs(problem.one(x0)[0]), 1e-300)
-
-        def barrier(x):
-            f, g, ok = problem.one(x)
+        def barrier(u):
+            f, g, ok = problem.one(u * size)
             if problem.feasible(g, ok):
-                return f
-            return _WALL * (ref + abs(f) if ok else ref) + float(problem.violation(g, ok))
+                return f / fref
+            return _WALL * (1.0 + abs(f) / fref if ok else 1.0) + float(
+                problem.violation(g, ok))
 
-        res = optimize.minimize(barrier, x0, method="Nelder-Mead", bounds=bounds, callback=cb,
-                                options={"xatol": tol * max(1.0, float(np.max(np.abs(x0)))),
-                                         "fatol": tol * ref, "maxiter": maxiter,
+        res = optimize.minimize(barrier, u0, method="Nelder-Mead", bounds=bounds, callback=cb,
+                                options={"xatol": tol, "fatol": tol, "maxiter": maxiter,
                                          "adaptive": problem.n > 3})
         nit = res.nit
         converged = res.status == 0
         capped = res.status in (1, 2)
     message = str(res.message) + (" (maxiter reached)" if capped else "")
-    return np.clip(res.x, problem.lo, problem.hi), converged, nit, message
+    return np.clip(res.x * size, problem.lo, problem.hi), converged, nit, message
 
 
 def _check_start(problem, x0, method):
@@ -227,6 +256,7 @@ def _de(problem, tol, maxiter, popsize, seed, polish, central):
         if problem.feasible(gp, okp) and fp <= f:
             x = xp
             message += f"; polished by SLSQP ({nit_p} iterations)"
+            it[0] += nit_p
             # a population stopped by maxiter whose best design SLSQP polishes to a
             # converged local optimum ends converged (the message keeps both)
             converged = converged or conv_p
@@ -247,7 +277,7 @@ def _scalar(problem, method, tol, maxiter):
             feas = problem.feasible(ev.g, ev.ok)
             # every step evaluates one new point: it is the step's row of the history
             problem.record(len(problem.history), np.ravel(x)[:1], float(ev.f[0]),
-                           float(problem.violation(ev.g, ev.ok)[0]))
+                           float(problem.violation(ev.g, ev.ok)[0]), bool(ev.ok[0]))
             return np.where(feas, -ev.f, -(_WALL + problem.violation(ev.g, ev.ok)))
 
         x, _ = golden_section_max(neg, np.array([lo]), np.array([hi]), iterations=steps,

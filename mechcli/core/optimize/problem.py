@@ -54,6 +54,7 @@ class Record:
     x: np.ndarray
     f: float
     violation: float
+    evaluable: bool = True
 
 
 class Problem:
@@ -153,13 +154,19 @@ class Problem:
         return np.asarray(ok) & np.all(g <= self.FEASIBLE_TOL * self.scales, axis=-1)
 
     def active(self, g):
-        """Which constraints are active (within ACTIVE_TOL of their bound) at ``g``."""
-        return np.abs(np.asarray(g, dtype=float)) <= self.ACTIVE_TOL * self.scales
+        """Which constraints are active (within ACTIVE_TOL of their bound) at ``g``.
+        A constraint that is 0 whenever it is met (``assembly``: the fraction of
+        positions that fail) is never called active."""
+        g = np.asarray(g, dtype=float)
+        act = np.abs(g) <= self.ACTIVE_TOL * self.scales
+        flat = np.array([n.startswith("assembly") for n in self.constraint_names], dtype=bool)
+        return act & ~(flat & (g <= 0))
 
-    def record(self, iteration, x, f, violation):
+    def record(self, iteration, x, f, violation, evaluable=True):
         self.history.append(Record(int(iteration), self.evaluations,
                                    time.perf_counter() - self.started,
-                                   np.array(x, dtype=float), float(f), float(violation)))
+                                   np.array(x, dtype=float), float(f), float(violation),
+                                   bool(evaluable)))
 
 
 @dataclasses.dataclass(frozen=True)

@@ -59,7 +59,16 @@ class Population:
     linkage: object
     driver: int
     samples: int = 360
+    followers: dict = dataclasses.field(default_factory=dict)
     _rev: dict = dataclasses.field(default_factory=dict)
+
+    def inputs(self, q):
+        """Driver inputs at primary positions q (secondary drivers follow by
+        ``{link: (ratio, phase)}``), at unit speed."""
+        out = {self.driver: DriverMotion(q, 1.0, 0.0)}
+        for link, (ratio, phase) in self.followers.items():
+            out[link] = DriverMotion(phase + ratio * np.asarray(q), ratio, 0.0)
+        return out
 
     @property
     def size(self):
@@ -73,13 +82,13 @@ class Population:
             if o in self._rev and o >= order:
                 return self._rev[o]
         q = np.linspace(0.0, 2 * math.pi, self.samples, endpoint=False)
-        m = solve(self.linkage, {self.driver: DriverMotion(q, 1.0, 0.0)}, order=order)
+        m = solve(self.linkage, self.inputs(q), order=order)
         self._rev[order] = m
         return m
 
     def at(self, q, order=0):
         """The motion at input positions ``q`` (M, N) or (N,)."""
-        return solve(self.linkage, {self.driver: DriverMotion(q, 1.0, 0.0)}, order=order)
+        return solve(self.linkage, self.inputs(q), order=order)
 
 
 def _column(a, size):
