@@ -124,6 +124,11 @@ def optimum_toml(spec, result, data):
 
 def warnings(spec, result, details=None):
     out = []
+    if "DE itself stopped at maxiter" in result.message:
+        out.append(f"differential evolution used all {spec.method.maxiter} generations "
+                   f"without meeting tol = {spec.method.tol:g}; its best design was polished "
+                   f"to a local optimum by SLSQP: a better optimum may exist (raise maxiter "
+                   f"or popsize, or try other seeds)")
     ex = (details or {}).get("exact")
     if ex is not None:
         k, _ = f_scale(spec)

@@ -151,6 +151,17 @@ class LinkageEvaluator:
             q = np.asarray(theta0, dtype=float).reshape(-1, 1) + goal.angles[None, :]
         return terms.measure(d, goal.measure), ok, q
 
+    def _dense(self, q):
+        """The goal's input range (M, N) sampled as densely as a revolution's
+        ``samples`` (the goal's own positions included), for the constraints
+        ``over = "range"``."""
+        q = np.asarray(q, dtype=float)
+        lo, hi = q.min(axis=-1, keepdims=True), q.max(axis=-1, keepdims=True)
+        span = float(np.max(hi - lo)) if q.size else 0.0
+        n = max(8, int(math.ceil(self.samples * span / (2 * math.pi))) + 1)
+        t = np.linspace(0.0, 1.0, n)
+        return np.sort(np.concatenate([lo + (hi - lo) * t, q], axis=-1), axis=-1)
+
     def details(self, X):
         """Per-design details for the report: deviations and inputs (M, N)."""
         linkage, built, params = self.candidates(np.atleast_2d(X))
@@ -191,13 +202,16 @@ class LinkageEvaluator:
             if isinstance(c, CrankConditions):
                 cols.append(terms.crank_conditions(*terms.four_bar_lengths(linkage)))
                 continue
-            if c.over == "range" and q_range is not None:
-                m = pop.at(q_range, order=1)
+            ranged = c.over == "range" and q_range is not None
+            # dead points need the velocity solve; angles and assembly do not
+            order = 1 if isinstance(c, Assembly) else 0
+            if ranged:
+                m = pop.at(self._dense(q_range), order=order)
             else:
-                m = pop.revolution(1)
+                m = pop.revolution(order)
             if isinstance(c, Transmission):
                 joints = c.joints or linkage.transmission_joints
-                lo, hi, okt = terms.transmission_range(m, joints)
+                lo, hi, okt = terms.transmission_range(m, joints, cyclic=not ranged)
                 cols.append(np.stack([np.where(okt, c.lo - lo, 0.0),
                                       np.where(okt, hi - c.hi, 0.0)], axis=-1))
             elif isinstance(c, Assembly):

@@ -257,9 +257,13 @@ def _de(problem, tol, maxiter, popsize, seed, polish, central):
             x = xp
             message += f"; polished by SLSQP ({nit_p} iterations)"
             it[0] += nit_p
-            # a population stopped by maxiter whose best design SLSQP polishes to a
-            # converged local optimum ends converged (the message keeps both)
-            converged = converged or conv_p
+            if not converged and conv_p:
+                # the generations ran out (maxiter is DE's budget) but the best design
+                # is a converged local optimum: a result, with a warning (the report
+                # says the global optimum is not guaranteed)
+                converged = True
+                message += "; DE itself stopped at maxiter"
+
     return x, converged, it[0], message
 
 

@@ -78,7 +78,7 @@ class Population:
     def revolution(self, order=1):
         """The motion at ``samples`` crank angles k·360°/samples (0° and 180°
         among them), order >= ``order``; results (M, samples)."""
-        for o in (order, 2):
+        for o in (order, 1, 2):
             if o in self._rev and o >= order:
                 return self._rev[o]
         q = np.linspace(0.0, 2 * math.pi, self.samples, endpoint=False)
@@ -190,10 +190,16 @@ def path_deviation(pop: Population, point, targets, angles=None, theta0=None):
     return np.where(ok[:, None], d, 0.0), ok
 
 
-def _parabola_extreme(y, k, which):
-    """Vertex of the parabola through samples k-1, k, k+1 (cyclic) of y (M, S)."""
+def _parabola_extreme(y, k, which, cyclic=True):
+    """Vertex of the parabola through samples k-1, k, k+1 of y (M, S): cyclic over a
+    revolution; over a range an end sample is its own extreme (no neighbour beyond)."""
     S = y.shape[-1]
     rows = np.arange(y.shape[0])
+    if not cyclic:
+        end = (k == 0) | (k == S - 1)
+        kk = np.clip(k, 1, S - 2) if S >= 3 else k
+        v = _parabola_extreme(y, kk, which, True) if S >= 3 else y[rows, k]
+        return np.where(end, y[rows, k], v)
     y0, y1, y2 = y[rows, (k - 1) % S], y[rows, k], y[rows, (k + 1) % S]
     den = y0 - 2 * y1 + y2
     shift = np.where(np.abs(den) > 1e-300, (y0 - y2) / (2 * np.where(den != 0, den, 1.0)), 0.0)
@@ -213,10 +219,11 @@ def joint_angles(m, joints):
     return out
 
 
-def transmission_range(m, joints):
+def transmission_range(m, joints, cyclic=True):
     """Least and greatest joint angle over the positions of ``m`` (refined by
-    a parabola through the extreme sample and its neighbours), over all
-    ``joints``; ``(mu_min, mu_max, ok)`` each (M,)."""
+    a parabola through the extreme sample and its neighbours; ``cyclic``: the
+    positions are a whole revolution), over all ``joints``; ``(mu_min, mu_max,
+    ok)`` each (M,)."""
     ok = np.all(m.regular, axis=-1)
     lo = hi = None
     for mu in joint_angles(m, joints):
@@ -226,8 +233,8 @@ def transmission_range(m, joints):
         a = np.where(reg, mu, np.inf)
         b = np.where(reg, mu, -np.inf)
         kmin, kmax = np.argmin(a, axis=-1), np.argmax(b, axis=-1)
-        vmin = _parabola_extreme(np.where(reg, mu, mu[..., :1]), kmin, "min")
-        vmax = _parabola_extreme(np.where(reg, mu, mu[..., :1]), kmax, "max")
+        vmin = _parabola_extreme(np.where(reg, mu, mu[..., :1]), kmin, "min", cyclic)
+        vmax = _parabola_extreme(np.where(reg, mu, mu[..., :1]), kmax, "max", cyclic)
         lo = vmin if lo is None else np.minimum(lo, vmin)
         hi = vmax if hi is None else np.maximum(hi, vmax)
     ok = np.atleast_1d(ok)
