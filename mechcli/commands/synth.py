@@ -7,10 +7,96 @@ import click
 from mechcli.options import RunOptions, common_options
 
 
+def atlas_mapper(workers, scheduler):
+    """The one map-like function the atlas's chunks go through, and a closer:
+    ``map`` in-process; a process pool (``--workers N``); a Dask cluster
+    (``--scheduler ADDRESS``, the ``dask`` extra)."""
+    from mechcli.spec.errors import SpecError
+    if scheduler:
+        try:
+            from dask.distributed import Client
+        except ImportError:
+            raise SpecError("--scheduler", "--scheduler", "the dask extra installed (pip "
+                            "install 'mechcli[dask]')", "no dask.distributed") from None
+        from mechcli.core.errors import UnsolvableError
+        try:
+            client = Client(scheduler, timeout="10s")
+        except (OSError, TimeoutError) as exc:
+            raise UnsolvableError(f"--scheduler {scheduler}: cannot reach the Dask "
+                                  f"scheduler ({exc})") from None
+
+        def dask_map(fn, items):
+            return client.gather(client.map(fn, list(items), pure=False))
+        return dask_map, client.close
+    if workers and workers > 1:
+        from concurrent.futures import ProcessPoolExecutor
+        pool = ProcessPoolExecutor(workers)
+        return pool.map, pool.shutdown
+    return map, (lambda: None)
+
+
+def atlas_case(prob, spec, run, mapper):
+    """``atlas_build`` and ``path``: the atlas on disk (mechcli.atlas_store) with the
+    core's numbers; a SynthSolution like the other kinds'."""
+    import time
+    from pathlib import Path
+
+    from mechcli import atlas_store
+    from mechcli.core.synth import atlas
+    from mechcli.core.synth.problems import SynthSolution
+    d = prob.data
+    if prob.kind == "atlas_build":
+        directory = (Path(run.out_dir) / "atlas" if d["directory"] is None
+                     else Path(spec.path).parent / d["directory"])
+        grid = tuple(tuple(float(v) for v in __import__("numpy").linspace(lo, hi, n))
+                     for lo, hi, n in (d["grid_x"], d["grid_y"]))
+        t = time.perf_counter()
+        info = atlas_store.build_atlas(directory, d["A"], d["B"], d["C"], grid,
+                                       chunk=d["chunk"], mapper=mapper,
+                                       harmonics=d["harmonics"])
+        return SynthSolution(prob.kind, None, None, (info, time.perf_counter() - t))
+    if d["atlas"] is None:      # the default atlas, built once under --out
+        directory = Path(run.out_dir) / "atlas"
+        atlas_store.build_atlas(directory, mapper=mapper)
+    else:
+        directory = Path(spec.path).parent / d["atlas"]
+    pts = d["points"]
+    x = [p[0] for p in pts]
+    y = [p[1] for p in pts]
+    t = time.perf_counter()
+    info = atlas_store.open_atlas(directory)
+    matches = atlas_store.search(info, x, y, k=d["k"], closed=d["closed"], mapper=mapper)
+    t1 = time.perf_counter()
+    cands = atlas.path_synthesis(matches, x, y, d["angles"], method=d["refine"],
+                                 gamma_min=d["gamma_min"])
+    t2 = time.perf_counter()
+    # the candidates' coupler curves over a revolution, for path.png
+    import numpy as np
+
+    from mechcli.core.linkage import DriverMotion, solve
+    curves = {}
+    for j, c in enumerate(cands[:5]):
+        xo = c.refined.x_opt
+        lk = atlas.placed_linkage(xo["A"], xo["B"], xo["C"], xo["gx"], xo["gy"],
+                                  *c.refined.placement)
+        m = solve(lk, {1: DriverMotion(np.linspace(0, 2 * np.pi, 721), 1.0, 0.0)}, order=0)
+        ok = m.feasible
+        curves[j] = (np.where(ok, m.points["P"].x, np.nan), np.where(ok, m.points["P"].y,
+                                                                     np.nan))
+    return SynthSolution(prob.kind, None, None,
+                         {"curves": info.curves, "search_s": t1 - t, "refine_s": t2 - t1,
+                          "candidates": cands, "targets": (x, y), "closed": d["closed"],
+                          "angles": d["angles"], "paths": curves})
+
+
 @click.command("synth")
 @click.argument("spec_path", metavar="SPEC.toml")
+@click.option("--workers", type=click.IntRange(1, 256), default=None,
+              help="Local processes for an atlas build or search.")
+@click.option("--scheduler", default=None, metavar="ADDRESS",
+              help="A Dask scheduler for an atlas build or search (the dask extra).")
 @common_options
-def synth(spec_path, **opts):
+def synth(spec_path, workers=None, scheduler=None, **opts):
     """Design a linkage: rigid-body guidance (two/three positions, coupler poses,
     Burmester), function generation (Freudenstein, Chebyshev, least squares),
     design from the time ratio K; writes linkage.toml for `mechcli kin`."""
@@ -27,22 +113,51 @@ def synth(spec_path, **opts):
 
     spec = read_synth_spec(spec_path, run.sets)
     solutions = []
-    for prob in spec.cases:
-        try:
-            sol = solve_synthesis(prob.kind, prob.data)
-        except DescribedError as exc:   # worded in the spec's units and keys
-            raise DescribedError(report.error_message(exc, spec, prob), exc.reason,
-                                 **exc.values) from None
-        except ConvergenceError as exc:
-            raise ConvergenceError(f"[{prob.path}] max_iter, tol: {exc}") from None
-        bad = report.out_of_range(sol, MIN_LENGTH, MAX_LENGTH, spec, prob)
-        if bad:     # its linkage.toml would be refused by kin: no design
-            raise UnsolvableError(bad)
-        solutions.append(sol)
+    mapper = close = None
+    try:
+        for prob in spec.cases:
+            try:
+                if prob.kind in ("atlas_build", "path"):
+                    if mapper is None:
+                        mapper, close = atlas_mapper(workers, scheduler)
+                    sol = atlas_case(prob, spec, run, mapper)
+                else:
+                    sol = solve_synthesis(prob.kind, prob.data)
+            except DescribedError as exc:   # worded in the spec's units and keys
+                raise DescribedError(report.error_message(exc, spec, prob), exc.reason,
+                                     **exc.values) from None
+            except ConvergenceError as exc:
+                raise ConvergenceError(f"[{prob.path}] max_iter, tol: {exc}") from None
+            bad = report.out_of_range(sol, MIN_LENGTH, MAX_LENGTH, spec, prob)
+            if bad:     # its linkage.toml would be refused by kin: no design
+                raise UnsolvableError(bad)
+            solutions.append(sol)
+    finally:
+        if close is not None:
+            close()
     outputs = Outputs(run.out_dir, digits=run.digits)
     u, unit = spec.header.scale, spec.header.unit
+    from pathlib import Path
+
+    from mechcli.report import atlas as atlas_report
+    out_root = Path(run.out_dir).resolve()
+    for sol in solutions:
+        # an atlas built under --out is this run's output: listed in outputs.json,
+        # removed with the rest if the run fails (an [expected] typo)
+        if sol.kind in ("atlas_build", "path") and (out_root / "atlas").is_dir():
+            for f in sorted((out_root / "atlas").iterdir()):
+                if f.is_file() and f not in outputs.files:
+                    outputs.files.append(f)
     for i, sol in enumerate(solutions):
         tag = f"-{i + 1}" if spec.multi else ""
+        if sol.kind == "atlas_page" and sol.extra.reason is None:
+            outputs.csv(f"page{tag}.csv", atlas_report.page_columns(sol.extra))
+        if sol.kind == "path":
+            for j, cand in enumerate(sol.extra["candidates"]):
+                outputs.text(f"linkage{tag}-{j + 1}.toml", atlas_report.candidate_toml(
+                    cand, spec.header, f"{spec.header.title}: candidate {j + 1}", u))
+        if sol.kind in atlas_report.KINDS:
+            continue
         cols = report.positions_columns(sol, u)
         if cols:
             outputs.csv(f"synth{tag}.csv", report.unit_columns(cols, unit))
@@ -56,7 +171,12 @@ def synth(spec_path, **opts):
                                                                    spec_path))
     warnings = report.warnings(spec, solutions)
     animate = bool(run.animate)
-    if (run.plot and spec.draw) or animate:
+    atlas_sols = [(i, s) for i, s in enumerate(solutions) if s.kind in atlas_report.KINDS]
+    if atlas_sols and run.plot and spec.draw:
+        from mechcli.report import atlas_plots
+        warnings += atlas_plots.write(spec, atlas_sols, outputs, run.lang)
+    others = [s for s in solutions if s.kind not in atlas_report.KINDS]
+    if others and ((run.plot and spec.draw) or animate):
         from mechcli.report import synth_plots
         warnings += synth_plots.write(spec, solutions, outputs, run.lang,
                                       plots=run.plot and spec.draw, animate=animate)

@@ -68,6 +68,9 @@ def defect_text(d):
 
 def case_results(sol, u):
     """The results dict of one solved case, in the spec's unit *u* [m per unit]."""
+    from mechcli.report import atlas
+    if sol.kind in atlas.KINDS:
+        return atlas.case_results(sol, u)
     r = {"kind": sol.kind}
     des, chk = sol.design, sol.check
     if des is None:     # the Burmester curves of four poses: no linkage
@@ -120,6 +123,10 @@ def warnings(spec, solutions):
     out = []
     for i, (prob, sol) in enumerate(zip(spec.cases, solutions)):
         where = f"[{prob.path}] " if spec.multi else ""     # as the errors name a case
+        from mechcli.report import atlas
+        if sol.kind in atlas.KINDS:
+            out += atlas.warnings(prob, sol)
+            continue
         chk = sol.check
         if chk is None:
             continue
@@ -170,6 +177,9 @@ def _f(x, nd=2):
 
 
 def _blocks(prob, sol, u, unit, lang, prefix=""):
+    from mechcli.report import atlas
+    if sol.kind in atlas.KINDS:
+        return atlas.blocks(prob, sol, u, unit, lang, prefix)
     blocks = []
     des, chk = sol.design, sol.check
     n = 1
@@ -429,6 +439,11 @@ _REASON_KEYS = {
     "K": ("K",), "pivot_line_misses": ("pivot_line",), "pivot_line_unusable": ("pivot_line",),
     "crank_range": ("crank",), "coupler_range": ("coupler",), "frame_range": ("frame",),
     "offset": ("e",), "limit_angle": ("limit_angle",), "pairs": ("pairs",),
+    "too_few_points": ("x", "points"), "atlas_corrupt": ("atlas",),
+    "atlas_foreign": ("atlas", "directory"), "atlas_empty": ("atlas",),
+    "no_crank_rocker": ("A", "B", "C"), "not_crank_rocker": ("mark",),
+    "angles_shape": ("angles",), "target_shape": ("x", "y"), "range": ("A", "B", "C"),
+    "grid": ("grid_x", "grid_y"), "chunk": ("chunk",),
 }
 
 

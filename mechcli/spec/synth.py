@@ -18,7 +18,16 @@ from mechcli.spec.errors import SpecError
 from mechcli.spec.reader import MAX_LENGTH, REQUIRED, load_spec
 
 KINDS = ("two_positions", "three_positions", "moving_pivots", "coupler_poses", "burmester",
-         "function", "slider_function", "rocker_slider", "quick_return")
+         "function", "slider_function", "rocker_slider", "quick_return",
+         "atlas_page", "type_chart", "atlas_build", "path")
+#: the atlas kinds (a digital Hrones-Nelson atlas; ratios in crank lengths)
+ATLAS_KINDS = ("atlas_page", "type_chart", "atlas_build", "path")
+#: link-length ratios of the atlas (the seed's charts run to about 5; a bound keeps
+#: the curves of a page drawable)
+RATIO_MAX = 100.0
+#: most curves of one page, of one build
+PAGE_POINTS_MAX = 5000
+BUILD_CURVES_MAX = 200_000_000
 #: the named functions of function generation (core.synth.functions.NAMES)
 FUNCTIONS = ("log10", "ln", "sqrt", "power", "sin", "cos", "tan", "exp", "reciprocal",
              "polynomial")
@@ -374,10 +383,114 @@ def _quick_return(sec):
     return data
 
 
+# -- the atlas -------------------------------------------------------------------------
+def _ratio(sec, name, default=REQUIRED):
+    return sec.number(name, default, lo=1e-3, hi=RATIO_MAX)
+
+
+def _span(sec, name, default, count=False):
+    """``[lo, hi]`` (or ``[lo, hi, count]``) of a ratio or a grid coordinate."""
+    vals = sec.numbers(name, default)
+    want = 3 if count else 2
+    if len(vals) != want:
+        raise sec.error(name, "[lo, hi, count]" if count else "[lo, hi]", repr(vals))
+    lo, hi = vals[0], vals[1]
+    if not (abs(lo) <= RATIO_MAX and abs(hi) <= RATIO_MAX and hi >= lo):
+        raise sec.error(name, f"lo <= hi within ±{RATIO_MAX:g}", repr(vals))
+    if count:
+        n = vals[2]
+        if n != int(n) or not 1 <= n <= 100000 or (n > 1 and hi == lo):
+            raise sec.error(name, "a whole count from 1 to 100000 (1 when lo = hi)", repr(vals))
+        return (float(lo), float(hi), int(n))
+    return (float(lo), float(hi))
+
+
+def _grid(sec):
+    """The coupler-plane grid of a page: x, y spans and a spacing (crank lengths)."""
+    gx = _span(sec, "grid_x", [-1.0, 3.0])
+    gy = _span(sec, "grid_y", [-1.0, 1.0])
+    h = sec.number("spacing", 0.5, lo=1e-3, hi=RATIO_MAX)
+    nx, ny = int(round((gx[1] - gx[0]) / h)) + 1, int(round((gy[1] - gy[0]) / h)) + 1
+    if nx * ny > PAGE_POINTS_MAX:
+        raise sec.error("spacing", f"at most {PAGE_POINTS_MAX} grid points on a page",
+                        f"{nx} x {ny}")
+    return gx, gy, h
+
+
+def _atlas_page(sec):
+    data = {k: _ratio(sec, k) for k in ("A", "B", "C")}
+    data["grid_x"], data["grid_y"], data["spacing"] = _grid(sec)
+    data["step"] = _deg(sec, "step", 5.0, lo=0.1, hi=45.0)
+    return data
+
+
+def _type_chart(sec):
+    raw = sec.raw("A")
+    if isinstance(raw, list):
+        data = {"A": tuple(sec.numbers("A"))}
+        if not 1 <= len(data["A"]) <= 12 or not all(0 < a <= RATIO_MAX for a in data["A"]):
+            raise sec.error("A", f"1 to 12 ratios in (0, {RATIO_MAX:g}]", repr(raw))
+    else:
+        data = {"A": (_ratio(sec, "A"),)}
+    data["B"] = _span(sec, "B", [0.0, 6.0])
+    data["C"] = _span(sec, "C", [0.0, 6.0])
+    if data["B"][0] < 0 or data["C"][0] < 0:
+        raise sec.error("B", "ratios >= 0", repr(data["B"]))
+    data["points"] = sec.integer("points", 301, lo=11, hi=2001)
+    mark = sec.numbers("mark", None, size=2)
+    if mark is not None and not all(0 < v <= RATIO_MAX for v in mark):
+        raise sec.error("mark", f"[B, C] ratios in (0, {RATIO_MAX:g}]", repr(mark))
+    data["mark"] = tuple(mark) if mark is not None else None
+    return data
+
+
+def _atlas_build(sec):
+    data = {"A": _span(sec, "A", [1.5, 4.5, 9], True), "B": _span(sec, "B", [1.5, 4.5, 9], True),
+            "C": _span(sec, "C", [1.5, 4.5, 9], True),
+            "grid_x": _span(sec, "grid_x", [-1.5, 3.5, 21], True),
+            "grid_y": _span(sec, "grid_y", [-1.5, 2.0, 15], True)}
+    for k in ("A", "B", "C"):
+        if data[k][0] <= 0:
+            raise sec.error(k, "ratios above 0", repr(list(data[k])))
+    total = math.prod(data[k][2] for k in ("A", "B", "C", "grid_x", "grid_y"))
+    if total > BUILD_CURVES_MAX:
+        raise sec.error("A", f"at most {BUILD_CURVES_MAX:g} curves in a build", f"{total:g}")
+    data["chunk"] = sec.integer("chunk", 20000, lo=100, hi=1_000_000)
+    data["harmonics"] = sec.integer("harmonics", 16, lo=2, hi=64)
+    data["directory"] = sec.string("directory", None)
+    return data
+
+
+def _path(sec):
+    lim = MAX_LENGTH / sec.unit
+    if sec.has("points"):
+        data = {"points": _points(sec, "points", (3, 10000))}
+    else:
+        xs = sec.numbers("x")
+        ys = sec.numbers("y", size=len(xs))
+        if not 3 <= len(xs) <= 10000:
+            raise sec.error("x", "3 to 10000 target points", f"{len(xs)}")
+        if any(abs(v) > lim for v in xs + ys):
+            raise sec.error("x", f"coordinates within ±{lim:g}", "a larger one")
+        data = {"points": tuple((x * sec.unit, y * sec.unit) for x, y in zip(xs, ys))}
+    data["closed"] = sec.boolean("closed", True)
+    data["angles"] = _angles(sec, "angles", len(data["points"]), None)
+    # an atlas directory built by kind = "atlas_build" (relative to this spec); without
+    # one, the default atlas is built (once: it is resumed) under --out
+    data["atlas"] = sec.string("atlas", None)
+    data["k"] = sec.integer("k", 5, lo=1, hi=100)
+    data["refine"] = sec.string("method", "slsqp", choices=["slsqp", "nelder-mead",
+                                                           "trust-constr"])
+    data["gamma_min"] = _deg(sec, "gamma_min", 0.0, lo=0.0, hi=89.0)
+    return data
+
+
 READERS = {"two_positions": _two_positions, "three_positions": _three_positions,
            "moving_pivots": _moving_pivots, "coupler_poses": _coupler_poses,
            "burmester": _burmester, "function": _function, "slider_function": _slider_function,
-           "rocker_slider": _rocker_slider, "quick_return": _quick_return}
+           "rocker_slider": _rocker_slider, "quick_return": _quick_return,
+           "atlas_page": _atlas_page, "type_chart": _type_chart, "atlas_build": _atlas_build,
+           "path": _path}
 
 
 #: kinds whose design is a four-bar that either side link may drive

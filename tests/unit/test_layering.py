@@ -66,6 +66,8 @@ OWN_CORE = {
     "mechcli.report.synth": "mechcli.core.synth",
     "mechcli.report.flywheel": "mechcli.core.flywheel",
     "mechcli.report.optimize": "mechcli.core.optimize",
+    "mechcli.report.atlas": "mechcli.core.synth",
+    "mechcli.report.atlas_plots": "mechcli.core.synth",
     "mechcli.report.optimize_plots": "mechcli.core.optimize",
     # the animation poses the linkage with kin's drawing
     "mechcli.report.flywheel_plots": "mechcli.core.linkage",

@@ -7,6 +7,12 @@ design
     designed :class:`~mechcli.core.linkage.engine.Linkage`, its lengths and
     pivots, and what it must reproduce at its prescribed positions; builders
     from pivots (:func:`~.design.four_bar_design`, :func:`~.design.slider_crank_design`).
+atlas
+    The digital Hrones–Nelson atlas: pages of coupler curves, the type chart (图 7)
+    and admissible ranges, Fourier shape descriptors, the build's chunks
+    (:func:`~.atlas.build_chunk`), the ranking of a chunk against a target, and
+    path synthesis (the matches refined with :mod:`mechcli.core.optimize`).  The
+    files are :mod:`mechcli.atlas_store`'s.
 guidance
     Rigid-body guidance: two and three positions of B and C (perpendicular
     bisectors, circumcentres), the inverse problem (moving pivots for given

@@ -113,7 +113,40 @@ def _design(kind, d):
                                                  gamma_allowed=d["gamma_allowed"]), None
         cond = {k: d[k] for k in ("crank", "frame") if k in d}
         return qr.guide_bar_from_K(d["K"], **cond), None
+    if kind == "atlas_page":
+        import numpy as np
+
+        from mechcli.core.synth import atlas
+        (x0, x1), (y0, y1), h = d["grid_x"], d["grid_y"], d["spacing"]
+        gx = x0 + h * np.arange(int(round((x1 - x0) / h)) + 1)
+        gy = y0 + h * np.arange(int(round((y1 - y0) / h)) + 1)
+        GX, GY = np.meshgrid(gx, gy, indexing="ij")
+        return None, atlas.atlas_page(d["A"], d["B"], d["C"], GX.ravel(), GY.ravel(),
+                                      step=d["step"])
+    if kind == "type_chart":
+        from mechcli.core.synth import atlas
+        chart = atlas.type_chart(d["A"] if len(d["A"]) > 1 else d["A"][0], d["B"], d["C"],
+                                 points=d["points"])
+        ranges = kind_of = None
+        if d["mark"] is not None:
+            b, c = d["mark"]
+            kind_of = atlas.chain_kind(d["A"][0], b, c)
+            if kind_of[0] == "crank-rocker" and kind_of[1]:
+                ranges = atlas.admissible_ranges(d["A"][0], b, c)
+        return None, AtlasChart(chart, d["mark"], kind_of, ranges)
     raise ValueError(f"unknown synthesis kind {kind!r}")
+
+
+@dataclasses.dataclass(frozen=True)
+class AtlasChart:
+    """The type chart and the marked point (B, C) with its type, whether link 1
+    is its crank, and the admissible ranges of A, B, C (None unless a
+    crank-rocker with crank 1)."""
+
+    chart: Any
+    mark: Optional[tuple]
+    kind: Optional[tuple]
+    ranges: Optional[dict]
 
 
 def solve_synthesis(kind, data) -> SynthSolution:
