@@ -13,6 +13,8 @@ import click
 DEFAULT_DIGITS = 10
 #: ``%.17g`` writes every double so that it reads back bit for bit
 EXACT_DIGITS = 17
+#: resolution of PNG pictures unless ``--dpi`` says otherwise (print quality)
+DEFAULT_DPI = 200
 
 
 @dataclasses.dataclass(frozen=True)
@@ -43,6 +45,9 @@ class RunOptions:
         Significant digits of CSV numbers (``--digits``; 17 is round-trip exact).
     columns : tuple of str
         ``--columns``: the only table columns shown (after each table's first).
+    dpi : int
+        ``--dpi``: resolution of the PNG pictures (the plots read it through
+        :func:`mechcli.report.plotting.dpi`).
     """
 
     spec_path: Path | None
@@ -56,6 +61,7 @@ class RunOptions:
     sets: tuple = ()
     digits: int = DEFAULT_DIGITS
     columns: tuple = ()
+    dpi: int = DEFAULT_DPI
 
     @classmethod
     def from_click(cls, spec_path, opts, stem=None):
@@ -81,6 +87,7 @@ class RunOptions:
             digits=opts.pop("digits", None) or DEFAULT_DIGITS,
             columns=tuple(c.strip() for c in (opts.pop("columns", None) or "").split(",")
                           if c.strip()),
+            dpi=opts.pop("dpi", None) or DEFAULT_DPI,
         )
 
     @property
@@ -137,7 +144,7 @@ def _quick_form():
     if ctx is None:
         return []
     shared = {"out", "json_out", "no_plot", "animate", "lang", "quiet", "traceback",
-              "digits", "sets", "columns"}
+              "digits", "sets", "columns", "dpi"}
     given = []
     for param in ctx.command.params:
         value = ctx.params.get(param.name)
@@ -173,6 +180,8 @@ def common_options(func):
         click.option("--columns", metavar="COL,COL",
                      help="Only these columns in the tables (terminal and report.txt), "
                           "e.g. theta3,omega3; the CSV keeps every column."),
+        click.option("--dpi", type=click.IntRange(20, 1200), default=DEFAULT_DPI,
+                     show_default=True, metavar="N", help="Resolution of the PNG pictures."),
         click.option("--set", "sets", multiple=True, metavar="KEY=VALUE",
                      help="Override a spec key (dotted path, TOML value); repeatable."),
     ]

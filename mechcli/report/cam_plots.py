@@ -10,7 +10,8 @@ import math
 
 import numpy as np
 
-from mechcli.report.plotting import canvas_frame, plt, save_gif, save_png
+from mechcli.report import plotting
+from mechcli.report.plotting import plt, save_png
 
 TEXT = {
     "en": {"delta": "cam angle δ (°)", "s": "s ({u})", "psi": "ψ (°)",
@@ -49,9 +50,10 @@ def _title(cs, lang):
     return kept or "cam"
 
 
-def _boundaries(ax, design):
-    for seg in design.program.segments:
-        ax.axvline(math.degrees(seg.start), color="0.6", lw=0.6, ls=":")
+def _boundaries(ax, design, label=None):
+    for k, seg in enumerate(design.program.segments):
+        ax.axvline(math.degrees(seg.start), color="0.6", lw=0.6, ls=":",
+                   label=label if k == 0 else None)
 
 
 def plot_motion(cs, design, out, lang):
@@ -73,10 +75,17 @@ def plot_motion(cs, design, out, lang):
         ax.plot(d, y, lw=1.2)
         ax.set_ylabel(_t(lang, key, unit))
         _boundaries(ax, design)
+    _boundaries(axes[0], design, "segment boundary")
+    seen = set()
     for imp in design.impacts:
         ax = axes[1] if imp.kind == "rigid" else axes[2]
         ax.axvline(math.degrees(imp.delta), color="r" if imp.kind == "rigid" else "orange",
-                   lw=1.0, alpha=0.7)
+                   lw=1.0, alpha=0.7,
+                   label=None if imp.kind in seen else f"{imp.kind} impact")
+        seen.add(imp.kind)
+    for ax in axes:
+        if ax.get_legend_handles_labels()[0]:
+            plotting.legend_outside(ax, fontsize=7)
     axes[-1].set_xlabel(_t(lang, "delta", unit))
     axes[-1].set_xlim(0, 360)
     axes[0].set_title(_title(cs, lang))
@@ -151,7 +160,7 @@ def plot_profile(cs, design, out, lang):
     ax.set_xlabel(_t(lang, "x", unit))
     ax.set_ylabel(_t(lang, "y", unit))
     ax.set_title(_title(cs, lang))
-    ax.legend(loc="lower left", fontsize=8)
+    plotting.legend_outside(ax, fontsize=8)
     return save_png(fig, out, "profile.png")
 
 
@@ -161,26 +170,37 @@ def plot_checks(cs, design, out, lang):
     d = np.degrees(p.delta)
     fig, (a1, a2) = plt.subplots(2, 1, figsize=(8, 7), sharex=True)
     a1.plot(d, np.degrees(p.alpha), lw=1.2)
-    for lim in (cs.limits.alpha_rise, cs.limits.alpha_return):
+    for j, lim in enumerate((cs.limits.alpha_rise, cs.limits.alpha_return)):
         for sgn in (1, -1):
-            a1.axhline(sgn * math.degrees(lim), color="r", lw=0.6, ls="--")
+            a1.axhline(sgn * math.degrees(lim), color="r" if j == 0 else "m", lw=0.6, ls="--",
+                       label=(f"[α] {'rise' if j == 0 else 'return'} = "
+                              f"{math.degrees(lim):g}°") if sgn == 1 else None)
     for ext in (design.checks.alpha_rise, design.checks.alpha_return):
         if ext is not None:
             a1.plot([math.degrees(ext.delta)], [math.degrees(ext.value) * np.sign(
                 np.interp(ext.delta, p.delta, p.alpha) or 1.0)], "ro", ms=4)
     a1.set_ylabel(_t(lang, "alpha", unit))
-    _boundaries(a1, design)
+    _boundaries(a1, design, "segment boundary")
+    plotting.legend_outside(a1, fontsize=7)
     lim = 4 * fol.r0 / u
-    if p.rho_pitch is not None:
-        a2.plot(d, np.clip(p.rho_pitch / u, -lim, lim), "r--", lw=1.0,
-                label=_t(lang, "rho_p", unit))
-    a2.plot(d, np.clip(p.rho_work / u, -lim, lim), "b", lw=1.2, label=_t(lang, "rho_w", unit))
+    clipped = False
+    for rho, style, key in ((p.rho_pitch, "r--", "rho_p"), (p.rho_work, "b", "rho_w")):
+        if rho is None:
+            continue
+        r = np.asarray(rho, dtype=float) / u
+        clipped |= bool(np.any(np.abs(r[np.isfinite(r)]) > lim))
+        a2.plot(d, np.clip(r, -lim, lim), style, lw=1.0 if key == "rho_p" else 1.2,
+                label=_t(lang, key, unit))
     a2.axhline(0, color="k", lw=0.6)
     a2.set_ylabel(_t(lang, "rho", unit))
     a2.set_xlabel(_t(lang, "delta", unit))
     a2.set_xlim(0, 360)
-    a2.legend(fontsize=8)
     _boundaries(a2, design)
+    if clipped:   # say so: an infinite radius (a flat) would leave the picture
+        plotting.clip_notice(a2, "ρ", -lim, lim, unit)
+        plotting.text_notice(f"checks.png: the radius of curvature is drawn clipped to "
+                             f"±{lim:.4g} {unit} (4 r0)")
+    plotting.legend_outside(a2, fontsize=7)
     return save_png(fig, out, "checks.png")
 
 
@@ -199,7 +219,7 @@ def animate(cs, design, out, lang, fps=12, progress=False):
     p, fol, unit, u = design.profile, design.follower, cs.header.unit, cs.header.scale
     n = len(p.delta) - 1
     idx = np.unique(np.round(np.linspace(0, n, cs.frames, endpoint=False)).astype(int))
-    fig, (ax, axs) = plt.subplots(1, 2, figsize=(8, 4), dpi=72,
+    fig, (ax, axs) = plt.subplots(1, 2, figsize=(10, 4.8), dpi=plotting.GIF_DPI,
                                   gridspec_kw={"width_ratios": [1.2, 1]})
     reach = float(np.max(np.hypot(*p.work))) / u
     pts = [np.concatenate([ln[0] for ln in _follower_lines(cs, design, k)]) for k in idx]
@@ -211,7 +231,9 @@ def animate(cs, design, out, lang, fps=12, progress=False):
     ax.set_xlim(x0 - pad, x1 + pad)
     ax.set_ylim(y0 - pad, y1 + pad)
     ax.set_aspect("equal")
-    ax.set_title(_title(cs, lang), fontsize=9)
+    ax.set_title(_title(cs, lang), fontsize=10)
+    ax.set_xlabel(_t(lang, "x", unit))
+    ax.set_ylabel(_t(lang, "y", unit))
     cam_line, = ax.plot([], [], "b", lw=1.5)
     base_x, base_y = _circle(fol.r0 / u)
     ax.plot(base_x, base_y, color="g", lw=0.6)
@@ -226,7 +248,9 @@ def animate(cs, design, out, lang, fps=12, progress=False):
     axs.set_xlabel(_t(lang, "delta", unit))
     axs.set_ylabel(_t(lang, "psi" if cs.angular else "s", unit))
     outline = _outline(design) / u
-    frames = []
+    label = plotting.readout(ax)
+    plotting.tight(fig)
+    frames = plotting.Frames(fig, [cam_line, marker, dot, label] + foll)
     steps = idx
     if progress:
         from rich.console import Console
@@ -245,6 +269,6 @@ def animate(cs, design, out, lang, fps=12, progress=False):
         for art, ln in zip(foll, lines + [(np.array([]), np.array([]))] * 3):
             art.set_data(*ln)
         dot.set_data([d[k]], [y[k]])
-        frames.append(canvas_frame(fig))
-    plt.close(fig)
-    return save_gif(frames, out, "cam.gif", fps=fps)
+        label.set_text(f"δ = {d[k]:.0f}°")
+        frames.grab()
+    return frames.save(out, "cam.gif", fps=fps)

@@ -165,9 +165,12 @@ def file_sha256(path):
     return h.hexdigest()
 
 
-def read_manifest(out_dir):
+def read_manifest(out_dir, same_as=None):
     """The file entries (``[{"name", "bytes", "sha256"}]``) of the manifest in *out_dir*
-    that mechcli wrote, or ``[]`` when there is none or it is not mechcli's."""
+    that mechcli wrote, or ``[]`` when there is none or it is not mechcli's.  With
+    *same_as* (this run's ``{"command", "spec"}``), only a manifest of the same command
+    on the same spec counts: another problem run into the same folder wrote files that
+    are its own, not stale ones of this spec."""
     import json
 
     try:
@@ -176,6 +179,8 @@ def read_manifest(out_dir):
         return []
     if not isinstance(doc, dict) or doc.get("generator") != "mechcli" \
             or doc.get("format") != MANIFEST_FORMAT or not isinstance(doc.get("files"), list):
+        return []
+    if same_as is not None and any(doc.get(k) != same_as.get(k) for k in ("command", "spec")):
         return []
     return doc["files"]
 
@@ -243,7 +248,7 @@ class Outputs:
 
     def manifest(self, info):
         """Write ``outputs.json``, the manifest of this run, and remove what the previous
-        run into this folder wrote and this one did not.
+        run of the same spec into this folder wrote and this one did not.
 
         The manifest is *info* (command, spec hash, ``--set`` overrides, versions) plus
         ``files``: the name, size and SHA-256 of every file this run wrote.  A file the
@@ -262,7 +267,7 @@ class Outputs:
         """
         import json
 
-        previous = read_manifest(self.out_dir)
+        previous = read_manifest(self.out_dir, same_as=info)
         entries = [{"name": f.name, "bytes": f.stat().st_size, "sha256": file_sha256(f)}
                    for f in self.files]
         doc = {"generator": "mechcli", "format": MANIFEST_FORMAT, **info, "files": entries}

@@ -40,12 +40,12 @@ def _t(t, key, **kw):
 def _input_label(spec, t):
     n = spec.input.driver
     if spec.input.rotary:
-        return _t(t, "crank", n=n)
+        return _t(t, "crank", n=n).replace(f"θ{n}", plotting.symbol(f"theta{n}"))
     return _t(t, "slide", n=n, u=spec.header.unit)
 
 
 def _grid(n, ncols):
-    import matplotlib.pyplot as plt
+    from mechcli.report.plotting import plt
 
     rows = max(1, math.ceil(n / ncols))
     fig, axs = plt.subplots(rows, ncols, figsize=(5.5 * ncols, 3.4 * rows), squeeze=False)
@@ -74,40 +74,82 @@ def plot_reactions(spec, result, outputs, t):
     fig, axs = _grid(len(pairs) + len(drivers), 2)
     for ax, pf in zip(axs, pairs):
         lab = pf.pair.label
-        ax.plot(x, broken(kin, pf.fx), "-", color="C0", lw=1.3, label=f"FR{lab}x")
-        ax.plot(x, broken(kin, pf.fy), "--", color="C3", lw=1.3, label=f"FR{lab}y")
+        ax.plot(x, broken(kin, pf.fx), "-", color="C0", lw=1.3,
+                label=plotting.symbol(f"FR{lab}x"))
+        ax.plot(x, broken(kin, pf.fy), "--", color="C3", lw=1.3,
+                label=plotting.symbol(f"FR{lab}y"))
         ax.axhline(0, color="0.5", lw=0.6)
-        ax.set_ylabel("F / N")
+        ax.set_ylabel(f"{plotting.symbol(f'FR{lab}')} / N")
         handles, labels = ax.get_legend_handles_labels()
         if pf.pair.kind == "P":
-            tw = ax.twinx()
-            tw.grid(False)
-            h, = tw.plot(x, broken(kin, pf.couple), ":", color="C2", lw=1.3, label=f"MR{lab}")
-            tw.set_ylabel(f"MR{lab} / N·m")
-            handles.append(h)
-            labels.append(h.get_label())
-        ax.legend(handles, labels, fontsize=7, loc="best")
-        ax.set_title(_t(t, "pair", lab=lab) + f"  ({pf.pair.kind}, {pf.pair.point})", fontsize=10)
+            msym = plotting.symbol(f"MR{lab}")
+            if plotting.is_constant(pf.couple):   # no second axis for a constant couple
+                from matplotlib.lines import Line2D
+                c = np.asarray(pf.couple, dtype=float)
+                c = c[np.isfinite(c)]
+                handles.append(Line2D([], [], ls="none"))
+                labels.append(f"{msym} ≡ {float(c[0]) if c.size else 0.0:.4g} N·m")
+            else:
+                tw = ax.twinx()
+                tw.grid(False)
+                h, = tw.plot(x, broken(kin, pf.couple), ":", color="C2", lw=1.3, label=msym)
+                tw.set_ylabel(f"{msym} / N·m")
+                plotting.tie_axis(tw, "C2", "right")
+                handles.append(h)
+                labels.append(h.get_label())
+        plotting.legend_above(ax, handles, labels, fontsize=7)
+        ax.set_title(_t(t, "pair", lab="") .replace("F_R", plotting.symbol(f"FR{lab}"))
+                     + f"  ({pf.pair.kind}, {pf.pair.point})", fontsize=10, pad=16)
         ax.set_xlabel(xlabel)
     for ax, link in zip(axs[len(pairs):], drivers):
         sym = balancing_symbol(spec.linkage, link)
         v = result.forces.balancing[link]
-        ax.plot(x, broken(kin, v), "-", color="C1", lw=1.5, label=sym)
+        msym = plotting.symbol(sym)
+        ax.plot(x, broken(kin, v), "-", color="C1", lw=1.5, label=msym)
         ax.axhline(0, color="0.5", lw=0.6)
         _shade_loads(ax, spec, result, t)
         key = "Mb" if sym.startswith("Mb") else "Fb"
-        ax.set_title(_t(t, key, sym=sym), fontsize=10)
-        ax.set_ylabel(f"{sym} / " + ("N·m" if key == "Mb" else "N"))
+        ax.set_title(_t(t, key, sym=msym), fontsize=10)
+        ax.set_ylabel(f"{msym} / " + ("N·m" if key == "Mb" else "N"))
         ax.set_xlabel(xlabel)
-        ax.legend(fontsize=7, loc="best")
+        plotting.legend_above(ax, fontsize=7)
     fig.suptitle(plotting.text(spec.header.title))
-    fig.tight_layout()
     plotting.save_png(fig, outputs, "force.png")
 
 
+def _jumps(result):
+    """Indices i where a conditional load switches between positions i and i+1."""
+    idx = set()
+    for mask in getattr(result, "active_mask", {}).values():
+        m = np.asarray(mask, dtype=bool)
+        if m.ndim == 1 and m.size > 1:
+            idx.update(np.flatnonzero(m[1:] != m[:-1]).tolist())
+    return sorted(idx)
+
+
+def broken_at_jumps(result, v):
+    """Values with a NaN wherever a load switches on or off (a hodograph jumps
+    there: its tip must not be joined across the jump), and between runs."""
+    v = np.asarray(v, dtype=float)
+    cuts = _jumps(result)
+    if cuts:
+        v = np.insert(v, np.asarray(cuts) + 1, np.nan)
+        kin = result.kin
+        if len(kin.runs) > 1:   # keep the runs' gaps too: shift them past the inserted NaN
+            runs = [(a + int(np.searchsorted(cuts, a, side="left")),
+                     b + int(np.searchsorted(cuts, b - 1, side="left")))
+                    for a, b in kin.runs]
+            parts = []
+            for i0, i1 in runs:
+                parts += [v[i0:i1], [np.nan]]
+            return np.concatenate(parts[:-1])
+        return v
+    return broken(result.kin, v)
+
+
 def plot_hodographs(spec, result, outputs, t):
-    """``hodograph.png``: the path of the tip of each revolute pair's force vector."""
-    kin = result.kin
+    """``hodograph.png``: the path of the tip of each revolute pair's force vector,
+    broken where a conditional load jumps on or off."""
     pins = [pf for pf in result.forces.pairs if pf.pair.kind == "R"]
     if not pins:
         return
@@ -116,50 +158,52 @@ def plot_hodographs(spec, result, outputs, t):
     fig.set_size_inches(4.2 * ncols, 4.0 * math.ceil(len(pins) / ncols))
     for k, (ax, pf) in enumerate(zip(axs, pins)):
         lab = pf.pair.label
-        ax.plot(broken(kin, pf.fx), broken(kin, pf.fy), "-", color=f"C{k % 10}", lw=1.2)
-        ax.plot([pf.fx[0]], [pf.fy[0]], "o", color=f"C{k % 10}", ms=4)
-        ax.plot([0], [0], "+", color="k", ms=10, mew=1.5)
+        ax.plot(broken_at_jumps(result, pf.fx), broken_at_jumps(result, pf.fy), "-",
+                color=f"C{k % 10}", lw=1.2, label=plotting.symbol(f"FR{lab}"))
+        ax.plot([pf.fx[0]], [pf.fy[0]], "o", color=f"C{k % 10}", ms=4, label="start")
+        ax.plot([0], [0], "+", color="k", ms=10, mew=1.5, label="origin")
         ax.axhline(0, color="0.6", lw=0.5)
         ax.axvline(0, color="0.6", lw=0.5)
         ax.set_aspect("equal", adjustable="datalim")
-        ax.set_title(_t(t, "hodo", lab=lab) + f"  ({pf.pair.point})", fontsize=10)
-        ax.set_xlabel(f"FR{lab}x / N")
-        ax.set_ylabel(f"FR{lab}y / N")
+        ax.set_title(_t(t, "hodo", lab="").replace("F_R", plotting.symbol(f"FR{lab}"))
+                     + f"  ({pf.pair.point})", fontsize=10, pad=16)
+        ax.set_xlabel(f"{plotting.symbol(f'FR{lab}x')} / N")
+        ax.set_ylabel(f"{plotting.symbol(f'FR{lab}y')} / N")
+        plotting.legend_above(ax, fontsize=7)
     fig.suptitle(plotting.text(spec.header.title))
-    fig.tight_layout()
     plotting.save_png(fig, outputs, "hodograph.png")
 
 
 def plot_frame(spec, result, outputs, t):
     """``frame.png``: shaking force (x, y, magnitude), shaking moment and input power."""
-    import matplotlib.pyplot as plt
+    from mechcli.report.plotting import plt
 
     fin = input_factor(spec)
     kin, s = result.kin, result.series
     x = broken(kin, result.q * fin)
     fig, axs = plt.subplots(3, 1, figsize=(9, 9), sharex=True)
     ax = axs[0]
-    ax.plot(x, broken(kin, s["Fshx"]), "-", color="C0", lw=1.2, label="Fshx")
-    ax.plot(x, broken(kin, s["Fshy"]), "--", color="C3", lw=1.2, label="Fshy")
-    ax.plot(x, broken(kin, s["Fsh"]), "-", color="k", lw=1.6, label="|Fsh|")
+    ax.plot(x, broken(kin, s["Fshx"]), "-", color="C0", lw=1.2, label=r"$F_{\mathrm{sh}x}$")
+    ax.plot(x, broken(kin, s["Fshy"]), "--", color="C3", lw=1.2, label=r"$F_{\mathrm{sh}y}$")
+    ax.plot(x, broken(kin, s["Fsh"]), "-", color="k", lw=1.6, label=r"$|F_{\mathrm{sh}}|$")
     ax.set_ylabel("F / N")
     ax.set_title(_t(t, "shake_f"), fontsize=10)
-    ax.legend(fontsize=7, loc="best")
+    plotting.legend_outside(ax, fontsize=7)
     ax = axs[1]
-    ax.plot(x, broken(kin, s["Msh"]), "-", color="C2", lw=1.4, label="Msh")
-    ax.set_ylabel("Msh / N·m")
+    ax.plot(x, broken(kin, s["Msh"]), "-", color="C2", lw=1.4, label=plotting.symbol("Msh"))
+    ax.set_ylabel(f"{plotting.symbol('Msh')} / N·m")
+    plotting.legend_outside(ax, fontsize=7)
     ax.set_title(_t(t, "shake_m"), fontsize=10)
     ax = axs[2]
     ax.plot(x, broken(kin, s["P"]), "-", color="C1", lw=1.4, label="P")
     _shade_loads(ax, spec, result, t)
-    ax.legend(fontsize=7, loc="best")
-    ax.set_ylabel("P / W")
+    plotting.legend_outside(ax, fontsize=7)
+    ax.set_ylabel("$P$ / W")
     ax.set_title(_t(t, "power"), fontsize=10)
     ax.set_xlabel(_input_label(spec, t))
     for ax in axs:
         ax.axhline(0, color="0.5", lw=0.6)
     fig.suptitle(plotting.text(spec.header.title))
-    fig.tight_layout()
     plotting.save_png(fig, outputs, "frame.png")
 
 
@@ -182,7 +226,7 @@ def _frame_indices(result, frames, periodic):
 def animate_reactions(spec, result, sweep, outputs, t):
     """``force.gif``: the mechanism with the pair reactions F_Rij (force of link i on
     link j) drawn as arrows at the pair points, scaled to the largest magnitude."""
-    import matplotlib.pyplot as plt
+    from mechcli.report.plotting import plt
     from matplotlib.lines import Line2D
 
     motion = result.kin.motion
@@ -197,48 +241,41 @@ def animate_reactions(spec, result, sweep, outputs, t):
     length = 0.25 * extent(motion) * k
     f = length / peak if peak > 0 else 0.0
 
-    fig, ax = plt.subplots(figsize=(6.4, 5.2), dpi=80)
+    fig, ax = plt.subplots(figsize=(7.6, 5.6), dpi=plotting.GIF_DPI)
     d = Drawing(ax, spec.linkage, motion, spec.header.scale, spec.guide_length)
     for tr in spec.tracers:
         p = broken(result.kin, motion.points[tr.name].p * k)
         ax.plot(p.real, p.imag, ":", lw=1, color="C3")
     limits(ax, motion, k, pad=0.3)
-    ax.set_title(_t(t, "anim") + "\n" + plotting.text(spec.header.title), fontsize=9)
-    ax.set_xlabel(spec.header.unit)
-    ax.set_ylabel(spec.header.unit)
+    ax.set_title(_t(t, "anim") + "\n" + plotting.text(spec.header.title), fontsize=10)
+    ax.set_xlabel(f"x / {spec.header.unit}")
+    ax.set_ylabel(f"y / {spec.header.unit}")
     colors = [f"C{(j + 1) % 10}" for j in range(len(pairs))]
     p0 = np.array([motion.points[pf.pair.point].p[idx[0]] * k for pf in pairs])
     quiv = ax.quiver(p0.real, p0.imag, np.zeros(len(pairs)), np.zeros(len(pairs)),
                      color=colors, angles="xy", scale_units="xy", scale=1, width=0.006,
                      zorder=5)
-    handles = [Line2D([], [], color=c, lw=2, label=f"F_R{pf.pair.label}")
+    handles = [Line2D([], [], color=c, lw=2, label=plotting.symbol(f"FR{pf.pair.label}"))
                for c, pf in zip(colors, pairs)]
-    fig.subplots_adjust(left=0.1, right=0.76, bottom=0.1, top=0.92)
-    fig.legend(handles=handles, fontsize=7, loc="upper left", bbox_to_anchor=(0.77, 0.92),
-               title=f"{length:.3g} {spec.header.unit} : {peak:.4g} N", title_fontsize=7)
-    label = ax.text(0.02, 0.96, "", transform=ax.transAxes, fontsize=9, va="top")
-    artists = d.bar_lines + d.guide_lines + d.block_lines + [d.joints, quiv, label]
-    for a in artists:
-        a.set_animated(True)
-    fig.canvas.draw()
-    background = fig.canvas.copy_from_bbox(fig.bbox)
+    plotting.legend_outside(ax, handles, fontsize=8,
+                            title=f"{length:.3g} {spec.header.unit} : {peak:.4g} N",
+                            title_fontsize=8)
+    label = plotting.readout(ax)
+    plotting.tight(fig)
+    frames = plotting.Frames(fig, d.artists + [quiv, label])
     n_in = spec.input.driver
     fin = input_factor(spec)
-    frames = []
+    sym = plotting.plain_symbol(f"theta{n_in}" if spec.input.rotary else f"s{n_in}")
     for j, i in enumerate(idx):
         d.update(motion, i)
         pts = np.array([motion.points[pf.pair.point].p[i] * k for pf in pairs])
         quiv.set_offsets(np.column_stack([pts.real, pts.imag]))
         quiv.set_UVC(fx[:, j] * f, fy[:, j] * f)
         v = result.q[i] * fin
-        label.set_text(t["at"].format(n=n_in, v=v) if spec.input.rotary else
-                       t["at_s"].format(n=n_in, v=v, u=spec.header.unit))
-        fig.canvas.restore_region(background)
-        for a in artists:
-            ax.draw_artist(a)
-        frames.append(np.asarray(fig.canvas.buffer_rgba()).copy())
-    plt.close(fig)
-    plotting.save_gif(frames, outputs, "force.gif")
+        label.set_text(f"{sym} = {v:.0f}°" if spec.input.rotary else
+                       f"{sym} = {v:.4g} {spec.header.unit}")
+        frames.grab()
+    frames.save(outputs, "force.gif")
     return []
 
 

@@ -161,8 +161,13 @@ def animate_pair(pair, spec, run, outputs, frames_per_pitch=20, pitches=2):
     p1, = ax.fill([0], [0], facecolor="#c6dbef", edgecolor="b", lw=0.8)
     p2, = ax.fill([0], [0], facecolor="#fcbba1", edgecolor="r", lw=0.8)
     dots, = ax.plot([], [], "ko", ms=5)
-    title = ax.set_title("")
-    frames = []
+    u = spec.header.unit
+    ax.set_xlabel(f"x ({u})")
+    ax.set_ylabel(f"y ({u})")
+    title = ax.set_title(" ")
+    label = plotting.readout(ax)
+    plotting.tight(fig)
+    frames = plotting.Frames(fig, [p1, p2, dots, title, label])
     for k in range(n):
         for poly, out, ang, centre in ((p1, o1, mesh.phi1[k], 0.0),
                                        (p2, o2, mesh.phi2[k], pair.a_w)):
@@ -177,9 +182,9 @@ def animate_pair(pair, spec, run, outputs, frames_per_pitch=20, pitches=2):
                           f"重合度 {pair.epsilon_alpha:.3f}: {count} 对齿啮合"
                           + (" — 无啮合!" if count == 0 else "")))
         title.set_color("red" if count == 0 else "black")
-        frames.append(plotting.canvas_frame(fig))
-    plt.close(fig)
-    plotting.save_gif(frames, outputs, "pair.gif", fps=10)
+        label.set_text(f"φ₁ = {math.degrees(mesh.phi1[k] - mesh.phi1[0]):.1f}°")
+        frames.grab()
+    frames.save(outputs, "pair.gif", fps=10)
 
 
 def _generation_axes(ax, tooth, phi, spec, lang, teeth, cutter=True):
@@ -255,12 +260,16 @@ def animate_generation(sol, spec, run, outputs):
     for line in ax.lines:
         line.set_zorder(4)
     current, = ax.fill([0], [0], facecolor="none", edgecolor="r", lw=1.2, zorder=5)
-    frames = []
+    label = plotting.readout(ax)
+    # the outline and circles stay on top of the cut: they move with the frames
+    on_top = [line for line in ax.lines] + [ax.get_legend()]
+    frames = plotting.Frames(fig, on_top + [current, label])
     for k in range(phi.size):
-        ax.fill(cx[k] / sc, cy[k] / sc, color="white", zorder=2)
+        cut, = ax.fill(cx[k] / sc, cy[k] / sc, color="white", zorder=2)
+        frames.settle([cut])
         current.set_xy(np.column_stack([cx[k], cy[k]]) / sc)
-        frames.append(plotting.canvas_frame(fig))
+        label.set_text(f"φ = {math.degrees(phi[k]):.1f}°")
+        frames.grab()
     current.set_visible(False)
-    frames.append(plotting.canvas_frame(fig))
-    plt.close(fig)
-    plotting.save_gif(frames, outputs, "generation.gif", fps=8)
+    frames.grab()
+    frames.save(outputs, "generation.gif", fps=8)

@@ -12,10 +12,11 @@ from mechcli.report.kin import factor_of, input_factor, pretty_unit
 
 _TITLES = {
     "en": {"disp": "Displacement", "vel": "Velocity", "acc": "Acceleration",
-           "mech": "Mechanism at", "input": "crank angle θ1 / °", "curve": "Path of point",
-           "anim": "Motion"},
+           "mech": "Mechanism at", "input": "crank angle {sym} / °", "curve": "Path of point",
+           "anim": "Motion", "path": "path of {name}", "const": "{sym} ≡ {v:.4g} {u}"},
     "zh": {"disp": "位移线图", "vel": "速度线图", "acc": "加速度线图", "mech": "机构位置",
-           "input": "曲柄转角 θ1/°", "curve": "轨迹 点", "anim": "运动仿真"},
+           "input": "曲柄转角 {sym}/(°)", "curve": "轨迹 点", "anim": "运动仿真",
+           "path": "{name} 点轨迹", "const": "{sym} ≡ {v:.4g} {u}"},
 }
 
 
@@ -39,26 +40,78 @@ def broken(result, v):
     return np.concatenate(parts[:-1])
 
 
-def _plot_group(ax, spec, result, qs, x, lang):
-    """Angles/angular quantities on the left axis, linear ones on a twin axis (plotyy)."""
+def input_label(spec, t):
+    """The x label of a diagram against the input: ``crank angle θ1 / °`` or ``s1 / mm``."""
+    n = spec.input.driver
+    if spec.input.rotary:
+        return plotting.text(t["input"].format(sym=plotting.symbol(f"theta{n}")))
+    return f"{plotting.symbol(f's{n}')} / {spec.header.unit}"
+
+
+def _plot_group(ax, spec, result, qs, x, t):
+    """Angular quantities on the left axis, linear ones on a twin axis (plotyy).
+
+    A curve that does not vary (zero or constant) gets no axis of its own: it is
+    named with its value in the legend.  Each axis is tied to its curves: the left
+    one's curves are solid, the twin's dashed, and an axis with one curve takes its
+    colour.  The legend sits above the panel, outside the curves."""
+    from matplotlib.lines import Line2D
+
     unit, scale = spec.header.unit, spec.header.scale
-    left = [q for q in qs if q.kind in ("angle", "angvel", "angacc")]
-    right = [q for q in qs if q not in left]
-    axes = [(ax, left)]
+    handles, constant = [], []
+    drawn = []
+    for q in qs:
+        v = result.values[q.symbol] * factor_of(q.kind, scale)
+        if plotting.is_constant(v):
+            finite = v[np.isfinite(v)]
+            val = float(finite[0]) if finite.size else 0.0
+            constant.append(Line2D([], [], ls="none", label=t["const"].format(
+                sym=plotting.symbol(q.symbol), v=val + 0.0, u=pretty_unit(q.kind, unit))))
+        else:
+            drawn.append((q, v))
+    left = [(q, v) for q, v in drawn if q.kind in ("angle", "angvel", "angacc")]
+    right = [(q, v) for q, v in drawn if (q, v) not in left]
+    axes = []
+    if left:
+        axes.append((ax, left, "-", "left"))
     if right:
-        axes.append((ax.twinx() if left else ax, right))
-    styles = ["-", "--", "-.", ":"]
-    handles = []
-    for k, (a, group) in enumerate(axes):
-        for j, q in enumerate(group):
-            f = factor_of(q.kind, scale)
-            h, = a.plot(broken(result, x), broken(result, result.values[q.symbol] * f),
-                        styles[j % 4],
-                        color=f"C{j + 3 * k}", label=q.symbol)
+        tw = ax.twinx() if left else ax
+        if tw is not ax:
+            tw.grid(False)
+        axes.append((tw, right, "--" if left else "-", "right" if left else "left"))
+    color = 0
+    for a, group, style, side in axes:
+        colors = []
+        for q, v in group:
+            c = f"C{color % 10}"
+            color += 1
+            colors.append(c)
+            h, = a.plot(broken(result, x), broken(result, v), style, color=c, lw=1.4,
+                        label=plotting.symbol(q.symbol))
             handles.append(h)
-        if group:
-            a.set_ylabel(", ".join(q.symbol for q in group) + f" / {pretty_unit(group[0].kind, unit)}")
-    ax.legend(handles=handles, fontsize=7, loc="best")
+        mark = "" if len(axes) == 1 else ("  (—)" if style == "-" else "  (- -)")
+        a.set_ylabel(", ".join(plotting.symbol(q.symbol) for q, _ in group)
+                     + f" / {pretty_unit(group[0][0].kind, unit)}" + mark)
+        if len(axes) > 1 and len(group) == 1:
+            plotting.tie_axis(a, colors[0], side)
+    if not axes:
+        ax.set_yticks([])
+    plotting.legend_above(ax, handles + constant, ncol=min(len(handles + constant), 4))
+
+
+def _element_links(el, frame):
+    """``[(Bar, link number)]`` of an element's bars (the link a bar is part of)."""
+    out = []
+    for p in el.sketch(frame):
+        if not isinstance(p, Bar):
+            continue
+        if hasattr(el, "link_a") and p.a == getattr(el, "point_a", None):
+            out.append((p, el.link_a))
+        elif hasattr(el, "link_b") and p.a == getattr(el, "point_b", None):
+            out.append((p, el.link_b))
+        else:
+            out.append((p, getattr(el, "link", None)))
+    return out
 
 
 def _link_segments(linkage):
@@ -71,35 +124,112 @@ def _link_segments(linkage):
     return bars, blocks, guides, grounds
 
 
+def _bodies(linkage):
+    """``{link: [points]}`` of every moving link drawn by bars, in the order met."""
+    bodies = {}
+    for el in linkage.elements:
+        for bar, link in _element_links(el, linkage.frame):
+            if link is None or link == linkage.frame:
+                continue
+            pts = bodies.setdefault(link, [])
+            for n in (bar.a, bar.b):
+                if n not in pts:
+                    pts.append(n)
+    return bodies
+
+
+def _glyph(text):
+    """*text* as a marker (matplotlib draws a mathtext marker as one path)."""
+    return "$\\mathrm{" + "".join(c if c.isalnum() else "\\" + c for c in text) + "}$"
+
+
+def _glyph_size(text, base=7):
+    """Marker size that gives the glyphs of *text* about the height of an 8-pt label."""
+    return base * max(1, len(text)) ** 0.9 + 1
+
+
 class Drawing:
     """Artists for one mechanism drawing, updated frame by frame (any linkage: kin's,
     force's, a synthesized design, a flywheel's machine); ``guide_length`` draws a
-    guide bar that long instead of just past its blocks."""
+    guide bar that long instead of just past its blocks.
 
-    def __init__(self, ax, linkage, motion, scale, guide_length=None):
+    Every joint is named beside it and every link carries its number (the frame's
+    by its first pivot); a link with three or more points (the coupler BCF of a
+    four-bar with a coupler point) is drawn as the rigid body it is, a filled
+    polygon.  ``labels=False`` leaves the names out (several poses on one axes)."""
+
+    def __init__(self, ax, linkage, motion, scale, guide_length=None, labels=True):
+        from matplotlib.patches import Polygon
+
         self.ax, self.k = ax, 1 / scale
         self.bars, self.blocks, self.guides, self.grounds = _link_segments(linkage)
-        self.bar_lines = [ax.plot([], [], "-", color="C0", lw=2)[0] for _ in self.bars]
+        self.bar_lines = [ax.plot([], [], "-", color="C0", lw=2, solid_capstyle="round")[0]
+                          for _ in self.bars]
         self.guide_lines = [ax.plot([], [], "-", color="0.4", lw=1)[0] for _ in self.guides]
         self.block_lines = [ax.plot([], [], "-", color="C1", lw=1.5)[0] for _ in self.blocks]
-        self.joints = ax.plot([], [], "o", color="k", ms=4, mfc="w")[0]
+        self.bodies = {ln: pts for ln, pts in _bodies(linkage).items() if len(pts) >= 3}
+        self.body_patches = {ln: ax.add_patch(Polygon(np.zeros((3, 2)), closed=True,
+                                                      fc="C0", alpha=0.18, ec="C0", lw=1.0))
+                             for ln in self.bodies}
+        self.joints = ax.plot([], [], "o", color="k", ms=4, mfc="w", zorder=4)[0]
         gx = [motion.points[g].p[0].real * self.k for g in self.grounds]
         gy = [motion.points[g].p[0].imag * self.k for g in self.grounds]
-        ax.plot(gx, gy, "^", color="k", ms=9, mfc="0.8")
-        for g, x, y in zip(self.grounds, gx, gy):
-            ax.annotate(g, (x, y), textcoords="offset points", xytext=(4, -12), fontsize=8)
+        ax.plot(gx, gy, "^", color="k", ms=9, mfc="0.8", zorder=3)
+        self.size = 0.06 * extent(motion) * self.k
+        self.names, self.link_names, self.link_rings = {}, {}, {}
+        self.offset = 0.45 * self.size * (1 + 0.8j)
+        if labels:
+            # names as marker glyphs: a path made once, drawn fast in every frame
+            self.names = {n: ax.plot([], [], ls="none", marker=_glyph(n), ms=_glyph_size(n),
+                                     color="k", mew=0, zorder=6)[0] for n in motion.points}
+            links = sorted({ln for el in linkage.elements
+                            for _, ln in _element_links(el, linkage.frame)
+                            if ln is not None and ln != linkage.frame}
+                           | {b.link for b in self.blocks if b.link is not None}
+                           | {g.link for g in self.guides if g.link != linkage.frame})
+            for ln in links:
+                self.link_rings[ln] = ax.plot([], [], ls="none", marker="o", ms=11, mfc="w",
+                                              mec="0.45", mew=0.7, zorder=6)[0]
+                self.link_names[ln] = ax.plot([], [], ls="none", marker=_glyph(str(ln)),
+                                              ms=_glyph_size(str(ln), 6), color="0.15",
+                                              mew=0, zorder=7)[0]
+            if self.grounds:
+                z = complex(gx[0], gy[0]) - 1.4 * self.size * (0.6 + 1j)
+                ax.plot([z.real], [z.imag], ls="none", marker="o", ms=11, mfc="w", mec="0.45",
+                        mew=0.7, zorder=6)
+                ax.plot([z.real], [z.imag], ls="none", marker=_glyph(str(linkage.frame)),
+                        ms=_glyph_size(str(linkage.frame), 6), color="0.15", mew=0, zorder=7)
+        self._bar_link = [ln for el in linkage.elements
+                          for _, ln in _element_links(el, linkage.frame)]
         # guide length for drawing: longest reach of the blocks on it, plus a margin
         self.reach = {}
         for i, g in enumerate(self.guides):
             if g.ray:
                 s = np.abs(motion.slides[g.slide].s)
                 self.reach[i] = guide_length or 1.15 * float(np.max(s))
-        self.size = 0.06 * extent(motion) * self.k
+
+    @property
+    def artists(self):
+        """Every artist that moves with the mechanism (for blitting)."""
+        return (self.bar_lines + self.guide_lines + self.block_lines
+                + list(self.body_patches.values()) + [self.joints]
+                + list(self.names.values()) + list(self.link_rings.values())
+                + list(self.link_names.values()))
 
     def update(self, motion, i):
         P = {n: pm.p[i] * self.k for n, pm in motion.points.items()}
         for line, (a, b) in zip(self.bar_lines, self.bars):
             line.set_data([P[a].real, P[b].real], [P[a].imag, P[b].imag])
+        mids = {}
+        for (a, b), ln in zip(self.bars, self._bar_link):
+            if ln is not None:
+                mids.setdefault(ln, []).append(0.5 * (P[a] + P[b]))
+        for ln, pts in self.bodies.items():
+            z = np.array([P[n] for n in pts])
+            c = z.mean()
+            z = z[np.argsort(np.angle(z - c))]
+            self.body_patches[ln].set_xy(np.column_stack([z.real, z.imag]))
+            mids[ln] = [c]
         for j, (line, g) in enumerate(zip(self.guide_lines, self.guides)):
             th = motion.links[g.link].theta[i] + g.angle
             u = complex(math.cos(th), math.sin(th))
@@ -115,14 +245,26 @@ class Drawing:
                     lo, hi = -span, span
                 ends = [c + lo * u, c + hi * u]
             line.set_data([e.real for e in ends], [e.imag for e in ends])
+            if g.link not in mids:
+                mids[g.link] = [ends[0] + 0.75 * (ends[1] - ends[0])]
         for line, b in zip(self.block_lines, self.blocks):
             th = 0.0 if b.link is None else motion.links[b.link].theta[i]
             u = complex(math.cos(th), math.sin(th)) * self.size
             corners = [P[b.point] + z * u for z in (-1.4 - 0.7j, 1.4 - 0.7j, 1.4 + 0.7j,
                                                     -1.4 + 0.7j, -1.4 - 0.7j)]
             line.set_data([c.real for c in corners], [c.imag for c in corners])
+            if b.link is not None:
+                mids[b.link] = [P[b.point] + u * (0.0 + 1.5j)]
         pts = [P[n] for n in P]
         self.joints.set_data([p.real for p in pts], [p.imag for p in pts])
+        for n, mark in self.names.items():
+            z = P[n] + self.offset
+            mark.set_data([z.real], [z.imag])
+        for ln, mark in self.link_names.items():
+            if ln in mids:
+                z = mids[ln][0]
+                mark.set_data([z.real], [z.imag])
+                self.link_rings[ln].set_data([z.real], [z.imag])
 
 
 def extent(motion):
@@ -144,8 +286,6 @@ def write(spec, quantities, result, sweep, outputs, lang, plots=True, animate=Fa
 
     Returns a list of warnings (e.g. no CJK font for ``--lang zh``).
     """
-    import matplotlib.pyplot as plt
-
     warnings = []
     used = plotting.setup(lang)
     if used != lang:
@@ -154,14 +294,16 @@ def write(spec, quantities, result, sweep, outputs, lang, plots=True, animate=Fa
     unit, scale = spec.header.unit, spec.header.scale
     x = result.q * input_factor(spec)
     k = 1 / scale
+    n_in = spec.input.driver
     if plots:
         groups = _groups(quantities)
-        fig, axs = plt.subplots(2, 2, figsize=(11, 8))
+        fig, axs = plotting.subplots(2, 2, figsize=(11, 8.5))
         for ax, order, title in zip(axs.flat[:3], (0, 1, 2), (t["disp"], t["vel"], t["acc"])):
-            ax.set_title(title)
-            ax.set_xlabel(t["input"] if spec.input.rotary else f"s1 / {unit}")
+            ax.set_title(title, pad=22)
+            ax.set_xlabel(input_label(spec, t))
             if groups[order]:
-                _plot_group(ax, spec, result, groups[order], x, lang)
+                _plot_group(ax, spec, result, groups[order], x, t)
+                ax.set_xlim(float(np.nanmin(x)), float(np.nanmax(x)))
             else:
                 ax.set_visible(False)
         ax = axs[1, 1]
@@ -173,60 +315,78 @@ def write(spec, quantities, result, sweep, outputs, lang, plots=True, animate=Fa
         else:
             warnings.append(f"mechanism not drawn: it cannot be assembled at draw_at = "
                             f"{at * input_factor(spec):g}")
-        for tr in spec.tracers:
+        for j, tr in enumerate(spec.tracers):
             p = broken(result, result.motion.points[tr.name].p * k)
-            ax.plot(p.real, p.imag, ":", lw=1, label=tr.name)
+            ax.plot(p.real, p.imag, ":", lw=1.2, color=f"C{(3 + j) % 10}",
+                    label=t["path"].format(name=tr.name))
         limits(ax, result.motion, k)
-        ax.set_title(f"{t['mech']} θ1 = {at * input_factor(spec):g}°" if spec.input.rotary
-                     else t["mech"])
-        ax.set_xlabel(unit)
-        ax.set_ylabel(unit)
+        if spec.tracers:
+            ax.legend(fontsize=7, loc="best")
+        sym = plotting.symbol(f"theta{n_in}")
+        ax.set_title(f"{t['mech']} {sym} = {at * input_factor(spec):g}°" if spec.input.rotary
+                     else t["mech"], pad=22)
+        ax.set_xlabel(f"x / {unit}")
+        ax.set_ylabel(f"y / {unit}")
         fig.suptitle(plotting.text(spec.header.title))
-        fig.tight_layout()
-        plotting.save_png(fig, outputs, "kin.png")
+        # a fixed layout with room for twin axes' labels (tight_layout would lay out
+        # every text once more before the drawing); save_png crops the margins
+        fig.subplots_adjust(left=0.08, right=0.92, bottom=0.07, top=0.885, wspace=0.5,
+                            hspace=0.45)
+        plotting.save_png(fig, outputs, "kin.png", layout=False)
         for tr in spec.tracers:
-            fig, ax = plt.subplots(figsize=(6, 5))
+            fig, ax = plotting.subplots(figsize=(6, 5))
             p = result.motion.points[tr.name].p * k
-            ax.plot(p.real[0], p.imag[0], "o", color="C3")
+            ax.plot(p.real[0], p.imag[0], "o", color="C3",
+                    label=f"{sym} = {result.q[0] * input_factor(spec):g}°"
+                    if spec.input.rotary else "start")
             p = broken(result, p)
-            ax.plot(p.real, p.imag, "-", color="C3")
+            ax.plot(p.real, p.imag, "-", color="C3", label=t["path"].format(name=tr.name))
             ax.set_title(f"{t['curve']} {tr.name}")
-            ax.set_xlabel(unit)
-            ax.set_ylabel(unit)
-            ax.set_aspect("equal", adjustable="box")
+            ax.set_xlabel(f"{plotting.symbol('x' + tr.name)} / {unit}")
+            ax.set_ylabel(f"{plotting.symbol('y' + tr.name)} / {unit}")
+            ax.set_aspect("equal", adjustable="datalim")
+            ax.legend(fontsize=7, loc="best")
             plotting.save_png(fig, outputs, f"path_{tr.name}.png")
     if animate:
         _animate(spec, result, sweep, outputs, t, k)
     return warnings
 
 
-def _animate(spec, result, sweep, outputs, t, k):
-    import matplotlib.pyplot as plt
+def angle_readout(spec, value):
+    """The text of a frame's input: ``θ1 = 120°`` or ``s1 = 35.2 mm`` (value in
+    degrees or spec units)."""
+    n = spec.input.driver
+    if spec.input.rotary:
+        return f"{plotting.plain_symbol(f'theta{n}')} = {value:.0f}°"
+    return f"{plotting.plain_symbol(f's{n}')} = {value:.4g} {spec.header.unit}"
 
+
+def _animate(spec, result, sweep, outputs, t, k):
     n = spec.output.frames
     q = result.q
     qs = np.linspace(q[0], q[-1], n + 1)[:-1] if sweep.periodic else np.linspace(q[0], q[-1], n)
     m = solve(spec.linkage, sweep.inputs(qs), order=0)
     keep = np.flatnonzero(m.regular)
-    fig, ax = plt.subplots(figsize=(5.5, 4.5), dpi=80)
+    if keep.size == 0:
+        return
+    fig, ax = plotting.subplots(figsize=(6.4, 5.2), dpi=plotting.GIF_DPI)
     d = Drawing(ax, spec.linkage, result.motion, 1 / k, spec.guide_length)
-    for tr in spec.tracers:
-        p = result.motion.points[tr.name].p * k
-        ax.plot(p.real, p.imag, ":", lw=1, color="C3")
+    for j, tr in enumerate(spec.tracers):
+        p = broken(result, result.motion.points[tr.name].p * k)
+        ax.plot(p.real, p.imag, ":", lw=1.2, color=f"C{(3 + j) % 10}",
+                label=t["path"].format(name=tr.name))
     limits(ax, result.motion, k)
-    ax.set_title(plotting.text(spec.header.title))
-    # blitting: draw the static background once, then only the moving artists
-    artists = d.bar_lines + d.guide_lines + d.block_lines + [d.joints]
-    for a in artists:
-        a.set_animated(True)
-    fig.canvas.draw()
-    background = fig.canvas.copy_from_bbox(fig.bbox)
-    frames = []
+    ax.set_title(plotting.text(spec.header.title), fontsize=10)
+    ax.set_xlabel(f"x / {spec.header.unit}")
+    ax.set_ylabel(f"y / {spec.header.unit}")
+    if spec.tracers:
+        ax.legend(fontsize=8, loc="lower right")
+    label = plotting.readout(ax)
+    plotting.tight(fig)
+    frames = plotting.Frames(fig, d.artists + [label])
+    fin = input_factor(spec)
     for i in keep:
         d.update(m, i)
-        fig.canvas.restore_region(background)
-        for a in artists:
-            ax.draw_artist(a)
-        frames.append(np.asarray(fig.canvas.buffer_rgba()).copy())
-    plt.close(fig)
-    plotting.save_gif(frames, outputs, "kin.gif")
+        label.set_text(angle_readout(spec, qs[i] * fin))
+        frames.grab()
+    frames.save(outputs, "kin.gif")

@@ -77,7 +77,7 @@ def _history(result):
 
 
 def _convergence_png(spec, problem, result, outputs, t, title):
-    import matplotlib.pyplot as plt
+    from mechcli.report.plotting import plt
 
     from mechcli.report import plotting
     from mechcli.report.optimize import f_scale
@@ -112,7 +112,7 @@ def _convergence_png(spec, problem, result, outputs, t, title):
 
 
 def _surface_png(spec, problem, result, surface, outputs, t, title):
-    import matplotlib.pyplot as plt
+    from mechcli.report.plotting import plt
     from matplotlib import colors
 
     from mechcli.report import plotting
@@ -159,7 +159,7 @@ def _surface_png(spec, problem, result, surface, outputs, t, title):
 
 
 def _function_png(spec, details, goal, rotary, outputs, t, title):
-    import matplotlib.pyplot as plt
+    from mechcli.report.plotting import plt
 
     from mechcli.report import plotting
     out = spec.objective["output"]
@@ -205,7 +205,7 @@ def _feasible_points(motion, name, k):
 
 
 def _path_png(spec, details, poses, outputs, t, title):
-    import matplotlib.pyplot as plt
+    from mechcli.report.plotting import plt
 
     from mechcli.report import plotting
     k = 1 / spec.unit
@@ -246,7 +246,7 @@ def _output_of(motion, output):
 
 
 def _animate(spec, details, poses, outputs, t, title, frames=72):
-    import matplotlib.pyplot as plt
+    from mechcli.report.plotting import plt
 
     from mechcli.report import plotting
     from mechcli.report.kin_plots import Drawing
@@ -260,7 +260,8 @@ def _animate(spec, details, poses, outputs, t, title, frames=72):
     k = 1 / spec.unit
     obj = spec.objective
     fn = obj["kind"] == "function" and "q" in details
-    fig, axs = plt.subplots(1, 2 if fn else 1, figsize=(9.5 if fn else 5.5, 4.5), dpi=80)
+    fig, axs = plt.subplots(1, 2 if fn else 1, figsize=(10.5 if fn else 6.4, 5.0),
+                            dpi=plotting.GIF_DPI)
     ax = axs[0] if fn else axs
     d = Drawing(ax, poses["linkage"], m, spec.unit)
     # limits over the feasible poses (and the targets), equal aspect
@@ -278,7 +279,8 @@ def _animate(spec, details, poses, outputs, t, title, frames=72):
     ax.set_xlim(x0 - pad, x1 + pad)
     ax.set_ylim(y0 - pad, y1 + pad)
     ax.set_aspect("equal", adjustable="box")
-    ax.set_xlabel(spec.header.unit)
+    ax.set_xlabel(f"x / {spec.header.unit}")
+    ax.set_ylabel(f"y / {spec.header.unit}")
     cursor = None
     if fn:
         rotary = poses.get("rotary", True)
@@ -312,7 +314,13 @@ def _animate(spec, details, poses, outputs, t, title, frames=72):
         axs[1].legend(fontsize=7, loc="best")
         cursor, = axs[1].plot([], [], "o", color="C3", ms=7)
     fig.suptitle(plotting.text(title))
-    pics = []
+    label = plotting.readout(ax)
+    plotting.tight(fig)
+    frames = plotting.Frames(fig, d.artists + [tail, cursor, label])
+    drv = poses["linkage"].drivers[0]
+    rotary_in = poses.get("rotary", True)
+    sym = plotting.plain_symbol(f"theta{drv.link}" if rotary_in else f"s{drv.link}")
+    qin = np.asarray(poses["q"], dtype=float)
     for n, i in enumerate(idx):
         d.update(m, i)
         if tail is not None:
@@ -320,9 +328,10 @@ def _animate(spec, details, poses, outputs, t, title, frames=72):
             tail.set_data(seg.real, seg.imag)
         if cursor is not None:
             cursor.set_data([xs[i]], [y[i]])
-        pics.append(plotting.canvas_frame(fig))
-    plt.close(fig)
-    plotting.save_gif(pics, outputs, "optimize.gif")
+        label.set_text(f"{sym} = {math.degrees(qin[i]):.0f}°" if rotary_in else
+                       f"{sym} = {qin[i] * k:.4g} {spec.header.unit}")
+        frames.grab()
+    frames.save(outputs, "optimize.gif")
 
 
 def write(spec, problem, result, details, outputs, lang, plots=True, animate=False,

@@ -1,6 +1,16 @@
-"""Shared matplotlib set-up: Agg backend, CJK fonts, atomic PNG/GIF.
+"""Shared matplotlib set-up: figures on the Agg canvas, CJK fonts, atomic PNG/GIF.
 
-Import this module only when a picture is written: it imports matplotlib.
+Import this module only when a picture is written: it imports matplotlib, but never
+``matplotlib.pyplot`` (pyplot's figure manager and backend machinery cost start-up
+time and keep global state): figures are :class:`matplotlib.figure.Figure` objects on
+a :class:`~matplotlib.backends.backend_agg.FigureCanvasAgg`, made by :func:`subplots`
+or :func:`figure` (``plt`` below offers the same two names for modules written
+against pyplot).  A PNG is drawn once and cropped to its ink (:func:`save_png`); a
+GIF draws its static background once and then only the artists that move
+(:class:`Frames`), mapped onto one palette.
+
+Resolution: :func:`dpi` is ``--dpi`` of the current command (default
+:data:`DEFAULT_DPI`, 200), or what :func:`set_dpi` set for a library caller.
 
 Chinese text.  matplotlib falls back from one font to the next glyph by glyph only
 across the families listed in ``font.family`` (a generic family such as
@@ -20,12 +30,80 @@ import re
 import warnings
 
 import matplotlib
+from matplotlib import font_manager
+from matplotlib.backends.backend_agg import FigureCanvasAgg
+from matplotlib.figure import Figure
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-from matplotlib import font_manager  # noqa: E402
+from mechcli.report import run as _run
 
-from mechcli.report import run as _run  # noqa: E402
+#: resolution of a PNG unless ``--dpi`` (or :func:`set_dpi`) says otherwise
+DEFAULT_DPI = 200
+#: resolution of GIF frames: a 6.4 in wide animation is 640 px, legible on a slide
+GIF_DPI = 100
+#: white margin kept round the ink of a cropped picture, in inches
+_MARGIN_IN = 0.06
+
+_dpi_override = None
+
+
+def set_dpi(value):
+    """Resolution of the PNGs written from now on in this process (None: ``--dpi``
+    of the running command, else :data:`DEFAULT_DPI`)."""
+    global _dpi_override
+    _dpi_override = None if value is None else int(value)
+
+
+def dpi():
+    """Resolution of a PNG: :func:`set_dpi`'s value, else the running command's
+    ``--dpi`` option, else :data:`DEFAULT_DPI`."""
+    if _dpi_override is not None:
+        return _dpi_override
+    try:
+        import click
+    except ImportError:   # a library caller without click
+        return DEFAULT_DPI
+    ctx = click.get_current_context(silent=True)
+    value = ctx.params.get("dpi") if ctx is not None else None
+    return int(value) if value else DEFAULT_DPI
+
+
+def figure(figsize=None, dpi=None, **kw):
+    """A new :class:`~matplotlib.figure.Figure` on its own Agg canvas (no pyplot)."""
+    fig = Figure(figsize=figsize, dpi=dpi or 100, **kw)
+    FigureCanvasAgg(fig)
+    return fig
+
+
+def subplots(nrows=1, ncols=1, *, figsize=None, dpi=None, sharex=False, sharey=False,
+             squeeze=True, gridspec_kw=None, subplot_kw=None, **kw):
+    """``(fig, axes)`` like ``pyplot.subplots``, on a figure of :func:`figure`."""
+    fig = figure(figsize=figsize, dpi=dpi, **kw)
+    axes = fig.subplots(nrows, ncols, sharex=sharex, sharey=sharey, squeeze=squeeze,
+                        gridspec_kw=gridspec_kw, subplot_kw=subplot_kw)
+    return fig, axes
+
+
+def close(fig=None):
+    """Release a figure (drop its artists; nothing global to unregister without pyplot)."""
+    if fig is not None:
+        fig.clear()
+
+
+class _Figures:
+    """The part of ``pyplot`` the report modules use, without importing pyplot:
+    ``plt.subplots``, ``plt.figure``, ``plt.close``, ``plt.rcParams``."""
+
+    subplots = staticmethod(subplots)
+    figure = staticmethod(figure)
+    close = staticmethod(close)
+
+    @property
+    def rcParams(self):   # noqa: N802 (pyplot's name)
+        return matplotlib.rcParams
+
+
+plt = _Figures()
+
 
 #: families with Chinese glyphs, the most complete first
 _CJK_FAMILIES = ("Noto Sans CJK SC", "Noto Sans CJK JP", "Noto Sans SC", "Source Han Sans SC",
@@ -113,11 +191,12 @@ def setup(lang="en"):
     With ``zh`` and no CJK font installed, plots fall back to English labels
     (the caller reports that as a warning).
     """
-    plt.rcParams.update({"figure.dpi": 100, "savefig.dpi": 100, "axes.grid": True,
-                         "grid.alpha": 0.4, "axes.unicode_minus": False})
+    matplotlib.rcParams.update({"figure.dpi": 100, "savefig.dpi": dpi(), "axes.grid": True,
+                                "grid.alpha": 0.4, "axes.unicode_minus": False,
+                                "legend.framealpha": 0.85, "mathtext.default": "it"})
     fam = cjk_font()
     # an explicit list: matplotlib takes each glyph from the first family that has it
-    plt.rcParams["font.family"] = [_BASE_FAMILY, fam] if fam else [_BASE_FAMILY]
+    matplotlib.rcParams["font.family"] = [_BASE_FAMILY, fam] if fam else [_BASE_FAMILY]
     if fam is None and lang == "zh":
         return "en"
     return lang
@@ -146,23 +225,98 @@ def _rendered(draw):
     return out
 
 
-def save_png(fig, outputs, name):
-    """Render *fig* to PNG in memory, then write it atomically as *name* in ``--out``
-    (:meth:`~mechcli.report.files.Outputs.bytes` checks the name)."""
-    buf = io.BytesIO()
+def _ink_box(rgba, background, margin):
+    """``(r0, r1, c0, c1)``: the rows and columns of the RGBA pixels *rgba* whose
+    colour differs from *background* (RGB), grown by *margin* pixels (the whole
+    picture if blank)."""
+    import numpy as np
+
+    px = np.ascontiguousarray(rgba).view(np.uint32)[..., 0]
+    bg = np.array([[*background, 255]], dtype=np.uint8).view(np.uint32)[0, 0]
+    ink = px != bg
+    rows, cols = np.flatnonzero(ink.any(axis=1)), np.flatnonzero(ink.any(axis=0))
+    h, w = ink.shape
+    if rows.size == 0:
+        return 0, h, 0, w
+    return (max(0, rows[0] - margin), min(h, rows[-1] + 1 + margin),
+            max(0, cols[0] - margin), min(w, cols[-1] + 1 + margin))
+
+
+def _background(fig):
+    import numpy as np
+
+    return tuple(int(v) for v in np.round(
+        np.asarray(matplotlib.colors.to_rgb(fig.get_facecolor())) * 255))
+
+
+def tight(fig, **kw):
+    """``fig.tight_layout`` without its "not applied" UserWarning (a figure it
+    cannot lay out keeps its layout)."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", UserWarning)
+        fig.tight_layout(**kw)
+
+
+def save_png(fig, outputs, name, dpi=None, layout=True):
+    """Draw *fig* once at *dpi* (default :func:`dpi`), crop it to its ink (no empty
+    margins: what ``bbox_inches="tight"`` does, without its second drawing), and
+    write it atomically as *name* in ``--out``
+    (:meth:`~mechcli.report.files.Outputs.bytes` checks the name).
+
+    With *layout* (default) the subplots are first fitted to the figure
+    (:func:`tight`), so nothing sticks out of it; ``layout=False`` keeps the
+    figure's own layout (it has room for everything)."""
+    import numpy as np
+    from PIL import Image
+
+    res = int(dpi or globals()["dpi"]())
     try:
-        _rendered(lambda: fig.savefig(buf, format="png", bbox_inches="tight"))
+        if layout and fig.get_layout_engine() is None:
+            tight(fig)
+        fig.set_dpi(res)
+        _rendered(fig.canvas.draw)
+        rgba = np.asarray(fig.canvas.buffer_rgba())
+        r0, r1, c0, c1 = _ink_box(rgba, _background(fig), int(round(_MARGIN_IN * res)))
+        buf = io.BytesIO()
+        Image.fromarray(np.ascontiguousarray(rgba[r0:r1, c0:c1, :3])).save(
+            buf, format="png", dpi=(res, res), compress_level=3)
     finally:
-        plt.close(fig)
+        close(fig)
     return outputs.bytes(name, buf.getvalue())
 
 
-def save_gif(frames, outputs, name, fps=12):
-    """Write a list of RGB(A) uint8 frames (H×W×3/4 arrays) as a looping GIF *name*
-    in ``--out`` (through :meth:`~mechcli.report.files.Outputs.bytes`)."""
+def _palette(frames):
+    """One 255-colour palette for every frame: from a mosaic of up to 12 frames, so
+    the colours of the moving artists are in it."""
+    import numpy as np
     from PIL import Image
 
-    images = [Image.fromarray(f[..., :3]) for f in frames]
+    pick = frames[:: max(1, len(frames) // 12)][:12]
+    mosaic = np.concatenate([f[::2, ::2, :3] for f in pick], axis=0)
+    return Image.fromarray(np.ascontiguousarray(mosaic)).quantize(
+        colors=255, method=Image.Quantize.FASTOCTREE)
+
+
+def save_gif(frames, outputs, name, fps=12, crop=True):
+    """Write a list of RGB(A) uint8 frames (H×W×3/4 arrays) as a looping GIF *name*
+    in ``--out`` (through :meth:`~mechcli.report.files.Outputs.bytes`).
+
+    Every frame is mapped onto one shared palette (no per-frame quantization) and,
+    with *crop*, the frames are cut to the ink of all of them (no white margins)."""
+    import numpy as np
+    from PIL import Image
+
+    if not frames:
+        return None
+    if crop:   # the ink of a dozen frames spread over the animation
+        lo = np.full(frames[0].shape[:2] + (4,), 255, dtype=np.uint8)
+        for f in frames[:: max(1, len(frames) // 12)] + frames[-1:]:
+            np.minimum(lo[..., :3], f[..., :3], out=lo[..., :3])
+        r0, r1, c0, c1 = _ink_box(lo, (255, 255, 255), 4)
+        frames = [f[r0:r1, c0:c1, :3] for f in frames]
+    pal = _palette(frames)
+    images = [Image.fromarray(np.ascontiguousarray(f[..., :3])).quantize(
+        palette=pal, dither=Image.Dither.NONE) for f in frames]
     buf = io.BytesIO()
     images[0].save(buf, format="GIF", save_all=True, append_images=images[1:],
                    duration=int(1000 / fps), loop=0, optimize=False)
@@ -170,8 +324,182 @@ def save_gif(frames, outputs, name, fps=12):
 
 
 def canvas_frame(fig):
-    """The current RGBA pixels of a figure drawn on the Agg canvas."""
+    """The current RGBA pixels of a figure drawn on the Agg canvas (a full drawing;
+    :class:`Frames` draws only what moves)."""
     import numpy as np
 
     _rendered(fig.canvas.draw)
     return np.asarray(fig.canvas.buffer_rgba()).copy()
+
+
+class Frames:
+    """The frames of an animation of ONE figure, drawn by blitting.
+
+    The figure is drawn once without the *moving* artists (they are marked
+    animated); that picture is kept, and each :meth:`grab` restores it and draws
+    only the moving artists over it.  :meth:`settle` draws artists that stay from
+    then on (a trace, the white cut of a gear blank) into the kept picture.
+
+    Parameters
+    ----------
+    fig : Figure
+        A figure of :func:`subplots`, with everything that does not move drawn
+        into it already; its ``dpi`` is the frames' resolution.
+    moving : sequence of Artist
+        What changes from frame to frame (lines updated with ``set_data``, texts
+        with ``set_text``, patches, collections).
+    """
+
+    def __init__(self, fig, moving):
+        self.fig = fig
+        self.moving = sorted((a for a in moving if a is not None), key=lambda a: a.get_zorder())
+        for a in self.moving:
+            a.set_animated(True)
+        _rendered(fig.canvas.draw)
+        self.background = fig.canvas.copy_from_bbox(fig.bbox)
+        self.frames = []
+
+    def settle(self, artists):
+        """Draw *artists* into the kept background (they stay in later frames)."""
+        canvas = self.fig.canvas
+        canvas.restore_region(self.background)
+        for a in artists:
+            self.fig.draw_artist(a)
+        self.background = canvas.copy_from_bbox(self.fig.bbox)
+
+    def grab(self):
+        """Append the current frame: the kept background and the moving artists."""
+        import numpy as np
+
+        canvas = self.fig.canvas
+        canvas.restore_region(self.background)
+        for a in self.moving:
+            if a.get_visible():
+                self.fig.draw_artist(a)
+        self.frames.append(np.asarray(canvas.buffer_rgba())[..., :3].copy())
+
+    def save(self, outputs, name, fps=12):
+        """Write the GIF (:func:`save_gif`) and release the figure."""
+        close(self.fig)
+        return save_gif(self.frames, outputs, name, fps=fps)
+
+
+_SUBSCRIPT = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")
+
+
+def plain_symbol(name):
+    """A book symbol in plain Unicode, for texts redrawn every frame (mathtext would
+    be parsed again each time): ``theta1`` -> ``θ₁``, ``s1`` -> ``s₁``."""
+    for word, greek in (("theta", "θ"), ("omega", "ω"), ("alpha", "α"), ("phi", "φ"),
+                        ("psi", "ψ"), ("delta", "δ"), ("gamma", "γ")):
+        if name.startswith(word):
+            return greek + name[len(word):].translate(_SUBSCRIPT)
+    return name[:1] + name[1:].translate(_SUBSCRIPT)
+
+
+def readout(ax, text="", **kw):
+    """A text box in the upper-left corner of *ax* for a frame's input value
+    (``θ1 = 120°``); animate it with :class:`Frames`."""
+    style = dict(transform=ax.transAxes, fontsize=10, va="top", ha="left", zorder=10,
+                 bbox=dict(boxstyle="round,pad=0.25", fc="white", ec="0.6", alpha=0.9))
+    style.update(kw)
+    return ax.text(0.02, 0.98, text, **style)
+
+
+# -- notation ---------------------------------------------------------------------------
+
+_GREEK = {"theta": r"\theta", "omega": r"\omega", "alpha": r"\alpha", "gamma": r"\gamma",
+          "phi": r"\varphi", "psi": r"\psi", "delta": r"\delta", "epsilon": r"\varepsilon"}
+_SYMBOL = re.compile(r"^(theta|omega|alpha|gamma|phi|psi|delta|epsilon|FR|MR|Fsh|Msh|Mb|Fb|"
+                     r"Je|Me|v[xy](?=[A-Z])|a[xy](?=[A-Z])|[svaxy](?=[A-Z0-9]|$))([A-Za-z0-9]*)$")
+#: symbols whose subscript is a word of the book (F_R16, M_b), set upright
+_UPRIGHT = ("FR", "MR", "Fsh", "Msh", "Mb", "Fb", "Je", "Me")
+
+
+def symbol(name):
+    """A book symbol in mathtext: ``theta3`` -> θ₃, ``omega3`` -> ω₃, ``FR16`` ->
+    F_R16, ``vxF`` -> v_Fx, ``sC`` -> s_C, ``Mb1`` -> M_b1; other names unchanged.
+
+    Names with characters outside ASCII letters and digits are left as they are
+    (mathtext has no CJK glyphs)."""
+    m = _SYMBOL.match(name)
+    if not m:
+        return name
+    head, sub = m.groups()
+    if head in _GREEK:
+        base = _GREEK[head]
+    elif head in ("FR", "MR"):
+        base, sub = head[0], "R" + sub
+    elif head in ("Fsh", "Msh", "Mb", "Fb", "Je", "Me"):
+        base, sub = head[0], head[1:] + sub
+    elif len(head) == 2:     # vxF -> v_Fx
+        base, sub = head[0], sub + head[1]
+    else:
+        base = head
+    if not sub:
+        return f"${base}$"
+    if head in _UPRIGHT:
+        return f"${base}_{{\\mathrm{{{sub}}}}}$"
+    return f"${base}_{{{sub}}}$"
+
+
+# -- legends, twin axes and clipping ------------------------------------------------------
+
+def is_constant(values, rel=1e-9):
+    """True when the finite *values* do not vary (a zero or constant curve)."""
+    import numpy as np
+
+    v = np.asarray(values, dtype=float)
+    v = v[np.isfinite(v)]
+    if v.size == 0:
+        return True
+    scale = max(float(np.max(np.abs(v))), 1e-300)
+    return float(np.ptp(v)) <= rel * scale or float(np.max(np.abs(v))) == 0.0
+
+
+def legend_above(ax, handles=None, labels=None, fontsize=8, ncol=None):
+    """A legend in one row above *ax* (outside it: it covers no curve)."""
+    if handles is None:
+        handles, labels = ax.get_legend_handles_labels()
+    if labels is None:
+        labels = [h.get_label() for h in handles]
+    if not handles:
+        return None
+    n = ncol or min(len(handles), 4)
+    return ax.legend(handles, labels, fontsize=fontsize, loc="lower left",
+                     bbox_to_anchor=(0.0, 1.01, 1.0, 0.1), ncol=n, frameon=False,
+                     borderaxespad=0.0, handlelength=2.2, columnspacing=1.2)
+
+
+def legend_outside(ax, handles=None, labels=None, fontsize=8, **kw):
+    """A legend to the right of *ax* (outside it: it covers no curve)."""
+    if handles is None:
+        handles, labels = ax.get_legend_handles_labels()
+    if labels is None:
+        labels = [h.get_label() for h in handles]
+    if not handles:
+        return None
+    return ax.legend(handles, labels, fontsize=fontsize, loc="upper left",
+                     bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0, **kw)
+
+
+def tie_axis(ax, color, side="left"):
+    """Colour *ax*'s y label, ticks and spine on *side* like the one curve it carries."""
+    ax.yaxis.label.set_color(color)
+    ax.tick_params(axis="y", colors=color)
+    ax.spines[side].set_color(color)
+    ax.spines[side].set_linewidth(1.2)
+
+
+def text_notice(message):
+    """A one-line notice for the run (shown once, on stderr, with the spec path)."""
+    _run.notice(message)
+
+
+def clip_notice(ax, what, lo, hi, unit=""):
+    """Say on *ax* (and once for the run) that *what* is drawn clipped to [lo, hi]."""
+    u = f" {unit}" if unit else ""
+    ax.text(0.99, 0.02, f"{what} clipped to ±{hi:.4g}{u}" if lo == -hi else
+            f"{what} clipped to [{lo:.4g}, {hi:.4g}]{u}", transform=ax.transAxes,
+            fontsize=7, ha="right", va="bottom", color="0.25",
+            bbox=dict(boxstyle="round,pad=0.2", fc="white", ec="0.7", alpha=0.9))

@@ -42,7 +42,7 @@ def _limit_inputs(sol):
 
 
 def _positions_png(sol, outputs, name, title, unit, k, t, q=None):
-    import matplotlib.pyplot as plt
+    from mechcli.report.plotting import plt
     des, chk = sol.design, sol.check
     limits_only = q is not None
     q = np.asarray(chk.inputs if q is None else q, dtype=float)
@@ -77,7 +77,7 @@ def _positions_png(sol, outputs, name, title, unit, k, t, q=None):
 
 
 def _error_png(sol, outputs, name, title, t):
-    import matplotlib.pyplot as plt
+    from mechcli.report.plotting import plt
     v = sol.design.values
     fig, ax = plt.subplots(figsize=(6.5, 4.5))
     ax.plot(v["error_x"], np.degrees(v["error_phi"]), "-", color="C0", label=t["ephi"])
@@ -86,14 +86,16 @@ def _error_png(sol, outputs, name, title, t):
     ax.set_ylabel(t["ephi"])
     ax2 = ax.twinx()
     ax2.plot(v["error_x"], v["error_y"], "--", color="C1", label=t["ey"])
-    ax2.set_ylabel(t["ey"])
+    ax2.set_ylabel(t["ey"] + "  (- -)")
     ax2.grid(False)
+    plotting.tie_axis(ax, "C0", "left")
+    plotting.tie_axis(ax2, "C1", "right")
     ax.set_title(plotting.text(title) + "\n" + t["err"])
     plotting.save_png(fig, outputs, name)
 
 
 def _burmester_png(sol, prob, outputs, name, title, unit, k, t):
-    import matplotlib.pyplot as plt
+    from mechcli.report.plotting import plt
     fig, ax = plt.subplots(figsize=(6.5, 5.5))
     M = np.array([complex(x, y) for x, y in prob.data["M"]]) * k
     phi = np.asarray(prob.data["phi"])
@@ -129,8 +131,8 @@ def _burmester_png(sol, prob, outputs, name, title, unit, k, t):
     plotting.save_png(fig, outputs, name)
 
 
-def _animate(sol, outputs, name, title, k, frames=72):
-    import matplotlib.pyplot as plt
+def _animate(sol, outputs, name, title, k, frames=72, unit=""):
+    from mechcli.report.plotting import plt
     chk = sol.check
     a, b = chk.start, chk.stop
     if a == b:
@@ -140,16 +142,24 @@ def _animate(sol, outputs, name, title, k, frames=72):
     keep = np.flatnonzero(m.feasible)
     if keep.size == 0:
         return
-    fig, ax = plt.subplots(figsize=(5.5, 4.5), dpi=80)
+    fig, ax = plt.subplots(figsize=(6.4, 5.2), dpi=plotting.GIF_DPI)
     d = Drawing(ax, chk.linkage, m, 1 / k)
     limits(ax, m, k)
-    ax.set_title(plotting.text(title))
-    pics = []
+    ax.set_title(plotting.text(title), fontsize=10)
+    ax.set_xlabel(f"x / {unit}")
+    ax.set_ylabel(f"y / {unit}")
+    label = plotting.readout(ax)
+    plotting.tight(fig)
+    frames = plotting.Frames(fig, d.artists + [label])
+    drv = chk.linkage.drivers[0]
+    rotary = getattr(drv, "rotary", True)
+    sym = plotting.plain_symbol(f"theta{drv.link}" if rotary else f"s{drv.link}")
     for i in keep:
         d.update(m, i)
-        pics.append(plotting.canvas_frame(fig))
-    plt.close(fig)
-    plotting.save_gif(pics, outputs, name)
+        label.set_text(f"{sym} = {math.degrees(q[i]):.0f}°" if rotary else
+                       f"{sym} = {q[i] * k:.4g} {unit}")
+        frames.grab()
+    frames.save(outputs, name)
 
 
 def write(spec, solutions, outputs, lang, plots=True, animate=False):
@@ -176,5 +186,5 @@ def write(spec, solutions, outputs, lang, plots=True, animate=False):
             if sol.kind == "burmester":
                 _burmester_png(sol, prob, outputs, f"burmester{tag}.png", title, unit, k, t)
         if animate and des is not None:
-            _animate(sol, outputs, f"synth{tag}.gif", title, k)
+            _animate(sol, outputs, f"synth{tag}.gif", title, k, unit=unit)
     return warnings

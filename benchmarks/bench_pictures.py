@@ -1,0 +1,110 @@
+"""Pictures (issue 17): the PNG run of ``kin`` and the GIF frames, against their baselines.
+
+Prints ``name: value unit`` lines (``--json``: the same figures as JSON,
+``benchmarks/_figures.py``):
+
+* ``import_numpy_process`` -- the baseline, ``python -c "import numpy"`` [ms];
+* ``kin_ex1-1_png_process`` [ms] and ``kin_ex1-1_png_over_import_numpy`` [x]:
+  ``mechcli kin configs/ch1/ex1-1.toml`` (kin.png), a fresh process each time,
+  round-robin with the baseline so both see the same load, minimum of the runs
+  (goal <= 5x); ``kin_ex1-1_png_dpi100_*`` the same at ``--dpi 100`` (the
+  default is 200 dpi);
+* ``kin_ex1-1_no_plot_process`` [ms]: the same run without pictures, so that
+  ``kin_ex1-1_png_cost`` [ms] is what the pictures add;
+* ``gif_<config>_frames`` [1], ``gif_<config>_ms_per_frame`` [ms/frame]: the
+  whole animation of ``mechcli kin CONFIG --animate`` (figure set-up, every
+  frame, GIF encoding) divided by its frames, in a fresh process (matplotlib
+  imported before the clock starts), minimum of the runs (goal <= 8 ms/frame);
+  ``gif_<config>_frame_over_import_numpy`` [x] relates it to the baseline.
+
+Usage: python benchmarks/bench_pictures.py [--runs N] [--json]
+"""
+
+from __future__ import annotations
+
+import argparse
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from _figures import run  # noqa: E402
+
+ROOT = Path(__file__).resolve().parent.parent
+EX11 = str(ROOT / "configs" / "ch1" / "ex1-1.toml")
+GIF_CONFIGS = {"exercise1-2": ROOT / "configs" / "ch1" / "exercise1-2.toml",
+               "ex1-3": ROOT / "configs" / "ch1" / "ex1-3.toml"}
+
+#: run in a fresh process: time kin's animation alone (import and solve excluded)
+_GIF_PROBE = r"""
+import sys, time, tempfile
+import numpy as np
+import matplotlib
+from mechcli.core.linkage.kinematics import analyse_sweep, default_quantities
+from mechcli.report import kin_plots
+from mechcli.report.files import Outputs
+from mechcli.spec.kin import load_kin_spec
+
+spec = load_kin_spec(sys.argv[1], ())
+sweep = spec.input.sweep()
+qs = default_quantities(spec.linkage, spec.output.order, [t.name for t in spec.tracers])
+result = analyse_sweep(spec.linkage, sweep, qs, spec.output.order, partial=spec.input.partial)
+with tempfile.TemporaryDirectory() as out:
+    outputs = Outputs(out)
+    kin_plots.write(spec, qs, result, sweep, outputs, "en", plots=False, animate=True)  # warm
+    best = float("inf")
+    for _ in range(int(sys.argv[2])):
+        t0 = time.perf_counter()
+        kin_plots.write(spec, qs, result, sweep, outputs, "en", plots=False, animate=True)
+        best = min(best, time.perf_counter() - t0)
+    from PIL import Image
+    with Image.open(out + "/kin.gif") as im:
+        n = im.n_frames
+print(best, n)
+"""
+
+
+def once(argv):
+    t0 = time.perf_counter()
+    subprocess.run(argv, cwd=ROOT, check=True, capture_output=True)
+    return time.perf_counter() - t0
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--runs", type=int, default=5, help="runs of each case (minimum taken)")
+    args = ap.parse_args()
+    mech = [sys.executable, "-m", "mechcli"]
+    with tempfile.TemporaryDirectory() as out:
+        cmds = {"import_numpy": [sys.executable, "-c", "import numpy"],
+                "kin_ex1-1_no_plot": mech + ["kin", EX11, "--no-plot", "-q", "--out", out],
+                "kin_ex1-1_png": mech + ["kin", EX11, "-q", "--out", out],
+                "kin_ex1-1_png_dpi100": mech + ["kin", EX11, "-q", "--dpi", "100", "--out", out]}
+        for argv in cmds.values():           # bytecode caches, font cache, page cache
+            once(argv)
+        best = {name: float("inf") for name in cmds}
+        for _ in range(args.runs):
+            for name, argv in cmds.items():
+                best[name] = min(best[name], once(argv))
+    base = best["import_numpy"]
+    print(f"import_numpy_process: {base * 1e3:.1f} ms")
+    for name in ("kin_ex1-1_no_plot", "kin_ex1-1_png", "kin_ex1-1_png_dpi100"):
+        print(f"{name}_process: {best[name] * 1e3:.1f} ms")
+        print(f"{name}_over_import_numpy: {best[name] / base:.2f} x")
+    print(f"kin_ex1-1_png_cost: {(best['kin_ex1-1_png'] - best['kin_ex1-1_no_plot']) * 1e3:.1f} ms")
+    for name, path in GIF_CONFIGS.items():
+        if not path.exists():
+            continue
+        proc = subprocess.run([sys.executable, "-c", _GIF_PROBE, str(path), str(args.runs)],
+                              cwd=ROOT, check=True, capture_output=True, text=True)
+        t, n = proc.stdout.split()
+        t, n = float(t), int(n)
+        print(f"gif_{name}_frames: {n} 1")
+        print(f"gif_{name}_ms_per_frame: {t / n * 1e3:.2f} ms/frame")
+        print(f"gif_{name}_frame_over_import_numpy: {t / n / base:.3f} x")
+
+
+if __name__ == "__main__":
+    run(main)
