@@ -167,10 +167,17 @@ def build_atlas(directory, A_range=at.DEFAULT_A_RANGE, B_range=at.DEFAULT_B_RANG
 
 def _read_manifest(directory):
     mpath = Path(directory) / at.MANIFEST
-    if not mpath.exists():
+    try:
+        present = mpath.is_file()
+    except (OSError, ValueError):       # a name too long, a NUL byte
+        present = False
+    if not present:
         raise DescribedError("the directory holds no atlas manifest", "atlas_foreign")
     try:
         data = json.loads(mpath.read_bytes().decode("utf-8"))
+    except OSError as exc:
+        raise DescribedError(f"the atlas manifest cannot be read ({exc.strerror})",
+                             "atlas_corrupt") from None
     except (ValueError, UnicodeDecodeError):
         raise DescribedError("the atlas manifest is not valid JSON", "atlas_corrupt") from None
     if not isinstance(data, dict) or data.get("format") != at.FORMAT:

@@ -5,6 +5,14 @@ from pathlib import Path
 
 import pytest
 
+try:        # CI runs the property tests on fixed examples: a red CI is a real defect
+    from hypothesis import settings as _hsettings
+    _hsettings.register_profile("ci", derandomize=True, print_blob=True)
+    if os.environ.get("CI"):
+        _hsettings.load_profile("ci")
+except ImportError:     # hypothesis is a test extra
+    pass
+
 ROOT = Path(__file__).resolve().parent.parent
 CONFIGS = ROOT / "configs"
 

@@ -356,7 +356,11 @@ def read_optimize_spec(path, overrides=()) -> OptimizeSpec:
     base_path = None
     if base is not None:
         base_path = (Path(file).parent / base)
-        if not base_path.is_file():
+        try:
+            found = base_path.is_file()
+        except (OSError, ValueError):       # a name too long, a NUL byte
+            found = False
+        if not found:
             raise root.error("base", "an existing spec file (relative to this one)",
                              f"'{base}' (no such file: {base_path})")
         base_root = load_spec(base_path)

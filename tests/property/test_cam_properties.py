@@ -76,7 +76,9 @@ def test_scale_invariance(prog, scale):
     prog_k = build_program(segs, prog.stroke * k)
     a, b = check_cam(base, prog), check_cam(big, prog_k)
     assert b.alpha_rise.value == pytest.approx(a.alpha_rise.value, abs=1e-12)
-    assert b.alpha_rise.delta == pytest.approx(a.alpha_rise.delta, abs=1e-9)
+    # where a flat maximum lies moves with round-off in dα/dδ over d²α/dδ²: hypothesis
+    # found 8.7e-9 rad for a modified-sine rise of 2.29 rad (the values agree to 1e-12)
+    assert b.alpha_rise.delta == pytest.approx(a.alpha_rise.delta, abs=1e-7)
     assert b.rho_pitch_min.value == pytest.approx(a.rho_pitch_min.value * k, rel=1e-9)
 
 

@@ -28,6 +28,10 @@ def _imported_top_level_modules():
     return names - set(sys.stdlib_module_names) - {"mechcli", "tomli"}
 
 
+#: import name -> the optional extra that provides it (imported only on that path)
+OPTIONAL = {"dask": "dask"}
+
+
 def _declared():
     project = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))["project"]
     out = set()
@@ -43,7 +47,15 @@ def test_every_imported_third_party_module_is_a_dependency():
     declared, _ = _declared()
     imported = {DISTRIBUTION.get(m, m).lower() for m in _imported_top_level_modules()}
     assert imported, "the AST walk found no third-party import at all"
-    assert imported - declared == set()
+    extras = project_extras()
+    optional = {m for m in imported if m in OPTIONAL and any(
+        r.lower().startswith(m) for r in extras.get(OPTIONAL[m], []))}
+    assert imported - declared - optional == set()
+
+
+def project_extras():
+    return tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))[
+        "project"]["optional-dependencies"]
 
 
 def test_published_metadata():
