@@ -69,6 +69,10 @@ _UMASK = _umask()
 _SEPARATORS = {"/", "\\", os.sep} | ({os.altsep} if os.altsep else set())
 
 
+#: path -> (bytes, sha256) of the files this process wrote (see :meth:`Outputs.manifest`)
+_WRITTEN = {}
+
+
 def _atomic(path, write):
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
@@ -79,6 +83,9 @@ def _atomic(path, write):
         with os.fdopen(fd, "wb") as fh:
             write(fh)
         os.chmod(tmp, 0o666 & ~_UMASK)   # mkstemp's 0600 -> what open() would give
+        # the manifest's checksum of what THIS run wrote (a parallel run may replace the
+        # file before outputs.json is written): taken from the private temporary file
+        _WRITTEN[str(path)] = (os.path.getsize(tmp), file_sha256(tmp))
         os.replace(tmp, path)
     except BaseException:
         try:
@@ -268,8 +275,10 @@ class Outputs:
         import json
 
         previous = read_manifest(self.out_dir, same_as=info)
-        entries = [{"name": f.name, "bytes": f.stat().st_size, "sha256": file_sha256(f)}
-                   for f in self.files]
+        entries = []
+        for f in self.files:
+            size, digest = _WRITTEN.get(str(f)) or (f.stat().st_size, file_sha256(f))
+            entries.append({"name": f.name, "bytes": size, "sha256": digest})
         doc = {"generator": "mechcli", "format": MANIFEST_FORMAT, **info, "files": entries}
         path = self._write_quiet(MANIFEST, json.dumps(doc, ensure_ascii=False, indent=2) + "\n")
         written = {e["name"] for e in entries} | {MANIFEST}
