@@ -189,6 +189,9 @@ def _read_manifest(directory):
         p = data["parameters"]
         for key in ("A_range", "B_range", "C_range", "grid", "harmonics", "chunk"):
             p[key]
+        h = p["harmonics"]
+        if isinstance(h, bool) or not isinstance(h, int) or not 1 <= h <= 1024:
+            raise TypeError
         for c in data["chunks"]:
             if not (isinstance(c["index"], int) and isinstance(c["count"], int)
                     and isinstance(c["sha256"], str) and c["file"] == chunk_name(c["index"])):
@@ -200,7 +203,7 @@ def _read_manifest(directory):
     return data
 
 
-def _load_chunk(directory, entry, verify=True):
+def _load_chunk(directory, entry, verify=True, harmonics=None):
     path = Path(directory) / entry["file"]
     try:
         data = path.read_bytes()
@@ -216,7 +219,8 @@ def _load_chunk(directory, entry, verify=True):
     except Exception:
         raise DescribedError("an atlas chunk cannot be read", "atlas_corrupt",
                              chunk=entry["index"]) from None
-    if desc.shape[0] != entry["count"] or params.shape != (entry["count"], 5):
+    if desc.shape[0] != entry["count"] or params.shape != (entry["count"], 5) \
+            or (harmonics is not None and desc.shape[1:] != (4 * harmonics,)):
         raise DescribedError("an atlas chunk holds another number of curves than listed",
                              "atlas_corrupt", chunk=entry["index"])
     return desc, params
@@ -248,7 +252,7 @@ def open_atlas(directory, verify=False) -> AtlasInfo:
 def _search_task(task):
     """Worker: the k best rows of one chunk for the queries; picklable."""
     directory, entry, Q, k, verify = task
-    desc, params = _load_chunk(directory, entry, verify)
+    desc, params = _load_chunk(directory, entry, verify, Q.shape[1] // 4)
     return (*at.rank_chunk(desc, params, Q, k), entry["index"])
 
 

@@ -21,9 +21,12 @@ def atlas_mapper(workers, scheduler):
         from mechcli.core.errors import UnsolvableError
         try:
             client = Client(scheduler, timeout="10s")
-        except (OSError, TimeoutError) as exc:
+        except ValueError as exc:           # not an address
+            raise SpecError("--scheduler", "--scheduler", "a Dask scheduler address such as "
+                            "tcp://host:8786", f"'{scheduler}' ({exc})") from None
+        except Exception as exc:            # noqa: BLE001 (whatever the connection raises)
             raise UnsolvableError(f"--scheduler {scheduler}: cannot reach the Dask "
-                                  f"scheduler ({exc})") from None
+                                  f"scheduler ({type(exc).__name__}: {exc})") from None
 
         def dask_map(fn, items):
             return client.gather(client.map(fn, list(items), pure=False))
@@ -51,6 +54,10 @@ def atlas_case(prob, spec, run, mapper):
         grid = tuple(tuple(float(v) for v in __import__("numpy").linspace(lo, hi, n))
                      for lo, hi, n in (d["grid_x"], d["grid_y"]))
         t = time.perf_counter()
+        if directory.exists() and not directory.is_dir():
+            from mechcli.spec.errors import SpecError
+            raise SpecError(str(spec.path), f"{prob.path}.directory", "a folder for the atlas",
+                            f"'{directory}', a file")
         info = atlas_store.build_atlas(directory, d["A"], d["B"], d["C"], grid,
                                        chunk=d["chunk"], mapper=mapper,
                                        harmonics=d["harmonics"])

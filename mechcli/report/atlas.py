@@ -75,6 +75,7 @@ def case_results(sol, u):
                 "error_rms": ref.error_rms / u, "error_max": ref.error_max / u,
                 "gamma_min_deg": math.degrees(min(c.mu_min, math.pi - c.mu_max)),
                 "type": c.kind, "atlas_distance": c.match.distance,
+                "reversed": bool(c.match.reversed),
                 **({"theta0_deg": math.degrees(x["theta0"])} if "theta0" in x else {})})
         r["best"] = cands[0] if cands else None
         r["candidates_list"] = cands
@@ -126,6 +127,11 @@ def blocks(prob, sol, u, unit, lang, prefix=""):
                 for i, c in enumerate(r["candidates_list"])]
         out.append(Block(prefix + _label(lang, "Path synthesis by atlas search, refined",
                                          "图谱检索轨迹综合 (优化后)"), heads, rows))
+        if r["candidates_list"] and "theta0_deg" in r["candidates_list"][0]:
+            out.append(Block(prefix + _label(lang, "Timing", "时序"), rows=[
+                [_label(lang, f"crank angle at target 1 (candidate {i + 1}) [°]",
+                        f"第 1 点曲柄转角 (方案 {i + 1})/(°)"), _f(c["theta0_deg"], 3)]
+                for i, c in enumerate(r["candidates_list"])]))
         out.append(Block(prefix + _label(lang, "Cost", "耗时"), rows=[
             [_label(lang, "atlas curves searched", "检索曲线数"), str(r["atlas_curves"])],
             [_label(lang, "search [s]", "检索/s"), f"{r['search_s']:.3f}"],
@@ -142,6 +148,10 @@ WHY = {"not_crank_rocker": "the chain is not a crank-rocker: no curve turns a fu
 
 
 def warnings(prob, sol):
+    if sol.kind == "path" and not sol.extra["closed"]:
+        return [f"[{prob.path}] an open path is matched as if closed by its chord: an arc of "
+                "less than about 2/3 of a coupler curve is not found reliably (the "
+                "refinement measures the targets against the whole curve)"]
     if sol.kind == "atlas_page" and sol.extra.reason is not None:
         return [f"[{prob.path}] no curve drawn: {WHY[sol.extra.reason]}"]
     if sol.kind == "atlas_build" and not sol.extra[0].complete:
@@ -168,6 +178,9 @@ def candidate_toml(cand, header, title, u):
     tx, ty, rot, scale = cand.refined.placement
     C = x["C"]
     dx, dy = tx + scale * C * math.cos(rot), ty + scale * C * math.sin(rot)
+    timed = "theta0" in x          # timed targets: counter-clockwise from target 1
+    rev = bool(cand.match.reversed) and not timed
+    start = round(math.degrees(rot + x["theta0"]), 9) if timed else 0
     data = {
         "command": "kin", "title": title, "units": header.unit,
         "mechanism": {
@@ -179,5 +192,8 @@ def candidate_toml(cand, header, title, u):
                       "lengths": [scale * x["A"] / u, scale * x["B"] / u], "branch": "left"}],
             "point": [{"name": "P", "link": 2, "from": "B", "along": scale * x["gx"] / u,
                        "normal": scale * x["gy"] / u}]},
-        "input": {"omega1": 10, "start": 0, "stop": 360, "step": 1}}
+        # the targets' sense of travel (a match found reversed runs clockwise) and, for
+        # a timed path, the crank angle at the first target as the start
+        "input": {"omega1": -10 if rev else 10, "start": start,
+                  "stop": start + (-360 if rev else 360), "step": 1}}
     return dumps(data, "written by mechcli synth (kind = \"path\"): an atlas match, refined")

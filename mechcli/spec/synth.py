@@ -28,6 +28,11 @@ RATIO_MAX = 100.0
 #: most curves of one page, of one build
 PAGE_POINTS_MAX = 5000
 BUILD_CURVES_MAX = 200_000_000
+RATIO_SETS_MAX = 2_000_000
+GRID_POINTS_MAX = 100_000
+#: most target points of a path: the refinement's arrays grow with revolution samples x
+#: targets x a stencil (500 points: about 0.3 GB)
+PATH_POINTS_MAX = 500
 #: the named functions of function generation (core.synth.functions.NAMES)
 FUNCTIONS = ("log10", "ln", "sqrt", "power", "sin", "cos", "tan", "exp", "reciprocal",
              "polynomial")
@@ -399,8 +404,9 @@ def _span(sec, name, default, count=False):
         raise sec.error(name, f"lo <= hi within ±{RATIO_MAX:g}", repr(vals))
     if count:
         n = vals[2]
-        if n != int(n) or not 1 <= n <= 100000 or (n > 1 and hi == lo):
-            raise sec.error(name, "a whole count from 1 to 100000 (1 when lo = hi)", repr(vals))
+        if n != int(n) or not 1 <= n <= 100000 or (n > 1) != (hi > lo):
+            raise sec.error(name, "a whole count from 1 to 100000 (1 exactly when lo = hi)",
+                            repr(vals))
         return (float(lo), float(hi), int(n))
     return (float(lo), float(hi))
 
@@ -410,7 +416,8 @@ def _grid(sec):
     gx = _span(sec, "grid_x", [-1.0, 3.0])
     gy = _span(sec, "grid_y", [-1.0, 1.0])
     h = sec.number("spacing", 0.5, lo=1e-3, hi=RATIO_MAX)
-    nx, ny = int(round((gx[1] - gx[0]) / h)) + 1, int(round((gy[1] - gy[0]) / h)) + 1
+    # points lo, lo + h, ... up to hi (never past it)
+    nx, ny = (int(math.floor((g[1] - g[0]) / h + 1e-9)) + 1 for g in (gx, gy))
     if nx * ny > PAGE_POINTS_MAX:
         raise sec.error("spacing", f"at most {PAGE_POINTS_MAX} grid points on a page",
                         f"{nx} x {ny}")
@@ -455,6 +462,15 @@ def _atlas_build(sec):
     total = math.prod(data[k][2] for k in ("A", "B", "C", "grid_x", "grid_y"))
     if total > BUILD_CURVES_MAX:
         raise sec.error("A", f"at most {BUILD_CURVES_MAX:g} curves in a build", f"{total:g}")
+    # the ratio sets are classified in memory (24 bytes each), the grid too: both bounded
+    # so that a build's memory is set by its chunk
+    sets = math.prod(data[k][2] for k in ("A", "B", "C"))
+    if sets > RATIO_SETS_MAX:
+        raise sec.error("A", f"at most {RATIO_SETS_MAX:g} (A, B, C) ratio sets (the counts' "
+                        "product)", f"{sets:g}")
+    if data["grid_x"][2] * data["grid_y"][2] > GRID_POINTS_MAX:
+        raise sec.error("grid_x", f"at most {GRID_POINTS_MAX:g} grid points",
+                        f"{data['grid_x'][2] * data['grid_y'][2]:g}")
     data["chunk"] = sec.integer("chunk", 20000, lo=100, hi=1_000_000)
     data["harmonics"] = sec.integer("harmonics", 16, lo=2, hi=64)
     data["directory"] = sec.string("directory", None)
@@ -464,12 +480,12 @@ def _atlas_build(sec):
 def _path(sec):
     lim = MAX_LENGTH / sec.unit
     if sec.has("points"):
-        data = {"points": _points(sec, "points", (3, 10000))}
+        data = {"points": _points(sec, "points", (3, PATH_POINTS_MAX))}
     else:
         xs = sec.numbers("x")
         ys = sec.numbers("y", size=len(xs))
-        if not 3 <= len(xs) <= 10000:
-            raise sec.error("x", "3 to 10000 target points", f"{len(xs)}")
+        if not 3 <= len(xs) <= PATH_POINTS_MAX:
+            raise sec.error("x", f"3 to {PATH_POINTS_MAX} target points", f"{len(xs)}")
         if any(abs(v) > lim for v in xs + ys):
             raise sec.error("x", f"coordinates within ±{lim:g}", "a larger one")
         data = {"points": tuple((x * sec.unit, y * sec.unit) for x, y in zip(xs, ys))}

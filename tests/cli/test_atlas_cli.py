@@ -130,7 +130,7 @@ def test_fewer_than_three_points_is_a_spec_error(small_atlas, tmp_path):
     proc = run_inprocess("synth", _path_spec(tmp_path, out / "atlas", [1, 2], [3, 4]),
                          "--out", tmp_path / "o", "--no-plot")
     assert proc.returncode == 2
-    assert "3 to 10000 target points" in one_line_error(proc)
+    assert "3 to 500 target points" in one_line_error(proc)
 
 
 def test_a_corrupt_or_foreign_atlas_is_one_line(small_atlas, tmp_path):

@@ -33,6 +33,7 @@ numpy only at module level; scipy (and :mod:`mechcli.core.optimize`, for
 from __future__ import annotations
 
 import dataclasses
+import functools
 import math
 from typing import Optional, Tuple
 
@@ -173,12 +174,12 @@ def atlas_page(A, B, C, gx, gy, step=STEP) -> AtlasPage:
     P, N = gx.size, theta.size
     kind, crank1 = _kind_of(A, B, C)
     reason = None
+    # drawn when link 1 turns a full revolution (a crank-rocker with crank 1, or a
+    # double-crank); not drawn: a change point (it can fold) or a link 1 that rocks
     if kind.startswith("change-point"):
         reason = "change_point"
-    elif kind != "crank-rocker":
-        reason = "not_crank_rocker"
     elif not crank1:
-        reason = "crank_not_link_1"
+        reason = "crank_not_link_1" if kind == "crank-rocker" else "not_crank_rocker"
     if reason is not None:
         z = np.zeros((P, N))
         return AtlasPage(A, B, C, gx, gy, theta, z, z.copy(), np.zeros(P, bool), kind, reason)
@@ -484,8 +485,16 @@ def grid_points(grid):
     return np.stack([GX.ravel(), GY.ravel()], axis=1)
 
 
+@functools.lru_cache(maxsize=4)
+def _ratio_sets_cached(A_range, B_range, C_range):
+    return ratio_sets(A_range, B_range, C_range)
+
+
 def chunk_params(parameters, start, stop):
-    sets = ratio_sets(parameters["A_range"], parameters["B_range"], parameters["C_range"])
+    """The parameter rows start ... stop of a build (the ratio sets are classified once
+    per process, not once per chunk)."""
+    sets = _ratio_sets_cached(*(tuple(parameters[k]) for k in ("A_range", "B_range",
+                                                                "C_range")))
     pts = grid_points(parameters["grid"])
     i = np.arange(start, stop)
     r, g = np.divmod(i, pts.shape[0])
@@ -660,8 +669,27 @@ class _PathFit:
         m = solve(lk, {1: DriverMotion(q)}, order=0)
         ok = built & np.all(np.broadcast_to(m.feasible, q.shape), axis=1)
         pz = np.broadcast_to(m.points["P"].x + 1j * m.points["P"].y, q.shape)
-        j = np.argmin(np.abs(pz[:, :, None] - self.T[None, None, :]), axis=1)   # (M, K)
-        th = np.take_along_axis(q, j, axis=1)
+        dist = np.abs(pz[:, :, None] - self.T[None, None, :])                  # (M, S, K)
+        # Newton from the three nearest samples: near a crossing of a figure-eight the
+        # nearest sample may lie on the other lobe (the best foot is kept)
+        starts = np.argsort(dist, axis=1)[:, :3, :] if q.shape[1] > 3 else \
+            np.argmin(dist, axis=1)[:, None, :]
+        best = None
+        for r in range(starts.shape[1]):
+            cand = self._newton(lk, np.take_along_axis(q, starts[:, r, :], axis=1), ok)
+            if best is None:
+                best = cand
+            else:
+                th_b, pz_b, ok_b = best
+                th_c, pz_c, ok_c = cand
+                better = np.abs(pz_c - self.T[None, :]) < np.abs(pz_b - self.T[None, :])
+                best = (np.where(better, th_c, th_b), np.where(better, pz_c, pz_b),
+                        ok_b & ok_c)
+        return best
+
+    def _newton(self, lk, th, ok):
+        """Newton steps on the crank angle from ``th`` (M, K) towards each target's
+        foot; ``(theta, points, ok)``."""
         dq = self.q[1] if self.q.size > 1 else math.pi
         for _ in range(5):
             m = solve(lk, {1: DriverMotion(th, 1.0, 0.0)}, order=2)
@@ -672,7 +700,7 @@ class _PathFit:
             gp = np.abs(v) ** 2 + np.real(r * np.conj(a))
             gp = np.where(gp > 1e-3 * np.abs(v) ** 2, gp, np.abs(v) ** 2 + 1e-300)
             th = th - np.clip(g / gp, -dq, dq)
-            ok &= np.all(m.feasible, axis=1)
+            ok = ok & np.all(m.feasible, axis=1)
         m = solve(lk, {1: DriverMotion(th)}, order=0)
         p = m.points["P"]
         return th, np.broadcast_to(p.x + 1j * p.y, th.shape), ok & np.all(m.feasible, axis=1)

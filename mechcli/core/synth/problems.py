@@ -118,8 +118,8 @@ def _design(kind, d):
 
         from mechcli.core.synth import atlas
         (x0, x1), (y0, y1), h = d["grid_x"], d["grid_y"], d["spacing"]
-        gx = x0 + h * np.arange(int(round((x1 - x0) / h)) + 1)
-        gy = y0 + h * np.arange(int(round((y1 - y0) / h)) + 1)
+        gx = x0 + h * np.arange(int(np.floor((x1 - x0) / h + 1e-9)) + 1)
+        gy = y0 + h * np.arange(int(np.floor((y1 - y0) / h + 1e-9)) + 1)
         GX, GY = np.meshgrid(gx, gy, indexing="ij")
         return None, atlas.atlas_page(d["A"], d["B"], d["C"], GX.ravel(), GY.ravel(),
                                       step=d["step"])
