@@ -9,8 +9,12 @@ from mechcli.options import RunOptions, common_options
 
 @click.command("kin")
 @click.argument("spec_path", metavar="SPEC.toml")
+@click.option("--accuracy-warn", "accuracy_warn", type=click.FloatRange(0.0, 16.0),
+              default=None, metavar="DIGITS",
+              help="Warn where fewer correct significant digits than this remain "
+                   "(estimated; default: the spec's output.accuracy_warn, 8).")
 @common_options
-def kin(spec_path, **opts):
+def kin(spec_path, accuracy_warn=None, **opts):
     """Kinematics of a planar linkage (chapter 1): four-bar, slider-crank,
     guide-bar, shaper or any linkage of drivers and RRR/RRP/RPR/PRP dyads."""
     run = RunOptions.from_click(spec_path, opts)
@@ -39,6 +43,6 @@ def kin(spec_path, **opts):
         from mechcli.report import kin_plots
         warnings += kin_plots.write(spec, quantities, result, sweep, outputs, run.lang,
                                     plots=run.plot and spec.output.plots, animate=animate)
-    warnings += report.warnings(spec, result)
+    warnings += report.warnings(spec, result, accuracy_warn)
     finish(run, "kin", report.build_report(spec, quantities, result, run.lang),
-           report.scalar_results(spec, quantities, result), outputs, warnings)
+           report.scalar_results(spec, quantities, result, accuracy_warn), outputs, warnings)

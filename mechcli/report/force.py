@@ -5,7 +5,8 @@ from __future__ import annotations
 import numpy as np
 
 from mechcli.core.linkage.kinetostatics import COND_FLAG
-from mechcli.report.kin import (assembly_message, excluded_warnings, fixed, input_column,  # noqa: F401
+from mechcli.report.kin import (accuracy_note, accuracy_results, accuracy_warnings,  # noqa: F401
+                                assembly_message, excluded_warnings, fixed, input_column,
                                 input_factor, input_suffix, table_rows)
 from mechcli.report.table import Block, Report
 
@@ -38,18 +39,29 @@ def columns(spec, res):
     return cols
 
 
-def scalar_results(spec, res):
-    """``--json`` results: extremes with input angles, mean/RMS, checks, loads."""
+def _threshold(spec, accuracy_warn):
+    return spec.output.accuracy_warn if accuracy_warn is None else accuracy_warn
+
+
+def scalar_results(spec, res, accuracy_warn=None):
+    """``--json`` results: extremes with input angles (with the tolerance of the
+    refinement and the grid error), mean/RMS, checks, loads, estimated accuracy."""
     fin = input_factor(spec)
     at_u = "deg" if spec.input.rotary else spec.header.unit
     out = {"positions": int(res.q.size)}
     for sym, (hi, lo) in res.extremes.items():
         u = _unit(sym)
+        samples = res.series[sym]
         out[f"{sym}_max_{u}"] = hi.value + 0.0  # never -0.0
         out[f"{sym}_max_at_{at_u}"] = hi.at * fin
+        out[f"{sym}_max_at_{at_u}_tol"] = hi.tol * fin
+        # refined extreme minus the best CSV row
+        out[f"{sym}_max_grid_error_{u}"] = float(hi.value - np.max(samples)) + 0.0
         if not sym.startswith("FR") and sym != "Fsh":
             out[f"{sym}_min_{u}"] = lo.value + 0.0
             out[f"{sym}_min_at_{at_u}"] = lo.at * fin
+            out[f"{sym}_min_at_{at_u}_tol"] = lo.tol * fin
+            out[f"{sym}_min_grid_error_{u}"] = float(lo.value - np.min(samples)) + 0.0
             # the peak magnitude (optimize's "max |Mb|" goal)
             out[f"{sym}_abs_max_{u}"] = max(abs(hi.value), abs(lo.value))
     for sym in res.mean:
@@ -70,14 +82,17 @@ def scalar_results(spec, res):
     for name, (lo, hi) in res.band.items():
         out[f"band_{name}_{spec.header.unit}"] = [lo / spec.header.scale, hi / spec.header.scale]
     out["excluded"] = [[a * fin, b * fin, why] for a, b, why in res.kin.excluded]
+    out["accuracy"] = accuracy_results(res.accuracy, _threshold(spec, accuracy_warn))
     return out
 
 
-def warnings(spec, res):
+def warnings(spec, res, accuracy_warn=None):
     """The warnings of a ``force`` run: excluded input intervals, ill-conditioned
-    positions, conditional loads that never act."""
+    positions, ranges that keep fewer than ``accuracy_warn`` (default: the spec's
+    ``output.accuracy_warn``) correct digits, conditional loads that never act."""
     fin, unit = input_factor(spec), input_suffix(spec)
     out = excluded_warnings(spec, res.kin.excluded)
+    out += accuracy_warnings(spec, res.accuracy, _threshold(spec, accuracy_warn))
     for a, b in res.flagged:
         out.append(f"ill-conditioned (condition number > {COND_FLAG:.0e}) for input "
                    f"{a * fin:.6g}{unit} … {b * fin:.6g}{unit}: reactions lose digits near "
@@ -126,7 +141,9 @@ def build_report(spec, res, lang="en"):
                     fixed(lo.value, digits) if signed else "", fixed(lo.at * fin, 4)
                     if signed else ""])
     report.blocks.append(Block(
-        heading="极值" if zh else "Extremes (refined by golden-section search)",
+        heading=(f"极值 (位置精确到 ±{_extreme_tol(res) * fin:.0e}{input_suffix(spec)})" if zh
+                 else f"Extremes (refined by golden-section search, input located to "
+                      f"±{_extreme_tol(res) * fin:.0e}{input_suffix(spec)})"),
         headers=["量" if zh else "quantity", "最大值" if zh else "max",
                  f"位置/{at_u}" if zh else f"at/{at_u}", "最小值" if zh else "min",
                  f"位置/{at_u}" if zh else f"at/{at_u}"],
@@ -162,7 +179,15 @@ def build_report(spec, res, lang="en"):
     n = res.q.size
     report.notes.append((f"共 {n} 个位置" if zh else f"{n} positions analysed")
                         + (f"; ω1 = {spec.input.omega:g} rad/s" if spec.input.rotary else ""))
+    if res.accuracy is not None:
+        report.notes.append(accuracy_note(res.accuracy, zh))
     return report
+
+
+def _extreme_tol(res):
+    """The largest refinement tolerance of the extremes [rad or m]."""
+    tols = [e.tol for pair in res.extremes.values() for e in pair]
+    return max(tols) if tols else 0.0
 
 
 __all__ = ["columns", "scalar_results", "build_report", "warnings", "input_column"]

@@ -82,13 +82,50 @@ def assembly_message(spec, exc):
     return ("fewer than two input positions can be analysed: " + text) if exc.too_few else text
 
 
-def warnings(spec, result):
-    """The warnings of a ``kin`` run: excluded input intervals, and extremes
-    that grow without bound towards a dead point."""
+def warnings(spec, result, accuracy_warn=None):
+    """The warnings of a ``kin`` run: excluded input intervals, extremes that
+    grow without bound towards a dead point, and ranges that keep fewer than
+    ``accuracy_warn`` (default: the spec's ``output.accuracy_warn``) correct digits."""
     f, unit = input_factor(spec), input_suffix(spec)
     return excluded_warnings(spec, result.excluded) + [
         f"{sym} grows without bound towards the dead point at {e.at * f:.6g}{unit}"
-        for sym, pair in result.extremes.items() for e in pair if not e.bounded]
+        for sym, pair in result.extremes.items() for e in pair if not e.bounded] + \
+        accuracy_warnings(spec, result.accuracy, _threshold(spec, accuracy_warn))
+
+
+def _threshold(spec, accuracy_warn):
+    return spec.output.accuracy_warn if accuracy_warn is None else accuracy_warn
+
+
+def accuracy_warnings(spec, accuracy, threshold):
+    """One line per continuous input range where a class of results (positions,
+    velocities, accelerations, forces) keeps fewer than *threshold* correct
+    significant digits (estimated; see docs/accuracy.md)."""
+    if accuracy is None:
+        return []
+    f, unit = input_factor(spec), input_suffix(spec)
+    out = []
+    for r in accuracy.ranges(threshold):
+        if f"{r.start * f:.6g}" == f"{r.stop * f:.6g}":
+            where = f"at input {r.at * f:.6g}{unit}"
+        else:
+            where = (f"for input {r.start * f:.6g}{unit} … {r.stop * f:.6g}{unit} "
+                     f"(fewest at {r.at * f:.6g}{unit})")
+        out.append(f"{r.quantity} lose digits near a singular position: {r.symbol} keeps about "
+                   f"{r.digits:.1f} correct significant digits (estimated; fewer than "
+                   f"{threshold:g}) {where}")
+    return out
+
+
+def accuracy_results(accuracy, threshold):
+    """JSON ``accuracy``: the fewest estimated correct significant digits of each
+    class over the range, of each quantity, and the warning threshold."""
+    if accuracy is None:
+        return {}
+    out = {k: round(v, 1) for k, v in accuracy.minimum().items()}
+    out["by_quantity"] = {k: round(v, 1) for k, v in accuracy.by_quantity.items()}
+    out["warn_below"] = float(threshold)
+    return out
 
 
 def columns(spec, quantities, result):
@@ -100,8 +137,9 @@ def columns(spec, quantities, result):
     return cols
 
 
-def scalar_results(spec, quantities, result):
-    """``--json`` results: extremes (with input angles), strokes, swings, flags."""
+def scalar_results(spec, quantities, result, accuracy_warn=None):
+    """``--json`` results: extremes (with input angles, the tolerance of the
+    refinement and the grid error), strokes, swings, flags, estimated accuracy."""
     unit, scale = spec.header.unit, spec.header.scale
     fin = input_factor(spec)
     at_unit = "deg" if spec.input.rotary else unit
@@ -113,10 +151,16 @@ def scalar_results(spec, quantities, result):
         hi, lo = result.extremes[q.symbol]
         u = unit_of(q.kind, unit)
         f = factor_of(q.kind, scale)
+        samples = result.values[q.symbol]
         for name, e in (("max", hi), ("min", lo)):
             if e.bounded:
                 out[f"{q.symbol}_{name}_{u}"] = e.value * f
                 out[f"{q.symbol}_{name}_at_{at_unit}"] = e.at * fin
+                # how closely the refinement located it, and what reading it off
+                # the CSV rows would cost (refined extreme minus best sample)
+                out[f"{q.symbol}_{name}_at_{at_unit}_tol"] = e.tol * fin
+                best = np.max(samples) if name == "max" else np.min(samples)
+                out[f"{q.symbol}_{name}_grid_error_{u}"] = float(e.value - best) * f + 0.0
             else:
                 unbounded.append({"quantity": f"{q.symbol}_{name}", "towards": e.at * fin})
         if q.kind == "length" and q.symbol.startswith("s"):
@@ -128,6 +172,7 @@ def scalar_results(spec, quantities, result):
     out["toggles"] = [{"at": t.at * fin, "joint": t.joint, "dyad": t.kind,
                        "gamma_deg": math.degrees(math.asin(min(1.0, t.sin_gamma)))}
                       for t in result.toggles]
+    out["accuracy"] = accuracy_results(result.accuracy, _threshold(spec, accuracy_warn))
     return out
 
 
@@ -158,6 +203,35 @@ def table_rows(spec, result, step):
     idx = np.where(np.abs(q[left] - targets) < np.abs(q[idx] - targets), left, idx)
     keep = np.abs(q[idx] - targets) <= 0.5 * step
     return np.unique(idx[keep])
+
+
+def _extreme_tol(result):
+    """The largest refinement tolerance of the bounded extremes [rad or m]."""
+    tols = [e.tol for pair in result.extremes.values() for e in pair if e.bounded]
+    return max(tols) if tols else 0.0
+
+
+def _grid_error_note(spec, quantities, result, zh):
+    """The largest relative grid error of the CSV rows' peaks, with its quantity."""
+    worst, sym = 0.0, None
+    for q in quantities:
+        if q.symbol not in result.extremes:
+            continue
+        v = result.values[q.symbol]
+        hi, lo = result.extremes[q.symbol]
+        peak = max(abs(hi.value), abs(lo.value))
+        if peak == 0:
+            continue
+        for e, best in ((hi, np.max(v)), (lo, np.min(v))):
+            if e.bounded and abs(e.value - best) / peak > worst:
+                worst, sym = abs(e.value - best) / peak, q.symbol
+    if sym is None:
+        return None
+    step = (result.q[1] - result.q[0]) * input_factor(spec) if result.q.size > 1 else 0.0
+    at_u = input_suffix(spec)
+    if zh:
+        return f"{step:g}{at_u} CSV 行上的峰值误差 ≤ 峰值的 {worst:.1e} ({sym})"
+    return f"peaks of the {step:g}{at_u} CSV rows are off by ≤ {worst:.1e} of the peak ({sym})"
 
 
 def build_report(spec, quantities, result, lang="en"):
@@ -194,7 +268,9 @@ def build_report(spec, quantities, result, lang="en"):
         ext_rows.append(cells)
     if ext_rows:
         report.blocks.append(Block(
-            heading="极值 (精确到 1e-9 rad)" if zh else "Extremes (refined to 1e-9 rad)",
+            heading=(f"极值 (位置精确到 ±{_extreme_tol(result) * fin:.0e}{input_suffix(spec)})"
+                     if zh else f"Extremes (input located to "
+                                f"±{_extreme_tol(result) * fin:.0e}{input_suffix(spec)})"),
             headers=["量" if zh else "quantity", "最大值" if zh else "max",
                      f"位置/{at_u}" if zh else f"at/{at_u}", "最小值" if zh else "min",
                      f"位置/{at_u}" if zh else f"at/{at_u}"],
@@ -212,4 +288,20 @@ def build_report(spec, quantities, result, lang="en"):
     n = result.q.size
     report.notes.append((f"共 {n} 个位置" if zh else f"{n} positions analysed")
                         + (f"; ω1 = {spec.input.omega:g} rad/s" if spec.input.rotary else ""))
+    note = _grid_error_note(spec, quantities, result, zh)
+    if note:
+        report.notes.append(note)
+    if result.accuracy is not None and result.accuracy.digits:
+        report.notes.append(accuracy_note(result.accuracy, zh))
     return report
+
+
+_ZH_CLASS = {"positions": "位置", "velocities": "速度", "accelerations": "加速度",
+             "forces": "力"}
+
+
+def accuracy_note(accuracy, zh=False):
+    """One line: the fewest estimated correct significant digits of each class."""
+    parts = ", ".join(f"{_ZH_CLASS.get(k, k) if zh else k} {v:.1f}"
+                      for k, v in accuracy.minimum().items())
+    return f"估计有效数字 (最少): {parts}" if zh else f"estimated correct digits: {parts}"

@@ -76,6 +76,8 @@ class ForceOutput:
     frames: int
     draw_at: float
     digits: int
+    #: warn where fewer correct significant digits than this remain (estimated)
+    accuracy_warn: float = 8.0
 
 
 @dataclasses.dataclass(frozen=True)
@@ -287,8 +289,12 @@ def _output(sec, inp):
     frames = sec.integer("frames", 72, lo=2, hi=3600)
     draw_at = sec.number("draw_at", inp.start / unit, lo=-36000.0, hi=36000.0) * unit
     digits = sec.integer("digits", 2, lo=0, hi=12)
+    # correct significant digits below which a warning is given: a float64 result
+    # has at most 15.7 (-log10 of the rounding unit), so 16 warns everywhere, 0 never
+    accuracy_warn = sec.number("accuracy_warn", 8.0, lo=0.0, hi=16.0)
     sec.finish()
-    return ForceOutput(table_step, plots, animate, frames, draw_at, digits)
+    return ForceOutput(table_step, plots, animate, frames, draw_at, digits,
+                       accuracy_warn)
 
 
 def load_force_spec(path, overrides=()) -> ForceSpec:

@@ -9,11 +9,12 @@ The kinematics (gaps, dead points, excluded intervals) come from
 from __future__ import annotations
 
 import dataclasses
-from typing import Dict, List, Tuple
+from typing import Dict, List, Optional, Tuple
 
 import numpy as np
 
-from mechcli.core.linkage.kinematics import SEARCH_STEP, Sweep, analyse_sweep
+from mechcli.core.linkage.kinematics import (EPS, SEARCH_STEP, Accuracy, Sweep, _digits,
+                                             amplification, analyse_sweep)
 from mechcli.core.linkage.kinetostatics import COND_FLAG, ForceResult, solve_forces
 from mechcli.core.linkage.engine import solve
 from mechcli.core.refine import (bisect, gauss_legendre, golden_section_max, mean_rms,
@@ -24,6 +25,17 @@ from mechcli.core.refine import (bisect, gauss_legendre, golden_section_max, mea
 class ForceExtreme:
     value: float
     at: float
+    #: the extreme's input lies within ``at ± tol`` [rad or m] (see :func:`_golden_tol`)
+    tol: float = 0.0
+
+
+#: error model of the force solve: the reactions and the balancing torque keep
+#: ``-log10(FORCE_C * EPS * cond * kappa)`` digits, with ``cond`` the condition number
+#: of the kinetostatic system and kappa the kinematic amplification
+#: (:func:`~mechcli.core.linkage.kinematics.amplification`).  Calibrated on 例 2-1 at
+#: 1e-2 ... 1e-12 from its change point against a 60-digit mpmath reference
+#: (tests/unit/test_accuracy_estimate.py): within 0.5 digits of the true loss.
+FORCE_C = 1.0
 
 
 @dataclasses.dataclass(frozen=True)
@@ -50,6 +62,8 @@ class ForceSweep:
     rms: Dict[str, float]
     band: Dict[str, Tuple[float, float]]
     flagged: List[Tuple[float, float]]
+    #: estimated correct digits of the forces (class ``forces``); None if not estimated
+    accuracy: Optional[Accuracy] = None
 
 
 def balancing_symbol(linkage, link):
@@ -199,14 +213,18 @@ def analyse_forces(linkage, topo, sweep: Sweep, bodies, gravity, programs, parti
             return np.array([ser[t[0]][i] for i, t in enumerate(targets)]) * signs
 
         x_best, f_best = golden_section_max(values, lo_b, hi_b, iterations)
+        tols = _golden_tol(lo_b, hi_b, iterations)
         for i, (sym, which, k) in enumerate(targets):
             cand = [(s_series[sym][k] * which, qs[k]), (f_best[i], x_best[i])]
             val, at = max(cand)
-            best[(sym, which)] = ForceExtreme(float(val * which), float(at))
+            tol = tols[i] if at == x_best[i] else 0.5 * float(hi_b[i] - lo_b[i])
+            best[(sym, which)] = ForceExtreme(float(val * which), float(at), float(tol))
     for sym, signed in syms:
         hi = best[(sym, 1.0)]
+        k_lo = int(np.argmin(s_series[sym]))
         lo = best[(sym, -1.0)] if signed else ForceExtreme(
-            float(np.min(s_series[sym])), float(qs[int(np.argmin(s_series[sym]))]))
+            float(np.min(s_series[sym])), float(qs[k_lo]),
+            0.5 * float(qs[min(k_lo + 1, qs.size - 1)] - qs[max(k_lo - 1, 0)]))
         extremes[sym] = (hi, lo)
 
     # where the conditional loads act: grid edges refined by bisection
@@ -271,6 +289,54 @@ def analyse_forces(linkage, topo, sweep: Sweep, bodies, gravity, programs, parti
     if bad.any():
         for a, b in true_runs(bad):
             flagged.append((float(q[a]), float(q[b - 1])))
+    accuracy = _force_accuracy(linkage, pipe, kin, q, fr)
     return ForceSweep(q, kin, fr, series, extremes, active,
-                      {k: v for k, v in masks.items()}, mean, rms, band, flagged)
+                      {k: v for k, v in masks.items()}, mean, rms, band, flagged, accuracy)
+
+
+def _golden_tol(lo, hi, iterations, rtol=1e-10):
+    """How closely :func:`~mechcli.core.refine.golden_section_max` locates each maximum:
+    half its final bracket (the brackets shrink together by ``GOLDEN`` per step until
+    every one is shorter than ``rtol · max(1, |lo|)``), but never less than what
+    comparing values allows near a smooth maximum, about ``sqrt(EPS) · max(1, |x|)``
+    (two inputs closer than that give values equal to round-off)."""
+    from mechcli.core.refine import GOLDEN
+    lo, hi = np.asarray(lo, dtype=float), np.asarray(hi, dtype=float)
+    width = np.abs(hi - lo)
+    need = rtol * np.maximum(1.0, np.abs(lo))
+    steps = 0
+    while steps < iterations and not np.all(width * GOLDEN ** steps < need):
+        steps += 1
+    return np.maximum(0.5 * width * GOLDEN ** steps,
+                      np.sqrt(EPS) * np.maximum(1.0, np.abs(0.5 * (lo + hi))))
+
+
+def _force_accuracy(linkage, pipe, kin, q, fr):
+    """Estimated correct digits of the force solve at the output rows and the refined
+    near-dead positions (see :data:`FORCE_C`)."""
+    runs = kin.runs or [(0, q.size)]
+    segment = np.repeat(np.arange(len(runs)), [b - a for a, b in runs])
+    kappa = amplification(linkage, kin.motion)[("all",)]
+    cond = np.where(np.isfinite(fr.cond), fr.cond, 1.0 / EPS)
+    d = _digits(FORCE_C * EPS * cond * kappa)
+    extra = np.array([t.at for t in kin.toggles
+                      if q.size and q[0] <= t.at <= q[-1] and not np.any(q == t.at)],
+                     dtype=float)
+    if extra.size:
+        fr_t, _m, m_t = pipe(extra, condition=True)
+        ok = m_t.regular
+        cond_t = np.where(np.isfinite(fr_t.cond), fr_t.cond, 1.0 / EPS)
+        d_t = _digits(FORCE_C * EPS * cond_t * amplification(linkage, m_t)[("all",)])[ok]
+        extra = extra[ok]
+        seg_t = segment[np.clip(np.searchsorted(q, extra) - 1, 0, max(q.size - 1, 0))]
+        q_all = np.concatenate([q, extra])
+        sort = np.argsort(q_all, kind="stable")
+        q_all, d = q_all[sort], np.concatenate([d, d_t])[sort]
+        segment = np.concatenate([segment, seg_t])[sort]
+    else:
+        q_all = q
+    sym = balancing_symbol(linkage, linkage.drivers[0].link)
+    return Accuracy(q_all, segment, {"forces": d}, {"forces": np.full(q_all.shape, sym,
+                                                                       dtype=object)},
+                    {sym: float(np.min(d)) if d.size else float(-np.log10(EPS))})
 

@@ -105,6 +105,10 @@ class Quantity:
     order: int
     get: Callable[[LinkageMotion], np.ndarray]
     rate: Optional[Callable[[LinkageMotion], np.ndarray]] = None
+    #: what it belongs to: ``("link", n)``, ``("slide", name)``, ``("point", name)``
+    #: or ``("joint", name)`` (a transmission angle); None: unknown (the accuracy
+    #: estimate then takes the worst dyad of the linkage)
+    source: Optional[tuple] = None
 
     @property
     def is_angle(self):
@@ -120,6 +124,9 @@ class Extreme:
     value: float
     at: float
     bounded: bool = True
+    #: half-width of the final bracket of the refinement [rad or m]: the
+    #: extreme's input lies within ``at ± tol``
+    tol: float = 0.0
 
 
 @dataclasses.dataclass(frozen=True)
@@ -164,6 +171,8 @@ class SweepResult:
     toggles: list
     motion: LinkageMotion
     runs: list = dataclasses.field(default_factory=list)
+    #: estimated correct digits (:class:`Accuracy`); None when not estimated
+    accuracy: Optional["Accuracy"] = None
 
 
 def default_quantities(linkage: Linkage, order: int, tracers=()):
@@ -192,18 +201,21 @@ def default_quantities(linkage: Linkage, order: int, tracers=()):
         nxt = table[k + 1] if k < 2 else None
         for n in rotating:
             out.append(Quantity(f"{lp}{n}", lkind, k, getter("links", n, lattr),
-                                getter("links", n, nxt[0][2]) if nxt else None))
+                                getter("links", n, nxt[0][2]) if nxt else None, ("link", n)))
         for name in slides:
             out.append(Quantity(f"{sp}{name}", skind, k, getter("slides", name, sattr),
-                                getter("slides", name, nxt[1][2]) if nxt else None))
+                                getter("slides", name, nxt[1][2]) if nxt else None,
+                                ("slide", name)))
         for tr in tracers:
             for j, (pp, pkind, pattr) in enumerate(pts):
                 out.append(Quantity(f"{pp}{tr}", pkind, k, getter("points", tr, pattr),
-                                    getter("points", tr, nxt[2][j][2]) if nxt else None))
+                                    getter("points", tr, nxt[2][j][2]) if nxt else None,
+                                    ("point", tr)))
         if k == 0:
             for joint in linkage.transmission_joints:
                 out.append(Quantity(f"gamma{joint}", "angle", 0,
-                                    lambda m, j=joint: m.condition(j).gamma))
+                                    lambda m, j=joint: m.condition(j).gamma,
+                                    source=("joint", joint)))
     return out
 
 
@@ -358,6 +370,7 @@ def refine_extremes(linkage, sweep, order, quantities, values, domain, iteration
         wraps[qt.symbol] = abs(v[-1] - v[0]) <= 1e-9 * max(1.0, float(np.max(np.abs(v))))
     for j, (qi, sign, r, k) in enumerate(targets):
         lo[j], hi[j] = domain.bracket(r, k, wraps[quantities[qi].symbol])
+    width0 = np.abs(hi - lo)   # the search brackets, before refinement
     getters = [(quantities[qi].get, quantities[qi].rate, quantities[qi].is_angle)
                for qi, *_ in targets]
     signs = np.array([t[1] for t in targets])
@@ -400,13 +413,14 @@ def refine_extremes(linkage, sweep, order, quantities, values, domain, iteration
     for j, (qi, sign, r, k) in enumerate(targets):
         qt = quantities[qi]
         vgrid = float(values[qt.symbol][k])
-        cand = (vgrid, float(q[k]))
+        cand = (vgrid, float(q[k]), 0.5 * float(width0[j]))
         if m.regular[j]:
             val = float(qt.get(m)[j])
             if qt.is_angle:
                 val = vgrid + float(_wrap(val - vgrid))
             if sign * val >= sign * vgrid:
-                cand = (val, float(at[j]))
+                cand = (val, float(at[j]), max(0.5 * abs(float(hi[j] - lo[j])),
+                                                 float(np.spacing(abs(at[j])))))
         key = (qt.symbol, sign)
         if key not in best or sign * cand[0] > sign * best[key][0]:
             best[key] = cand
@@ -416,12 +430,12 @@ def refine_extremes(linkage, sweep, order, quantities, values, domain, iteration
     for qt in quantities:
         ext = []
         for sign in (1.0, -1.0):
-            val, pos = best[(qt.symbol, sign)]
+            val, pos, tol = best[(qt.symbol, sign)]
             bounded = qt.order == 0 or not any(
                 abs(pos - b) <= 1e-7 * max(1.0, abs(b)) for b in gap_edges)
             if sweep.periodic and domain.connected and wraps[qt.symbol]:
                 pos = _periodic(pos, domain.ends[0], domain.period)
-            ext.append(Extreme(val, float(pos), bounded))
+            ext.append(Extreme(val, float(pos), bounded, tol))
         out[qt.symbol] = (ext[0], ext[1])
     return out
 
@@ -477,6 +491,230 @@ def _scan_gaps(linkage, sweep, order, q, motion, runs):
         else:
             gaps.append((float(at[j]), k))
     return toggles, gaps
+
+
+# ---------------------------------------------------------------------------
+# accuracy: how many digits the float64 solution keeps near a singular position
+# ---------------------------------------------------------------------------
+#: the rounding unit of float64 (2.2e-16): one operation's relative error
+EPS = float(np.finfo(float).eps)
+#: the most significant digits a float64 result can have, -log10(EPS)
+FULL_DIGITS = -np.log10(EPS)
+#: the classes the estimate reports, by derivative order (the force solve is "forces")
+ACCURACY_CLASSES = ("positions", "velocities", "accelerations")
+#: warn when fewer correct significant digits than this remain (``[output] accuracy_warn``)
+ACCURACY_WARN = 8.0
+#: error model (see docs/accuracy.md): the error of a quantity of derivative order k
+#: is ``C[k] * EPS * kappa**(k + 1)`` times its natural scale (1 rad or the linkage's
+#: scale L, times omega1**k, with alpha1 added for k = 2), where kappa is the product
+#: of 1/sin(gamma) of the dyads it depends on.  C is calibrated against a 60-digit
+#: mpmath reference of a four-bar at 1e-3 ... 1e-13 from its change point
+#: (tests/unit/test_accuracy_estimate.py): the estimate of the worst position is
+#: within 0.2 digits of the true loss there (without C it was 0.6 digits optimistic).
+ACCURACY_C = (4.0, 1.0, 3.0)
+_ORDER_OF_KIND = {"angle": 0, "length": 0, "angvel": 1, "velocity": 1, "angacc": 2,
+                  "acceleration": 2}
+
+
+@dataclasses.dataclass(frozen=True)
+class AccuracyRange:
+    """A continuous range of inputs where a class keeps fewer digits than asked:
+    ``digits`` the fewest there (by ``symbol``, at input ``at``), ``start``/``stop``
+    the inputs of the range [rad or m]."""
+
+    quantity: str
+    start: float
+    stop: float
+    digits: float
+    symbol: str
+    at: float
+
+
+@dataclasses.dataclass(frozen=True)
+class Accuracy:
+    """Estimated correct significant digits, per position and per quantity.
+
+    The digits count relative to the quantity's largest magnitude over the
+    analysed range (so a value passing through zero does not "lose" digits).
+
+    Attributes
+    ----------
+    q : ndarray
+        Inputs where the estimate was made: the output rows and the refined
+        near-dead positions (sorted).
+    segment : ndarray of int
+        Continuous arc (run) of every input; a range never crosses a gap.
+    digits : dict
+        Class (``positions``, ``velocities``, ``accelerations``, ``forces``) ->
+        per-input fewest digits of its quantities.
+    worst : dict
+        Class -> per-input symbol of the quantity with those fewest digits.
+    by_quantity : dict
+        Symbol -> fewest digits over the range.
+    """
+
+    q: np.ndarray
+    segment: np.ndarray
+    digits: Dict[str, np.ndarray]
+    worst: Dict[str, np.ndarray]
+    by_quantity: Dict[str, float]
+
+    def minimum(self):
+        """Class -> fewest estimated digits over the range (0 ... 15.7)."""
+        return {k: float(np.min(v)) for k, v in self.digits.items() if np.size(v)}
+
+    def ranges(self, threshold=ACCURACY_WARN):
+        """Every continuous range of inputs where a class keeps fewer than
+        ``threshold`` digits: one :class:`AccuracyRange` per range and class."""
+        out = []
+        for cls, d in self.digits.items():
+            low = d < threshold
+            if not low.any():
+                continue
+            for a, b in true_runs(low):
+                # split where the arc changes (an excluded gap in between)
+                cuts = [a] + [i for i in range(a + 1, b) if self.segment[i] != self.segment[i - 1]]
+                for i0, i1 in zip(cuts, cuts[1:] + [b]):
+                    k = i0 + int(np.argmin(d[i0:i1]))
+                    out.append(AccuracyRange(cls, float(self.q[i0]), float(self.q[i1 - 1]),
+                                             float(d[k]), str(self.worst[cls][k]),
+                                             float(self.q[k])))
+        return out
+
+
+def amplification(linkage: Linkage, motion: LinkageMotion):
+    """How much each solved thing amplifies the rounding of the inputs.
+
+    Returns ``{("link", n) | ("point", name) | ("slide", name) | ("joint", name)
+    | ("all",): kappa}``: kappa is the product of 1/sin(gamma) of the dyads the
+    thing depends on (through the solving order), an array over the positions
+    (1 far from every singular position).  ``("all",)`` is the worst of them.
+    """
+    frame = linkage.frame
+    own = {}
+    for c in motion.conditions:
+        own[c.element] = 1.0 / np.maximum(np.asarray(c.sin_gamma, dtype=float), EPS)
+    point, link, out = {}, {}, {}
+    worst = np.ones(np.shape(motion.feasible))
+    for idx in linkage.order:
+        el = linkage.elements[idx]
+        pts, lks = el.needs()
+        amp = 1.0
+        for p in pts:
+            amp = np.maximum(amp, point.get(p, 1.0))
+        for k in lks:
+            if k != frame:
+                amp = np.maximum(amp, link.get(k, 1.0))
+        if idx in own:
+            amp = amp * own[idx]
+        made_p, made_l = el.makes()
+        for p in made_p:
+            point[p] = amp
+        for k in made_l:
+            link[k] = amp
+        for name in el.slide_names(frame):
+            out[("slide", name)] = amp
+        joint = el.transmission_joint()
+        if joint is not None:
+            out[("joint", joint)] = amp
+        worst = np.maximum(worst, amp)
+    out.update({("point", p): a for p, a in point.items()})
+    out.update({("link", k): a for k, a in link.items()})
+    out[("all",)] = worst
+    return out
+
+
+def _digits(err_over_scale):
+    """Correct significant digits of a relative error (0 ... FULL_DIGITS)."""
+    r = np.maximum(np.asarray(err_over_scale, dtype=float), EPS)
+    return np.clip(-np.log10(r), 0.0, FULL_DIGITS)
+
+
+def estimate_accuracy(linkage, sweep, quantities, values, extremes, q, motion, segment):
+    """Digits-lost estimate of every quantity at inputs ``q`` (see :class:`Accuracy`).
+
+    ``values``/``extremes`` give each quantity's largest magnitude over the
+    sweep; ``motion`` is the engine's solution at ``q``; ``segment`` the run
+    of every input.
+    """
+    amp = amplification(linkage, motion)
+    rotary = linkage.driver(sweep.driver).rotary
+    L = float(np.max(linkage.scale()))
+    speed = np.abs(np.broadcast_to(np.asarray(sweep.speed(q), dtype=float), q.shape))
+    accel = np.abs(np.broadcast_to(np.asarray(sweep._at(sweep.ddq, q), dtype=float), q.shape))
+    if not rotary:
+        speed, accel = speed / L, accel / L
+    natural = (np.ones_like(q), speed, speed * speed + accel)
+    digits, worst, by_q = {}, {}, {}
+    for qt in quantities:
+        k = _ORDER_OF_KIND.get(qt.kind)
+        if k is None or k > motion.order:
+            continue
+        v = np.abs(np.asarray(values[qt.symbol], dtype=float))
+        peak = float(np.max(v)) if v.size else 0.0
+        if qt.symbol in extremes:
+            peak = max([peak] + [abs(e.value) for e in extremes[qt.symbol] if e.bounded])
+        length = qt.kind in ("length", "velocity", "acceleration")
+        if k == 0:
+            # an angle is good to EPS of a radian, a length to EPS of the linkage
+            peak = max(peak, L if length else 1.0)
+        if peak == 0.0:
+            continue   # identically zero (no input speed): exact
+        kappa = amp.get(qt.source, amp[("all",)]) if qt.source else amp[("all",)]
+        kappa = np.broadcast_to(kappa, q.shape)
+        if k == 0:
+            # a position near an assembly limit loses at most half its digits (a square root)
+            kappa = np.minimum(kappa, 1.0 / np.sqrt(EPS))
+        err = ACCURACY_C[k] * EPS * kappa ** (k + 1) * natural[k] * (L if length else 1.0)
+        d = _digits(err / peak)
+        by_q[qt.symbol] = float(np.min(d))
+        cls = ACCURACY_CLASSES[k]
+        if cls not in digits:
+            digits[cls] = d.copy()
+            worst[cls] = np.full(q.shape, qt.symbol, dtype=object)
+        else:
+            lower = d < digits[cls]
+            digits[cls] = np.where(lower, d, digits[cls])
+            worst[cls] = np.where(lower, qt.symbol, worst[cls])
+    return Accuracy(q, segment, digits, worst, by_q)
+
+
+def _accuracy_of_sweep(linkage, sweep, quantities, order, q, values, extremes, motion, runs,
+                       toggles):
+    """:func:`estimate_accuracy` on the output rows and the refined near-dead positions
+    (a singular position between two rows is not missed)."""
+    segment = np.repeat(np.arange(len(runs)), [b - a for a, b in runs]) if runs else \
+        np.zeros(q.size, dtype=int)
+    extra = np.array([t.at for t in toggles
+                      if q.size and q[0] <= t.at <= q[-1] and not np.any(q == t.at)],
+                     dtype=float)
+    if extra.size:
+        m_extra = solve(linkage, sweep.inputs(extra), order=order)
+        keep = m_extra.regular
+        extra = extra[keep]
+    if extra.size:
+        m_extra = _take(m_extra, np.flatnonzero(keep))
+        q_all = np.concatenate([q, extra])
+        sort = np.argsort(q_all, kind="stable")
+        seg_extra = segment[np.clip(np.searchsorted(q, extra) - 1, 0, max(q.size - 1, 0))]
+        seg = np.concatenate([segment, seg_extra])[sort]
+        motion = _concat_motion(motion, m_extra, sort)
+        q_all = q_all[sort]
+    else:
+        q_all, seg = q, segment
+    return estimate_accuracy(linkage, sweep, quantities, values, extremes, q_all, motion, seg)
+
+
+def _concat_motion(a: LinkageMotion, b: LinkageMotion, sort) -> LinkageMotion:
+    """Two motions' positions joined, then reordered by ``sort`` (conditions only:
+    what the accuracy estimate reads)."""
+    def cat(x, y):
+        return None if x is None or y is None else np.concatenate([x, y])[sort]
+    cds = tuple(dataclasses.replace(c, sin_gamma=cat(c.sin_gamma, d.sin_gamma),
+                                    cos_joint=cat(c.cos_joint, d.cos_joint))
+                for c, d in zip(a.conditions, b.conditions))
+    return LinkageMotion(a.order, cat(a.feasible, b.feasible), cat(a.regular, b.regular),
+                         {}, {}, {}, cds)
 
 
 #: the extremes and dead points are searched on a grid at least this fine
@@ -605,8 +843,12 @@ def analyse_sweep(linkage: Linkage, sweep: Sweep, quantities, order: int,
         toggles = [dataclasses.replace(t, at=_periodic(t.at, q_all[0], period))
                    for t in toggles]
     toggles.sort(key=lambda t: t.at)
-    return SweepResult(q_all[keep], out_values, ext, excluded, _dedupe(toggles), out_motion,
-                       out_runs)
+    toggles = _dedupe(toggles)
+    q_rows = q_all[keep]
+    accuracy = _accuracy_of_sweep(linkage, sweep, quantities, order, q_rows, out_values, ext,
+                                  out_motion, out_runs, toggles)
+    return SweepResult(q_rows, out_values, ext, excluded, toggles, out_motion, out_runs,
+                       accuracy)
 
 
 def _nearest_boundary(excluded, x, before):
