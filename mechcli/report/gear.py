@@ -56,7 +56,7 @@ def findings(spec, solution):
         (one-line message in the spec's length unit, forbidden).
     """
     p, u, sc = spec.problem, spec.header.unit, spec.header.scale
-    out = []
+    out = [(m, False) for m in measurement_warnings(spec, solution)]
     if spec.kind == "spur":
         g = solution["gear"]
         if g.tooth_thickness(g.ra) <= 0:
@@ -89,6 +89,71 @@ def findings(spec, solution):
                     out.append((f"{where}: tip of gear {i + 1} hits the root of the other "
                                 f"(clearance {c / sc:.3f} {u})", p.forbid_interference))
     return out
+
+
+def _measures_of(spec, solution):
+    """(label, GearMeasures) of every measured gear of a solution."""
+    if spec.kind == "spur":
+        return [("the gear", solution["measures"])]
+    if spec.kind in ("pair", "helical"):
+        return [(f"gear {i}", m) for i, m in enumerate(solution.measures, start=1)
+                if m is not None]
+    return []
+
+
+def measurement_warnings(spec, solution):
+    """Where a span or a pin would not touch the involute flanks, or a pin would not
+    stand out of the tips, or a helical gear is too narrow for the span."""
+    u, sc = spec.header.unit, spec.header.scale
+    out = []
+    for label, m in _measures_of(spec, solution):
+        f, sp, pin = m.form, m.span, m.pins
+        da = 2 * f.ra
+        if not f.db <= sp.d_contact <= da:
+            out.append(f"{label}: the span over k = {sp.k} teeth touches the flanks on "
+                       f"d = {sp.d_contact / sc:.4f} {u}, outside the involute "
+                       f"(db = {f.db / sc:.4f} … da = {da / sc:.4f} {u}); give another k")
+        if not f.db <= pin.d_contact <= da:
+            out.append(f"{label}: a pin of {pin.dp / sc:.4f} {u} touches the flanks on "
+                       f"d = {pin.d_contact / sc:.4f} {u}, outside the involute "
+                       f"(db = {f.db / sc:.4f} … da = {da / sc:.4f} {u}); give pin_diameter")
+        elif pin.d_centre / 2 + pin.dp / 2 <= f.ra:
+            out.append(f"{label}: a pin of {pin.dp / sc:.4f} {u} does not stand out of the "
+                       f"tip circle (da = {da / sc:.4f} {u}): a larger pin is needed to "
+                       "measure over it")
+        if spec.kind == "helical" and spec.problem.b is not None and sp.b_min > spec.problem.b:
+            out.append(f"{label}: the span needs a face width of at least "
+                       f"{sp.b_min / sc:.4f} {u} (W sin beta_b), b = {spec.problem.b / sc:g}")
+    return out
+
+
+def measurement_results(m, sfx, L):
+    """JSON results of one gear's measurements (:class:`GearMeasures`), names + *sfx*."""
+    return {f"s_chord{sfx}": L(m.s_chord), f"h_chord{sfx}": L(m.h_chord),
+            f"k{sfx}": m.span.k, f"W{sfx}": L(m.span.W), f"d_W{sfx}": L(m.span.d_contact),
+            f"dp{sfx}": L(m.pins.dp), f"M{sfx}": L(m.pins.M), f"d_M{sfx}": L(m.pins.d_centre),
+            f"d_pin{sfx}": L(m.pins.d_contact), f"allowance{sfx}": L(m.form.allowance),
+            f"s_n{sfx}": L(m.form.s_n)}
+
+
+def measurement_rows(m, sfx, f3, helical=False):
+    """Report rows (en, zh, symbol, text) of one gear's measurements."""
+    n = "normal " if helical else ""
+    rows = [
+        (f"{n}tooth thickness with allowance", "齿厚 (计入减薄量)", f"s{sfx} - E{sfx}",
+         f"{f3(m.form.s_n)} (E = {f3(m.form.allowance)})"),
+        ("chordal thickness / addendum" + (" (zv)" if helical else ""), "分度圆弦齿厚 / 弦齿高",
+         f"s̄{sfx}, h̄{sfx}", f"{f3(m.s_chord)}, {f3(m.h_chord)}"),
+        (f"{n}base tangent length over k teeth", "公法线长度 / 跨齿数", f"W{sfx} (k)",
+         f"{f3(m.span.W)} (k = {m.span.k}, touching on d = {f3(m.span.d_contact)})"),
+        ("dimension over pins" + (" (balls)" if helical else ""), "量柱(球)测量距",
+         f"M{sfx} (dp)", f"{f3(m.pins.M)} (dp = {f3(m.pins.dp)}, touching on "
+                         f"d = {f3(m.pins.d_contact)})"),
+    ]
+    if helical:
+        rows.append(("face width the span needs", "测公法线所需齿宽", f"b_min{sfx}",
+                     f3(m.span.b_min)))
+    return rows
 
 
 def enforce(spec, solution):
@@ -129,6 +194,11 @@ _ERROR_TEXT = {
         f"a' = {v['a_w']:g} m is below mn (z1 + z2) / 2 = {v['limit']:g} m: no helix angle "
         "fits"),
     "helix_angle": lambda v: f"helix angle {math.degrees(v['beta']):.4g} deg is 45 deg or more",
+    "pin_too_small": lambda v: (
+        f"a pin of {v['dp']:.6g} m falls into the space below the base circle "
+        f"(z = {v['z']}): a larger pin is needed"),
+    "helical_shift_sum": lambda v: (
+        f"xn1 + xn2 = {v['x_sum']:g} is so negative that no zero-backlash mesh exists"),
     "crown_bevel": lambda v: (
         f"pitch-cone angles {math.degrees(v['delta1']):.3f}° and "
         f"{math.degrees(v['delta2']):.3f}°: a cone of 90° or more is a crown or internal bevel "
@@ -147,6 +217,24 @@ def mounting_error(spec, exc):
     ``"mounting"``, :func:`mechcli.core.gear.pair.check_mountings`): the command
     raises it as the spec error of that key (exit 2), in the spec's length unit."""
     p, sc, v = spec.problem, spec.header.scale, exc.values
+    kind = spec.kind
+    if v["given"] == "x_split":
+        if v["what"] == "base":
+            return (p.a_w_keys[0], f"a centre distance above rb1 + rb2 = {v['a0'] / sc:.6g} "
+                    "(no profile-shift sum gives a smaller one)", f"{v['a_w'] / sc:g}")
+        if v["what"] == "sliding":
+            return (f"{kind}.x_split", "a split rule that has a solution: no x1 in [-1.5, 1.5] "
+                    f"balances the specific sliding for x1 + x2 = {v['x_sum']:.4f}",
+                    '"sliding"')
+        return (f"{kind}.x1", f"x1 leaving x2 = {v['x_sum']:.4f} - x1 in [-1.5, 1.5] "
+                f"(x1 + x2 = {v['x_sum']:.4f} for a_w)", f"{v['x1']:g} (x2 = {v['x2']:.4f})")
+    if v["given"] == "backlash":
+        if v["what"] == "below":
+            return (f"{kind}.backlash", "a backlash at least that of the nominal teeth at this "
+                    f"mounting, {v['j0'] / sc:.6g}", f"{v['j'] / sc:g}")
+        return (f"{kind}.backlash", "a backlash whose allowance leaves a tooth: "
+                f"E = {v['allowance'] / sc:.6g} >= s = {v['s'] / sc:.6g} (z = {v['z']})",
+                f"{v['j'] / sc:g}")
     a, a0 = v["a_w"], v["a0"]
     if v["given"] == "alpha_w":
         return (p.alpha_w_keys[v["index"]], "an operating pressure angle giving a' "
@@ -284,6 +372,11 @@ def present_spur(spec, sol, run, outputs):
     for k, r in enumerate(p.radii):
         results[f"s_r{k + 1}"] = L(g.tooth_thickness(r))
         results[f"e_r{k + 1}"] = L(g.space_width(r))
+    ms = sol["measures"]
+    results.update(measurement_results(ms, "", L))
+    for k, (sc_r, hc_r) in enumerate(ms.radii):
+        results[f"s_chord_r{k + 1}"] = L(sc_r)
+        results[f"h_chord_r{k + 1}"] = L(hc_r)
     f3 = lambda v: f"{v / sc:.3f}{u}"  # noqa: E731
     rows = [
         ("number of teeth", "齿数", "z", f"{g.z}"),
@@ -316,6 +409,11 @@ def present_spur(spec, sol, run, outputs):
     for k, r in enumerate(p.radii):
         rows.append((f"thickness at r = {r / sc:g}", f"r = {r / sc:g} 处齿厚", f"s_r{k + 1}",
                      f3(g.tooth_thickness(r))))
+    rows += measurement_rows(ms, "", f3)
+    for k, (r, (sc_r, hc_r)) in enumerate(zip(p.radii, ms.radii)):
+        rows.append((f"chordal thickness / height at r = {r / sc:g}",
+                     f"r = {r / sc:g} 处弦齿厚 / 弦齿高", f"s̄_r{k + 1}, h̄_r{k + 1}",
+                     f"{f3(sc_r)}, {f3(hc_r)}"))
     report = Report(spec.header.title,
                     [_kv_block(_t(lang, "Spur gear geometry", "渐开线直齿圆柱齿轮几何尺寸"), rows,
                                lang)])
@@ -341,7 +439,13 @@ def present_pair(spec, pairs, run, outputs):
                "s1": L(g1.s), "s2": L(g2.s), "e1": L(g1.e), "e2": L(g2.e), "c": L(g1.c),
                "alpha_a1_deg": math.degrees(g1.alpha_a),
                "alpha_a2_deg": math.degrees(g2.alpha_a),
-               "internal": g2.internal}
+               "internal": g2.internal, "x1": g1.x, "x2": g2.x}
+    for i, m in enumerate(pairs.measures, start=1):
+        if m is not None:
+            results.update(measurement_results(m, str(i), L))
+    if pairs.shift is not None:
+        results.update({"x_sum": pairs.shift.x_sum, "zeta1": pairs.shift.zeta1,
+                        "zeta2": pairs.shift.zeta2})
     a0 = first.a_zero_backlash
     if a0 is not None:   # None: teeth so thin that no a' jams
         results["a_zero_backlash"] = L(a0)
@@ -354,13 +458,15 @@ def present_pair(spec, pairs, run, outputs):
         cl = pr.clearances
         results.update({f"a_w{sfx}": L(pr.a_w), f"alpha_w_deg{sfx}": math.degrees(pr.alpha_w),
                         f"dw1{sfx}": L(pr.dw1), f"dw2{sfx}": L(pr.dw2),
-                        f"epsilon_alpha{sfx}": eps, f"backlash{sfx}": L(pr.backlash),
+                        f"epsilon_alpha{sfx}": eps,
+                        f"backlash{sfx}": L(pairs.backlash[k][0]),
+                        f"backlash_n{sfx}": L(pairs.backlash[k][1]),
                         f"clearance1{sfx}": L(cl[0]), f"clearance2{sfx}": L(cl[1]),
                         f"interference{sfx}": pr.interference,
                         f"y{sfx}": pr.y, f"delta_y{sfx}": pr.delta_y if not g2.internal else 0.0,
                         f"continuous{sfx}": eps >= 1})
         rows_csv.append([pr.a_w / sc, math.degrees(pr.alpha_w), pr.dw1 / sc, pr.dw2 / sc, eps,
-                         pr.backlash / sc, cl[0] / sc, cl[1] / sc])
+                         pairs.backlash[k][0] / sc, cl[0] / sc, cl[1] / sc])
         rows = [
             ("standard centre distance", "标准中心距", "a", f3(pr.a)),
             ("operating centre distance", "实际中心距", "aT", f3(pr.a_w)),
@@ -382,7 +488,8 @@ def present_pair(spec, pairs, run, outputs):
         extra = [
             ("operating pitch diameters", "节圆直径", "d1', d2'",
              f"{pr.dw1 / sc:.3f}{u}, {pr.dw2 / sc:.3f}{u}"),
-            ("backlash on the pitch circle", "齿侧间隙", "j", f3(pr.backlash)),
+            ("backlash on the pitch circle / normal", "齿侧间隙 (圆周 / 法向)", "j, jn",
+             f"{f3(pairs.backlash[k][0])}, {f3(pairs.backlash[k][1])}"),
             ("tip clearances", "顶隙", "c1', c2'", f"{cl[0] / sc:.3f}{u}, {cl[1] / sc:.3f}{u}"),
             ("zero-backlash centre distance", "无侧隙中心距", "a0'",
              f3(a0) if a0 is not None else _t(lang, "none (backlash at every a')",
@@ -395,6 +502,16 @@ def present_pair(spec, pairs, run, outputs):
         ]
         if k == 0 and (g1.x or g2.x or p.designed or g2.internal):
             extra.insert(0, ("teeth", "齿数", "z1, z2", f"{g1.z}, {g2.z}"))
+        if k == 0 and pairs.shift is not None:
+            sh = pairs.shift
+            rule = {"x1": "x1 given", "sliding": "balanced specific sliding"}[sh.rule]
+            extra.insert(0, ("profile shifts for a' (" + rule + ")", "按中心距设计变位系数",
+                             "x1 + x2 = x1, x2", f"{sh.x_sum:.4f} = {sh.x1:.4f} + {sh.x2:.4f} "
+                             f"(ζ1 = {sh.zeta1:.3f}, ζ2 = {sh.zeta2:.3f})"))
+        if k == 0:
+            for i, m in enumerate(pairs.measures, start=1):
+                if m is not None:
+                    extra += measurement_rows(m, str(i), f3)
         if g2.internal:
             extra.insert(0, ("gear 2 is internal (ring)", "齿轮 2 为内齿轮", "x2 (ISO: + thickens)",
                              f"{g2.x:g}"))
@@ -485,16 +602,25 @@ def present_generation(spec, sol, run, outputs):
 
 
 # -- helical, worm, bevel (习题 5-6 … 5-9) ------------------------------------------
-def present_helical(spec, hp, run, outputs):
+def present_helical(spec, sol, run, outputs):
     u, sc, lang = spec.header.unit, spec.header.scale, run.lang
+    hp = sol.pair
     L = lambda v: float(v / sc)  # noqa: E731
+    x1, x2 = hp.xn1, hp.xn2
     results = {"beta_deg": math.degrees(hp.beta), "mt": L(hp.mt),
                "alpha_t_deg": math.degrees(hp.alpha_t), "d1": L(hp.d(hp.z1)),
-               "d2": L(hp.d(hp.z2)), "da1": L(hp.da(hp.z1)), "da2": L(hp.da(hp.z2)),
-               "df1": L(hp.df(hp.z1)), "df2": L(hp.df(hp.z2)), "db1": L(hp.db(hp.z1)),
+               "d2": L(hp.d(hp.z2)), "da1": L(hp.da(hp.z1, x1)), "da2": L(hp.da(hp.z2, x2)),
+               "df1": L(hp.df(hp.z1, x1)), "df2": L(hp.df(hp.z2, x2)), "db1": L(hp.db(hp.z1)),
                "db2": L(hp.db(hp.z2)), "a": L(hp.a), "epsilon_alpha": hp.epsilon_alpha,
                "epsilon_beta": hp.epsilon_beta, "epsilon_gamma": hp.epsilon_gamma,
-               "zv1": hp.zv(hp.z1), "zv2": hp.zv(hp.z2)}
+               "zv1": hp.zv(hp.z1), "zv2": hp.zv(hp.z2), "xn1": x1, "xn2": x2,
+               "a_w": L(hp.a_w), "alpha_wt_deg": math.degrees(hp.alpha_wt)}
+    f3 = lambda v: f"{v / sc:.3f}{u}"  # noqa: E731
+    extra = []
+    for i, m in enumerate(sol.measures, start=1):
+        results.update(measurement_results(m, str(i), L))
+        results[f"b_min{i}"] = L(m.span.b_min)
+        extra += measurement_rows(m, str(i), f3, helical=True)
     return _simple(spec, run, outputs, _t(lang, "Helical gear pair", "斜齿圆柱齿轮传动"), results, [
         ("helix angle", "螺旋角", "β", "beta_deg", "°"),
         ("transverse module", "端面模数", "mt", "mt", u),
@@ -507,7 +633,10 @@ def present_helical(spec, hp, run, outputs):
         ("overlap ratio", "轴向重合度", "εβ", "epsilon_beta", ""),
         ("total contact ratio", "总重合度", "εγ", "epsilon_gamma", ""),
         ("virtual teeth", "当量齿数", "zv1", "zv1", ""), ("", "", "zv2", "zv2", ""),
-    ], [])
+        ("normal profile shifts", "法面变位系数", "xn1", "xn1", ""), ("", "", "xn2", "xn2", ""),
+        ("operating centre distance", "实际中心距", "a'", "a_w", u),
+        ("operating transverse pressure angle", "端面啮合角", "αwt", "alpha_wt_deg", "°"),
+    ], [], extra)
 
 
 def present_worm(spec, w, run, outputs):
@@ -563,12 +692,14 @@ def present_bevel(spec, b, run, outputs):
     ], [])
 
 
-def _simple(spec, run, outputs, heading, results, rows, warnings):
-    """Key/value table of *rows* (en, zh, symbol, result key, unit) and a one-row CSV."""
+def _simple(spec, run, outputs, heading, results, rows, warnings, extra=()):
+    """Key/value table of *rows* (en, zh, symbol, result key, unit) and a one-row CSV;
+    *extra* rows (en, zh, symbol, text) are shown below, not written to the CSV."""
     lang = run.lang
     block = Block(heading, [], [[_t(lang, en, zh), f"{sym} = {results[key]:.3f}"
                                  + ("" if not un else (un if un == "°" else f" {un}"))]
-                                for en, zh, sym, key, un in rows])
+                                for en, zh, sym, key, un in rows]
+                  + [[_t(lang, en, zh), f"{sym} = {txt}"] for en, zh, sym, txt in extra])
     u = spec.header.unit
     cols = [(key if un in ("", "°") else f"{key}_{u}", [results[key]])
             for _, _, _, key, un in rows]

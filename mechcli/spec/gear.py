@@ -160,6 +160,41 @@ def _item_keys(sec: Section, name, n):
     return tuple(sec.key(name if n == 1 else f"{name}[{i}]") for i in range(n))
 
 
+def _inv(a):
+    return math.tan(a) - a
+
+
+def _measurement(sec: Section, z, mn, alpha_n, xn, beta=0.0, suffix=""):
+    """``k``, ``pin_diameter`` and ``thickness_allowance`` (+ *suffix*) of one gear.
+
+    Bounds: k in [1, z - 1] (a span over z teeth would close around the gear); the
+    allowance below the normal arc thickness s_n = mn (pi/2 + 2 xn tan an) on the
+    reference circle (a larger one takes the whole tooth away); the pin between the
+    smallest that still rests on the flanks above the base circle
+    (inv phi = s_t/d + inv at + dp/(z mn cos an) - pi/z > 0) and one circular pitch
+    pi mn (a larger pin no longer sits in one space).
+    """
+    kk, pk, ek = (f"k{suffix}", f"pin_diameter{suffix}", f"thickness_allowance{suffix}")
+    k = sec.integer(kk, None, lo=1, hi=10000)
+    if k is not None and k > max(z - 1, 1):
+        raise sec.error(kk, f"a number of teeth in [1, z - 1 = {max(z - 1, 1)}]", repr(k))
+    s_n = mn * (math.pi / 2 + 2 * xn * math.tan(alpha_n))
+    e = sec.length(ek, 0.0, positive=False, nonneg=True)
+    if sec.has(ek) and e >= s_n:   # (a gear without a tooth is the core's to refuse)
+        raise sec.error(ek, f"an allowance below the tooth thickness s = {s_n / sec.unit:.6g} "
+                        "(larger takes the whole tooth)", f"{e / sec.unit:g}")
+    dp = sec.length(pk, None)
+    if dp is not None:
+        at = math.atan(math.tan(alpha_n) / math.cos(beta))
+        low = (math.pi / z - (s_n - e) / (z * mn) - _inv(at)) * z * mn * math.cos(alpha_n)
+        if not max(low, 0.0) < dp <= math.pi * mn:
+            raise sec.error(pk, f"a pin diameter in ({max(low, 0.0) / sec.unit:.6g}, "
+                            f"{math.pi * mn / sec.unit:.6g}] (resting on the flanks above "
+                            "the base circle, within one circular pitch)",
+                            f"{dp / sec.unit:g}")
+    return k, dp, e
+
+
 # -- the problem kinds ---------------------------------------------------------------
 @dataclasses.dataclass(frozen=True)
 class InvoluteProblem:
@@ -200,6 +235,9 @@ class SpurProblem:
     radii: tuple              # extra radii for the thickness (m)
     forbid_undercut: bool
     forbid_pointed: bool
+    k: int | None = None              # teeth in the span (None: ISO 21771's choice)
+    pin_diameter: float | None = None  # m (None: touching on d + 2 x m)
+    allowance: float = 0.0            # tooth-thickness allowance E (m)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -222,6 +260,17 @@ class PairProblem:
     animate: bool             # pair.gif of the first mounting (external pairs)
     a_w_keys: tuple           # key path of each a_w value (the core refuses a mounting
     alpha_w_keys: tuple       # by index; the command names the key)
+    ha_star1: float | None = None   # tip of each gear (None: the tooth system's ha*)
+    ha_star2: float | None = None
+    x_split: str | None = None      # design x1, x2 for a_w: "x1" (given) or "sliding"
+    k1: int | None = None
+    k2: int | None = None
+    pin_diameter1: float | None = None
+    pin_diameter2: float | None = None
+    allowance1: float = 0.0         # tooth-thickness allowances E1, E2 (m)
+    allowance2: float = 0.0
+    backlash: float | None = None   # wanted backlash (m): split into E1, E2 by the core
+    backlash_share1: float = 0.5
 
     @property
     def designed(self):
@@ -256,6 +305,14 @@ class HelicalProblem:
     beta: float | None        # rad; None: from a_w
     a_w: float | None         # m
     b: float | None           # face width (m)
+    xn1: float = 0.0
+    xn2: float = 0.0
+    k1: int | None = None
+    k2: int | None = None
+    pin_diameter1: float | None = None
+    pin_diameter2: float | None = None
+    allowance1: float = 0.0   # normal tooth-thickness allowances (m)
+    allowance2: float = 0.0
 
 
 @dataclasses.dataclass(frozen=True)
@@ -359,7 +416,8 @@ def _read_spur(sec):
                             "(no involute inside the base circle)", f"{r / sec.unit:g}")
     fu = sec.boolean("forbid_undercut", False)
     fp = sec.boolean("forbid_pointed", False)
-    return SpurProblem(z, ts, x, points, root, radii, fu, fp)
+    k, dp, e = _measurement(sec, z, ts.m, ts.alpha, x)
+    return SpurProblem(z, ts, x, points, root, radii, fu, fp, k, dp, e)
 
 
 def _read_pair(sec):
@@ -386,7 +444,39 @@ def _read_pair(sec):
         if internal and z2 <= z1:
             raise sec.error("z2", f"more teeth than the pinion (z1 = {z1}) for a ring gear",
                             repr(z2))
+    x_split = sec.string("x_split", None, choices=["x1", "sliding"])
+    if x_split is not None:
+        if internal or designed or len(a_w) != 1 or alpha_w:
+            raise sec.error("x_split", "an external pair of given z1, z2 with one a_w (the "
+                            "shifts are designed for that centre distance)",
+                            "internal = true" if internal else "ratio" if designed
+                            else f"{len(a_w)} a_w and {len(alpha_w)} alpha_w_deg")
+        for key in ("x2",) + (("x1",) if x_split == "sliding" else ()):
+            if sec.has(key):
+                raise sec.error(key, f"no {key}: x_split = \"{x_split}\" designs it",
+                                repr(sec.raw(key)))
     x1, x2 = _shift(sec, "x1"), _shift(sec, "x2")
+    ha1 = sec.number("ha_star1", None, lo=COEFFICIENT[0], hi=COEFFICIENT[1])
+    ha2 = sec.number("ha_star2", None, lo=COEFFICIENT[0], hi=COEFFICIENT[1])
+    meas = []
+    for i, (z, x) in enumerate(((z1, x1), (z2, x2)), start=1):
+        if z is None or (i == 2 and internal) or (x_split and (i == 2 or x_split == "sliding")):
+            # designed teeth or shifts (the core measures them with their defaults), or a ring
+            for key in (f"k{i}", f"pin_diameter{i}", f"thickness_allowance{i}"):
+                if sec.has(key):
+                    raise sec.error(key, "no measurement key for a gear whose teeth or shift "
+                                    "are designed, or for a ring gear", repr(sec.raw(key)))
+            meas.append((None, None, 0.0))
+        else:
+            meas.append(_measurement(sec, z, ts.m, ts.alpha, x, suffix=str(i)))
+    backlash = sec.length("backlash", None)
+    share = sec.number("backlash_share1", 0.5, lo=0.0, hi=1.0)   # a share of the total
+    if backlash is not None:
+        if meas[0][2] or meas[1][2]:
+            raise sec.error("backlash", "backlash or thickness_allowance1/2, not both", "both")
+        if len(a_w) + len(alpha_w) > 1:
+            raise sec.error("backlash", "a pair with one mounting (the allowances are "
+                            "sized for it)", "several mountings")
     rc = sec.boolean("require_continuous", False)
     fi = sec.boolean("forbid_interference", False)
     fp = sec.boolean("forbid_pointed", False)
@@ -398,7 +488,9 @@ def _read_pair(sec):
     # a' jamming the teeth is refused by the core, named by these keys (exit 2)
     return PairProblem(z1, z2, ratio, ts, x1, x2, a_w, tuple(alpha_w), rc, fi, fp, internal,
                        ts_short, animate, _item_keys(sec, "a_w", len(a_w)),
-                       _item_keys(sec, "alpha_w_deg", len(alpha_w)))
+                       _item_keys(sec, "alpha_w_deg", len(alpha_w)), ha1, ha2, x_split,
+                       meas[0][0], meas[1][0], meas[0][1], meas[1][1], meas[0][2], meas[1][2],
+                       backlash, share)
 
 
 def _read_generation(sec):
@@ -441,8 +533,28 @@ def _read_helical(sec):
     if a_w is not None and a_w < mn * (z1 + z2) / 2 * (1 - 1e-12):
         raise sec.error("a_w", f"a centre distance >= mn (z1 + z2) / 2 = "
                         f"{mn * (z1 + z2) / 2 / sec.unit:g} (beta = 0)", f"{a_w / sec.unit:g}")
-    return HelicalProblem(z1, z2, mn, an, han, cn,
-                          None if beta is None else math.radians(beta), a_w, b)
+    xn1, xn2 = _shift(sec, "xn1"), _shift(sec, "xn2")
+    if a_w is not None and (xn1 or xn2):
+        raise sec.error("xn1" if xn1 else "xn2", "no shift when the helix angle is found from "
+                        "a_w (cos beta = mn (z1 + z2) / (2 a'), unshifted gears)",
+                        repr(xn1 or xn2))
+    if xn1 + xn2 < 0:
+        at = math.atan(math.tan(an) / math.cos(math.radians(beta)))
+        if 2 * math.tan(an) * (xn1 + xn2) / (z1 + z2) + _inv(at) <= 0:
+            raise sec.error("xn2", "shifts whose sum leaves a zero-backlash mesh "
+                            "(inv a_wt = 2 tan an (xn1 + xn2)/(z1 + z2) + inv at > 0)",
+                            f"xn1 + xn2 = {xn1 + xn2:g}")
+    beta_rad = None if beta is None else math.radians(beta)
+    meas = []
+    for i, (z, x) in enumerate(((z1, xn1), (z2, xn2)), start=1):
+        if beta_rad is None:   # beta from a': measured with the defaults only
+            beta_rad_i = math.acos(mn * (z1 + z2) / (2 * a_w))
+        else:
+            beta_rad_i = beta_rad
+        meas.append(_measurement(sec, z, mn, an, x, beta_rad_i, suffix=str(i)))
+    return HelicalProblem(z1, z2, mn, an, han, cn, beta_rad, a_w, b, xn1, xn2,
+                          meas[0][0], meas[1][0], meas[0][1], meas[1][1], meas[0][2],
+                          meas[1][2])
 
 
 def _read_worm(sec):

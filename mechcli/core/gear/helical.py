@@ -5,6 +5,7 @@ from __future__ import annotations
 import dataclasses
 import math
 
+from mechcli.core.gear.involute import involute_function, inverse_involute_scalar
 from mechcli.core.gear.spur import GearError
 
 
@@ -26,6 +27,10 @@ class HelicalPair:
         Helix angle on the reference cylinder (rad).
     b : float or None
         Face width (m) for the overlap ratio.
+    xn1, xn2 : float
+        Normal profile-shift coefficients (ISO 21771: the shift is xn mn in
+        the normal plane).  A shifted pair runs at its zero-backlash centre
+        distance, inv a_wt = 2 tan(an)(xn1 + xn2)/(z1 + z2) + inv at.
     """
 
     z1: int
@@ -36,6 +41,14 @@ class HelicalPair:
     cn_star: float
     beta: float
     b: float | None
+    xn1: float = 0.0
+    xn2: float = 0.0
+
+    def xn(self, z, xn=None):
+        """The shift of the gear of *z* teeth (gear 1 when z1 == z2), or *xn* if given."""
+        if xn is not None:
+            return xn
+        return self.xn1 if z == self.z1 else self.xn2
 
     @property
     def mt(self):
@@ -51,21 +64,21 @@ class HelicalPair:
         """Reference diameter mt z (m)."""
         return self.mt * z
 
-    def da(self, z):
-        """Tip diameter d + 2 han* mn (m)."""
-        return self.d(z) + 2 * self.han_star * self.mn
+    def da(self, z, xn=None):
+        """Tip diameter d + 2 (han* + xn) mn (m)."""
+        return self.d(z) + 2 * (self.han_star + self.xn(z, xn)) * self.mn
 
-    def df(self, z):
-        """Root diameter d - 2 (han* + cn*) mn (m)."""
-        return self.d(z) - 2 * (self.han_star + self.cn_star) * self.mn
+    def df(self, z, xn=None):
+        """Root diameter d - 2 (han* + cn* - xn) mn (m)."""
+        return self.d(z) - 2 * (self.han_star + self.cn_star - self.xn(z, xn)) * self.mn
 
     def db(self, z):
         """Base diameter d cos(alpha_t) (m)."""
         return self.d(z) * math.cos(self.alpha_t)
 
-    def alpha_at(self, z):
+    def alpha_at(self, z, xn=None):
         """Transverse pressure angle at the tip arccos(db / da) (rad)."""
-        return math.acos(self.db(z) / self.da(z))
+        return math.acos(self.db(z) / self.da(z, xn))
 
     def zv(self, z):
         """Virtual number of teeth z / cos^3(beta)."""
@@ -77,11 +90,34 @@ class HelicalPair:
         return (self.d(self.z1) + self.d(self.z2)) / 2
 
     @property
+    def alpha_wt(self):
+        """Operating transverse pressure angle of the zero-backlash mesh (rad).
+
+        inv a_wt = 2 tan(an) (xn1 + xn2) / (z1 + z2) + inv at (ISO 21771); at for
+        unshifted gears.
+        """
+        if self.xn1 + self.xn2 == 0:
+            return self.alpha_t
+        theta = (2 * math.tan(self.alpha_n) * (self.xn1 + self.xn2) / (self.z1 + self.z2)
+                 + involute_function(self.alpha_t))
+        if theta <= 0:
+            raise GearError("xn1 + xn2 is so negative that no zero-backlash mesh exists",
+                            "helical_shift_sum", x_sum=self.xn1 + self.xn2)
+        return inverse_involute_scalar(theta)[0]
+
+    @property
+    def a_w(self):
+        """Operating centre distance a cos(at) / cos(a_wt) (m); a when unshifted."""
+        if self.xn1 + self.xn2 == 0:
+            return self.a
+        return self.a * math.cos(self.alpha_t) / math.cos(self.alpha_wt)
+
+    @property
     def epsilon_alpha(self):
-        """Transverse contact ratio, the spur formula in the transverse plane."""
-        t = math.tan(self.alpha_t)
-        return (self.z1 * (math.tan(self.alpha_at(self.z1)) - t)
-                + self.z2 * (math.tan(self.alpha_at(self.z2)) - t)) / (2 * math.pi)
+        """Transverse contact ratio, the spur formula in the transverse plane at a_wt."""
+        t = math.tan(self.alpha_wt)
+        return (self.z1 * (math.tan(self.alpha_at(self.z1, self.xn1)) - t)
+                + self.z2 * (math.tan(self.alpha_at(self.z2, self.xn2)) - t)) / (2 * math.pi)
 
     @property
     def epsilon_beta(self):
@@ -95,7 +131,7 @@ class HelicalPair:
 
 
 def helical_pair(z1, z2, mn, alpha_n, han_star=1.0, cn_star=0.25, *, beta=None, a_w=None,
-                 b=None):
+                 b=None, xn1=0.0, xn2=0.0):
     """A helical pair from its helix angle, or with the helix angle that fits a'.
 
     cos(beta) = mn (z1 + z2) / (2 a') when the gears are not shifted (习题 5-6).
@@ -113,5 +149,9 @@ def helical_pair(z1, z2, mn, alpha_n, han_star=1.0, cn_star=0.25, *, beta=None, 
         beta = math.acos(c)
     if not 0 <= beta < math.pi / 4 + 1e-12:
         raise GearError("the helix angle is pi/4 or more", "helix_angle", beta=beta)
-    return HelicalPair(int(z1), int(z2), float(mn), float(alpha_n), float(han_star),
-                       float(cn_star), float(beta), b)
+    if beta is None and (xn1 or xn2):
+        raise ValueError("a helix angle from a' is for unshifted gears")
+    hp = HelicalPair(int(z1), int(z2), float(mn), float(alpha_n), float(han_star),
+                     float(cn_star), float(beta), b, float(xn1), float(xn2))
+    hp.alpha_wt   # raises GearError for a shift sum without a zero-backlash mesh
+    return hp

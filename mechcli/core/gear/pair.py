@@ -280,8 +280,9 @@ def tip_shortened(pair):
     if dy <= 1e-12:
         return pair, dy
     cut = dy * g1.m
-    return (GearPair(dataclasses.replace(g1, tip_reduction=cut),
-                     dataclasses.replace(g2, tip_reduction=cut), pair.a_w, pair.alpha_w), dy)
+    return (GearPair(dataclasses.replace(g1, tip_reduction=g1.tip_reduction + cut),
+                     dataclasses.replace(g2, tip_reduction=g2.tip_reduction + cut),
+                     pair.a_w, pair.alpha_w), dy)
 
 
 def gear_pair(g1: SpurGear, g2: SpurGear, a_w=None, alpha_w=None):
