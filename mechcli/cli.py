@@ -1,8 +1,10 @@
 """The ``mechcli`` command line: a lazy click group and ONE error boundary.
 
 Exit codes (:class:`ExitStatus`): 0 ok, 1 internal error, 2 bad spec or usage,
-3 the problem has no solution, 4 ``mechcli check``: an expected value is not met.  Subcommand modules are imported only when the
-subcommand runs, so ``mechcli --version`` never imports numpy.
+3 the problem has no solution, 4 ``mechcli check``: an expected value is not met,
+130 interrupted.  Subcommand modules are imported only when the subcommand runs,
+so ``mechcli --version`` never imports numpy (the library versions are read with
+:mod:`importlib.metadata`).
 """
 
 from __future__ import annotations
@@ -40,6 +42,38 @@ COMMANDS = {
 }
 
 
+#: subcommand -> the example its ``--help`` ends with (a shipped example, so that it runs
+#: anywhere mechcli is installed: ``mechcli new CMD --from EXAMPLE`` writes the spec)
+EXAMPLES = {
+    "kin": ("mechcli new kin --from ex1-1 -o ex1-1.toml",
+            "mechcli kin ex1-1.toml --lang zh --columns theta3,omega3"),
+    "force": ("mechcli new force --from ex2-1 -o ex2-1.toml",
+              "mechcli force ex2-1.toml --json --no-plot"),
+    "grashof": ("mechcli grashof --lengths 40,90,70,100",
+                "mechcli new grashof --from ex3-1 -o ex3-1.toml && mechcli grashof ex3-1.toml"),
+    "cam": ("mechcli new cam --from ex4-1 -o ex4-1.toml", "mechcli cam ex4-1.toml --animate"),
+    "gear": ("mechcli new gear --from ex5-4 -o ex5-4.toml", "mechcli gear ex5-4.toml"),
+    "synth": ("mechcli new synth --from ex3-8 -o ex3-8.toml", "mechcli synth ex3-8.toml"),
+    "flywheel": ("mechcli new flywheel --from ex6-4 -o ex6-4.toml",
+                 "mechcli flywheel ex6-4.toml"),
+    "optimize": ("mechcli new optimize --from ex7-1 -o ex7-1.toml",
+                 "mechcli optimize ex7-1.toml --json"),
+    "check": ("mechcli check configs/ -j 2 --junit check.xml",),
+}
+
+#: the exit codes, as every ``--help`` lists them
+EXIT_CODES = ("Exit codes: 0 ok; 1 a bug (rerun with --traceback and report it); "
+              "2 bad spec, option or --out; 3 the problem has no solution (cannot "
+              "assemble, no crank, no convergence, undercut when forbidden); 4 mechcli "
+              "check: an expected value is not met; 130 interrupted.")
+
+
+def _epilog(name):
+    """The end of a subcommand's ``--help``: its examples and the exit codes."""
+    lines = ["\b", "Examples:"] + [f"  {ex}" for ex in EXAMPLES.get(name, ())]
+    return ("\n".join(lines) + "\n\n" if name in EXAMPLES else "") + EXIT_CODES
+
+
 class ExitStatus(enum.IntEnum):
     OK = 0
     INTERNAL = 1
@@ -58,7 +92,10 @@ class LazyGroup(click.Group):
         if name not in COMMANDS:
             return None
         module, attr, _ = COMMANDS[name]
-        return getattr(importlib.import_module(module), attr)
+        cmd = getattr(importlib.import_module(module), attr)
+        if cmd.epilog is None:   # examples and exit codes, once per process
+            cmd.epilog = _epilog(name)
+        return cmd
 
     def format_commands(self, ctx, formatter):
         rows = [(name, COMMANDS[name][2]) for name in self.list_commands(ctx)]
@@ -78,13 +115,48 @@ class LazyGroup(click.Group):
             raise
 
 
-@click.group(cls=LazyGroup, context_settings={"help_option_names": ["-h", "--help"]})
-@click.version_option(__version__, prog_name="mechcli")
+def versions():
+    """``[(name, version)]`` of mechcli, Python, numpy, scipy and matplotlib, read
+    with :mod:`importlib.metadata` (never imported: ``--version`` stays fast);
+    ``"not installed"`` for a missing library."""
+    import importlib.metadata
+    import platform
+
+    out = [("python", platform.python_version())]
+    for lib in ("numpy", "scipy", "matplotlib"):
+        try:
+            out.append((lib, importlib.metadata.version(lib)))
+        except importlib.metadata.PackageNotFoundError:
+            out.append((lib, "not installed"))
+    return out
+
+
+def _print_version(ctx, _param, value):
+    if not value or ctx.resilient_parsing:
+        return
+    click.echo(f"mechcli, version {__version__}")
+    click.echo(", ".join(f"{name} {v}" for name, v in versions()))
+    ctx.exit()
+
+
+@click.group(cls=LazyGroup, context_settings={"help_option_names": ["-h", "--help"]},
+             epilog=("\b\nExamples:\n"
+                     "  mechcli new kin --from ex1-1 -o ex1-1.toml   # a book example as a spec\n"
+                     "  mechcli kin ex1-1.toml                       # table, kin.csv, plots in "
+                     "out/ex1-1/\n"
+                     "  mechcli kin ex1-1.toml --lang zh --animate -o hw1\n"
+                     "  mechcli grashof --lengths 40,90,70,100       # no file needed\n"
+                     "  mechcli COMMAND --help                       # the options of a command"
+                     "\n\n" + EXIT_CODES))
+@click.option("--version", is_flag=True, expose_value=False, is_eager=True,
+              callback=_print_version,
+              help="Show the versions of mechcli, Python, numpy, scipy, matplotlib and exit.")
 def cli():
     """mechcli: theory of machines (机械原理) from TOML problem files.
 
     Each command reads SPEC.toml, prints the result table in the book's
-    format and writes CSV, PNG plots and GIF animations into --out.
+    format and writes CSV, PNG plots and GIF animations into --out
+    (-o; default out/<spec stem>/).
     """
 
 

@@ -12,16 +12,17 @@ import numpy as np
 
 from mechcli.core.cam.geometry import RHO_CAP
 from mechcli.report.files import Outputs
+from mechcli.report.kin import book_title
 from mechcli.report.run import finish
 from mechcli.report.table import Block, Report
 
 LABELS = {
     "en": {
         "table": "Follower motion and cam profile",
-        "delta": "δ/(°)", "s": "s/{u}", "psi": "ψ/(°)", "v": "ds/dδ/({u}/rad)",
+        "delta": "δ/(°)", "s": "s/({u})", "psi": "ψ/(°)", "v": "ds/dδ/({u}/rad)",
         "vpsi": "dψ/dδ", "a": "d²s/dδ²/({u}/rad²)", "apsi": "d²ψ/dδ²/(1/rad)",
-        "alpha": "α/(°)", "x": "x/{u}", "y": "y/{u}", "xw": "x'/{u}", "yw": "y'/{u}",
-        "rho": "ρ'/{u}",
+        "alpha": "α/(°)", "x": "x/({u})", "y": "y/({u})", "xw": "x'/({u})", "yw": "y'/({u})",
+        "rho": "ρ'/({u})",
         "summary": "Results", "r0": "base radius r0", "r0_sized": "base radius r0 (sized)",
         "phi0": "initial arm angle φ0", "h": "lift h", "psi_s": "swing ψ",
         "a_rise": "max pressure angle, rise", "a_ret": "max pressure angle, return",
@@ -40,11 +41,11 @@ LABELS = {
     },
     "zh": {
         "table": "推杆运动规律与凸轮廓线",
-        "delta": "凸轮转角δ/(°)", "s": "位移s/{u}", "psi": "摆角ψ/(°)",
-        "v": "类速度ds/dδ/({u}/rad)", "vpsi": "类角速度dψ/dδ",
-        "a": "类加速度d²s/dδ²/({u}/rad²)", "apsi": "类角加速度d²ψ/dδ²/(1/rad)",
-        "alpha": "压力角α/(°)", "x": "理论廓线x/{u}", "y": "理论廓线y/{u}",
-        "xw": "实际廓线x'/{u}", "yw": "实际廓线y'/{u}", "rho": "曲率半径ρ'/{u}",
+        "delta": "凸轮转角 δ/(°)", "s": "位移 s/({u})", "psi": "摆角 ψ/(°)",
+        "v": "类速度 ds/dδ/({u}/rad)", "vpsi": "类角速度 dψ/dδ",
+        "a": "类加速度 d²s/dδ²/({u}/rad²)", "apsi": "类角加速度 d²ψ/dδ²/(1/rad)",
+        "alpha": "压力角 α/(°)", "x": "理论廓线 x/({u})", "y": "理论廓线 y/({u})",
+        "xw": "实际廓线 x'/({u})", "yw": "实际廓线 y'/({u})", "rho": "曲率半径 ρ'/({u})",
         "summary": "计算结果", "r0": "基圆半径 r0", "r0_sized": "基圆半径 r0 (按计算选取)",
         "phi0": "推杆初始位置角 φ0", "h": "推杆升程 h", "psi_s": "推杆摆角 ψ",
         "a_rise": "推程最大压力角", "a_ret": "回程最大压力角", "at": "对应凸轮转角 δ =",
@@ -256,7 +257,7 @@ def build_report(cs, design, lang="en"):
     unit, u = cs.header.unit, cs.header.scale
     p, fol, ch = design.profile, design.follower, design.checks
     deg = math.degrees
-    rep = Report(cs.header.title)
+    rep = Report(book_title(cs.header.title))
     n = len(p.delta) - 1
     every = max(1, int(round(cs.table_step / (2 * math.pi / n))))
     idx = np.arange(0, n + 1, every)

@@ -6,8 +6,10 @@ import numpy as np
 
 from mechcli.core.linkage.kinetostatics import COND_FLAG
 from mechcli.report.kin import (accuracy_note, accuracy_results, accuracy_warnings,  # noqa: F401
-                                assembly_message, excluded_warnings, fixed, input_column,
-                                input_factor, input_suffix, table_rows)
+                                assembly_message, book_title, degrees_hint,
+                                excluded_warnings, fixed, header, input_column, input_factor,
+                                input_header, input_suffix, input_symbol, input_value,
+                                table_rows)
 from mechcli.report.table import Block, Report
 
 
@@ -90,12 +92,16 @@ def warnings(spec, res, accuracy_warn=None):
     """The warnings of a ``force`` run: excluded input intervals, ill-conditioned
     positions, ranges that keep fewer than ``accuracy_warn`` (default: the spec's
     ``output.accuracy_warn``) correct digits, conditional loads that never act."""
-    fin, unit = input_factor(spec), input_suffix(spec)
-    out = excluded_warnings(spec, res.kin.excluded)
+    hint = degrees_hint(spec)
+    out = ([hint] if hint else []) + excluded_warnings(spec, res.kin.excluded, res.kin.toggles)
     out += accuracy_warnings(spec, res.accuracy, _threshold(spec, accuracy_warn))
-    for a, b in res.flagged:
-        out.append(f"ill-conditioned (condition number > {COND_FLAG:.0e}) for input "
-                   f"{a * fin:.6g}{unit} … {b * fin:.6g}{unit}: reactions lose digits near "
+    if res.flagged:
+        where = []
+        for a, b in sorted(res.flagged):
+            ta, tb = input_value(spec, a), input_value(spec, b)
+            where.append(ta if ta == tb else f"{ta} … {tb}")
+        out.append(f"ill-conditioned (condition number > {COND_FLAG:.0e}) at "
+                   f"{input_symbol(spec)} = {', '.join(where)}: reactions lose digits near "
                    "a dead point")
     for p in spec.loads:
         if p.conditional and not res.active.get(p.load.name):
@@ -112,17 +118,14 @@ def build_report(spec, res, lang="en"):
     digits = spec.output.digits
     fin = input_factor(spec)
     at_u = "°" if spec.input.rotary else spec.header.unit
-    n_in = spec.input.driver
-    in_label = (f"曲柄转角 θ{n_in}/°" if zh else f"theta{n_in}/°") if spec.input.rotary else \
-        f"s{n_in}/{spec.header.unit}"
     shown = [s for s in res.series if s not in ("P",) and not s.startswith("Fsh")
              and s != "Msh"]
-    headers = [in_label] + [f"{s}/{_PRETTY[_unit(s)]}" for s in shown]
+    headers = [input_header(spec, zh)] + [header(s, _PRETTY[_unit(s)]) for s in shown]
     rows = []
     for i in table_rows(spec, res, spec.output.table_step):
         rows.append([fixed(res.q[i] * fin, 2)] + [fixed(res.series[s][i], digits)
                                                    for s in shown])
-    report = Report(title=spec.header.title)
+    report = Report(title=book_title(spec.header.title))
     step_txt = f"{spec.output.table_step * fin:g}"
     report.blocks.append(Block(
         heading=(f"运动副反力与平衡力矩 (每 {step_txt}{at_u} 一行; F_Rij 为构件 i 对构件 j "
@@ -135,9 +138,8 @@ def build_report(spec, res, lang="en"):
         u = _PRETTY[_unit(sym)]
         signed = not (sym.startswith("FR") or sym == "Fsh")
         name = sym if not sym.startswith("FR") else f"|{sym}|"
-        if zh and sym in _ZH_HEAD:
-            name = f"{sym} {_ZH_HEAD[sym]}"
-        ext.append([f"{name}/{u}", fixed(hi.value, digits), fixed(hi.at * fin, 4),
+        label = header(name, u, _ZH_HEAD.get(sym, "") if zh else "")
+        ext.append([label, fixed(hi.value, digits), fixed(hi.at * fin, 4),
                     fixed(lo.value, digits) if signed else "", fixed(lo.at * fin, 4)
                     if signed else ""])
     report.blocks.append(Block(
@@ -145,8 +147,8 @@ def build_report(spec, res, lang="en"):
                  else f"Extremes (refined by golden-section search, input located to "
                       f"±{_extreme_tol(res) * fin:.0e}{input_suffix(spec)})"),
         headers=["量" if zh else "quantity", "最大值" if zh else "max",
-                 f"位置/{at_u}" if zh else f"at/{at_u}", "最小值" if zh else "min",
-                 f"位置/{at_u}" if zh else f"at/{at_u}"],
+                 header("位置" if zh else "at", at_u), "最小值" if zh else "min",
+                 header("位置" if zh else "at", at_u)],
         rows=ext))
     lines = []
     for sym in res.mean:

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import re
 
 import numpy as np
 
@@ -59,38 +60,233 @@ def input_suffix(spec):
     return "°" if spec.input.rotary else f" {spec.header.unit}"
 
 
-def excluded_warnings(spec, excluded):
-    """One line per input interval left out of the analysis (``partial = true``).
+#: the title of a worked example of the book: 例 1-1 ... -> 【例 1-1】 ...
+_EXAMPLE_TITLE = re.compile(r"^\s*例\s*(\d+)\s*[-‐–]\s*(\d+)\s*")
+
+
+def book_title(title):
+    """*title* with the book's label of a worked example in the book's brackets:
+    ``例 1-1 铰链四杆机构`` -> ``【例 1-1】 铰链四杆机构``; any other title unchanged."""
+    m = _EXAMPLE_TITLE.match(title or "")
+    if not m:
+        return title
+    rest = title[m.end():]
+    return f"【例 {m.group(1)}-{m.group(2)}】" + (f" {rest}" if rest else "")
+
+
+def header(symbol, unit, name=""):
+    """A table header in the book's notation: ``θ1/(°)``, ``ω3/(rad/s)``,
+    ``xF/(mm)``; with a (Chinese) *name* before the symbol, ``角速度 ω3/(rad/s)``.
+    A dimensionless quantity (unit ``""`` or ``"1"``) has no unit."""
+    text = symbol if unit in ("", "1") else f"{symbol}/({unit})"
+    return f"{name} {text}" if name else text
+
+
+#: quantity kind -> the symbol's ASCII spelling and its Greek letter
+_GREEK_OF = {"angle": (("theta", "θ"), ("gamma", "γ"), ("phi", "φ"), ("psi", "ψ")),
+             "angvel": (("omega", "ω"),), "angacc": (("alpha", "α"),)}
+
+
+def greek(symbol, kind):
+    """``theta3`` -> ``θ3``, ``omega3`` -> ``ω3``, ``gammaC`` -> ``γC`` (by *kind*, so
+    that a point named ``lpha`` of an acceleration ``alpha`` is left alone)."""
+    for ascii_, letter in _GREEK_OF.get(kind, ()):
+        if symbol.startswith(ascii_):
+            return letter + symbol[len(ascii_):]
+    return symbol
+
+
+def input_header(spec, zh=False):
+    """The input column's header: ``θ1/(°)`` (``曲柄转角 θ1/(°)``) or ``s1/(mm)``."""
+    n = spec.input.driver
+    if spec.input.rotary:
+        return header(f"θ{n}", "°", "曲柄转角" if zh else "")
+    return header(f"s{n}", spec.header.unit, "滑块位移" if zh else "")
+
+
+def input_symbol(spec):
+    """The input's symbol in a message: ``θ1`` or ``s1``."""
+    return f"{'θ' if spec.input.rotary else 's'}{spec.input.driver}"
+
+
+def input_value(spec, x):
+    """An input position *x* [rad or m] as text in the spec's unit, rounded to what
+    a user reads (0.0001°, or a millionth of the input range): ``180°``, never
+    ``179.999995°`` or ``5.5e-06°``."""
+    f = input_factor(spec)
+    v = x * f
+    if spec.input.rotary:
+        digits = 4
+    else:
+        span = abs(spec.input.stop - spec.input.start) * f
+        digits = max(0, 6 - math.ceil(math.log10(span))) if span > 0 else 6
+    return f"{round(v, digits) + 0.0:.10g}{input_suffix(spec)}"
+
+
+def _dyads(spec):
+    """The joints of the linkage's dyads (the elements that can reach a dead point)."""
+    out = []
+    for el in getattr(getattr(spec, "linkage", None), "elements", ()):
+        if getattr(el, "is_driver", False) or el.kind not in ("RRR", "RRP", "RPR", "PRP"):
+            continue
+        out.append(getattr(el, "joint", None) or getattr(el, "point", None))
+    return [j for j in out if j]
+
+
+def singular_groups(spec, intervals, toggles=()):
+    """The input intervals where the linkage cannot be analysed, as the user reads them.
+
+    *intervals* hold ``(start, stop, reason)`` in core units.  An interval narrower
+    than 1e-5 of the range (the bisection's bracket round a dead point) is one
+    position; the intervals that meet across the 0°/360° seam of a whole turn are one;
+    the dyad is the one whose transmission angle vanishes there (*toggles*, a
+    :class:`~mechcli.core.linkage.kinematics.Toggle` list), or the linkage's only dyad.
+
+    Returns ``[(reason, joint or None, [(a, b) or (x,) ...])]``: one group per reason
+    and dyad, in the order of their first position, each in order of the input.
+    """
+    inp = spec.input
+    span = inp.stop - inp.start
+    items = sorted((float(a), float(b), why) for a, b, why in intervals)
+    if not items:
+        return []
+    # touching intervals of the same reason are one
+    merged = [list(items[0])]
+    for a, b, why in items[1:]:
+        if why == merged[-1][2] and a - merged[-1][1] <= 1e-9 * max(1.0, abs(span)):
+            merged[-1][1] = max(merged[-1][1], b)
+        else:
+            merged.append([a, b, why])
+    wrap = None   # an interval through the seam: (a, b + span)
+    if inp.periodic and len(merged) > 1:
+        first, last = merged[0], merged[-1]
+        tol = 1e-9 * max(1.0, abs(span))
+        if first[2] == last[2] and abs(first[0] - inp.start) <= tol \
+                and abs(last[1] - inp.stop) <= tol:
+            merged = merged[:-1]
+            wrap = (last[0], first[1])
+            merged[0] = [last[0] - span, first[1], first[2]]
+    point_tol = 1e-5 * abs(span)
+    only = _dyads(spec)
+    groups = {}
+    for a, b, why in merged:
+        near = [t for t in toggles
+                if a - point_tol <= t.at <= b + point_tol
+                or (inp.periodic and a < inp.start
+                    and a + span - point_tol <= t.at)]
+        if near:
+            joint = min(near, key=lambda t: t.sin_gamma).joint
+        else:
+            joint = only[0] if len(only) == 1 else None
+        if b - a <= point_tol:
+            x = 0.5 * (a + b)
+            item = (inp.start if inp.periodic and abs(x - inp.start) <= point_tol else x,)
+        elif wrap is not None and a < inp.start:
+            item = (wrap[0], wrap[1], "seam")
+        else:
+            item = (a, b)
+        groups.setdefault((why, joint), []).append(item)
+    return [(why, joint, pts) for (why, joint), pts in groups.items()]
+
+
+_ZH_WHY = {"cannot assemble": "无法装配", "dead point": "死点"}
+
+
+def _item_text(spec, item, seam_note=True):
+    if len(item) == 1:
+        return input_value(spec, item[0])
+    text = f"{input_value(spec, item[0])} … {input_value(spec, item[1])}"
+    if len(item) == 3 and seam_note:   # through the seam of a whole turn
+        text += f" (through {input_value(spec, spec.input.start)})"
+    return text
+
+
+def singular_text(spec, why, joint, items):
+    """One group of :func:`singular_groups` in words: ``dead points at θ1 = 0°, 180°
+    (dyad C)``, ``cannot assemble for input angle θ1 = 352.1° … 7.9° (through 0°;
+    dyad C)``."""
+    sym = input_symbol(spec)
+    where = ", ".join(_item_text(spec, it, seam_note=False) for it in items)
+    notes = [f"through {input_value(spec, spec.input.start)}"] \
+        if any(len(it) == 3 for it in items) else []
+    notes += [f"dyad {joint}"] if joint else []
+    dyad = f" ({'; '.join(notes)})" if notes else ""
+    if all(len(it) == 1 for it in items):
+        plural = "s" if len(items) > 1 else ""
+        return f"{why}{plural} at {sym} = {where}{dyad}"
+    what = "input angle" if spec.input.rotary else "input"
+    return f"{why} for {what} {sym} = {where}{dyad}"
+
+
+def excluded_warnings(spec, excluded, toggles=()):
+    """One line per group of input positions left out of the analysis
+    (``partial = true``), merged, rounded and in order (:func:`singular_groups`).
 
     *excluded* holds ``(start, stop, reason)`` in core units (rad or m).
     """
-    f, unit = input_factor(spec), input_suffix(spec)
-    return [f"{why} for input {a * f:.6g}{unit} … {b * f:.6g}{unit} (excluded)"
-            for a, b, why in excluded]
+    return [f"{singular_text(spec, *g)}: excluded from the analysis"
+            for g in singular_groups(spec, excluded, toggles)]
 
 
 def assembly_message(spec, exc):
     """The user's wording of an :class:`~mechcli.core.errors.AssemblyError`: the
-    intervals in the spec's input unit, and the key that analyses the rest."""
+    intervals in the spec's input unit, merged and rounded, and the key that
+    analyses the rest."""
     if not exc.intervals:
         return str(exc)
-    f, unit = input_factor(spec), input_suffix(spec)
-    what = "input angle" if spec.input.rotary else "input"
-    text = "; ".join(f"{why} for {what} {a * f:.6g}{unit} … {b * f:.6g}{unit}"
-                     for a, b, why in exc.intervals)
+    text = "; ".join(singular_text(spec, *g) for g in singular_groups(spec, exc.intervals))
     text += " (set input.partial = true to analyse the feasible ranges only)"
+    hint = degrees_hint(spec)
+    if hint:
+        text += f"; {hint}"
     return ("fewer than two input positions can be analysed: " + text) if exc.too_few else text
+
+
+#: an input range whose ends are all within a turn in radians (2π = 6.2832...)
+_RADIAN_LIKE = 2 * math.pi * 1.02
+
+
+def degrees_hint(spec):
+    """A hint when a crank's range looks like radians (``stop = 6.2``), else ''."""
+    inp = spec.input
+    if not inp.rotary:
+        return ""
+    start, stop = math.degrees(inp.start), math.degrees(inp.stop)
+    if max(abs(start), abs(stop)) > _RADIAN_LIKE:
+        return ""
+    return (f"the input range is only {stop - start:.4g}° ([input] start = {start:g}, "
+            f"stop = {stop:g}): angles are in degrees (a whole turn is stop = "
+            f"{start + 360:g})")
 
 
 def warnings(spec, result, accuracy_warn=None):
     """The warnings of a ``kin`` run: excluded input intervals, extremes that
     grow without bound towards a dead point, and ranges that keep fewer than
     ``accuracy_warn`` (default: the spec's ``output.accuracy_warn``) correct digits."""
-    f, unit = input_factor(spec), input_suffix(spec)
-    return excluded_warnings(spec, result.excluded) + [
-        f"{sym} grows without bound towards the dead point at {e.at * f:.6g}{unit}"
-        for sym, pair in result.extremes.items() for e in pair if not e.bounded] + \
-        accuracy_warnings(spec, result.accuracy, _threshold(spec, accuracy_warn))
+    hint = degrees_hint(spec)
+    return ([hint] if hint else []) + excluded_warnings(spec, result.excluded, result.toggles) \
+        + unbounded_warnings(spec, result.extremes) \
+        + accuracy_warnings(spec, result.accuracy, _threshold(spec, accuracy_warn))
+
+
+def unbounded_warnings(spec, extremes):
+    """One line per set of dead points that quantities grow without bound towards:
+    ``omega2, omega3 grow without bound towards the dead points at θ1 = 7.85°, 352.15°``
+    (the quantities that share the same dead points merged, in order of the input)."""
+    towards = {}
+    for sym, pair in extremes.items():
+        ats = sorted({input_value(spec, e.at): e.at for e in pair if not e.bounded}.items(),
+                     key=lambda kv: kv[1])
+        if ats:
+            key = tuple(t for t, _ in ats)
+            towards.setdefault(key, (ats[0][1], []))[1].append(sym)
+    out = []
+    for ats, (_first, syms) in sorted(towards.items(), key=lambda kv: (kv[1][0], -len(kv[0]))):
+        verb = "grows" if len(syms) == 1 else "grow"
+        plural = "s" if len(ats) > 1 else ""
+        out.append(f"{', '.join(syms)} {verb} without bound towards the dead point{plural} "
+                   f"at {input_symbol(spec)} = {', '.join(ats)}")
+    return out
 
 
 def _threshold(spec, accuracy_warn):
@@ -103,14 +299,14 @@ def accuracy_warnings(spec, accuracy, threshold):
     significant digits (estimated; see docs/accuracy.md)."""
     if accuracy is None:
         return []
-    f, unit = input_factor(spec), input_suffix(spec)
     out = []
+    sym = input_symbol(spec)
     for r in accuracy.ranges(threshold):
-        if f"{r.start * f:.6g}" == f"{r.stop * f:.6g}":
-            where = f"at input {r.at * f:.6g}{unit}"
+        a, b = input_value(spec, r.start), input_value(spec, r.stop)
+        if a == b:
+            where = f"at {sym} = {input_value(spec, r.at)}"
         else:
-            where = (f"for input {r.start * f:.6g}{unit} … {r.stop * f:.6g}{unit} "
-                     f"(fewest at {r.at * f:.6g}{unit})")
+            where = f"for {sym} = {a} … {b} (fewest at {input_value(spec, r.at)})"
         out.append(f"{r.quantity} lose digits near a singular position: {r.symbol} keeps about "
                    f"{r.digits:.1f} correct significant digits (estimated; fewer than "
                    f"{threshold:g}) {where}")
@@ -182,15 +378,15 @@ def pretty_unit(kind, length_unit):
 
 
 def _label(q, unit, lang):
-    pretty = pretty_unit(q.kind, unit)
+    """The header of quantity *q*: ``θ3/(°)``, ``vxF/(mm/s)``; in Chinese with its
+    name first, ``角速度 ω3/(rad/s)``."""
+    name = ""
     if lang == "zh":
-        base = q.symbol.rstrip("0123456789")
         for key in sorted(_ZH, key=len, reverse=True):
             if q.symbol.startswith(key):
-                base = key
+                name = _ZH[key]
                 break
-        return f"{q.symbol} {_ZH.get(base, '')}/{pretty}".replace(" /", "/")
-    return f"{q.symbol}/{pretty}"
+    return header(greek(q.symbol, q.kind), pretty_unit(q.kind, unit), name)
 
 
 def table_rows(spec, result, step):
@@ -240,12 +436,11 @@ def build_report(spec, quantities, result, lang="en"):
     unit, digits = spec.header.unit, spec.output.digits
     fin = input_factor(spec)
     cols = columns(spec, quantities, result)
-    in_label = ("曲柄转角 θ1/°" if zh else "theta1/°") if spec.input.rotary else f"s1/{unit}"
-    headers = [in_label] + [_label(q, unit, lang) for q in quantities]
+    headers = [input_header(spec, zh)] + [_label(q, unit, lang) for q in quantities]
     rows = []
     for i in table_rows(spec, result, spec.output.table_step):
         rows.append([fixed(cols[0][1][i], 2)] + [fixed(c[1][i], digits) for c in cols[1:]])
-    report = Report(title=spec.header.title)
+    report = Report(title=book_title(spec.header.title))
     step_txt = f"{spec.output.table_step * fin:g}"
     report.blocks.append(Block(
         heading=(f"计算结果 (每 {step_txt}° 一行，长度单位 {unit})" if zh else
@@ -272,19 +467,10 @@ def build_report(spec, quantities, result, lang="en"):
                      if zh else f"Extremes (input located to "
                                 f"±{_extreme_tol(result) * fin:.0e}{input_suffix(spec)})"),
             headers=["量" if zh else "quantity", "最大值" if zh else "max",
-                     f"位置/{at_u}" if zh else f"at/{at_u}", "最小值" if zh else "min",
-                     f"位置/{at_u}" if zh else f"at/{at_u}"],
+                     header("位置" if zh else "at", at_u), "最小值" if zh else "min",
+                     header("位置" if zh else "at", at_u)],
             rows=ext_rows))
-    flags = []
-    for a, b, why in result.excluded:
-        why_t = {"cannot assemble": "无法装配", "dead point": "死点"}[why] if zh else why
-        flags.append([why_t, f"{a * fin:.6f} … {b * fin:.6f} {at_u}"])
-    for t in result.toggles:
-        g = math.degrees(math.asin(min(1.0, t.sin_gamma)))
-        flags.append([("接近死点" if zh else "near dead point") + f" ({t.kind} {t.joint})",
-                      f"{t.at * fin:.6f} {at_u}, γ = {g:.4f}°"])
-    if flags:
-        report.blocks.append(Block(heading="标记" if zh else "Flags", rows=flags))
+    report.blocks += flags_blocks(spec, result, zh)
     n = result.q.size
     report.notes.append((f"共 {n} 个位置" if zh else f"{n} positions analysed")
                         + (f"; ω1 = {spec.input.omega:g} rad/s" if spec.input.rotary else ""))
@@ -294,6 +480,34 @@ def build_report(spec, quantities, result, lang="en"):
     if result.accuracy is not None and result.accuracy.digits:
         report.notes.append(accuracy_note(result.accuracy, zh))
     return report
+
+
+def flags_blocks(spec, result, zh=False):
+    """The ``Flags`` block: the excluded positions merged and grouped by reason and
+    dyad (:func:`singular_groups`), then the near-dead positions they do not
+    already name, each once and rounded."""
+    flags = []
+    groups = singular_groups(spec, result.excluded, result.toggles)
+    for why, joint, items in groups:
+        label = _ZH_WHY[why] if zh else (why + ("s" if len(items) > 1 and
+                                               all(len(it) == 1 for it in items) else ""))
+        if joint:
+            label += f" (杆组 {joint})" if zh else f" (dyad {joint})"
+        flags.append([label, ", ".join(_item_text(spec, it) for it in items)])
+    span = abs(spec.input.stop - spec.input.start)
+    tol = 1e-5 * span
+    seen = set()
+    for t in result.toggles:
+        if any(a - tol <= t.at <= b + tol for a, b, _ in result.excluded):
+            continue
+        at = input_value(spec, t.at)
+        if (t.joint, at) in seen:
+            continue
+        seen.add((t.joint, at))
+        g = math.degrees(math.asin(min(1.0, t.sin_gamma)))
+        flags.append([("接近死点" if zh else "near dead point") + f" ({t.kind} {t.joint})",
+                      f"{input_symbol(spec)} = {at}, γ = {g:.4f}°"])
+    return [Block(heading="标记" if zh else "Flags", rows=flags)] if flags else []
 
 
 _ZH_CLASS = {"positions": "位置", "velocities": "速度", "accelerations": "加速度",

@@ -87,6 +87,8 @@ def column_symbol(header):
     """The symbol of a column header: ``theta3`` of ``theta3/°`` or ``θ3/(°)``,
     ``FR16x`` of ``FR16x/N``, ``xF`` of ``xF [mm]``."""
     sym = re.split(r"\s*[/\[(]", header.strip(), maxsplit=1)[0].strip()
+    # a Chinese name before the symbol (``角速度 ω3/(rad/s)``): the symbol is the last word
+    sym = sym.split()[-1] if sym.split() else sym
     return "".join(_GREEK.get(c, c) for c in sym)
 
 

@@ -290,13 +290,41 @@ def _build_linkage(mech, frame, elements, paths):
                         msg) from None
 
 
+def _one_of(sec, first, second):
+    """Two keys of which a spec gives one (``omega1``/``n1``, ``step``/``count``),
+    both given: a ``--set`` of one replaces the other from the file (returns the key
+    kept); both in the file, or both set, is an error."""
+    if sec.is_overridden(second) and not sec.is_overridden(first):
+        sec.data = {k: v for k, v in sec.data.items() if k != first}
+        return second
+    if sec.is_overridden(first) and not sec.is_overridden(second):
+        sec.data = {k: v for k, v in sec.data.items() if k != second}
+        return first
+    raise SpecError(sec.file, sec.key(second), f"either {first} or {second}, not both", "both")
+
+
+#: a crank's range whose ends are all within this many degrees looks like radians
+#: (2π = 6.28; ``stop = 6.2`` meant a whole turn)
+_RADIAN_LIKE_DEG = 2 * math.pi * 1.02
+
+
+def _degrees_hint(rotary, start, stop):
+    """`` (angles are in degrees ...)`` when a crank's range [rad] looks like it was
+    given in radians, else ''."""
+    a, b = math.degrees(start), math.degrees(stop)
+    if not rotary or max(abs(a), abs(b)) > _RADIAN_LIKE_DEG:
+        return ""
+    return (f" (start = {a:g}, stop = {b:g}: angles are in degrees, a whole turn is "
+            f"stop = {a + 360:g})")
+
+
 def _input(sec, linkage, followers, max_positions=MAX_POSITIONS, why=POSITIONS_WHY):
     first = linkage.drivers[0]
     rotary = first.rotary
     if rotary:
         has_w, has_n = sec.has("omega1"), sec.has("n1")
         if has_w and has_n:
-            raise SpecError(sec.file, sec.key("n1"), "either omega1 or n1, not both", "both")
+            has_n = _one_of(sec, "omega1", "n1") == "n1"
         if has_n:
             omega = sec.number("n1", lo=-1e7, hi=1e7) * 2 * math.pi / 60.0
         else:
@@ -315,13 +343,7 @@ def _input(sec, linkage, followers, max_positions=MAX_POSITIONS, why=POSITIONS_W
         raise SpecError(sec.file, sec.key("stop"), f"a value above start ({start / unit:g})",
                         f"{stop / unit:g}")
     if sec.has("step") and sec.has("count"):
-        # a --set of one of them replaces the other one from the file
-        if sec.is_overridden("count") and not sec.is_overridden("step"):
-            sec.data = {k: v for k, v in sec.data.items() if k != "step"}
-        elif sec.is_overridden("step") and not sec.is_overridden("count"):
-            sec.data = {k: v for k, v in sec.data.items() if k != "count"}
-        else:
-            raise SpecError(sec.file, sec.key("count"), "either step or count, not both", "both")
+        _one_of(sec, "step", "count")
     note = f" ({why})" if why else ""
     if sec.has("count"):
         raw = sec.data["count"]
@@ -343,7 +365,8 @@ def _input(sec, linkage, followers, max_positions=MAX_POSITIONS, why=POSITIONS_W
         if abs(start + (count - 1) * step - stop) > 1e-9 * max(1.0, abs(stop)):
             raise SpecError(sec.file, sec.key("step"),
                             "a step that divides stop - start into whole steps",
-                            f"{step / unit:g} for {(stop - start) / unit:g}")
+                            f"{step / unit:g} for {(stop - start) / unit:g}"
+                            + _degrees_hint(rotary, start, stop))
         count = max(count, 2)
     q = np.linspace(start, stop, count)
     partial = sec.boolean("partial", False)

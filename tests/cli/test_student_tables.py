@@ -28,7 +28,7 @@ def test_kin_table_fits_the_terminal(tmp_path, monkeypatch, columns, blocks):
     assert heads == [f"Results (every 30°, lengths in mm) ({k}/{blocks})"
                      for k in range(1, blocks + 1)]
     # the input angle starts every block; the first row's ω3 (−10.47 rad/s at θ1 = 0) is there
-    assert sum("theta1/°" in ln for ln in lines) == blocks
+    assert sum("θ1/(°)" in ln for ln in lines) == blocks
     assert any("0.00" in ln and "-10.4700" in ln for ln in lines)
 
 
@@ -45,8 +45,8 @@ def test_force_blocks_keep_each_joint_whole(tmp_path):
     proc = run_inprocess("force", EX2_4, "-q", "--no-plot", "-o", tmp_path)
     assert proc.returncode == 0, proc.stderr
     text = (tmp_path / "report.txt").read_text(encoding="utf-8").splitlines()
-    headers = [ln.split() for ln in text if ln.startswith("theta1/°")]
-    assert len(headers) >= 3 and all(h[0] == "theta1/°" for h in headers)
+    headers = [ln.split() for ln in text if ln.startswith("θ1/(°)")]
+    assert len(headers) >= 3 and all(h[0] == "θ1/(°)" for h in headers)
     for h in headers:
         joints = {c[:4] for c in h[1:] if c.startswith(("FR", "MR"))}
         for j in joints:   # FR23x, FR23y, FR23 and MR23 of a joint stand in one block
@@ -55,7 +55,7 @@ def test_force_blocks_keep_each_joint_whole(tmp_path):
                        for hh in headers for c in hh[1:])
     # every column once, in the original order
     flat = [c for h in headers for c in h[1:]]
-    assert flat[:2] == ["Mb/N·m", "FR16x/N"] and len(flat) == len(set(flat)) == 24
+    assert flat[:2] == ["Mb/(N·m)", "FR16x/(N)"] and len(flat) == len(set(flat)) == 24
 
 
 def test_split_block_groups_by_unit_order_and_joint():
@@ -79,7 +79,7 @@ def test_columns_chooses_what_the_tables_show(tmp_path):
     assert proc.returncode == 0, proc.stderr
     lines = (tmp_path / "report.txt").read_text(encoding="utf-8").splitlines()
     i = lines.index("Results (every 30°, lengths in mm)")
-    assert lines[i + 1].split() == ["theta1/°", "theta3/°", "omega3/rad/s"]
+    assert lines[i + 1].split() == ["θ1/(°)", "θ3/(°)", "ω3/(rad/s)"]
     assert lines[i + 3].split() == ["0.00", "69.5127", "-10.4700"]
     # the CSV keeps every column
     assert (tmp_path / "kin.csv").read_text().splitlines()[0].count(",") == 13

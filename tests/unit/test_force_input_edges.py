@@ -115,5 +115,5 @@ def test_report_input_column_names_the_driver(tmp_path):
                          spec.loads)
     rep = build_report(spec, res)
     assert input_column(spec) == "s3_mm"
-    assert rep.blocks[0].headers[0] == "s3/mm"
+    assert rep.blocks[0].headers[0] == "s3/(mm)"
     assert math.isfinite(res.mean["Fb"])
