@@ -9,6 +9,10 @@ four-bars x 361 positions, positions + velocities + accelerations in one
 batched call, <= 1.2x a plain numpy closed form of the same batch timed in the
 same run.
 
+Issue 17: the same 36,001 positions in a fresh process with no allocator
+setting <= 0.6x the numpy closed form timed in that process; peak memory of
+1e6 positions at order 2 <= 200 B/position (tracemalloc).
+
 Usage: python benchmarks/bench_kin.py [--quick] [--json]
 """
 
@@ -156,10 +160,32 @@ def accuracy_vs_step():
     print(f"analyse_sweep_with_refined_extremes_step_5deg: {(time.perf_counter() - t) * 1e3:.2f} ms")
 
 
+def plain_process(repeat):
+    """Issue 17: the engine in a fresh process with no allocator setting, against
+    the numpy closed form timed in the same (child) process."""
+    code = (
+        "import sys, time; sys.path.insert(0, %r); sys.path.insert(0, %r)\n"
+        "import numpy as np\n"
+        "from bench_kin import fourbar, closed_form_fourbar, best_of\n"
+        "from mechcli.core.linkage import DriverMotion, solve\n"
+        "lk = fourbar(); th = np.linspace(0, 2 * np.pi, 36001); inp = {1: DriverMotion(th, 250.0)}\n"
+        "te = best_of(lambda: solve(lk, inp, order=2), %d)\n"
+        "tc = best_of(lambda: closed_form_fourbar(0.1016, 0.254, 0.1778, 0.3048, th, 250.0), %d)\n"
+        "print(te, tc)\n") % (str(ROOT), str(Path(__file__).resolve().parent), repeat, repeat)
+    te, tc = map(float, subprocess.run([sys.executable, "-c", code], capture_output=True,
+                                       text=True, check=True).stdout.split())
+    print(f"plain_process_engine_fourbar_36001_pva: {te * 1e3:.2f} ms")
+    print(f"plain_process_numpy_closed_form_36001_pva: {tc * 1e3:.2f} ms")
+    print(f"plain_process_engine_over_closed_form: {te / tc:.2f} x")
+
+
 def main():
     quick = "--quick" in sys.argv
-    print(f"allocator_keeps_heap_warm: {int(keep_heap_warm())} bool")
     r = 3 if quick else 7
+    plain_process(10 if quick else 20)
+    n = 1000001
+    print(f"engine_fourbar_1000001_peak_memory_per_position: {peak_memory(n) / n:.0f} B")
+    print(f"allocator_keeps_heap_warm: {int(keep_heap_warm())} bool")
     print(f"engine_fourbar_36001_pva: {engine(36001, r) * 1e3:.2f} ms")
     print(f"engine_fourbar_1000001_pva: {engine(1000001, 2 if quick else 3) * 1e3:.1f} ms")
     print(f"engine_fourbar_1000001_peak_memory: {peak_memory(1000001) / 2**20:.0f} MB")

@@ -138,15 +138,37 @@ class PointState:
         self.x, self.y, self.vx, self.vy, self.ax, self.ay = x, y, vx, vy, ax, ay
 
 
-def rotate_about(o: PointState, link: LinkState, rx, ry, vel, acc) -> PointState:
-    """The point ``o + (rx, ry)`` fixed on ``link``, with its velocity and acceleration."""
-    p = PointState(o.x + rx, o.y + ry)
+def rotate_about(o: PointState, link: LinkState, rx, ry, vel, acc, st=None) -> PointState:
+    """The point ``o + (rx, ry)`` fixed on ``link``, with its velocity and acceleration.
+
+    With ``st`` (the solve state) the results are written into its preallocated
+    output rows (``st.out()``) with no temporaries of the full shape.
+    """
+    if st is None:
+        p = PointState(o.x + rx, o.y + ry)
+        if vel:
+            p.vx, p.vy = o.vx - link.w * ry, o.vy + link.w * rx
+        if acc:
+            w2 = link.w * link.w
+            p.ax = o.ax - link.al * ry - w2 * rx
+            p.ay = o.ay + link.al * rx - w2 * ry
+        return p
+    out = st.out
+    p = PointState(np.add(o.x, rx, out=out()), np.add(o.y, ry, out=out()))
     if vel:
-        p.vx, p.vy = o.vx - link.w * ry, o.vy + link.w * rx
+        w = link.w
+        p.vx = np.multiply(w, ry, out=out())
+        np.subtract(o.vx, p.vx, out=p.vx)
+        p.vy = np.multiply(w, rx, out=out())
+        np.add(o.vy, p.vy, out=p.vy)
     if acc:
-        w2 = link.w * link.w
-        p.ax = o.ax - link.al * ry - w2 * rx
-        p.ay = o.ay + link.al * rx - w2 * ry
+        w2, al, t = link.w * link.w, link.al, st.tmp(5)
+        p.ax = np.multiply(al, ry, out=out())
+        np.subtract(o.ax, p.ax, out=p.ax)
+        p.ax -= np.multiply(w2, rx, out=t)
+        p.ay = np.multiply(al, rx, out=out())
+        np.add(o.ay, p.ay, out=p.ay)
+        p.ay -= np.multiply(w2, ry, out=t)
     return p
 
 
@@ -282,6 +304,11 @@ class Element:
         """Solve this element on the state ``st`` (see ``engine.solve``)."""
         raise NotImplementedError
 
+    def _out_rows(self, vel, acc):
+        """How many output arrays of the full shape ``step`` takes from ``st.out()``
+        (the engine preallocates them in one block)."""
+        return 0
+
     def pairs(self, tb):
         """Declare the element's points and kinematic pairs on a topology builder."""
         raise NotImplementedError
@@ -352,13 +379,25 @@ class Crank(Element):
 
     def step(self, st):
         m = st.inputs[self.link]
-        # the angle at its own shape (cos and sin once per input, not per design)
-        th, w, al = np.asarray(m.q, dtype=float), st.full(m.dq), st.full(m.ddq)
-        c, s = np.cos(th), np.sin(th)
-        link = LinkState(th, c, s, w, al)
-        st.P[self.point] = rotate_about(st.P[self.pivot], link, self.length * c,
-                                        self.length * s, st.vel, st.acc)
+        # the angle at its own shape (cos and sin once per input, not per design);
+        # omega and alpha stay scalars when given as scalars (no full-shape copies)
+        th = np.asarray(m.q, dtype=float)
+        w, al = np.asarray(m.dq, dtype=float), np.asarray(m.ddq, dtype=float)
+        if np.shape(th) != st.shape or self.link in st.needed_links:
+            c, s = np.cos(th), np.sin(th)
+            rx, ry = self.length * c, self.length * s
+        else:  # cos and sin only as scratch: scaled in place into the arm
+            rx, ry = np.cos(th, out=st.tmp(0)), np.sin(th, out=st.tmp(1))
+            rx *= self.length
+            ry *= self.length
+            c = s = None
+        link = LinkState(th, c, s, w if w.ndim == 0 else st.full(w),
+                         al if al.ndim == 0 else st.full(al))
+        st.P[self.point] = rotate_about(st.P[self.pivot], link, rx, ry, st.vel, st.acc, st)
         st.L[self.link] = link
+
+    def _out_rows(self, vel, acc):
+        return 2 + 2 * vel + 2 * acc
 
     def pairs(self, tb):
         tb.revolute(self.pivot, self.link)
@@ -462,6 +501,8 @@ class RRR(Element):
         return self.joint
 
     def step(self, st):
+        # written for few passes over memory: every array of the full shape is an
+        # output row (st.out) or one of six scratch buffers (st.tmp) reused in place
         pa, pb = st.P[self.point_a], st.P[self.point_b]
         la, lb = self.length_a, self.length_b
         # a link of zero (or negative) length cannot assemble (its angle is
@@ -469,9 +510,13 @@ class RRR(Element):
         void = _nonpositive(la, lb)
         if void is not None:
             la, lb = np.where(void, 1.0, la), np.where(void, 1.0, lb)
-        dx, dy = pb.x - pa.x, pb.y - pa.y
-        d2 = dx * dx + dy * dy
-        dist = np.sqrt(d2)
+        out, tmp = st.out, st.tmp
+        qx, qy = out(), out()
+        dx = np.subtract(pb.x, pa.x, out=tmp(0))
+        dy = np.subtract(pb.y, pa.y, out=tmp(1))
+        d2 = np.multiply(dx, dx, out=tmp(2))
+        d2 += np.multiply(dy, dy, out=qx)
+        dist = np.sqrt(d2, out=tmp(3))
         ok = dist > ASSEMBLY_TOL * st.scale
         coincide = None
         if not ok.all():
@@ -481,42 +526,107 @@ class RRR(Element):
             kite = np.abs(la - lb) <= ASSEMBLY_TOL * np.maximum(la, lb)
             if np.any(kite):
                 coincide = ~ok & kite
-            dist = np.where(ok, dist, 1.0)
-        inv = 1.0 / dist
-        along = (la * la - lb * lb + d2) * (0.5 * inv)
-        h2 = la * la - along * along
-        ok &= h2 >= -4 * ASSEMBLY_TOL * la * la
-        h = np.sqrt(np.maximum(h2, 0.0)) * (self.branch * 1.0)
-        ex, ey = dx * inv, dy * inv
-        qx = pa.x + along * ex - h * ey
-        qy = pa.y + along * ey + h * ex
-        rax, ray = qx - pa.x, qy - pa.y
-        rbx, rby = qx - pb.x, qy - pb.y
+            np.copyto(dist, 1.0, where=~ok)
+        inv = np.divide(1.0, dist, out=dist)
+        la2 = la * la
+        along = d2
+        along += la2 - lb * lb
+        along *= inv
+        along *= 0.5
+        h = np.multiply(along, along, out=tmp(4))
+        np.subtract(la2, h, out=h)
+        ok &= h >= -4 * ASSEMBLY_TOL * la2
+        np.maximum(h, 0.0, out=h)
+        np.sqrt(h, out=h)
+        if np.any(np.not_equal(self.branch, 1)):
+            h *= self.branch
+        along *= inv  # (along, h) / dist: the joint from pa in units of (dx, dy)
+        h *= inv
+        # ra = along * e + h * (i e), e = (dx, dy) / dist
+        rax = np.multiply(along, dx, out=inv)
+        rax -= np.multiply(h, dy, out=qx)
+        ray = np.multiply(along, dy, out=along)
+        ray += np.multiply(h, dx, out=qy)
+        np.add(pa.x, rax, out=qx)
+        np.add(pa.y, ray, out=qy)
+        rbx = np.subtract(rax, dx, out=dx)
+        rby = np.subtract(ray, dy, out=dy)
         nab = 1.0 / (la * lb)
-        cross = rax * rby - ray * rbx
-        sing = np.abs(cross) * nab
+        sing, cosj = out(), out()
+        cross = np.multiply(rax, rby, out=h)
+        cross -= np.multiply(ray, rbx, out=sing)
+        np.abs(cross, out=sing)
+        sing *= nab
+        np.multiply(rax, rbx, out=cosj)
+        cosj += np.multiply(ray, rby, out=tmp(5))
+        cosj *= nab
         if coincide is not None:
             ok = ok | coincide
-            sing = np.where(coincide, 0.0, sing)
+            np.copyto(sing, 0.0, where=coincide)
         if void is not None:
             ok = ok & ~void
-        st.condition(self, self.joint, sing, (rax * rbx + ray * rby) * nab)
+        st.condition(self, self.joint, sing, cosj)
         bad = st.mark(ok, sing, coincide)
         q = PointState(qx, qy)
         wa = wb = aa = ab = None
         if st.vel:
-            solve2 = Solve2(-ray, rax, rby, -rbx, bad)
-            wa, wb = solve2(pb.vx - pa.vx, pb.vy - pa.vy)
-            q.vx, q.vy = pa.vx - wa * ray, pa.vy + wa * rax
+            # the velocity system wa (i ra) - wb (i rb) = vb - va by Cramer's rule:
+            # its determinant is -cross; kept as 1 / cross
+            if bad is not None:
+                np.copyto(cross, 1.0, where=bad)
+            icross = np.divide(1.0, cross, out=cross)
+            rx = np.subtract(pb.vx, pa.vx, out=out())
+            ry = np.subtract(pb.vy, pa.vy, out=out())
+            wa, wb = out(), out()
+            np.multiply(rx, rbx, out=wa)
+            wa += np.multiply(ry, rby, out=wb)
+            wa *= icross
+            np.multiply(rax, rx, out=wb)
+            wb += np.multiply(ray, ry, out=ry)
+            wb *= icross
+            if bad is not None:
+                np.copyto(wa, 0.0, where=bad)
+                np.copyto(wb, 0.0, where=bad)
+            q.vx = np.multiply(wa, ray, out=rx)
+            np.subtract(pa.vx, q.vx, out=q.vx)
+            q.vy = np.multiply(wa, rax, out=ry)
+            np.add(pa.vy, q.vy, out=q.vy)
             if st.acc:
-                wa2, wb2 = wa * wa, wb * wb
-                aa, ab = solve2(pb.ax - pa.ax + wa2 * rax - wb2 * rbx,
-                                pb.ay - pa.ay + wa2 * ray - wb2 * rby)
-                q.ax = pa.ax - aa * ray - wa2 * rax
-                q.ay = pa.ay + aa * rax - wa2 * ray
+                wa2 = np.multiply(wa, wa, out=tmp(5))
+                aa, ab = out(), out()
+                wb2 = np.multiply(wb, wb, out=ab)
+                rx = np.subtract(pb.ax, pa.ax, out=out())
+                rx += np.multiply(wa2, rax, out=aa)
+                rx -= np.multiply(wb2, rbx, out=aa)
+                ry = np.subtract(pb.ay, pa.ay, out=out())
+                ry += np.multiply(wa2, ray, out=aa)
+                ry -= np.multiply(wb2, rby, out=aa)
+                np.multiply(rx, rbx, out=aa)
+                aa += np.multiply(ry, rby, out=ab)
+                aa *= icross
+                np.multiply(rax, rx, out=ab)
+                ab += np.multiply(ray, ry, out=ry)
+                ab *= icross
+                if bad is not None:
+                    np.copyto(aa, 0.0, where=bad)
+                    np.copyto(ab, 0.0, where=bad)
+                q.ax = np.multiply(aa, ray, out=rx)
+                np.subtract(pa.ax, q.ax, out=q.ax)
+                q.ax -= np.multiply(wa2, rax, out=ry)
+                q.ay = np.multiply(aa, rax, out=ry)
+                np.add(pa.ay, q.ay, out=q.ay)
+                q.ay -= np.multiply(wa2, ray, out=wa2)
         st.P[self.joint] = q
-        st.L[self.link_a] = LinkState(np.arctan2(ray, rax), rax * (1 / la), ray * (1 / la), wa, aa)
-        st.L[self.link_b] = LinkState(np.arctan2(rby, rbx), rbx * (1 / lb), rby * (1 / lb), wb, ab)
+        needed = st.needed_links
+        st.L[self.link_a] = LinkState(np.arctan2(ray, rax, out=out()),
+                                      rax * (1 / la) if self.link_a in needed else None,
+                                      ray * (1 / la) if self.link_a in needed else None, wa, aa)
+        st.L[self.link_b] = LinkState(np.arctan2(rby, rbx, out=out()),
+                                      rbx * (1 / lb) if self.link_b in needed else None,
+                                      rby * (1 / lb) if self.link_b in needed else None, wb, ab)
+
+    def _out_rows(self, vel, acc):
+        return 6 + 4 * vel + 4 * acc
 
     def pairs(self, tb):
         tb.revolute(self.point_a, self.link_a)
@@ -753,7 +863,10 @@ class PointOnLink(Element):
         k = st.L[self.link]
         rx = self.along * k.c - self.normal * k.s
         ry = self.along * k.s + self.normal * k.c
-        st.P[self.name] = rotate_about(st.P[self.origin], k, rx, ry, st.vel, st.acc)
+        st.P[self.name] = rotate_about(st.P[self.origin], k, rx, ry, st.vel, st.acc, st)
+
+    def _out_rows(self, vel, acc):
+        return 2 + 2 * vel + 2 * acc
 
     def pairs(self, tb):
         if self.link not in tb.members.get(self.origin, ()):

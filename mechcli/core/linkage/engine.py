@@ -17,11 +17,12 @@ from __future__ import annotations
 import contextlib
 import dataclasses
 import functools
+import threading
 from typing import Dict, Optional, Tuple, Union
 
 import numpy as np
 
-from mechcli.core.linkage.elements import SINGULAR_TOL, Element, LinkState
+from mechcli.core.linkage.elements import SINGULAR_TOL, Element, LinkState, PointState
 
 
 class LinkageDefinitionError(ValueError):
@@ -361,7 +362,7 @@ class SolveState:
     record a dyad's conditioning and a prismatic pair's slide.
     """
 
-    def __init__(self, linkage, inputs, shape, order):
+    def __init__(self, linkage, inputs, shape, order, arena=None):
         self.inputs = inputs
         self.shape = shape
         self.zero = np.broadcast_to(0.0, shape)  # a view: costs no memory
@@ -375,6 +376,33 @@ class SolveState:
         self.S = {}
         self.conds = []
         self.index = None
+        #: links some element reads (their cosine and sine are kept for it)
+        self.needed_links = _needed_links(linkage)
+        self._rows = _out_rows(linkage, order)
+        self._arena = arena  # (rows, *shape): the outputs, allocated in one block
+        self._next = 0
+        self._tmp = {}
+        self.given = []  # the output rows handed out, in order
+
+    def out(self):
+        """A fresh output array of the full shape (uninitialised): the next row
+        of one block preallocated for every element's outputs."""
+        if self._arena is None:
+            self._arena = np.empty((self._rows,) + self.shape)
+        if self._next < len(self._arena):
+            self._next += 1
+            row = self._arena[self._next - 1, ...]
+            self.given.append(row)
+            return row
+        return np.empty(self.shape)
+
+    def tmp(self, i):
+        """Scratch buffer ``i`` (0-5) of the full shape: shared by the elements,
+        valid only inside one element's step (never stored in the results)."""
+        t = self._tmp.get(i)
+        if t is None:
+            t = self._tmp[i] = _scratch(i, self.shape)
+        return t
 
     def full(self, x):
         x = np.asarray(x, dtype=float)
@@ -404,6 +432,38 @@ class SolveState:
 
     def slide(self, name, block, guide, s, v, a):
         self.S[name] = SlideMotion(name, block, guide, s, v, a)
+
+
+#: positions per chunk of a long one-dimensional sweep (bounded scratch memory)
+CHUNK = 1 << 16
+_SCRATCH_ROWS = 6
+_POOL_SIZE = 1 << 16  # per-thread scratch kept between solves: 6 x 512 KiB
+_POOL = threading.local()
+
+
+def _scratch(i, shape):
+    """Scratch row ``i``: from a per-thread pool reused across solves (so a
+    solve does not pay fresh pages for its temporaries) when it is small
+    enough, else a new array."""
+    size = int(np.prod(shape, dtype=np.int64))
+    if i >= _SCRATCH_ROWS or size > _POOL_SIZE:
+        return np.empty(shape)
+    pool = getattr(_POOL, "block", None)
+    if pool is None:
+        pool = _POOL.block = np.empty((_SCRATCH_ROWS, _POOL_SIZE))
+    return pool[i, :size].reshape(shape)
+
+
+def _needed_links(linkage):
+    cache = linkage.__dict__.get("_needed_links")
+    if cache is None:
+        cache = frozenset(ln for el in linkage.elements for ln in el.needs()[1])
+        object.__setattr__(linkage, "_needed_links", cache)
+    return cache
+
+
+def _out_rows(linkage, order):
+    return sum(el._out_rows(order >= 1, order >= 2) for el in linkage.elements)
 
 
 def solve(linkage: Linkage, inputs, order: int = 2, on_fail: str = "mask") -> LinkageMotion:
@@ -444,12 +504,15 @@ def solve(linkage: Linkage, inputs, order: int = 2, on_fail: str = "mask") -> Li
     if on_fail not in ("mask", "raise"):
         raise ValueError(f"on_fail must be 'mask' or 'raise', got {on_fail!r}")
     shape = _input_shape(linkage, inputs, order)
-    st = SolveState(linkage, inputs, shape, order)
     finite = _finite_designs(linkage)
-    with np.errstate(invalid="ignore", over="ignore") if finite is not None else _NO_CONTEXT:
-        for idx in linkage.order:
-            st.index = idx
-            linkage.elements[idx].step(st)
+    if finite is None and len(shape) == 1 and shape[0] > CHUNK and linkage.shape == ():
+        st = _solve_chunked(linkage, inputs, shape, order)
+    else:
+        st = SolveState(linkage, inputs, shape, order)
+        with np.errstate(invalid="ignore", over="ignore") if finite is not None else _NO_CONTEXT:
+            for idx in linkage.order:
+                st.index = idx
+                linkage.elements[idx].step(st)
     vel, acc = st.vel, st.acc
     regular, feasible = st.regular, st.feasible
     if finite is not None:
@@ -473,6 +536,60 @@ def solve(linkage: Linkage, inputs, order: int = 2, on_fail: str = "mask") -> Li
 
 
 _NO_CONTEXT = contextlib.nullcontext()
+
+
+def _solve_chunked(linkage, inputs, shape, order):
+    """Solve a long sweep (one linkage, 1-D inputs) chunk by chunk: the outputs
+    are preallocated at the full length and every chunk's elements write into
+    their slices, so the scratch memory is bounded by the chunk size.  Returns
+    a :class:`SolveState` holding the full-length results."""
+    n = shape[0]
+    whole = SolveState(linkage, inputs, shape, order)
+    arena = whole._arena = np.empty((whole._rows, n))
+    bounds = np.linspace(0, n, -(-n // CHUNK) + 1).astype(int)  # chunks of >= CHUNK/2
+    copies = {}
+    for a, b in zip(bounds[:-1], bounds[1:]):
+        sub = {k: DriverMotion(*(v[a:b] if np.ndim(v) else v for v in (m.q, m.dq, m.ddq)))
+               for k, m in inputs.items()}
+        st = SolveState(linkage, sub, (b - a,), order, arena[:, a:b])
+        for idx in linkage.order:
+            st.index = idx
+            linkage.elements[idx].step(st)
+        whole.feasible[a:b] = st.feasible
+        whole.regular[a:b] = st.regular
+        seen = {id(row): arena[r] for r, row in enumerate(st.given)}
+        for k, m in sub.items():
+            if isinstance(m.q, np.ndarray) and np.ndim(inputs[k].q) == 1:
+                seen.setdefault(id(m.q), np.asarray(inputs[k].q))
+
+        def full(v, key, a=a, b=b, seen=seen):
+            if not isinstance(v, np.ndarray) or v.shape != (b - a,):
+                return v
+            if id(v) in seen:
+                return seen[id(v)]
+            if v.strides[0] == 0:  # a constant broadcast over the chunk
+                res = np.broadcast_to(v[:1], shape)
+            else:
+                res = copies.get(key)
+                if res is None:
+                    res = copies[key] = np.empty(shape, dtype=v.dtype)
+                res[a:b] = v
+            seen[id(v)] = res
+            return res
+
+        P = {nm: PointState(*(full(getattr(p, f), ("P", nm, f)) for f in PointState.__slots__))
+             for nm, p in st.P.items()}
+        L = {ln: LinkState(*(full(getattr(k, f), ("L", ln, f)) if f in ("theta", "w", "al")
+                             else None for f in LinkState.__slots__))
+             for ln, k in st.L.items()}
+        S = {nm: dataclasses.replace(sl, **{f: full(getattr(sl, f), ("S", nm, f))
+                                            for f in ("s", "v", "a")})
+             for nm, sl in st.S.items()}
+        conds = [dataclasses.replace(c, sin_gamma=full(c.sin_gamma, ("C", i, "sin")),
+                                     cos_joint=full(c.cos_joint, ("C", i, "cos")))
+                 for i, c in enumerate(st.conds)]
+    whole.P, whole.L, whole.S, whole.conds = P, L, S, conds
+    return whole
 
 
 def _input_shape(linkage, inputs, order):
