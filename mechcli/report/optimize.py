@@ -211,8 +211,8 @@ def error_message(exc, spec, problem):
         return (f"[method] name: {spec.method.name} searches one variable, the "
                 f"spec has {v.get('n')}")
     if reason == "not_four_bar":
-        return (f"[[constraint]] kind = \"crank\": the book's g1...g6 need a "
-                f"four-bar (one crank and one RRR dyad)")
+        return ("[[constraint]] kind = \"crank\": the book's g1...g6 need a "
+                "four-bar (one crank and one RRR dyad)")
     return str(exc)
 
 
