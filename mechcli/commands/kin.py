@@ -35,6 +35,10 @@ def kin(spec_path, accuracy_warn=None, **opts):
                                partial=inp.partial)
     except AssemblyError as exc:   # worded in the spec's units
         raise AssemblyError(report.assembly_message(spec, exc), exc.intervals) from None
+    approx = None
+    if spec.mechanism == "slider_crank" and _model(spec_path, run.sets) == "approximate":
+        from mechcli.core.linkage import approximate
+        result, approx = approximate.apply(spec.linkage, sweep, result)
     outputs = Outputs(run.out_dir, digits=run.digits)
     outputs.csv("kin.csv", report.columns(spec, quantities, result))
     warnings = []
@@ -44,5 +48,13 @@ def kin(spec_path, accuracy_warn=None, **opts):
         warnings += kin_plots.write(spec, quantities, result, sweep, outputs, run.lang,
                                     plots=run.plot and spec.output.plots, animate=animate)
     warnings += report.warnings(spec, result, accuracy_warn)
-    finish(run, "kin", report.build_report(spec, quantities, result, run.lang),
-           report.scalar_results(spec, quantities, result, accuracy_warn), outputs, warnings)
+    finish(run, "kin", report.build_report(spec, quantities, result, run.lang, approx),
+           report.scalar_results(spec, quantities, result, accuracy_warn, approx), outputs,
+           warnings)
+
+
+def _model(spec_path, sets):
+    """``[mechanism] model`` of a slider-crank spec (validated by the spec reader)."""
+    from mechcli.spec.reader import load_spec
+    mech = load_spec(spec_path, sets).data.get("mechanism", {})
+    return mech.get("model", "exact") if isinstance(mech, dict) else "exact"

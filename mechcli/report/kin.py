@@ -333,13 +333,31 @@ def columns(spec, quantities, result):
     return cols
 
 
-def scalar_results(spec, quantities, result, accuracy_warn=None):
+def approx_results(spec, approx):
+    """JSON of ``model = "approximate"``: the model and the largest differences of
+    the series to the exact slider-crank over the sweep, in the spec's units
+    (``approx_error_s_max_mm`` ...) and relative (``..._rel``: s to the exact
+    stroke, v and a to the largest exact |v| and |a|)."""
+    if approx is None:
+        return {}
+    out = {"model": "approximate"}
+    for key, kind in (("s", "length"), ("v", "velocity"), ("a", "acceleration")):
+        diff, rel = approx[key]
+        out[f"approx_error_{key}_max_{unit_of(kind, spec.header.unit)}"] = \
+            diff * factor_of(kind, spec.header.scale)
+        out[f"approx_error_{key}_max_rel"] = rel
+    return out
+
+
+def scalar_results(spec, quantities, result, accuracy_warn=None, approx=None):
     """``--json`` results: extremes (with input angles, the tolerance of the
-    refinement and the grid error), strokes, swings, flags, estimated accuracy."""
+    refinement and the grid error), strokes, swings, flags, estimated accuracy;
+    with *approx* (``model = "approximate"``) the differences to the exact model."""
     unit, scale = spec.header.unit, spec.header.scale
     fin = input_factor(spec)
     at_unit = "deg" if spec.input.rotary else unit
     out = {"positions": int(result.q.size)}
+    out.update(approx_results(spec, approx))
     unbounded = []
     for q in quantities:
         if q.symbol not in result.extremes:
@@ -430,8 +448,9 @@ def _grid_error_note(spec, quantities, result, zh):
     return f"peaks of the {step:g}{at_u} CSV rows are off by ≤ {worst:.1e} of the peak ({sym})"
 
 
-def build_report(spec, quantities, result, lang="en"):
-    """The book-style text report: table every ``table_step``, extremes, flags."""
+def build_report(spec, quantities, result, lang="en", approx=None):
+    """The book-style text report: table every ``table_step``, extremes, flags;
+    with *approx* (``model = "approximate"``) a note of the model and its differences."""
     zh = lang == "zh"
     unit, digits = spec.header.unit, spec.output.digits
     fin = input_factor(spec)
@@ -474,12 +493,30 @@ def build_report(spec, quantities, result, lang="en"):
     n = result.q.size
     report.notes.append((f"共 {n} 个位置" if zh else f"{n} positions analysed")
                         + (f"; ω1 = {spec.input.omega:g} rad/s" if spec.input.rotary else ""))
+    if approx is not None:
+        report.notes.append(approx_note(spec, approx, zh))
     note = _grid_error_note(spec, quantities, result, zh)
     if note:
         report.notes.append(note)
     if result.accuracy is not None and result.accuracy.digits:
         report.notes.append(accuracy_note(result.accuracy, zh))
     return report
+
+
+def approx_note(spec, approx, zh=False):
+    """One line: the approximate model and its largest differences to the exact one."""
+    unit = spec.header.unit
+    parts = []
+    for key, kind in (("s", "length"), ("v", "velocity"), ("a", "acceleration")):
+        diff, rel = approx[key]
+        parts.append(f"{key} {diff * factor_of(kind, spec.header.scale):.4g} "
+                     f"{pretty_unit(kind, unit)} ({rel:.2%})")
+    if zh:
+        return ("模型: 近似 (1/n 级数, n = l2/l1); 滑块 s/v/a 与精确解的最大差: "
+                + ", ".join(parts) + "; 其余构件为精确解")
+    return ("model: approximate (series in 1/n, n = l2/l1) for the slider's s, v, a; "
+            "largest difference to the exact model: " + ", ".join(parts)
+            + "; the other links are exact")
 
 
 def flags_blocks(spec, result, zh=False):

@@ -343,7 +343,8 @@ def read_flywheel_spec(path, overrides=()) -> FlywheelSpec:
     if root.has("mechanism"):
         from mechcli.core.linkage.kinematics import default_quantities
         from mechcli.core.linkage.kinetostatics import ForceModelError, topology
-        from mechcli.spec.kin import read_mechanism
+        from mechcli.spec.kin import read_mechanism, refuse_approximate
+        refuse_approximate(root, "flywheel")
         _kind, linkage, _tracers, followers, _guide = read_mechanism(root)
         first = linkage.drivers[0]
         if not first.rotary or first.link != 1 or len(linkage.drivers) > 1:

@@ -37,7 +37,8 @@ import numpy as np
 from mechcli.core.linkage.kinetostatics import Body, ForceModelError, LoadProgram, topology
 from mechcli.spec.common import Header, read_expected, read_header
 from mechcli.spec.errors import SpecError, closest
-from mechcli.spec.kin import InputSpec, _empty, read_input, read_mechanism
+from mechcli.spec.kin import (InputSpec, _empty, read_input, read_mechanism,
+                              refuse_approximate)
 from mechcli.spec.reader import MAX_LENGTH, load_spec
 
 
@@ -308,6 +309,7 @@ def read_force_root(root) -> ForceSpec:
     from mechcli.core.linkage.kinematics import default_quantities
 
     header = read_header(root, "force", default_unit="mm")
+    refuse_approximate(root, "force")
     kind, linkage, tracers, followers, guide_length = read_mechanism(root)
     try:
         topo = topology(linkage)

@@ -124,6 +124,15 @@ def _preset(mech, kind):
         l1, l2 = mech.length("l1"), mech.length("l2")
         e = mech.coordinate("e", 0.0)
         br = _branch(mech, "branch", "right", presets.SLIDER_CRANK_BRANCHES)
+        # model = "approximate": kin reports the books' series in 1/n for the slide
+        # (mechcli.core.linkage.approximate); the series assumes no offset and n > 1
+        model = mech.string("model", "exact", choices=["exact", "approximate"])
+        if model == "approximate" and e != 0:
+            raise mech.error("e", "e = 0 with model = \"approximate\" (the series in 1/n "
+                             "assumes a centred slider-crank)", repr(mech.raw("e")))
+        if model == "approximate" and not l2 > l1:
+            raise mech.error("l2", "l2 > l1 with model = \"approximate\" (the series in "
+                             "n = l2/l1 needs n > 1)", repr(mech.raw("l2")))
         linkage = presets.slider_crank(l1, l2, e, br)
     elif kind == "guide_bar":
         l1, l4 = mech.length("l1"), mech.length("l4")
@@ -464,3 +473,14 @@ def _empty(root, name):
     sec = Section({}, root.file, name, root.unit)
     sec.overridden = root.overridden
     return sec
+
+
+def refuse_approximate(root, command):
+    """``[mechanism] model = "approximate"`` is kin's (the piston's series in 1/n): the
+    other commands that read a linkage solve it exactly, so they refuse the key rather
+    than ignore it."""
+    mech = root.data.get("mechanism")
+    if isinstance(mech, dict) and mech.get("model", "exact") != "exact":
+        raise SpecError(root.file, "mechanism.model",
+                        f"\"exact\" for `mechcli {command}` (the approximate series is "
+                        "`mechcli kin`'s)", repr(mech.get("model")))

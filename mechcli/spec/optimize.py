@@ -385,6 +385,9 @@ def read_optimize_spec(path, overrides=()) -> OptimizeSpec:
         data["units"] = root.data["units"]
     data = dict(data, command=problem)
     header = read_header(root, "optimize", default_unit=data.get("units", "mm"))
+    if problem != "cam":    # optimize moves the exact linkage
+        from mechcli.spec.kin import refuse_approximate
+        refuse_approximate(Section(data, problem_file, ""), "optimize")
     # the problem itself must be a valid spec of its command; a key this file gives
     # (or --set) is reported against this file, a key of the base against the base
     try:
