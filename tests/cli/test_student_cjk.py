@@ -44,7 +44,10 @@ def cjk_font():
         font_manager.fontManager.addfont(str(path))
         font_manager.fontManager._findfont_cached.cache_clear()
     family = plotting.cjk_font()
-    assert family is not None
+    # a family matplotlib knows, whose font draws a CJK character
+    entry = next(f for f in font_manager.fontManager.ttflist if f.name == family)
+    from matplotlib.ft2font import FT2Font
+    assert FT2Font(entry.fname).get_char_index(ord("例")) > 0
     yield family
     del fonts[before:]
     font_manager.fontManager._findfont_cached.cache_clear()
