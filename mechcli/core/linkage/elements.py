@@ -467,6 +467,22 @@ class SliderDriver(Element):
         return (Block(self.point, None),)
 
 
+def _rrr_solve(rx, ry, rax, ray, rbx, rby, icross, a, b, bad):
+    """The RRR dyad's 2x2 system for the rates of its links (velocities, or
+    accelerations with the centripetal terms moved into ``rx, ry``), by Cramer's
+    rule into ``a`` and ``b`` (``ry`` is used as scratch); 0 where ``bad``."""
+    np.multiply(rx, rbx, out=a)
+    a += np.multiply(ry, rby, out=b)
+    a *= icross
+    np.multiply(rax, rx, out=b)
+    b += np.multiply(ray, ry, out=ry)
+    b *= icross
+    if bad is not None:
+        np.copyto(a, 0.0, where=bad)
+        np.copyto(b, 0.0, where=bad)
+    return a, b
+
+
 @dataclasses.dataclass(frozen=True)
 class RRR(Element):
     """RRR dyad: link ``link_a`` (from ``point_a``, length ``length_a``) and
@@ -577,16 +593,7 @@ class RRR(Element):
             icross = np.divide(1.0, cross, out=cross)
             rx = np.subtract(pb.vx, pa.vx, out=out())
             ry = np.subtract(pb.vy, pa.vy, out=out())
-            wa, wb = out(), out()
-            np.multiply(rx, rbx, out=wa)
-            wa += np.multiply(ry, rby, out=wb)
-            wa *= icross
-            np.multiply(rax, rx, out=wb)
-            wb += np.multiply(ray, ry, out=ry)
-            wb *= icross
-            if bad is not None:
-                np.copyto(wa, 0.0, where=bad)
-                np.copyto(wb, 0.0, where=bad)
+            wa, wb = _rrr_solve(rx, ry, rax, ray, rbx, rby, icross, out(), out(), bad)
             q.vx = np.multiply(wa, ray, out=rx)
             np.subtract(pa.vx, q.vx, out=q.vx)
             q.vy = np.multiply(wa, rax, out=ry)
@@ -601,15 +608,7 @@ class RRR(Element):
                 ry = np.subtract(pb.ay, pa.ay, out=out())
                 ry += np.multiply(wa2, ray, out=aa)
                 ry -= np.multiply(wb2, rby, out=aa)
-                np.multiply(rx, rbx, out=aa)
-                aa += np.multiply(ry, rby, out=ab)
-                aa *= icross
-                np.multiply(rax, rx, out=ab)
-                ab += np.multiply(ray, ry, out=ry)
-                ab *= icross
-                if bad is not None:
-                    np.copyto(aa, 0.0, where=bad)
-                    np.copyto(ab, 0.0, where=bad)
+                _rrr_solve(rx, ry, rax, ray, rbx, rby, icross, aa, ab, bad)
                 q.ax = np.multiply(aa, ray, out=rx)
                 np.subtract(pa.ax, q.ax, out=q.ax)
                 q.ax -= np.multiply(wa2, rax, out=ry)
