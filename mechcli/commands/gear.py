@@ -35,6 +35,5 @@ def gear(spec_path, **opts):
         raise
     warnings = report.enforce(spec, solution)   # exit 3 on what the spec forbids
     outputs = Outputs(run.out_dir, digits=run.digits)
-    rep, results, more = report.PRESENTERS[spec.kind](spec, solution, run, outputs)
-    results = {"kind": spec.kind, **results}
+    rep, results, more = report.present(spec, solution, run, outputs)
     finish(run, "gear", rep, results, outputs, warnings + more)

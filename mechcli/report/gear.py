@@ -16,10 +16,11 @@ the profile kinds (spur, generation) and the pictures use numpy.
 from __future__ import annotations
 
 import math
+import re
 
 from mechcli.core.errors import UnsolvableError
 from mechcli.report.files import DEFAULT_DIGITS, OutputError, format_number
-from mechcli.report.table import Block, Report
+from mechcli.report.table import Block, Report, book_title, unit_header
 
 
 def csv_text(columns, digits=DEFAULT_DIGITS):
@@ -40,6 +41,179 @@ def csv_text(columns, digits=DEFAULT_DIGITS):
     lines = [",".join(headers)]
     lines.extend(",".join(format_number(v, digits) for v in row) for row in zip(*cols))
     return "\n".join(lines) + "\n"
+
+
+# -- result names with their unit (issue 18 item 8) ---------------------------------------
+#: results that are lengths in the spec's unit: their names carry the unit, ``d`` ->
+#: ``d_mm``, ``a_w_2`` -> ``a_w_mm_2`` (a variant's index stays last, as in
+#: ``alpha_w_deg_2``); the bare names stay in the JSON as aliases for one release
+_LENGTHS = frozenset((
+    # one gear (spur), generation, involute curve
+    "m", "d", "db", "da", "df", "p", "pb", "s", "e", "h", "ha", "hf", "c", "s_a", "e_a", "s_b",
+    "e_b", "r_pointed", "r_form", "r", "rb", "ra", "rf", "undercut_depth", "s_b_generated",
+    "r_max", "x_max", "y_max",
+    # a pair
+    "a", "a_w", "a_zero_backlash", "d1", "d2", "db1", "db2", "da1", "da2", "df1", "df2", "ha1",
+    "ha2", "hf1", "hf2", "h1", "h2", "pb1", "pb2", "s1", "s2", "e1", "e2", "dw1", "dw2",
+    "backlash", "backlash_n", "clearance1", "clearance2",
+    # helical, worm, bevel
+    "mt", "mt2", "mx1", "px", "lead", "R", "b_min1", "b_min2", "dm1", "dm2", "b",
+    # measurements over spans and pins, of the gear ("") or of gear 1, 2
+    *(f"{n}{i}" for n in ("s_chord", "h_chord", "W", "d_W", "dp", "M", "d_M", "d_pin",
+                          "allowance", "s_n") for i in ("", "1", "2"))))
+#: lengths at the radii a spur spec lists: s_r1, e_r1, s_chord_r1, h_chord_r1, ...
+_LENGTH_AT_RADIUS = re.compile(r"(s|e|s_chord|h_chord)_r\d+")
+#: a result name and the index of its variant (``a_w_2``: the second mounting)
+_VARIANT = re.compile(r"(.+?)(_\d+)?")
+#: unit suffixes of the names that already carry one (longest first: N_m before m)
+_SUFFIXES = ("rad_s2", "rad_s", "N_m", "m_s", "kW", "rpm", "deg", "rad", "mm", "cm", "in",
+             "N", "W", "m")
+
+
+def _is_length(base):
+    return base in _LENGTHS or bool(_LENGTH_AT_RADIUS.fullmatch(base))
+
+
+def unit_name(key, unit):
+    """The name of result *key* with its unit: ``d`` -> ``d_mm``, ``a_w_2`` ->
+    ``a_w_mm_2``; a name that is not a length is returned as it is."""
+    base, index = _VARIANT.fullmatch(key).groups()
+    return f"{base}_{unit}{index or ''}" if _is_length(base) else key
+
+
+def unit_names(results, unit):
+    """``(named, aliases)``: *results* under the names with units (in order), and the
+    old bare names of the lengths -> their new name (kept one release as aliases)."""
+    named, aliases = {}, {}
+    for key, value in results.items():
+        new = unit_name(key, unit)
+        if new != key:
+            if new in results:   # a presenter gave the new name itself: keep that value
+                continue
+            aliases[key] = new
+        named[new] = value
+    return named, aliases
+
+
+def with_aliases(results, unit):
+    """The JSON results: every name with its unit, then the old bare length names
+    (``d``, ``W``, ``s_a`` …) as aliases of the same values, for one release."""
+    named, aliases = unit_names(results, unit)
+    return {**named, **{old: named[new] for old, new in aliases.items()}}
+
+
+def result_unit(name, unit):
+    """The unit of a result from its name's suffix (``d_mm`` -> ``mm``, ``alpha_deg`` ->
+    ``deg``, ``T1_N_m`` -> ``N_m``); ``""`` for a number without unit."""
+    base = _VARIANT.fullmatch(name).group(1)
+    for suffix in sorted({unit, *_SUFFIXES}, key=len, reverse=True):   # N_m before m
+        if base.endswith("_" + suffix):
+            return suffix
+    return ""
+
+
+#: the unit column of results.csv as the reports print units (the name keeps ``N_m``)
+_UNIT_TEXT = {"N_m": "N·m", "m_s": "m/s", "rad_s": "rad/s", "rad_s2": "rad/s²"}
+
+
+def results_csv(results, unit, digits=DEFAULT_DIGITS):
+    """``results.csv``: one row ``name,value,unit`` per scalar result (numbers,
+    true/false, text), names with their unit (no aliases); lists are left out, and a
+    non-finite number, which :func:`mechcli.report.run.finish` refuses (exit 3)."""
+    import csv
+    import io
+
+    named, _ = unit_names(results, unit)
+    buf = io.StringIO()
+    w = csv.writer(buf, lineterminator="\n")
+    w.writerow(["name", "value", "unit"])
+    for name, v in named.items():
+        if isinstance(v, bool):
+            text = "true" if v else "false"
+        elif isinstance(v, int):
+            text = str(v)
+        elif isinstance(v, float):
+            if not math.isfinite(v):   # report.run.finish refuses the run (exit 3)
+                continue
+            text = format_number(v, digits)
+        elif isinstance(v, str):
+            text = v
+        else:
+            continue
+        un = result_unit(name, unit)
+        w.writerow([name, text, _UNIT_TEXT.get(un, un)])
+    return buf.getvalue()
+
+
+def wide_csv(first, results, unit, rows=1, digits=DEFAULT_DIGITS):
+    """``gear.csv`` of a pair or drive: the columns *first* (``[(name, values)]``, one
+    value per row) then every other numeric result, names with their unit, one row per
+    mounting (a result of mounting k > 1 is the name + ``_k``; a result common to all
+    mountings repeats); true/false as 1/0."""
+    named, _ = unit_names(results, unit)
+    have = {h for h, _ in first}
+    variants = {f"{k}_{i}" for k in named for i in range(2, rows + 1)}
+    cols = list(first)
+    for key, v in named.items():
+        if key in have or key in variants or isinstance(v, str) \
+                or not isinstance(v, (int, float)):
+            continue
+        vals = [named.get(f"{key}_{i + 1}", v) if i else v for i in range(rows)]
+        if all(isinstance(x, (int, float)) and math.isfinite(x) for x in vals):
+            cols.append((key, vals))   # (a non-finite result: report.run.finish refuses it)
+    return csv_text(cols, digits)
+
+
+def present(spec, solution, run, outputs):
+    """The presenter of *spec*'s kind, then ``results.csv`` (every result: name, value,
+    unit); returns ``(report, results, warnings)`` with the JSON results (names with
+    units and the old bare names as aliases)."""
+    rep, results, warnings = PRESENTERS[spec.kind](spec, solution, run, outputs)
+    rep.title = book_title(rep.title)
+    results = {"kind": spec.kind, **results}
+    unit = spec.header.unit
+    outputs.text("results.csv", results_csv(results, unit, outputs.digits))
+    return rep, with_aliases(results, unit), warnings
+
+
+# -- undercut: one criterion, one warning (issue 20 section 3) ------------------------------
+def undercut_margin_text(g, tooth, sc, u, lang="en"):
+    """What a sharp-cornered cutter (the book's ``gear_cut``) cuts of the involute: the
+    measure beside the criterion x >= x_min (a standard cutter's tip rounding spares
+    what it cuts below the depth ha* m)."""
+    if tooth is None or not tooth.undercut:
+        return _t(lang, "0 (none)", "0 (无)")
+    return (f"{(tooth.r_form - g.rb) / sc:.4f} {u} ("
+            + _t(lang, f"{100 * tooth.undercut_fraction:.2f}% of its length)",
+                 f"渐开线长度的 {100 * tooth.undercut_fraction:.2f}%)"))
+
+
+def undercut_message(g, tooth, sc, u):
+    """The one warning of an undercut gear, in the same words for ``[spur]`` and
+    ``[generation]``: the criterion is x < x_min (z < z_min for x = 0), the straight
+    flank of the standard rack passing the tangent point N; the sharp-cornered cutter's
+    cut (:class:`~mechcli.core.gear.profile.GeneratedTooth`) follows as its measure."""
+    text = (f"undercut: z = {g.z}, x = {g.x:g} < x_min = {g.x_min:.4f} (z_min = "
+            f"{g.z_min:.2f} for x = 0; standard rack, ha* = {g.ha_star:g})")
+    if tooth is not None and tooth.undercut:
+        text += (f"; the involute is cut from rb = {g.rb / sc:.4f} {u} up to r = "
+                 f"{tooth.r_form / sc:.4f} {u} ({100 * tooth.undercut_fraction:.2f}% of its "
+                 "length, sharp-cornered cutter)")
+    return text + f"; x >= {g.x_min:.4f} avoids it"
+
+
+def undercut_rows(g, tooth, sc, u, lang):
+    """Report rows (en, zh, symbol, text) of the undercut: the criterion and its margin
+    x - x_min, then the sharp-cornered cutter's cut as the measure beside it."""
+    verdict = _t(lang, "yes" if g.undercut else "no", "有" if g.undercut else "无")
+    return [
+        ("undercut (standard rack: x < xmin)", "根切 (标准齿条刀具: x < xmin)", "x − xmin",
+         f"{g.x - g.x_min:+.4f} ({verdict})"),
+        ("involute starts at (sharp-cornered cutter)", "渐开线起始圆半径 (尖角刀具)", "r_form",
+         f"{tooth.r_form / sc:.4f} {u}"),
+        ("involute cut by a sharp-cornered cutter", "尖角刀具切去的渐开线", "Δr",
+         undercut_margin_text(g, tooth, sc, u, lang)),
+    ]
 
 
 # -- what a spec may forbid, and the core's errors in words ------------------------------
@@ -63,15 +237,14 @@ def findings(spec, solution):
             out.append((f"pointed tip: the flanks meet at r = {g.pointed_radius / sc:.4f} {u} "
                         f"below ra = {g.ra / sc:.4f} {u}", p.forbid_pointed))
         if g.undercut:
-            out.append((f"undercut: z = {g.z} < z_min = {g.z_min:.2f} with x = {g.x:g} < "
-                        f"x_min = {g.x_min:.4f} (standard rack)", p.forbid_undercut))
+            out.append((undercut_message(g, solution.get("tooth"), sc, u), p.forbid_undercut))
     elif spec.kind == "pair":
         first = solution[0]
         for i, g in enumerate((first.g1, first.g2)):
             if g.tooth_thickness(g.ra) <= 0:
                 out.append((f"gear {i + 1} (z = {g.z}, x = {g.x:g}) has a pointed tip: the "
                             f"flanks meet at r = {g.pointed_radius / sc:.4f} {u} below "
-                            f"ra = {g.ra / sc:.4f} {u}", p.forbid_pointed))
+                            f"ra = {g.ra / sc:.4f} {u}" + pointed_tip_note(g), p.forbid_pointed))
         for pr in solution:
             where = f"a' = {pr.a_w / sc:.3f} {u}"
             eps = pr.epsilon_alpha
@@ -80,15 +253,30 @@ def findings(spec, solution):
                             f"not continuous (a' differs from a = {pr.a / sc:.3f} {u} by "
                             f"{(pr.a_w - pr.a) / sc:+.3f} {u})", p.require_continuous))
             if pr.interference:
-                out.append((f"{where}: interference — a tip passes the tangent point N of the "
-                            f"line of action (N1N2 = {pr.line_of_action / sc:.3f} {u})"
-                            + ("; the ring's tip meets the pinion below its base circle"
-                               if pr.g2.internal else ""), p.forbid_interference))
+                n, (r2, r1) = pr.line_of_action, pr.tip_reach
+                if pr.g2.internal:
+                    which = (f"the ring's tip stops {(n - r2) / sc:.4f} {u} short of the end N1 "
+                             "of the line of action: it meets the pinion below its base circle")
+                else:
+                    which = "; ".join(
+                        f"the tip of gear {i} passes the end N{3 - i} of the line of action "
+                        f"by {(r - n) / sc:.4f} {u}" for i, r in ((1, r1), (2, r2)) if r > n)
+                out.append((f"{where}: interference — {which} (N1N2 = {n / sc:.3f} {u})",
+                            p.forbid_interference))
             for i, c in enumerate(pr.clearances):
                 if c < 0:
                     out.append((f"{where}: tip of gear {i + 1} hits the root of the other "
                                 f"(clearance {c / sc:.3f} {u})", p.forbid_interference))
     return out
+
+
+def pointed_tip_note(g):
+    """How the mesh of a pair treats a gear's pointed tip (``[pair] tip``)."""
+    if getattr(g, "nominal_tip", False):
+        return ('; tip = "nominal": the contact ratio, tip reach and mesh take the nominal tip '
+                "circle ra (the teeth cannot reach it)")
+    return ('; the contact ratio, tip reach and mesh end where the flanks meet '
+            '(tip = "nominal" takes ra as some books do)')
 
 
 def _measures_of(spec, solution):
@@ -156,6 +344,106 @@ def measurement_rows(m, sfx, f3, helical=False):
     return rows
 
 
+def root_factor_results(sh):
+    """JSON results of the root factors of a shift design split for equal strength."""
+    out = {}
+    for i, f in enumerate(sh.factors, start=1):
+        out.update({f"Y_Fa{i}": f.Y_Fa, f"Y_Sa{i}": f.Y_Sa})
+    return out
+
+
+def _num4(v):
+    """A shift to 4 decimals, never '-0.0000'."""
+    return f"{0.0 if abs(v) < 5e-5 else v:.4f}"
+
+
+def shift_text(sh):
+    """'0.4066 = 0.4369 + (-0.0303) (ζ1 = …, ζ2 = …; Y_Fa1 Y_Sa1 = …)' of a shift design;
+    ζ 'undefined' at a root that a tip passing N reaches below its base circle."""
+    z = [("undefined (interference)" if v is None else f"{v:.3f}")
+         for v in (sh.zeta1, sh.zeta2)]
+    x2 = _num4(sh.x2)
+    return (f"{_num4(sh.x_sum)} = {_num4(sh.x1)} + {f'({x2})' if x2.startswith('-') else x2} "
+            f"(ζ1 = {z[0]}, ζ2 = {z[1]}" + root_factor_text(sh) + ")")
+
+
+def root_factor_text(sh):
+    """' (Y_Fa·Y_Sa = …, …)' of a strength split, '' otherwise."""
+    if not sh.factors:
+        return ""
+    f1, f2 = sh.factors
+    return (f"; Y_Fa1 Y_Sa1 = {f1.Y_Fa:.3f}·{f1.Y_Sa:.3f} = {f1.Y_FaSa:.4f}, "
+            f"Y_Fa2 Y_Sa2 = {f2.Y_Fa:.3f}·{f2.Y_Sa:.3f} = {f2.Y_FaSa:.4f}")
+
+
+def loads_results(ld, drive=None):
+    """JSON results of a pair's tooth loads (:class:`~mechcli.core.gear.loads.ToothLoads`):
+    SI values, every name with its unit; power and speed as the spec's *drive* gives them
+    (not a round trip through W and rad/s: 960 rpm stays 960)."""
+    rpm = 30 / math.pi
+    p_kw = getattr(drive, "power_kW", None) or ld.power / 1e3
+    n1 = getattr(drive, "n1_rpm", None) or ld.omega1 * rpm
+    out = {"power_kW": p_kw, "n1_rpm": n1, "n2_rpm": n1 * (ld.omega2 / ld.omega1),
+           "T1_N_m": ld.T1, "T2_N_m": ld.T2, "v_m_s": ld.v,
+           "Ft1_N": ld.Ft1, "Fr1_N": ld.Fr1, "Fa1_N": ld.Fa1,
+           "Ft2_N": ld.Ft2, "Fr2_N": ld.Fr2, "Fa2_N": ld.Fa2, "Fn_N": ld.Fn,
+           "efficiency": ld.efficiency, "P2_kW": ld.power_out / 1e3}
+    return out
+
+
+def worm_efficiency_results(eff, mu):
+    """JSON results of a worm's efficiency (eta, eta', phi) with the friction *mu*."""
+    eta, eta_rev, phi = eff
+    # self-locking (eta' <= 0): the wheel cannot drive the worm at all; its efficiency is
+    # 0, not the formula's negative value
+    return {"mu": mu, "friction_angle_deg": math.degrees(phi), "efficiency": eta,
+            "efficiency_reverse": max(eta_rev, 0.0), "self_locking": eta_rev <= 0}
+
+
+def loads_rows(ld, f3):
+    """Report rows (en, zh, symbol, text) of a pair's tooth loads; *f3* words a length."""
+    rpm = 30 / math.pi
+    where = {"spur": ("operating pitch circle", "节圆"), "helical": ("operating pitch circle",
+                                                                    "节圆"),
+             "bevel": ("mean cone", "齿宽中点"), "worm": ("worm reference cylinder",
+                                                        "蜗杆分度圆")}[ld.kind]
+    rows = [
+        ("input power / speeds", "输入功率 / 转速", "P1, n1, n2",
+         f"{ld.power / 1e3:.4g} kW, {ld.omega1 * rpm:.4g} rpm, {ld.omega2 * rpm:.4g} rpm"),
+        ("torques (input, output)", "转矩 (主动轴, 从动轴)", "T1, T2",
+         f"{ld.T1:.4g} N·m, {ld.T2:.4g} N·m"),
+        (f"pitch-point speed ({where[0]})", f"圆周速度 ({where[1]})", "v",
+         f"{ld.v:.4g} m/s (d = {f3(ld.d_force1)})"),
+        ("forces on gear 1: tangential, radial, axial", "齿轮 1 受力: 圆周力, 径向力, 轴向力",
+         "Ft1, Fr1, Fa1", f"{ld.Ft1:.4g} N, {ld.Fr1:.4g} N, {ld.Fa1:.4g} N"),
+        ("forces on gear 2: tangential, radial, axial", "齿轮 2 受力: 圆周力, 径向力, 轴向力",
+         "Ft2, Fr2, Fa2", f"{ld.Ft2:.4g} N, {ld.Fr2:.4g} N, {ld.Fa2:.4g} N"),
+        ("normal tooth force", "法向力", "Fn", f"{ld.Fn:.4g} N"),
+    ]
+    if ld.kind == "bevel":
+        rows.insert(3, ("mean diameters", "齿宽中点分度圆直径", "dm1, dm2",
+                        f"{f3(ld.d_force1)}, {f3(ld.d_force2)}"))
+    return rows
+
+
+def worm_efficiency_rows(eff, mu, ld=None, lang="en"):
+    """Report rows (en, zh, symbol, text) of a worm's efficiency and self-locking (η' shown
+    as 0 when the wheel cannot drive)."""
+    eta, eta_rev, phi = eff
+    rows = [("flank friction coefficient / friction angle", "摩擦系数 / 当量摩擦角", "μ, φv",
+             f"{mu:.4g}, {math.degrees(phi):.4f}°"),
+            ("efficiency, worm driving", "啮合效率 (蜗杆主动)", "η = tanγ/tan(γ+φv)",
+             f"{eta:.4f}"),
+            ("efficiency, wheel driving", "啮合效率 (蜗轮主动)", "η' = tan(γ-φv)/tanγ",
+             f"{max(eta_rev, 0.0):.4f}"
+             + (_t(lang, " (self-locking: γ ≤ φv, the wheel cannot drive the worm)",
+                   " (自锁: γ ≤ φv, 蜗轮不能驱动蜗杆)") if eta_rev <= 0 else ""))]
+    if ld is not None:
+        rows.append(("sliding speed", "相对滑动速度", "vs = v1/cosγ",
+                     f"{ld.sliding_velocity:.4g} m/s"))
+    return rows
+
+
 def enforce(spec, solution):
     """Raise :class:`RequirementError` on the first forbidden finding; return all messages."""
     found = findings(spec, solution)
@@ -199,6 +487,12 @@ _ERROR_TEXT = {
         f"(z = {v['z']}): a larger pin is needed"),
     "helical_shift_sum": lambda v: (
         f"xn1 + xn2 = {v['x_sum']:g} is so negative that no zero-backlash mesh exists"),
+    "no_drive": lambda v: (
+        f"lead angle {math.degrees(v['gamma']):.4g} deg + friction angle "
+        f"{math.degrees(v['phi']):.4g} deg >= 90 deg: the worm cannot drive the wheel "
+        "(efficiency <= 0)"),
+    "bevel_face": lambda v: (
+        f"face width {v['b']:.6g} m is not below the cone distance R = {v['R']:.6g} m"),
     "crown_bevel": lambda v: (
         f"pitch-cone angles {math.degrees(v['delta1']):.3f}° and "
         f"{math.degrees(v['delta2']):.3f}°: a cone of 90° or more is a crown or internal bevel "
@@ -226,8 +520,28 @@ def mounting_error(spec, exc):
             return (f"{kind}.x_split", "a split rule that has a solution: no x1 in [-1.5, 1.5] "
                     f"balances the specific sliding for x1 + x2 = {v['x_sum']:.4f}",
                     '"sliding"')
-        return (f"{kind}.x1", f"x1 leaving x2 = {v['x_sum']:.4f} - x1 in [-1.5, 1.5] "
-                f"(x1 + x2 = {v['x_sum']:.4f} for a_w)", f"{v['x1']:g} (x2 = {v['x2']:.4f})")
+        if v["what"] == "sum_range":
+            return (p.a_w_keys[0] if kind == "pair" else f"{kind}.a_w",
+                    "a centre distance whose shift sum x1 + x2 lies in [-3, 3] (two shifts in "
+                    f"[-1.5, 1.5]): this one needs {v['x_sum']:.4f}", f"{v['a_w'] / sc:g}")
+        if v["what"] == "strength":
+            return (f"{kind}.x_split", "a split rule that has a solution: no x1 in [-1.5, 1.5] "
+                    f"gives both gears the same Y_Fa Y_Sa for x1 + x2 = {v['x_sum']:.4f}",
+                    '"strength"')
+        if v["what"] == "strength_rejected":
+            why = "; ".join(f"x1 = {x1:.4f}: {split_refusal(w, sc, spec.header.unit)}"
+                            for x1, w in v["splits"])
+            return (f"{kind}.x_split", "a split rule that has a usable solution: every x1 "
+                    f"giving both gears the same Y_Fa Y_Sa for x1 + x2 = {v['x_sum']:.4f} "
+                    "makes an unusable pair", f'"strength" ({why})')
+        x = "xn" if kind == "helical" else "x"
+        if p.x_split != "x1":
+            return (f"{kind}.x_split", f"a split leaving both shifts in [-1.5, 1.5] "
+                    f"({x}1 + {x}2 = {v['x_sum']:.4f} for a_w)",
+                    f'"{p.x_split}" ({x}1 = {v["x1"]:.4f}, {x}2 = {v["x2"]:.4f})')
+        return (f"{kind}.{x}1", f"{x}1 leaving {x}2 = {v['x_sum']:.4f} - {x}1 in [-1.5, 1.5] "
+                f"({x}1 + {x}2 = {v['x_sum']:.4f} for a_w)",
+                f"{v['x1']:g} ({x}2 = {v['x2']:.4f})")
     if v["given"] == "backlash":
         if v["what"] == "below":
             return (f"{kind}.backlash", "a backlash at least that of the nominal teeth at this "
@@ -248,6 +562,21 @@ def mounting_error(spec, exc):
                  else "zero backlash; smaller jams the teeth")
         expected = f"a centre distance >= {a0 / sc:.6g} ({bound})"
     return p.a_w_keys[v["index"]], expected, f"{a / sc:g}"
+
+
+def split_refusal(why, sc, u):
+    """Words of why a designed split is no usable pair (``problems._unusable``)."""
+    w = why["what"]
+    if w == "undercut":
+        return (f"gear {why['gear']} (z = {why['z']}) is undercut, x = {why['x']:.4f} < "
+                f"x_min = {why['x_min']:.4f}")
+    if w == "pointed":
+        return f"gear {why['gear']} (z = {why['z']}, x = {why['x']:.4f}) has a pointed tip"
+    if w == "interference":
+        i = why["gear"]
+        return (f"interference, the tip of gear {i} (x = {why['x']:.4f}) passes the end N{3 - i} "
+                f"of the line of action by {why['excess'] / sc:.4g} {u}")
+    return why.get("text", w)
 
 
 def _t(lang, en, zh):
@@ -287,17 +616,17 @@ def present_involute(spec, sol, run, outputs):
         (f"r_K_{u}", [v / sc for v in r]), ("theta_K_rad", th),
         (f"x_{u}", [v / sc for v in x]), (f"y_{u}", [v / sc for v in y])], outputs.digits))
     cols = [f"{k * p.table_step_deg:.1f}" for k in range(p.columns)]
-    table = Block(_t(lang, "Table 5-1  involute function inv(alpha) = tan(alpha) - alpha",
+    table = Block(_t(lang, "Table 5-1  involute function inv α = tan α − α",
                      "表 5-1 渐开线函数值"),
-                  [_t(lang, "deg", "度")] + cols,
+                  [unit_header("α", "°", _t(lang, "", "压力角"))] + cols,
                   [[f"{row:.4f}"] + [f"{v:.{p.digits}f}" for v in line]
                    for row, line in zip(rows, inv)])
     curve = _kv_block(_t(lang, "Involute curve (eq. 5-1, 5-2)", "渐开线曲线"), [
         ("base radius", "基圆半径", "rb", f"{p.rb / sc:.3f} {u}"),
-        ("pressure angle range", "压力角范围", "alpha_K",
+        ("pressure angle range", "压力角范围", "αK",
          f"0 … {math.degrees(p.alpha_max):g}°"),
         ("end point radius", "终点向径", "r_K", f"{r[-1] / sc:.3f} {u}"),
-        ("end point roll angle", "终点展角", "theta_K", f"{th[-1]:.6f} rad"),
+        ("end point roll angle", "终点展角", "θK", f"{th[-1]:.6f} rad"),
         ("end point", "终点坐标", "(x, y)", f"({x[-1] / sc:.3f}, {y[-1] / sc:.3f}) {u}"),
     ], lang)
     report = Report(spec.header.title, [table, curve])
@@ -368,6 +697,8 @@ def present_spur(spec, sol, run, outputs):
                "pointed": bool(pointed), "r_form": L(tooth.r_form),
                "undercut_generated": tooth.undercut,
                "undercut_fraction": tooth.undercut_fraction,
+               "undercut_depth": L(tooth.r_form - g.rb) if tooth.undercut else 0.0,
+               "undercut_margin": g.x - g.x_min,
                "profile_points": int(outline.x.size)}
     for k, r in enumerate(p.radii):
         results[f"s_r{k + 1}"] = L(g.tooth_thickness(r))
@@ -377,7 +708,7 @@ def present_spur(spec, sol, run, outputs):
     for k, (sc_r, hc_r) in enumerate(ms.radii):
         results[f"s_chord_r{k + 1}"] = L(sc_r)
         results[f"h_chord_r{k + 1}"] = L(hc_r)
-    f3 = lambda v: f"{v / sc:.3f}{u}"  # noqa: E731
+    f3 = lambda v: f"{v / sc:.3f} {u}"  # noqa: E731
     rows = [
         ("number of teeth", "齿数", "z", f"{g.z}"),
         ("module", "模数", "m", f3(g.m)),
@@ -402,9 +733,7 @@ def present_spur(spec, sol, run, outputs):
         ("radius of the pointed tip", "齿顶变尖时的齿顶圆半径", "rp", f3(g.pointed_radius)),
         ("fewest teeth without undercut", "不根切最少齿数", "zmin", f"{g.z_min:.3f}"),
         ("least shift against undercut", "最小变位系数", "xmin", f"{g.x_min:.4f}"),
-        ("involute starts at (generated)", "渐开线起始圆半径", "r_form", f3(tooth.r_form)),
-        ("involute cut away (generated)", "根切量(渐开线长度比)", "undercut",
-         f"{100 * tooth.undercut_fraction:.2f}%"),
+        *undercut_rows(g, tooth, sc, u, lang),
     ]
     for k, r in enumerate(p.radii):
         rows.append((f"thickness at r = {r / sc:g}", f"r = {r / sc:g} 处齿厚", f"s_r{k + 1}",
@@ -424,6 +753,10 @@ def present_spur(spec, sol, run, outputs):
     return report, results, warnings
 
 
+#: the symbols of 【例 5-4】's printout (its MATLAB names), kept in the Chinese listing
+_BOOK_5_4_NAMES = {"a'": "aT", "αa1": "alpha1", "αa2": "alpha2", "α'": "alpha", "εα": "epsilon"}
+
+
 # -- a pair (【例 5-4】, 习题 5-2 … 5-5) ----------------------------------------------
 def present_pair(spec, pairs, run, outputs):
     p, u, sc, lang = spec.problem, spec.header.unit, spec.header.scale, run.lang
@@ -439,17 +772,21 @@ def present_pair(spec, pairs, run, outputs):
                "s1": L(g1.s), "s2": L(g2.s), "e1": L(g1.e), "e2": L(g2.e), "c": L(g1.c),
                "alpha_a1_deg": math.degrees(g1.alpha_a),
                "alpha_a2_deg": math.degrees(g2.alpha_a),
-               "internal": g2.internal, "x1": g1.x, "x2": g2.x}
+               "internal": g2.internal, "x1": g1.x, "x2": g2.x,
+               "tip": "nominal" if g1.nominal_tip else "effective"}
     for i, m in enumerate(pairs.measures, start=1):
         if m is not None:
             results.update(measurement_results(m, str(i), L))
     if pairs.shift is not None:
-        results.update({"x_sum": pairs.shift.x_sum, "zeta1": pairs.shift.zeta1,
+        results.update({"x_sum": pairs.shift.x_sum + 0.0, "zeta1": pairs.shift.zeta1,
                         "zeta2": pairs.shift.zeta2})
+        results.update(root_factor_results(pairs.shift))
+    if pairs.loads is not None:
+        results.update(loads_results(pairs.loads, p.drive))
     a0 = first.a_zero_backlash
     if a0 is not None:   # None: teeth so thin that no a' jams
         results["a_zero_backlash"] = L(a0)
-    f3 = lambda v: f"{v / sc:.3f}{u}"  # noqa: E731
+    f3 = lambda v: f"{v / sc:.3f} {u}"  # noqa: E731
     blocks = []
     rows_csv = []
     for k, pr in enumerate(pairs):
@@ -469,7 +806,7 @@ def present_pair(spec, pairs, run, outputs):
                          pairs.backlash[k][0] / sc, cl[0] / sc, cl[1] / sc])
         rows = [
             ("standard centre distance", "标准中心距", "a", f3(pr.a)),
-            ("operating centre distance", "实际中心距", "aT", f3(pr.a_w)),
+            ("operating centre distance", "实际中心距", "a'", f3(pr.a_w)),
             ("pinion reference diameter", "小齿轮分度圆直径", "d1", f3(g1.d)),
             ("wheel reference diameter", "大齿轮分度圆直径", "d2", f3(g2.d)),
             ("pinion base diameter", "小齿轮基圆直径", "db1", f3(g1.db)),
@@ -478,40 +815,56 @@ def present_pair(spec, pairs, run, outputs):
             ("wheel tip diameter", "大齿轮齿顶圆直径", "da2", f3(g2.da)),
             ("pinion root diameter", "小齿轮齿根圆直径", "df1", f3(g1.df)),
             ("wheel root diameter", "大齿轮齿根圆直径", "df2", f3(g2.df)),
-            ("pinion tip pressure angle", "小齿轮齿顶圆压力角", "alpha1",
+            ("pinion tip pressure angle", "小齿轮齿顶圆压力角", "αa1",
              f"{math.degrees(g1.alpha_a):.3f}°"),
-            ("wheel tip pressure angle", "大齿轮齿顶圆压力角", "alpha2",
+            ("wheel tip pressure angle", "大齿轮齿顶圆压力角", "αa2",
              f"{math.degrees(g2.alpha_a):.3f}°"),
-            ("operating pressure angle", "啮合角", "alpha", f"{math.degrees(pr.alpha_w):.3f}°"),
-            ("contact ratio", "重合度", "epsilon", f"{eps:.3f}"),
+            ("operating pressure angle", "啮合角", "α'", f"{math.degrees(pr.alpha_w):.3f}°"),
+            ("contact ratio", "重合度", "εα", f"{eps:.3f}"),
         ]
+        if lang == "zh":   # 【例 5-4】's printout line for line: its MATLAB names, "250.000mm"
+            rows = [(en, zh, _BOOK_5_4_NAMES.get(sym, sym), txt.replace(f" {u}", u))
+                    for en, zh, sym, txt in rows]
         extra = [
             ("operating pitch diameters", "节圆直径", "d1', d2'",
-             f"{pr.dw1 / sc:.3f}{u}, {pr.dw2 / sc:.3f}{u}"),
+             f"{pr.dw1 / sc:.3f} {u}, {pr.dw2 / sc:.3f} {u}"),
             ("backlash on the pitch circle / normal", "齿侧间隙 (圆周 / 法向)", "j, jn",
              f"{f3(pairs.backlash[k][0])}, {f3(pairs.backlash[k][1])}"),
-            ("tip clearances", "顶隙", "c1', c2'", f"{cl[0] / sc:.3f}{u}, {cl[1] / sc:.3f}{u}"),
+            ("tip clearances", "顶隙", "c1', c2'", f"{cl[0] / sc:.3f} {u}, {cl[1] / sc:.3f} {u}"),
             ("zero-backlash centre distance", "无侧隙中心距", "a0'",
              f3(a0) if a0 is not None else _t(lang, "none (backlash at every a')",
                                               "无 (任何中心距均有侧隙)")),
             ("centre-distance / tip-shortening coefficients", "中心距变动系数 / 齿顶高降低系数",
              "y, Δy", f"{pr.y:.4f}, {pr.delta_y if not g2.internal else 0.0:.4f}"
              + (" (tips shortened)" if p.tip_shortening and pr.delta_y > 1e-12 else "")),
-            ("base pitches", "基圆齿距", "pb1, pb2", f"{g1.pb / sc:.3f}{u}, {g2.pb / sc:.3f}{u}"),
+            ("base pitches", "基圆齿距", "pb1, pb2", f"{g1.pb / sc:.3f} {u}, {g2.pb / sc:.3f} {u}"),
             ("ratio", "传动比", "i12", f"{pr.ratio:.4f}"),
         ]
         if k == 0 and (g1.x or g2.x or p.designed or g2.internal):
             extra.insert(0, ("teeth", "齿数", "z1, z2", f"{g1.z}, {g2.z}"))
         if k == 0 and pairs.shift is not None:
             sh = pairs.shift
-            rule = {"x1": "x1 given", "sliding": "balanced specific sliding"}[sh.rule]
+            rule = {"x1": "x1 given", "sliding": "balanced specific sliding",
+                    "strength": "equal Y_Fa Y_Sa"}[sh.rule]
             extra.insert(0, ("profile shifts for a' (" + rule + ")", "按中心距设计变位系数",
-                             "x1 + x2 = x1, x2", f"{sh.x_sum:.4f} = {sh.x1:.4f} + {sh.x2:.4f} "
-                             f"(ζ1 = {sh.zeta1:.3f}, ζ2 = {sh.zeta2:.3f})"))
+                             "x1 + x2", shift_text(sh)))
         if k == 0:
             for i, m in enumerate(pairs.measures, start=1):
                 if m is not None:
                     extra += measurement_rows(m, str(i), f3)
+            if pairs.loads is not None:
+                extra += loads_rows(pairs.loads, f3)
+            pointed = [g for g in (g1, g2) if not g.internal and g.tooth_thickness(g.ra) <= 0]
+            if pointed or g1.nominal_tip:
+                extra.append(("a pointed tooth's contact ends at", "齿顶变尖时啮合终止于", "tip",
+                              _t(lang, "the nominal tip circle ra (tip = \"nominal\")",
+                                 "名义齿顶圆 ra") if g1.nominal_tip else
+                              _t(lang, "the radius where its flanks meet, "
+                                 + ", ".join(f"r_p{1 if g is g1 else 2} = {f3(g.pointed_radius)}"
+                                             for g in pointed),
+                                 "两侧齿廓交点 " + ", ".join(
+                                     f"r_p{1 if g is g1 else 2} = {f3(g.pointed_radius)}"
+                                     for g in pointed))))
         if g2.internal:
             extra.insert(0, ("gear 2 is internal (ring)", "齿轮 2 为内齿轮", "x2 (ISO: + thickens)",
                              f"{g2.x:g}"))
@@ -521,7 +874,9 @@ def present_pair(spec, pairs, run, outputs):
     cols = list(zip(*rows_csv))
     names = [f"a_w_{u}", "alpha_w_deg", f"dw1_{u}", f"dw2_{u}", "epsilon_alpha",
              f"backlash_{u}", f"clearance1_{u}", f"clearance2_{u}"]
-    outputs.text("gear.csv", csv_text(list(zip(names, cols)), outputs.digits))
+    # these 8 columns first, then every other result (one row per mounting)
+    outputs.text("gear.csv", wide_csv(list(zip(names, cols)), results, u, len(pairs),
+                                      outputs.digits))
     animate = p.animate if run.animate is None else run.animate
     if animate and g2.internal:
         warnings.append("no mesh animation for internal pairs (pair.png only)")
@@ -555,7 +910,9 @@ def present_generation(spec, sol, run, outputs):
         x_rack = g.ha_star + g.c_star - g.z * math.sin(g.alpha) ** 2 / 2
         results.update({f"x{sfx}": g.x, f"r{sfx}": L(g.r), f"rb{sfx}": L(g.rb),
                         f"ra{sfx}": L(g.ra), f"rf{sfx}": L(g.rf),
-                        f"undercut{sfx}": tooth.undercut, f"r_form{sfx}": L(tooth.r_form),
+                        f"undercut{sfx}": bool(g.undercut),
+                        f"undercut_generated{sfx}": tooth.undercut,
+                        f"undercut_margin{sfx}": g.x - g.x_min, f"r_form{sfx}": L(tooth.r_form),
                         f"undercut_depth{sfx}": L(tooth.r_form - g.rb) if tooth.undercut
                         else 0.0,
                         f"undercut_fraction{sfx}": tooth.undercut_fraction,
@@ -568,24 +925,17 @@ def present_generation(spec, sol, run, outputs):
         if tooth.tip_pointed:
             warnings.append(f"x = {g.x:g}: pointed tip, the flanks meet at r = "
                             f"{g.pointed_radius / sc:.3f} {u} below ra = {g.ra / sc:.3f} {u}")
-        if tooth.undercut:
-            warnings.append(f"x = {g.x:g}: undercut, the cutter removes the involute from rb = "
-                            f"{g.rb / sc:.3f} up to r = {tooth.r_form / sc:.3f} {u} "
-                            f"({100 * tooth.undercut_fraction:.1f}% of its length); "
-                            f"x >= {x_rack:.3f} cures it for this cutter")
-        f3 = lambda v: f"{v / sc:.3f}{u}"  # noqa: E731
+        if g.undercut:
+            warnings.append(undercut_message(g, tooth, sc, u))
         blocks.append(_kv_block(_t(lang, f"Generation by rack cutter, x = {g.x:g}",
                                    f"齿条刀具范成, x = {g.x:g}"), [
             ("module, teeth, pressure angle", "模数, 齿数, 压力角", "m, z, α",
-             f"{g.m / sc:g}{u}, {g.z}, {math.degrees(g.alpha):g}°"),
+             f"{g.m / sc:g} {u}, {g.z}, {math.degrees(g.alpha):g}°"),
             ("reference / base radius", "分度圆 / 基圆半径", "r, rb",
-             f"{g.r / sc:.3f}, {g.rb / sc:.3f}{u}"),
-            ("tip / root radius", "齿顶圆 / 齿根圆半径", "ra, rf", f"{g.ra / sc:.3f}, {g.rf / sc:.3f}{u}"),
-            ("undercut", "根切", "", _t(lang, "yes" if tooth.undercut else "no",
-                                          "有" if tooth.undercut else "无")),
-            ("involute begins at", "渐开线起始圆半径", "r_form", f3(tooth.r_form)),
-            ("involute length cut away", "被切去的渐开线长度比", "", f"{100 * tooth.undercut_fraction:.2f}%"),
+             f"{g.r / sc:.3f}, {g.rb / sc:.3f} {u}"),
+            ("tip / root radius", "齿顶圆 / 齿根圆半径", "ra, rf", f"{g.ra / sc:.3f}, {g.rf / sc:.3f} {u}"),
             ("least shift against undercut (ha*)", "最小变位系数 (ha*)", "xmin", f"{g.x_min:.4f}"),
+            *undercut_rows(g, tooth, sc, u, lang),
             ("least shift for this sharp cutter", "本刀具不根切最小变位系数", "xmin'", f"{x_rack:.4f}"),
         ], lang))
         out = sol["outlines"][k]
@@ -615,12 +965,28 @@ def present_helical(spec, sol, run, outputs):
                "epsilon_beta": hp.epsilon_beta, "epsilon_gamma": hp.epsilon_gamma,
                "zv1": hp.zv(hp.z1), "zv2": hp.zv(hp.z2), "xn1": x1, "xn2": x2,
                "a_w": L(hp.a_w), "alpha_wt_deg": math.degrees(hp.alpha_wt)}
-    f3 = lambda v: f"{v / sc:.3f}{u}"  # noqa: E731
-    extra = []
+    f3 = lambda v: f"{v / sc:.3f} {u}"  # noqa: E731
+    extra, warnings = [], []
     for i, m in enumerate(sol.measures, start=1):
         results.update(measurement_results(m, str(i), L))
         results[f"b_min{i}"] = L(m.span.b_min)
         extra += measurement_rows(m, str(i), f3, helical=True)
+    if sol.shift is not None:
+        sh = sol.shift
+        rule = {"x1": "xn1 given", "sliding": "balanced specific sliding",
+                "strength": "equal Y_Fa Y_Sa"}[sh.rule]
+        results.update({"xn_sum": sh.x_sum + 0.0, "zeta1": sh.zeta1, "zeta2": sh.zeta2})
+        for i, zeta in ((1, sh.zeta1), (2, sh.zeta2)):
+            if zeta is None:   # the other gear's tip passes this gear's end N
+                warnings.append(f"interference — the tip of gear {3 - i} passes the end N{i} "
+                                "of the line of action (transverse plane): the contact starts "
+                                f"below the base circle of gear {i}, zeta{i} is undefined")
+        results.update(root_factor_results(sh))
+        extra.insert(0, ("normal shifts for a' (" + rule + ")", "按中心距设计法面变位系数",
+                         "xn1 + xn2", shift_text(sh)))
+    if sol.loads is not None:
+        results.update(loads_results(sol.loads, spec.problem.drive))
+        extra += loads_rows(sol.loads, f3)
     return _simple(spec, run, outputs, _t(lang, "Helical gear pair", "斜齿圆柱齿轮传动"), results, [
         ("helix angle", "螺旋角", "β", "beta_deg", "°"),
         ("transverse module", "端面模数", "mt", "mt", u),
@@ -636,7 +1002,7 @@ def present_helical(spec, sol, run, outputs):
         ("normal profile shifts", "法面变位系数", "xn1", "xn1", ""), ("", "", "xn2", "xn2", ""),
         ("operating centre distance", "实际中心距", "a'", "a_w", u),
         ("operating transverse pressure angle", "端面啮合角", "αwt", "alpha_wt_deg", "°"),
-    ], [], extra)
+    ], warnings, extra)
 
 
 def present_worm(spec, w, run, outputs):
@@ -646,6 +1012,15 @@ def present_worm(spec, w, run, outputs):
                "d2": L(w.d2), "px": L(w.px), "lead": L(w.lead),
                "gamma_deg": math.degrees(w.gamma), "a": L(w.a), "i12": w.ratio,
                "da1": L(w.da1), "df1": L(w.df1), "da2": L(w.da2), "df2": L(w.df2)}
+    extra = []
+    if getattr(w, "efficiency", None) is not None:   # a worm with friction (and loads)
+        ld = w.loads
+        if ld is not None:
+            results.update(loads_results(ld, spec.problem.drive))
+            results["v_sliding_m_s"] = ld.sliding_velocity
+            extra += loads_rows(ld, lambda v: f"{v / sc:.3f} {u}")
+        results.update(worm_efficiency_results(w.efficiency, spec.problem.mu))
+        extra += worm_efficiency_rows(w.efficiency, spec.problem.mu, ld, lang)
     return _simple(spec, run, outputs, _t(lang, "Worm drive", "蜗杆传动"), results, [
         ("wheel transverse = worm axial module", "蜗轮端面模数 = 蜗杆轴面模数", "m", "m", u),
         ("diameter factor", "蜗杆直径系数", "q", "q", ""),
@@ -660,7 +1035,7 @@ def present_worm(spec, w, run, outputs):
         ("", "", "df1", "df1", u),
         ("wheel tip / root diameter", "蜗轮齿顶圆 / 齿根圆直径", "da2", "da2", u),
         ("", "", "df2", "df2", u),
-    ], [])
+    ], [], extra)
 
 
 def present_bevel(spec, b, run, outputs):
@@ -677,6 +1052,20 @@ def present_bevel(spec, b, run, outputs):
                "da1": L(b.da(b.z1, d1)), "da2": L(b.da(b.z2, d2)),
                "df1": L(b.df(b.z1, d1)), "df2": L(b.df(b.z2, d2)),
                "zv1": b.zv(b.z1, d1), "zv2": b.zv(b.z2, d2)}
+    extra, warnings = [], []
+    width = getattr(b, "face_width", None)
+    if width is not None:   # the face width places the mean cone
+        dm1, dm2 = b.mean_diameters
+        results.update({"b": L(width), "dm1": L(dm1), "dm2": L(dm2)})
+        if b.loads is None:
+            extra.append(("face width / mean diameters", "齿宽 / 齿宽中点分度圆直径",
+                          "b, dm1, dm2", f"{width / sc:.3f}, {dm1 / sc:.3f}, {dm2 / sc:.3f} {u}"))
+        if width > b.R / 3 * (1 + 1e-12):
+            warnings.append(f"face width b = {width / sc:.6g} {u} is above R/3 = "
+                            f"{b.R / 3 / sc:.6g} {u} (the usual design rule b <= R/3)")
+    if getattr(b, "loads", None) is not None:
+        results.update(loads_results(b.loads, spec.problem.drive))
+        extra += loads_rows(b.loads, lambda v: f"{v / sc:.3f} {u}")
     return _simple(spec, run, outputs, _t(lang, "Straight bevel gear pair", "直齿圆锥齿轮传动"),
                    results, [
         ("pitch-cone angles", "分度圆锥角", "δ1", "delta1_deg", "°"), ("", "", "δ2", "delta2_deg", "°"),
@@ -689,7 +1078,7 @@ def present_bevel(spec, b, run, outputs):
         ("tip diameters", "齿顶圆直径", "da1", "da1", u), ("", "", "da2", "da2", u),
         ("root diameters", "齿根圆直径", "df1", "df1", u), ("", "", "df2", "df2", u),
         ("virtual teeth", "当量齿数", "zv1", "zv1", ""), ("", "", "zv2", "zv2", ""),
-    ], [])
+    ], warnings, extra)
 
 
 def _simple(spec, run, outputs, heading, results, rows, warnings, extra=()):
@@ -703,7 +1092,8 @@ def _simple(spec, run, outputs, heading, results, rows, warnings, extra=()):
     u = spec.header.unit
     cols = [(key if un in ("", "°") else f"{key}_{u}", [results[key]])
             for _, _, _, key, un in rows]
-    outputs.text("gear.csv", csv_text(cols, outputs.digits))
+    # the table's columns first, then every other result
+    outputs.text("gear.csv", wide_csv(cols, results, u, 1, outputs.digits))
     return Report(spec.header.title, [block]), results, warnings
 
 

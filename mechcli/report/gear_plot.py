@@ -208,18 +208,20 @@ def _generation_axes(ax, tooth, phi, spec, lang, teeth, cutter=True):
     ax.plot((c * out.x - s * out.y) / sc, (s * out.x + c * out.y) / sc, "k-", lw=1.3)
     _gear_axes(ax, g, sc, lang)
     if tooth.undercut:
-        _circle(ax, tooth.r_form / sc, "m-", _t(lang, "undercut: involute starts here",
-                                                  "根切: 渐开线起始圆"), lw=0.8)
+        _circle(ax, tooth.r_form / sc, "m-", _t(lang, "involute starts here (sharp cutter)",
+                                                  "渐开线起始圆 (尖角刀具)"), lw=0.8)
     ax.set_aspect("equal")
     ax.set_xlabel(f"x ({u})")
     ax.set_ylabel(f"y ({u})")
     ax.set_title(_t(lang, f"m = {g.m / sc:g}, z = {g.z}, α = {math.degrees(g.alpha):g}°, "
                     f"x = {g.x:g}"
-                    + (f": {100 * tooth.undercut_fraction:.1f}% of the involute cut away"
-                       if tooth.undercut else ": no undercut"),
+                    + (": undercut (x < xmin)" if g.undercut else ": no undercut (x ≥ xmin)")
+                    + (f", this sharp cutter cuts {100 * tooth.undercut_fraction:.1f}% of the "
+                       "involute" if tooth.undercut else ""),
                     f"m={g.m / sc:g}, z={g.z}, α={math.degrees(g.alpha):g}°, x={g.x:g}"
-                    + (f": 根切 {100 * tooth.undercut_fraction:.1f}%" if tooth.undercut
-                       else ": 无根切")), fontsize=9)
+                    + (": 根切 (x < xmin)" if g.undercut else ": 无根切 (x ≥ xmin)")
+                    + (f", 尖角刀具切去渐开线 {100 * tooth.undercut_fraction:.1f}%"
+                       if tooth.undercut else "")), fontsize=9)
     lim = g.ra * 1.25 / sc
     ax.set_xlim(-lim, lim)
     ax.set_ylim(-(g.r + (g.x + 2) * g.m) / sc * 1.05, lim)

@@ -53,8 +53,33 @@ class Report:
     notes: list = dataclasses.field(default_factory=list)
 
 
+
+#: the title of a worked example of the book: 例 1-1 ... -> 【例 1-1】 ...
+_EXAMPLE_TITLE = re.compile(r"^\s*例\s*(\d+)\s*[-‐–]\s*(\d+)\s*")
+
+
+def book_title(title):
+    """*title* with the book's label of a worked example in the book's brackets:
+    ``例 5-3 标准齿轮`` -> ``【例 5-3】 标准齿轮``; any other title unchanged (the same
+    rule as :func:`mechcli.report.kin.book_title`, here without numpy for the
+    commands that start fast: gear, grashof)."""
+    m = _EXAMPLE_TITLE.match(title or "")
+    if not m:
+        return title
+    rest = title[m.end():]
+    return f"【例 {m.group(1)}-{m.group(2)}】" + (f" {rest}" if rest else "")
+
+
+def unit_header(symbol, unit, name=""):
+    """A header or label in the book's notation: ``θ1/(°)``, ``H/(mm)``; with a
+    *name* first, ``极位夹角 θ/(°)``; a dimensionless quantity (unit ``""``) has none."""
+    text = symbol if unit in ("", "1") else f"{symbol}/({unit})"
+    return f"{name} {text}" if name else text
+
 def display_width(text):
     """Terminal columns taken by *text* (CJK characters count two)."""
+    if text.isascii():   # most cells: numbers
+        return len(text)
     return sum(2 if unicodedata.east_asian_width(c) in "WF" else 1 for c in text)
 
 

@@ -195,6 +195,45 @@ def _measurement(sec: Section, z, mn, alpha_n, xn, beta=0.0, suffix=""):
     return k, dp, e
 
 
+#: input power [kW]: 1e6 kW (1 GW) is past the largest gear drive (ship and turbine
+#: gearboxes reach about 1e5 kW); 1e-9 kW (1 microwatt) is below a watch's gear train
+#: (a few microwatts)
+POWER_KW = (1e-9, 1e6)
+#: speed of the driving shaft [rpm]: 1e6 rpm is past any gear drive (turbochargers and
+#: dental drills turn at about 3e5 rpm); 1e-6 rpm (one turn in two years) is below the
+#: slowest drive shafts (a clock's hour wheel turns at 1/720 rpm).  Within both ranges
+#: and the lengths mechcli accepts, T1 = P / omega and the tooth forces stay within
+#: floating point (at most about 1e25 N, at least about 1e-17 N)
+SPEED_RPM = (1e-6, 1e6)
+
+
+@dataclasses.dataclass(frozen=True)
+class Drive:
+    """Power and speed on shaft 1 (gear 1, the pinion or the worm, drives)."""
+
+    power: float              # W
+    omega1: float             # rad/s
+    power_kW: float | None = None   # as the spec gives them (the report shows these, not
+    n1_rpm: float | None = None     # a round trip through W and rad/s)
+
+
+def _drive(sec: Section):
+    """``power_kW`` and ``n1_rpm`` (both or neither): the :class:`Drive`, or None."""
+    sec.declare("power_kW", "n1_rpm")
+    power = sec.number("power_kW", None, lo=POWER_KW[0], hi=POWER_KW[1],
+                       expected=f"a power in kW in [{POWER_KW[0]:g}, {POWER_KW[1]:g}]")
+    n1 = sec.number("n1_rpm", None, lo=SPEED_RPM[0], hi=SPEED_RPM[1],
+                    expected=f"a speed in rpm in [{SPEED_RPM[0]:g}, {SPEED_RPM[1]:g}]")
+    if (power is None) != (n1 is None):
+        missing = "n1_rpm" if power is not None else "power_kW"
+        given = "power_kW" if power is not None else "n1_rpm"
+        raise sec.error(missing, f"this key with {given} (the loads need power and speed)",
+                        "nothing")
+    if power is None:
+        return None
+    return Drive(power * 1e3, n1 * math.pi / 30, power, n1)
+
+
 # -- the problem kinds ---------------------------------------------------------------
 @dataclasses.dataclass(frozen=True)
 class InvoluteProblem:
@@ -262,7 +301,7 @@ class PairProblem:
     alpha_w_keys: tuple       # by index; the command names the key)
     ha_star1: float | None = None   # tip of each gear (None: the tooth system's ha*)
     ha_star2: float | None = None
-    x_split: str | None = None      # design x1, x2 for a_w: "x1" (given) or "sliding"
+    x_split: str | None = None      # design x1, x2 for a_w: "x1" (given), "sliding", "strength"
     k1: int | None = None
     k2: int | None = None
     pin_diameter1: float | None = None
@@ -271,6 +310,8 @@ class PairProblem:
     allowance2: float = 0.0
     backlash: float | None = None   # wanted backlash (m): split into E1, E2 by the core
     backlash_share1: float = 0.5
+    drive: Drive | None = None      # power and speed: tooth loads of the first mounting
+    tip: str = "effective"          # "nominal": a pointed tooth's mesh ends on the tip circle
 
     @property
     def designed(self):
@@ -313,6 +354,8 @@ class HelicalProblem:
     pin_diameter2: float | None = None
     allowance1: float = 0.0   # normal tooth-thickness allowances (m)
     allowance2: float = 0.0
+    drive: Drive | None = None   # power and speed: tooth loads
+    x_split: str | None = None   # design xn1, xn2 for a_w at beta: "x1", "sliding", "strength"
 
 
 @dataclasses.dataclass(frozen=True)
@@ -328,6 +371,8 @@ class WormProblem:
     alpha: float
     ha_star: float
     c_star: float
+    drive: Drive | None = None   # power and speed of the worm: loads and efficiency
+    mu: float | None = None      # flank friction coefficient (None: no friction given)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -341,6 +386,8 @@ class BevelProblem:
     ha_star: float
     c_star: float
     sigma: float              # shaft angle (rad)
+    drive: Drive | None = None   # power and speed of the pinion: tooth loads
+    b: float | None = None       # face width (m): the loads act on the mean cone
 
 
 @dataclasses.dataclass(frozen=True)
@@ -444,14 +491,14 @@ def _read_pair(sec):
         if internal and z2 <= z1:
             raise sec.error("z2", f"more teeth than the pinion (z1 = {z1}) for a ring gear",
                             repr(z2))
-    x_split = sec.string("x_split", None, choices=["x1", "sliding"])
+    x_split = sec.string("x_split", None, choices=["x1", "sliding", "strength"])
     if x_split is not None:
         if internal or designed or len(a_w) != 1 or alpha_w:
             raise sec.error("x_split", "an external pair of given z1, z2 with one a_w (the "
                             "shifts are designed for that centre distance)",
                             "internal = true" if internal else "ratio" if designed
                             else f"{len(a_w)} a_w and {len(alpha_w)} alpha_w_deg")
-        for key in ("x2",) + (("x1",) if x_split == "sliding" else ()):
+        for key in ("x2",) + (("x1",) if x_split != "x1" else ()):
             if sec.has(key):
                 raise sec.error(key, f"no {key}: x_split = \"{x_split}\" designs it",
                                 repr(sec.raw(key)))
@@ -460,7 +507,7 @@ def _read_pair(sec):
     ha2 = sec.number("ha_star2", None, lo=COEFFICIENT[0], hi=COEFFICIENT[1])
     meas = []
     for i, (z, x) in enumerate(((z1, x1), (z2, x2)), start=1):
-        if z is None or (i == 2 and internal) or (x_split and (i == 2 or x_split == "sliding")):
+        if z is None or (i == 2 and internal) or (x_split and (i == 2 or x_split != "x1")):
             # designed teeth or shifts (the core measures them with their defaults), or a ring
             for key in (f"k{i}", f"pin_diameter{i}", f"thickness_allowance{i}"):
                 if sec.has(key):
@@ -485,12 +532,19 @@ def _read_pair(sec):
     if ts_short and (internal or len(a_w) + len(alpha_w) > 1):
         raise sec.error("tip_shortening", "an external pair with one mounting",
                         "internal = true" if internal else "several mountings")
+    # where a pointed tooth's contact ends: where its flanks meet ("effective"), or on the
+    # nominal tip circle as some books take it ("nominal")
+    tip = sec.string("tip", "effective", choices=["effective", "nominal"])
+    drive = _drive(sec)
+    if drive is not None and len(a_w) + len(alpha_w) > 1:
+        raise sec.error("power_kW", "a pair with one mounting (the loads are of that mesh)",
+                        "several mountings")
     # a' jamming the teeth is refused by the core, named by these keys (exit 2)
     return PairProblem(z1, z2, ratio, ts, x1, x2, a_w, tuple(alpha_w), rc, fi, fp, internal,
                        ts_short, animate, _item_keys(sec, "a_w", len(a_w)),
                        _item_keys(sec, "alpha_w_deg", len(alpha_w)), ha1, ha2, x_split,
                        meas[0][0], meas[1][0], meas[0][1], meas[1][1], meas[0][2], meas[1][2],
-                       backlash, share)
+                       backlash, share, drive, tip)
 
 
 def _read_generation(sec):
@@ -529,12 +583,30 @@ def _read_helical(sec):
     beta = _degrees(sec, "beta_deg", None, (0.0, 45.0), positive=True)
     a_w = sec.length("a_w", None)
     b = sec.length("b", None)
-    _exactly_one(sec, "beta_deg", "a_w", beta, a_w)
-    if a_w is not None and a_w < mn * (z1 + z2) / 2 * (1 - 1e-12):
-        raise sec.error("a_w", f"a centre distance >= mn (z1 + z2) / 2 = "
-                        f"{mn * (z1 + z2) / 2 / sec.unit:g} (beta = 0)", f"{a_w / sec.unit:g}")
+    x_split = sec.string("x_split", None, choices=["x1", "sliding", "strength"])
+    if x_split is None:
+        _exactly_one(sec, "beta_deg", "a_w", beta, a_w)
+        if a_w is not None and a_w < mn * (z1 + z2) / 2 * (1 - 1e-12):
+            raise sec.error("a_w", f"a centre distance >= mn (z1 + z2) / 2 = "
+                            f"{mn * (z1 + z2) / 2 / sec.unit:g} (beta = 0)",
+                            f"{a_w / sec.unit:g}")
+    else:
+        for key, value in (("beta_deg", beta), ("a_w", a_w)):
+            if value is None:
+                raise sec.error(key, "this key with x_split (the normal shifts are designed "
+                                "for the centre distance a_w at the helix angle beta_deg)",
+                                "nothing")
+        at = math.atan(math.tan(an) / math.cos(math.radians(beta)))
+        base = mn * (z1 + z2) / (2 * math.cos(math.radians(beta))) * math.cos(at)
+        if a_w <= base * (1 + 1e-12):
+            raise sec.error("a_w", f"a centre distance above rb1 + rb2 = {base / sec.unit:.6g} "
+                            "(no profile-shift sum gives a smaller one)", f"{a_w / sec.unit:g}")
+        for key in ("xn2",) + (("xn1",) if x_split != "x1" else ()):
+            if sec.has(key):
+                raise sec.error(key, f"no {key}: x_split = \"{x_split}\" designs it",
+                                repr(sec.raw(key)))
     xn1, xn2 = _shift(sec, "xn1"), _shift(sec, "xn2")
-    if a_w is not None and (xn1 or xn2):
+    if a_w is not None and x_split is None and (xn1 or xn2):
         raise sec.error("xn1" if xn1 else "xn2", "no shift when the helix angle is found from "
                         "a_w (cos beta = mn (z1 + z2) / (2 a'), unshifted gears)",
                         repr(xn1 or xn2))
@@ -547,30 +619,101 @@ def _read_helical(sec):
     beta_rad = None if beta is None else math.radians(beta)
     meas = []
     for i, (z, x) in enumerate(((z1, xn1), (z2, xn2)), start=1):
+        if x_split and (i == 2 or x_split != "x1"):   # a designed shift: default measures
+            for key in (f"k{i}", f"pin_diameter{i}", f"thickness_allowance{i}"):
+                if sec.has(key):
+                    raise sec.error(key, "no measurement key for a gear whose shift is "
+                                    "designed (x_split)", repr(sec.raw(key)))
+            meas.append((None, None, 0.0))
+            continue
         if beta_rad is None:   # beta from a': measured with the defaults only
             beta_rad_i = math.acos(mn * (z1 + z2) / (2 * a_w))
         else:
             beta_rad_i = beta_rad
         meas.append(_measurement(sec, z, mn, an, x, beta_rad_i, suffix=str(i)))
+    drive = _drive(sec)
     return HelicalProblem(z1, z2, mn, an, han, cn, beta_rad, a_w, b, xn1, xn2,
                           meas[0][0], meas[1][0], meas[0][1], meas[1][1], meas[0][2],
-                          meas[1][2])
+                          meas[1][2], drive, x_split)
+
+
+#: q = d1 / m, the worm's diameter in modules: standards tabulate 7.1 - 22.4 (GB/T 10088);
+#: [1, 100] keeps d1 = q m within a hundred modules (given as q, or as d1)
+WORM_Q = (1.0, 100.0)
 
 
 def _read_worm(sec):
     z1, z2 = _tooth_numbers(sec)
     m = sec.length("m", None)
     d2 = sec.length("d2", None)
-    # q = d1 / m, the worm's diameter in modules: standards tabulate 7.1 - 22.4 (GB/T 10088);
-    # [1, 100] keeps d1 = q m within a hundred modules
-    q = sec.number("q", None, lo=1.0, hi=100.0)
+    q = sec.number("q", None, lo=WORM_Q[0], hi=WORM_Q[1])
     d1 = sec.length("d1", None)
     _exactly_one(sec, "m", "d2", m, d2)   # after every alternative is read (not a stray)
     _exactly_one(sec, "q", "d1", q, d1, ": the worm diameter is not implied")
+    if d1 is not None:   # the same limit on q = d1 / m
+        mm = d2 / z2 if m is None else m
+        if not WORM_Q[0] * (1 - 1e-12) <= d1 / mm <= WORM_Q[1] * (1 + 1e-12):
+            raise sec.error("d1", f"a worm diameter d1 = q m with q in [{WORM_Q[0]:g}, "
+                            f"{WORM_Q[1]:g}]: d1 in [{WORM_Q[0] * mm / sec.unit:.6g}, "
+                            f"{WORM_Q[1] * mm / sec.unit:.6g}]",
+                            f"{d1 / sec.unit:g} (q = {d1 / mm:.6g})")
     alpha = _pressure_angle(sec)
     ha = _coefficient(sec, "ha_star", 1.0)
     c = _coefficient(sec, "c_star", 0.2)
-    return WormProblem(z1, z2, m, d2, q, d1, alpha, ha, c)
+    drive = _drive(sec)
+    mu = _worm_friction(sec, z1, z2, m, d2, q, d1, alpha, drive)
+    return WormProblem(z1, z2, m, d2, q, d1, alpha, ha, c, drive, mu)
+
+
+#: flank friction of a worm drive: the friction angle phi in [0, 45] deg, or mu in [0, 1]
+#: (worm drives run at 0.01 - 0.15) whose friction angle arctan(mu / cos an) is also at most
+#: 45 deg, mu <= cos an (checked once the normal pressure angle an is known): both keys
+#: admit the same frictions
+WORM_MU = (0.0, 1.0)
+WORM_FRICTION_DEG = (0.0, 45.0)
+
+
+def _worm_friction(sec, z1, z2, m, d2, q, d1, alpha, drive):
+    """``mu`` or ``friction_angle_deg`` (at most one; one is required with power_kW):
+    the friction coefficient, or None.
+
+    The friction angle phi is the one of the efficiency tan g / tan(g + phi):
+    tan phi = mu / cos an, an the normal pressure angle (tan an = tan a cos g).
+    The worm drives only while g + phi < 90 deg: a larger friction is refused here,
+    naming the key that gives it.
+    """
+    mu = sec.number("mu", None, lo=WORM_MU[0], hi=WORM_MU[1])
+    phi_deg = sec.number("friction_angle_deg", None, lo=WORM_FRICTION_DEG[0],
+                         hi=WORM_FRICTION_DEG[1])
+    if mu is not None and phi_deg is not None:
+        raise sec.error("friction_angle_deg", "mu or friction_angle_deg (at most one)",
+                        "both")
+    key = "mu" if mu is not None else "friction_angle_deg"
+    if mu is None and phi_deg is None:
+        if drive is not None:
+            raise sec.error("mu", "the flank friction (mu or friction_angle_deg) with "
+                            "power_kW: the loads of a worm drive depend on it", "nothing")
+        return None
+    m = d2 / z2 if m is None else m
+    q = d1 / m if q is None else q
+    gamma = math.atan(z1 / q)
+    alpha_n = math.atan(math.tan(alpha) * math.cos(gamma))
+    if mu is None:
+        mu = math.tan(math.radians(phi_deg)) * math.cos(alpha_n)
+    elif mu > math.cos(alpha_n) * (1 + 1e-12):   # the friction angle's 45 deg
+        raise sec.error("mu", f"a friction coefficient in [0, cos an = {math.cos(alpha_n):.6g}] "
+                        f"(a friction angle arctan(mu / cos an) of at most "
+                        f"{WORM_FRICTION_DEG[1]:g} deg, as friction_angle_deg)",
+                        f"{mu:g} (friction angle "
+                        f"{math.degrees(math.atan(mu / math.cos(alpha_n))):.4g} deg)")
+    phi = math.atan(mu / math.cos(alpha_n))
+    if gamma + phi >= math.pi / 2 * (1 - 1e-12):
+        got = sec.raw(key)
+        raise sec.error(key, f"a friction angle below 90 deg - lead angle "
+                        f"{math.degrees(gamma):.4g} deg = {90 - math.degrees(gamma):.4g} deg "
+                        "(at more the worm cannot drive: efficiency <= 0)",
+                        f"{got:g} (friction angle {math.degrees(phi):.4g} deg)")
+    return mu
 
 
 def _read_bevel(sec):
@@ -582,7 +725,21 @@ def _read_bevel(sec):
     # shaft angle: within 1 deg of 0 or 180 the cone distance R = r / sin(delta) exceeds 57
     # pitch radii (a spur or an internal pair, not a bevel pair)
     sigma = _degrees(sec, "sigma_deg", 90.0, (1.0, 179.0))
-    return BevelProblem(z1, z2, m, alpha, ha, c, math.radians(sigma))
+    drive = _drive(sec)
+    # face width: places the mean cone dm = d (1 - 0.5 b/R) (where the loads act); b > R/3
+    # is warned by the report, b >= R has no mean cone
+    b = sec.length("b", None)
+    if drive is not None and b is None:
+        raise sec.error("b", "the face width with power_kW (the loads act on the mean cone, "
+                        "d (1 - 0.5 b/R))", "nothing")
+    if b is not None:
+        s_ = math.radians(sigma)
+        cone = m * z1 / (2 * math.sin(math.atan2(math.sin(s_), z2 / z1 + math.cos(s_))))
+        if b >= cone:
+            raise sec.error("b", f"a face width below the cone distance R = "
+                            f"{cone / sec.unit:.12g} (b <= R/3 = {cone / 3 / sec.unit:.6g} "
+                            "by the usual design rule)", f"{b / sec.unit:.12g}")
+    return BevelProblem(z1, z2, m, alpha, ha, c, math.radians(sigma), drive, b)
 
 
 READERS = {"involute": _read_involute, "inverse_involute": _read_inverse, "spur": _read_spur,

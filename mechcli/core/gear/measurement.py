@@ -315,8 +315,34 @@ def shift_sum_for_centre_distance(z1, z2, alpha, a, a_w):
         raise MeasurementError("no profile-shift sum gives this centre distance: it is not "
                                "above rb1 + rb2", "no_shift_sum", a_w=a_w,
                                limit=a * math.cos(alpha))
+    if abs(a_w - a) <= 1e-14 * a:   # the standard distance: exactly no shift (not acos noise)
+        return 0.0, alpha
     aw = math.acos(c)
     return (z1 + z2) * (involute_function(aw) - involute_function(alpha)) / (2 * math.tan(alpha)), aw
+
+
+def normal_shift_sum_for_centre_distance(z1, z2, mn, alpha_n, beta, a_w):
+    """Sum xn1 + xn2 of a helical (or, beta = 0, spur) pair that gives the centre distance a'.
+
+    With the transverse pressure angle at = arctan(tan an / cos beta) and the standard
+    centre distance a = mn (z1 + z2) / (2 cos beta): cos a_wt = a cos(at) / a' and
+    xn1 + xn2 = (z1 + z2)(inv a_wt - inv at) / (2 tan an) (ISO 21771; the inverse of
+    the zero-backlash condition of :class:`~.helical.HelicalPair`).
+
+    Returns
+    -------
+    (float, float)
+        xn1 + xn2 and the operating transverse pressure angle a_wt (rad).
+
+    Raises
+    ------
+    MeasurementError
+        reason ``"no_shift_sum"``: a' <= a cos(at) (the base circles overlap).
+    """
+    at = math.atan(math.tan(alpha_n) / math.cos(beta))
+    a = mn * (z1 + z2) / (2 * math.cos(beta))
+    x_t, awt = shift_sum_for_centre_distance(z1, z2, at, a, a_w)
+    return x_t * math.tan(at) / math.tan(alpha_n), awt
 
 
 def specific_sliding_at_roots(rb1, rb2, ra1, ra2, a_w, alpha_w, u):
@@ -418,11 +444,18 @@ class ShiftDesign:
     Attributes
     ----------
     rule : str
-        ``"x1"`` (x1 given, x2 = sum - x1) or ``"sliding"`` (balanced specific
-        sliding at the two roots).
+        ``"x1"`` (x1 given, x2 = sum - x1), ``"sliding"`` (balanced specific
+        sliding at the two roots) or ``"strength"`` (equal Y_Fa Y_Sa,
+        :mod:`~.strength`).
     x_sum, x1, x2 : float
-    zeta1, zeta2 : float
-        Specific sliding at the pinion's and the wheel's root with these shifts.
+        Shifts (normal shifts for a helical pair).
+    zeta1, zeta2 : float or None
+        Specific sliding at the pinion's and the wheel's root with these shifts; None
+        where the other gear's tip passes that gear's end N of the line of action
+        (interference: the contact would start below its base circle, zeta -> -inf).
+    factors : tuple
+        The two gears' :class:`~.strength.RootFactors` with these shifts (empty
+        unless computed).
     """
 
     rule: str
@@ -431,3 +464,4 @@ class ShiftDesign:
     x2: float
     zeta1: float
     zeta2: float
+    factors: tuple = ()

@@ -96,12 +96,15 @@ class PairSolution(list):
         and normal backlash (along the line of action), with the allowances (m).
     shift : ShiftDesign or None
         The shifts designed for the centre distance (``p.x_split``).
+    loads : ToothLoads or None
+        Torques and tooth forces of the first mounting (``p.drive``).
     """
 
     measures = (None, None)
     allowances = (0.0, 0.0)
     backlash = ()
     shift = None
+    loads = None
 
 
 def _refuse(message, given, **values):
@@ -130,20 +133,96 @@ def _design_shifts(p, z1, z2):
         ra = [t.m * z / 2 + (h + xi - max(dy, 0.0)) * t.m for z, h, xi in zip((z1, z2), hs, x)]
         return ms.specific_sliding_at_roots(rb[0], rb[1], ra[0], ra[1], a_w, aw, z2 / z1)
 
-    if p.x_split == "x1":
-        x1 = p.x1
-    else:
+    def factors(x1):
+        from mechcli.core.gear.strength import full_radius, root_factors
+        x = (x1, x_sum - x1)
+        return tuple(root_factors(z, t.m, t.alpha, xi, t.m * z + 2 * (h + xi - max(dy, 0.0)) * t.m,
+                                  h_fP=(t.ha_star + t.c_star) * t.m,
+                                  rho_fP=full_radius(t.c_star, t.alpha) * t.m)
+                     for z, h, xi in zip((z1, z2), hs, x))
+
+    def reject(x1):
+        """Why the split (x1, x_sum - x1) is no usable pair (None: it is)."""
+        import dataclasses
+
+        from mechcli.core.gear.spur import GearGeometryError, spur_gear
+        try:
+            gears = [dataclasses.replace(
+                spur_gear(z, t.m, t.alpha, t.ha_star, t.c_star, xi),
+                tip_reduction=(t.ha_star - h + max(dy, 0.0)) * t.m)
+                for z, h, xi in zip((z1, z2), hs, (x1, x_sum - x1))]
+        except GearGeometryError as exc:
+            return {"what": "geometry", "text": str(exc)}
+        n = a_w * math.sin(aw)
+        return _unusable(gears[0].z, gears[1].z, [(g.x, g.x_min, g.undercut,
+                                                   g.tooth_thickness(g.ra), g.ra, g.rb)
+                                                  for g in gears], n)
+
+    return _split_shifts(p.x_split, p.x1, x_sum, a_w, zeta, factors, reject)
+
+
+def _unusable(z1, z2, gears, n):
+    """Why a designed pair is not usable, or None: a gear undercut, a pointed tip, or a
+    tip circle cutting the line of action beyond the other gear's tangent point N
+    (interference).
+
+    *gears*: per gear (x, x_min, undercut, tip thickness, ra, rb); *n* = N1N2 (m).
+    Returns a dict: ``what`` (``"undercut"``, ``"pointed"``, ``"interference"``),
+    ``gear`` (1 or 2), ``z``, ``x``, and ``x_min`` (undercut) or ``excess`` (how far
+    the tip passes N, m)."""
+    for i, (z, (x, x_min, cut, s_a, _, _)) in enumerate(zip((z1, z2), gears), start=1):
+        if cut:
+            return {"what": "undercut", "gear": i, "z": z, "x": x, "x_min": x_min}
+        if s_a <= 0:
+            return {"what": "pointed", "gear": i, "z": z, "x": x}
+    for i, (z, (x, _, _, _, ra, rb)) in enumerate(zip((z1, z2), gears), start=1):
+        reach = math.sqrt(max(ra * ra - rb * rb, 0.0))
+        if reach > n * (1 + 1e-12):
+            return {"what": "interference", "gear": i, "z": z, "x": x, "excess": reach - n}
+    return None
+
+
+def _split_shifts(rule, x1_given, x_sum, a_w, zeta, factors, reject=None):
+    """x1, x2 of the sum *x_sum* by *rule* (``"x1"``, ``"sliding"``, ``"strength"``):
+    :class:`~.measurement.ShiftDesign`; *zeta(x1)* gives the specific sliding,
+    *factors(x1)* the two gears' root factors, *reject(x1)* why a split is no usable pair
+    (:func:`_unusable`; the ``"strength"`` rule takes the strongest usable equal split,
+    :func:`~.strength.split_equal_strength`) (MeshError ``"mounting"`` naming
+    ``x_split`` when the rule has no (usable) solution or x2 leaves [-1.5, 1.5]).
+    A zeta of -inf (a tip passing the other gear's end N: interference, which the
+    report warns about) is returned as None."""
+    from mechcli.core.gear import measurement as ms
+    from mechcli.core.gear.strength import split_equal_strength
+    if not -3.0 <= x_sum <= 3.0:   # two shifts in [-1.5, 1.5] cannot carry it
+        raise _refuse("the shift sum is beyond two shifts in [-1.5, 1.5]", "x_split",
+                      a_w=a_w, x_sum=x_sum, what="sum_range")
+    if rule == "x1":
+        x1 = x1_given
+    elif rule == "sliding":
         try:
             x1 = ms.split_balanced_sliding(zeta, x_sum)
         except ms.MeasurementError:
             raise _refuse("no split balances the specific sliding", "x_split", a_w=a_w,
                           x_sum=x_sum, what="sliding") from None
+    else:
+        try:
+            x1 = split_equal_strength(factors, x_sum, reject=reject)
+        except ms.MeasurementError as exc:
+            if exc.reason == "strength_split_rejected":
+                raise _refuse("every split of equal root strength is refused", "x_split",
+                              a_w=a_w, x_sum=x_sum, what="strength_rejected",
+                              splits=exc.values["splits"]) from None
+            raise _refuse("no split gives equal root strength", "x_split", a_w=a_w,
+                          x_sum=x_sum, what="strength") from None
     x2 = x_sum - x1
     if not -1.5 <= x2 <= 1.5:
         raise _refuse("the wheel's shift is outside [-1.5, 1.5]", "x_split", a_w=a_w,
                       x_sum=x_sum, x1=x1, x2=x2, what="x2")
-    z_1, z_2 = zeta(x1)
-    return ms.ShiftDesign(p.x_split, x_sum, x1, x2, z_1, z_2)
+    # a tip passing the other gear's tangent point N (interference, warned as for any
+    # pair) leaves the specific sliding at that root undefined (-inf): None
+    z_1, z_2 = (None if math.isinf(z) else z for z in zeta(x1))
+    return ms.ShiftDesign(rule, x_sum, x1, x2, z_1, z_2,
+                          factors(x1) if rule == "strength" else ())
 
 
 def _ha(p, i):
@@ -176,6 +255,9 @@ def solve_pair(p):
     x1, x2 = (shift.x1, shift.x2) if shift else (p.x1, p.x2)
     g1 = _gear(p.teeth, z1, x1, ha_star=_ha(p, 1))
     g2 = _gear(p.teeth, z2, x2, p.internal, ha_star=_ha(p, 2))
+    if getattr(p, "tip", "effective") == "nominal":   # the mesh ends on the tip circles
+        import dataclasses
+        g1, g2 = (dataclasses.replace(g, nominal_tip=True) for g in (g1, g2))
     check_mountings(g1, g2, p.a_w, p.alpha_w)
     pairs = [gear_pair(g1, g2, a_w=a) for a in p.a_w]
     pairs += [gear_pair(g1, g2, alpha_w=aw) for aw in p.alpha_w]
@@ -210,6 +292,12 @@ def solve_pair(p):
         None if g.internal else ms.measure(_form(g, ei), k, dp)
         for g, ei, k, dp in zip((first.g1, first.g2), e, ks, dps))
     out.shift = shift
+    drive = getattr(p, "drive", None)
+    if drive is not None:
+        from mechcli.core.gear.loads import parallel_loads
+        out.loads = parallel_loads(drive.power, drive.omega1, first.g1.z, first.g2.z,
+                                   first.g1.d, first.g2.d, first.dw1, first.dw2,
+                                   first.alpha_w)
     return out
 
 
@@ -230,39 +318,144 @@ def solve_helical(p):
     from mechcli.core.gear.helical import helical_pair
     from mechcli.core.gear.measurement import ToothForm, measure
     xn = (getattr(p, "xn1", 0.0), getattr(p, "xn2", 0.0))
+    shift = None
+    if getattr(p, "x_split", None):
+        shift = _design_helical_shifts(p)
+        xn = (shift.x1, shift.x2)
     hp = helical_pair(p.z1, p.z2, p.mn, p.alpha_n, p.han_star, p.cn_star, beta=p.beta,
-                      a_w=p.a_w, b=p.b, xn1=xn[0], xn2=xn[1])
+                      a_w=None if shift else p.a_w, b=p.b, xn1=xn[0], xn2=xn[1])
     measures = []
     for i, (z, x) in enumerate(zip((hp.z1, hp.z2), xn), start=1):
         form = ToothForm(z, hp.mn, hp.alpha_n, x, hp.beta, hp.da(z, x) / 2,
                          getattr(p, f"allowance{i}", 0.0))
         measures.append(measure(form, getattr(p, f"k{i}", None),
                                 getattr(p, f"pin_diameter{i}", None)))
-    return HelicalSolution(hp, tuple(measures))
+    loads = None
+    drive = getattr(p, "drive", None)
+    if drive is not None:
+        from mechcli.core.gear.loads import parallel_loads
+        dw = [hp.d(z) * hp.a_w / hp.a for z in (hp.z1, hp.z2)]
+        loads = parallel_loads(drive.power, drive.omega1, hp.z1, hp.z2, hp.d(hp.z1),
+                               hp.d(hp.z2), dw[0], dw[1], hp.alpha_wt, hp.beta)
+    out = HelicalSolution(hp, tuple(measures), loads)
+    out.shift = shift
+    return out
+
+
+def _design_helical_shifts(p):
+    """xn1, xn2 of a helical pair of helix angle ``p.beta`` for the centre distance
+    ``p.a_w`` (``p.x_split``): :class:`~.measurement.ShiftDesign` of normal shifts.
+
+    The sum from ISO 21771 (:func:`~.measurement.normal_shift_sum_for_centre_distance`);
+    the specific sliding in the transverse plane, the root factors on the virtual
+    spur gears (:func:`~.strength.root_factors`)."""
+    from mechcli.core.gear import measurement as ms
+    from mechcli.core.gear.strength import full_radius, root_factors
+    z1, z2, mn, an, beta, a_w = p.z1, p.z2, p.mn, p.alpha_n, p.beta, p.a_w
+    try:
+        x_sum, awt = ms.normal_shift_sum_for_centre_distance(z1, z2, mn, an, beta, a_w)
+    except ms.MeasurementError:
+        at = math.atan(math.tan(an) / math.cos(beta))
+        raise _refuse("no profile-shift sum gives this centre distance", "x_split", a_w=a_w,
+                      a0=mn * (z1 + z2) / (2 * math.cos(beta)) * math.cos(at),
+                      what="base") from None
+    at = math.atan(math.tan(an) / math.cos(beta))
+    d = [mn * z / math.cos(beta) for z in (z1, z2)]
+
+    def zeta(x1):
+        x = (x1, x_sum - x1)
+        rb = [di * math.cos(at) / 2 for di in d]
+        ra = [di / 2 + (p.han_star + xi) * mn for di, xi in zip(d, x)]
+        return ms.specific_sliding_at_roots(rb[0], rb[1], ra[0], ra[1], a_w, awt, z2 / z1)
+
+    def factors(x1):
+        x = (x1, x_sum - x1)
+        return tuple(root_factors(z, mn, an, xi, di + 2 * (p.han_star + xi) * mn, beta,
+                                  h_fP=(p.han_star + p.cn_star) * mn,
+                                  rho_fP=full_radius(p.cn_star, an) * mn)
+                     for z, di, xi in zip((z1, z2), d, x))
+
+    def reject(x1):
+        """Why the split is no usable pair (None: it is), in the transverse plane: undercut
+        when (han* - xn) mn > r sin^2 at (x_min = han* - z sin^2 at / (2 cos beta)), the
+        transverse tip thickness da (st/d + inv at - inv a_at) <= 0, or a tip passing N."""
+        from mechcli.core.gear.involute import involute_function as inv
+        mt = mn / math.cos(beta)
+        gears = []
+        for z, di, xi in zip((z1, z2), d, (x1, x_sum - x1)):
+            x_min = p.han_star - z * math.sin(at) ** 2 / (2 * math.cos(beta))
+            ra, rb = di / 2 + (p.han_star + xi) * mn, di * math.cos(at) / 2
+            st = mt * (math.pi / 2 + 2 * xi * math.tan(an))
+            s_a = 2 * ra * (st / di + inv(at) - inv(math.acos(min(1.0, rb / ra))))
+            gears.append((xi, x_min, xi < x_min - 1e-12, s_a, ra, rb))
+        return _unusable(z1, z2, gears, a_w * math.sin(awt))
+
+    return _split_shifts(p.x_split, getattr(p, "xn1", 0.0), x_sum, a_w, zeta, factors,
+                         reject)
 
 
 class HelicalSolution:
-    """A helical pair and the measurements of its gears (``pair``, ``measures``);
-    attributes not found here are the pair's."""
+    """A helical pair, the measurements of its gears, its loads and designed shifts
+    (``pair``, ``measures``, ``loads``: ToothLoads or None, ``shift``: ShiftDesign or
+    None); attributes not found here are the pair's."""
 
-    def __init__(self, pair, measures):
-        self.pair, self.measures = pair, measures
+    shift = None
+
+    def __init__(self, pair, measures, loads=None):
+        self.pair, self.measures, self.loads = pair, measures, loads
 
     def __getattr__(self, name):
         return getattr(self.pair, name)
 
 
+class Loaded:
+    """A drive (worm, bevel pair) with its ``loads`` (ToothLoads or None), for a
+    worm with friction ``efficiency`` (eta, eta', phi: :func:`~.loads.worm_efficiency`),
+    for a bevel pair of given face width ``face_width`` (m) and ``mean_diameters``
+    (dm1, dm2: :func:`~.loads.bevel_mean_diameters`); attributes not found here are the
+    drive's."""
+
+    def __init__(self, drive, loads=None, efficiency=None, face_width=None,
+                 mean_diameters=None):
+        self.drive, self.loads, self.efficiency = drive, loads, efficiency
+        self.face_width, self.mean_diameters = face_width, mean_diameters
+
+    def __getattr__(self, name):
+        return getattr(self.drive, name)
+
+
 def solve_worm(p):
-    """A worm drive (习题 5-8): :class:`~.worm.WormDrive`."""
+    """A worm drive (习题 5-8): :class:`~.worm.WormDrive`, or with power and speed
+    (``p.drive``) or a friction (``p.mu``) a :class:`Loaded` one."""
     from mechcli.core.gear.worm import worm_drive
-    return worm_drive(p.z1, p.z2, m=p.m, d2=p.d2, q=p.q, d1=p.d1, alpha=p.alpha,
-                      ha_star=p.ha_star, c_star=p.c_star)
+    w = worm_drive(p.z1, p.z2, m=p.m, d2=p.d2, q=p.q, d1=p.d1, alpha=p.alpha,
+                   ha_star=p.ha_star, c_star=p.c_star)
+    drive, mu = getattr(p, "drive", None), getattr(p, "mu", None)
+    if drive is None and mu is None:
+        return w
+    from mechcli.core.gear import loads as ld
+    eff = ld.worm_efficiency(w.gamma, ld.worm_normal_pressure_angle(w.alpha, w.gamma), mu)
+    loads = None
+    if drive is not None:
+        loads = ld.worm_loads(drive.power, drive.omega1, w.z1, w.z2, w.d1, w.d2, w.gamma,
+                              w.alpha, mu)
+    return Loaded(w, loads, eff)
 
 
 def solve_bevel(p):
-    """A straight bevel pair (习题 5-9): :class:`~.bevel.BevelPair`."""
+    """A straight bevel pair (习题 5-9): :class:`~.bevel.BevelPair`, or with power and
+    speed (``p.drive``) a :class:`Loaded` one."""
     from mechcli.core.gear.bevel import bevel_pair
-    return bevel_pair(p.z1, p.z2, p.m, p.alpha, p.ha_star, p.c_star, p.sigma)
+    b = bevel_pair(p.z1, p.z2, p.m, p.alpha, p.ha_star, p.c_star, p.sigma)
+    drive, width = getattr(p, "drive", None), getattr(p, "b", None)
+    if drive is None and width is None:
+        return b
+    from mechcli.core.gear.loads import bevel_loads, bevel_mean_diameters
+    dm = bevel_mean_diameters(b.d(b.z1), b.d(b.z2), b.R, width)
+    loads = None if drive is None else bevel_loads(drive.power, drive.omega1, b.z1, b.z2,
+                                                   b.d(b.z1), b.d(b.z2), b.R, width, b.alpha,
+                                                   b.delta1, b.delta2)
+    return Loaded(b, loads, face_width=width, mean_diameters=dm)
 
 
 SOLVERS = {"involute": solve_involute, "inverse_involute": solve_inverse_involute,

@@ -69,7 +69,10 @@ class GeneratedTooth:
     r_form : float
         Radius where the involute of the finished gear begins (m).
     undercut : bool
-        True if the tip corner cuts into the involute above the base circle.
+        True if the sharp tip corner cuts into the involute above the base circle:
+        (ha* + c* - x) m > r sin^2(alpha).  This is the measure of the cut, not the
+        undercut criterion (:attr:`SpurGear.undercut`, x < x_min, the standard cutter
+        with a rounded tip): the sharp corner's straight flank goes c* m deeper.
     undercut_fraction : float
         Share of the involute's arc length between base and tip circle that
         is cut away (tan^2 alpha_form - tan^2 alpha_limit) / tan^2 alpha_a,

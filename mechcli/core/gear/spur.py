@@ -50,6 +50,11 @@ class SpurGear:
     tip_reduction : float
         Addendum removed to keep the standard clearance in a shifted pair,
         Δy m (m) (see :func:`mechcli.core.gear.pair.tip_shortened`).
+    nominal_tip : bool
+        The mesh takes the tooth to end on the tip circle even when its flanks
+        meet below it (a pointed tooth), as books that use the nominal tip circle
+        do; False (the default): it ends where the flanks meet
+        (:attr:`r_tip_effective`).
     """
 
     z: int
@@ -60,6 +65,7 @@ class SpurGear:
     x: float = 0.0
     internal: bool = False
     tip_reduction: float = 0.0
+    nominal_tip: bool = False
 
     @property
     def sign(self):
@@ -203,7 +209,10 @@ class SpurGear:
     @property
     def r_tip_effective(self):
         """Where the tooth really ends (m): the tip circle, or the pointed radius
-        if the flanks meet before it (external: below ra; internal: above ra)."""
+        if the flanks meet before it (external: below ra; internal: above ra).
+        With :attr:`nominal_tip` the tip circle always."""
+        if self.nominal_tip:
+            return self.ra
         rp = self.pointed_radius
         if self.sign > 0:
             return min(self.ra, rp)
@@ -231,7 +240,16 @@ class SpurGear:
 
     @property
     def undercut(self):
-        """True if the standard rack undercuts this gear (x < x_min); False for internal gears."""
+        """True if the standard rack undercuts this gear (x < x_min); False for internal gears.
+
+        This is mechcli's undercut criterion (issue 20).  The standard rack cutter's tip
+        is rounded with the radius c* m / (1 - sin alpha), so its straight flank ends
+        ha* m below its reference line; the gear is undercut when that end passes the
+        tangent point N of the line of action: (ha* - x) m > r sin^2(alpha).  The book's
+        sharp-cornered ``gear_cut`` cutter goes c* m deeper and cuts a little of the
+        involute for a few more teeth (:func:`mechcli.core.gear.profile.generated_tooth`);
+        that is reported as the measure of the cut, not as the criterion.
+        """
         return (not self.internal) and self.x < self.x_min - 1e-12
 
 
