@@ -22,7 +22,12 @@ from mechcli.options import RunOptions, common_options
 @common_options
 def grashof(spec_path, lengths, frame, input_link, offset, batch, units, **opts):
     """Four-bar type (Grashof) and inversions, θ, ψ, K, transmission angles and
-    dead points; slider-crank, guide-bar, 5R/RRRRP five-bars, mobility F."""
+    dead points; slider-crank, guide-bar, 5R/RRRRP five-bars, mobility F.
+
+    --no-plot, --dpi and --set serve the SPEC.toml form only: --lengths and --batch
+    write no picture and read no file (--dpi and --set are refused there, exit 2).
+    grashof writes no animation.
+    """
     given = [x for x in (spec_path, lengths, batch) if x]
     if len(given) != 1:
         raise click.UsageError("give exactly one of SPEC.toml, --lengths or --batch")
@@ -32,6 +37,7 @@ def grashof(spec_path, lengths, frame, input_link, offset, batch, units, **opts)
     if extra:
         raise click.UsageError(f"{', '.join(extra)}: only with "
                                + ("--lengths" if extra != ["--units"] else "--lengths/--batch"))
+    _refuse_idle_options("--lengths" if lengths else "--batch" if batch else None)
     units = units or "mm"
     stem = "grashof-batch" if batch else ("grashof" if lengths else None)
     run = RunOptions.from_click(spec_path or batch, opts, stem=stem)
@@ -69,6 +75,46 @@ def grashof(spec_path, lengths, frame, input_link, offset, batch, units, **opts)
         warnings += report.write_limits_png(results, report.driven_lengths(spec, solution),
                                             outputs, run.lang, spec.header.title)
     finish(run, "grashof", rep, results, outputs, warnings)
+
+
+# grashof writes no animation: --animate/--no-animate (shared by every command) is not offered
+# in its --help; given anyway, it is refused with a message (_refuse_idle_options)
+for _param in grashof.params:
+    if _param.name == "animate":
+        _param.hidden = True
+
+
+#: shared options that ask for what a form of grashof never gives -> (forms, why); the
+#: negative flags --no-plot/--no-animate ask for nothing and stay accepted as no-ops
+#: (batch runners and Makefiles pass them to every command)
+_IDLE_OPTIONS = {
+    "dpi": ("--dpi", ("--lengths", "--batch"), "it writes no picture"),
+    "animate": ("--animate", ("--lengths", "--batch", None), "grashof writes no animation"),
+    "sets": ("--set", ("--lengths", "--batch"), "there is no spec file to override; "
+             "give the values themselves"),
+}
+
+
+def _refuse_idle_options(form):
+    """Exit 2 on a shared option given on the command line that asks for what this form
+    never gives (``grashof --lengths … --dpi 300``, ``--animate``, ``--set``): an option
+    is never ignored silently."""
+    ctx = click.get_current_context()
+    idle = []
+    for name, (opt, forms, why) in _IDLE_OPTIONS.items():
+        if form not in forms or ctx.get_parameter_source(name) \
+                != click.core.ParameterSource.COMMANDLINE:
+            continue
+        if name == "animate" and not ctx.params.get("animate"):
+            continue   # --no-animate: nothing asked
+        if name == "dpi" and ctx.params.get("no_plot"):
+            continue   # --dpi with --no-plot: no picture asked
+        idle.append((opt, why))
+    if idle:
+        where = f"grashof {form}" if form else "grashof SPEC.toml"
+        raise click.UsageError(
+            "; ".join(f"{opt} does nothing for {where}: {why}" for opt, why in idle)
+            + " (leave it out)")
 
 
 def build(spec, lang, digits=10):

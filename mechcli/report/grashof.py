@@ -9,9 +9,10 @@ hold only finite numbers, strings, booleans, None and lists of those.
 from __future__ import annotations
 
 import math
+import re
 
 from mechcli.report.files import DEFAULT_DIGITS
-from mechcli.report.table import Block, Report
+from mechcli.report.table import Block, Report, book_title
 
 ZH_TYPES = {
     "crank_rocker": "曲柄摇杆机构", "double_crank": "双曲柄机构", "double_rocker": "双摇杆机构",
@@ -111,6 +112,7 @@ def fourbar_results(prob, an, inversions, ranges, scale):
 def fourbar_report(title, lang, r, unit, ranges_present):
     zh = lang == "zh"
     rep = Report(title)
+    # the two lines 【例 3-1】 prints, as printed ("最长杆 170.00")
     rows = [[_label(lang, "longest link", "最长杆"), _f(r["longest"])],
             [_label(lang, "shortest link", "最短杆"), _f(r["shortest"])]]
     rep.blocks.append(Block("", rows=rows))
@@ -120,7 +122,7 @@ def fourbar_report(title, lang, r, unit, ranges_present):
     facts = [
         [_label(lang, "Grashof (s + l <= p + q)", "满足杆长之和条件"),
          _label(lang, "yes" if r["grashof"] else "no", "是" if r["grashof"] else "否")],
-        [_label(lang, f"s + l - (p + q) [{unit}]", f"s + l - (p + q) ({unit})"),
+        [_label(lang, f"s + l − (p + q)/({unit})", f"s + l − (p + q)/({unit})"),
          _f(r["excess"])],
         [_label(lang, "frame / input / output", "机架 / 原动件 / 从动件"),
          f"{r['frame']} / {r['input']} / {r['output']}"],
@@ -130,12 +132,12 @@ def fourbar_report(title, lang, r, unit, ranges_present):
     merit = []
     if "theta_deg" in r:
         merit += [
-            [_label(lang, "limit-position angle θ [°]", "极位夹角 θ (°)"), _f(r["theta_deg"])],
-            [_label(lang, "output swing ψ [°]", "摆角 ψ (°)"), _f(r["psi_deg"])],
+            [_label(lang, "limit-position angle θ/(°)", "极位夹角 θ/(°)"), _f(r["theta_deg"])],
+            [_label(lang, "output swing ψ/(°)", "摆角 ψ/(°)"), _f(r["psi_deg"])],
             [_label(lang, "time ratio K", "行程速比系数 K"), f"{r['K']:.4f}"],
-            [_label(lang, "limit positions θ1 [°]", "极限位置 θ1 (°)"),
+            [_label(lang, "limit positions θ1/(°)", "极限位置 θ1/(°)"),
              f"{_f(r['theta1_ext_deg'])}, {_f(r['theta1_fold_deg'])}"],
-            [_label(lang, "limit positions θ3 [°]", "极限位置 θ3 (°)"),
+            [_label(lang, "limit positions θ3/(°)", "极限位置 θ3/(°)"),
              f"{_f(r['theta3_ext_deg'])}, {_f(r['theta3_fold_deg'])}"],
         ]
     if "input_min_deg" in r:
@@ -146,22 +148,24 @@ def fourbar_report(title, lang, r, unit, ranges_present):
             span = f"[{_f(-hi)}, {_f(hi)}]"
         else:
             span = f"[{_f(lo)}, {_f(hi)}] | [{_f(-hi)}, {_f(-lo)}]"
-        merit.append([_label(lang, "input range θ1 [°]", "原动件摆动范围 θ1 (°)"), span])
+        merit.append([_label(lang, "input range θ1/(°)", "原动件摆动范围 θ1/(°)"), span])
     merit += [
-        [_label(lang, "minimum transmission angle γmin [°]", "最小传动角 γmin (°)"),
+        [_label(lang, "minimum transmission angle γmin/(°)", "最小传动角 γmin/(°)"),
          f"{_f(r['gamma_min_deg'])} (θ1 = {_f(r['gamma_min_at_deg'])})"],
-        [_label(lang, "maximum transmission angle γmax [°]", "最大传动角 γmax (°)"),
+        [_label(lang, "maximum transmission angle γmax/(°)", "最大传动角 γmax/(°)"),
          f"{_f(r['gamma_max_deg'])} (θ1 = {_f(r['gamma_max_at_deg'])})"],
     ]
     if "gamma_at_0_deg" in r:
-        merit.append([_label(lang, "γ at θ1 = 0° (eq. 3-49) [°]", "传动角 γ1 (θ1 = 0°)"),
+        merit.append([_label(lang, "transmission angle γ1/(°) at θ1 = 0° (eq. 3-49)",
+                             "传动角 γ1/(°) (θ1 = 0°)"),
                       _f(r["gamma_at_0_deg"])])
     if "gamma_at_180_deg" in r:
-        merit.append([_label(lang, "γ at θ1 = 180° (eq. 3-49) [°]", "传动角 γ2 (θ1 = 180°)"),
+        merit.append([_label(lang, "transmission angle γ2/(°) at θ1 = 180° (eq. 3-49)",
+                             "传动角 γ2/(°) (θ1 = 180°)"),
                       _f(r["gamma_at_180_deg"])])
     dead = r["dead_points_output_driving"]
-    merit.append([_label(lang, "dead points, output driving (θ3) [°]",
-                         "从动件主动时的死点 θ3 (°)"),
+    merit.append([_label(lang, "dead points, output driving θ3/(°)",
+                         "从动件主动时的死点 θ3/(°)"),
                   ", ".join(_f(x) for x in dead) if dead else _label(lang, "none", "无")])
     rep.blocks.append(Block(_label(lang, "Figures of merit", "运动特性"), rows=merit))
     inv_rows = [[str(k), _type_text(lang, r[f"inversion_frame{k}"]),
@@ -176,15 +180,17 @@ def fourbar_report(title, lang, r, unit, ranges_present):
             if not (k[:1] == "l" and k[1:2].isdigit() and "_" in k):
                 continue
             link, name = k.split("_", 1)
-            base, _, crank = name.partition("_crank")
+            m = re.fullmatch(r"(.+)_crank(\d+)", name)   # crank_rocker_crank1, not double_crank
+            base, crank = (m.group(1), m.group(2)) if m else (name, "")
             text = _type_text(lang, base)
             if crank:
                 text += _label(lang, f" (crank {crank})", f" (曲柄 {crank})")
             rows.append([link, text, v])
         rows.sort(key=lambda row: (row[0], row[1]))
-        rep.blocks.append(Block(_label(lang, f"Length ranges [{unit}]", f"杆长范围 ({unit})"),
+        rep.blocks.append(Block(_label(lang, "Length ranges", "杆长范围"),
                                 headers=[_label(lang, "link", "杆"), _label(lang, "type", "类型"),
-                                         _label(lang, "range", "范围")], rows=rows))
+                                         _label(lang, f"range/({unit})", f"范围/({unit})")],
+                                rows=rows))
     return rep
 
 
@@ -297,13 +303,14 @@ def slider_report(title, lang, r, unit):
                     "是" if r["crank_exists"] else "否")]]
     if r["crank_exists"]:
         rows += [
-            [_label(lang, f"stroke H [{unit}]", f"行程 H ({unit})"), _f(r["stroke"])],
-            [_label(lang, "limit-position angle θ [°]", "极位夹角 θ (°)"), _f(r["theta_deg"])],
+            [_label(lang, f"stroke H/({unit})", f"行程 H/({unit})"), _f(r["stroke"])],
+            [_label(lang, "limit-position angle θ/(°)", "极位夹角 θ/(°)"), _f(r["theta_deg"])],
             [_label(lang, "time ratio K", "行程速比系数 K"), f"{r['K']:.4f}"],
-            [_label(lang, "max pressure angle on slider [°]", "滑块最大压力角 (°)"),
+            [_label(lang, "max pressure angle on the slider αmax/(°)",
+                    "滑块最大压力角 αmax/(°)"),
              f"{_f(r['pressure_angle_max_deg'])} (θ1 = {_f(r['pressure_angle_max_at_deg'])})"],
-            [_label(lang, f"dead points, slider driving (x) [{unit}]",
-                    f"滑块主动时的死点 x ({unit})"),
+            [_label(lang, f"dead points, slider driving x/({unit})",
+                    f"滑块主动时的死点 x/({unit})"),
              ", ".join(_f(x) for x in r["dead_points_slider_driving"])],
         ]
     rep.blocks.append(Block(_type_text(lang, r["type"]), rows=rows))
@@ -329,12 +336,12 @@ def guide_report(title, lang, r):
     rep = Report(title)
     rows = []
     if "theta_deg" in r:
-        rows += [[_label(lang, "θ = ψ [°]", "极位夹角 θ = 摆角 ψ (°)"), _f(r["theta_deg"])],
+        rows += [[_label(lang, "θ = ψ/(°)", "极位夹角 θ = 摆角 ψ/(°)"), _f(r["theta_deg"])],
                  [_label(lang, "time ratio K", "行程速比系数 K"),
                   f"{r['K']:.4f}" if "K" in r else "∞"]]
     if "gamma_min_deg" in r:
-        rows += [[_label(lang, "γmin [°]", "最小传动角 γmin (°)"), _f(r["gamma_min_deg"])],
-                 [_label(lang, "γmax [°]", "最大传动角 γmax (°)"), _f(r["gamma_max_deg"])]]
+        rows += [[_label(lang, "γmin/(°)", "最小传动角 γmin/(°)"), _f(r["gamma_min_deg"])],
+                 [_label(lang, "γmax/(°)", "最大传动角 γmax/(°)"), _f(r["gamma_max_deg"])]]
     rep.blocks.append(Block(_type_text(lang, r["type"]), rows=rows))
     return rep
 
@@ -383,12 +390,12 @@ def rrrrp_report(title, lang, r, unit):
     rows = [[_label(lang, "l1 + |e| <= |l2 - l3| (paper eq. 20)", "l1 + e ≤ |l2 − l3| (式 20)"),
              _label(lang, "yes" if r["crank_any_fold"] else "no",
                     "是" if r["crank_any_fold"] else "否")],
-            [_label(lang, f"slider positions where link 1 turns [{unit}]",
-                    f"杆 1 可整周转动的滑块位置 ({unit})"),
+            [_label(lang, f"slider positions where link 1 turns/({unit})",
+                    f"杆 1 可整周转动的滑块位置/({unit})"),
              f"±[{_f(r['slider_lo'])}, {_f(r['slider_hi'])}]" if r["slider_hi"] > 0 else "-"]]
     if "slider_inner_hi" in r:
-        rows.append([_label(lang, f"... slider inside the crank circle [{unit}]",
-                            f"... 滑块在曲柄圆内 ({unit})"),
+        rows.append([_label(lang, f"... slider inside the crank circle/({unit})",
+                            f"... 滑块在曲柄圆内/({unit})"),
                      f"[{_f(-r['slider_inner_hi'])}, {_f(r['slider_inner_hi'])}]"])
     rep.blocks.append(Block("RRRRP", rows=rows))
     return rep
@@ -444,7 +451,8 @@ def curve_outputs(curve, step, lang):
             for t, g, k in zip(curve.theta1[::every], curve.gamma[::every], ok[::every])]
     block = Block(_label(lang, "Transmission angle γ against the input angle",
                          "传动角的变化规律"),
-                  headers=[_label(lang, "θ1 [°]", "θ1 (°)"), _label(lang, "γ [°]", "γ (°)")],
+                  headers=[_label(lang, "θ1/(°)", "原动件转角 θ1/(°)"),
+                           _label(lang, "γ/(°)", "传动角 γ/(°)")],
                   rows=rows)
     return cols, block
 
@@ -460,8 +468,8 @@ def write_curve_png(curve, outputs, lang, title):
     th = np.degrees(curve.theta1)
     g = np.where(curve.feasible, np.degrees(curve.gamma), np.nan)
     ax.plot(th, g)
-    ax.set_xlabel(_label(used, "input angle θ1 [°]", "原动件转角 θ1 (°)"))
-    ax.set_ylabel(_label(used, "transmission angle γ [°]", "传动角 γ (°)"))
+    ax.set_xlabel(_label(used, "input angle θ1/(°)", "原动件转角 θ1/(°)"))
+    ax.set_ylabel(_label(used, "transmission angle γ/(°)", "传动角 γ/(°)"))
     if used == "zh" or title.isascii():   # no tofu boxes without a CJK font
         ax.set_title(title)
     ax.set_xlim(th.min(), th.max())
@@ -501,8 +509,8 @@ def write_limits_png(r, scale_unit, outputs, lang, title):
     ax.annotate("A", (0, 0), textcoords="offset points", xytext=(-10, -12))
     ax.annotate("D", (d, 0), textcoords="offset points", xytext=(4, -12))
     ax.set_aspect("equal")
-    ax.set_xlabel(f"x [{unit}]")
-    ax.set_ylabel(f"y [{unit}]")
+    ax.set_xlabel(f"x/({unit})")
+    ax.set_ylabel(f"y/({unit})")
     ax.legend(title=f"θ = {r['theta_deg']:.2f}°, ψ = {r['psi_deg']:.2f}°, K = {r['K']:.4f}")
     if used == "zh" or title.isascii():
         ax.set_title(title)
@@ -551,7 +559,43 @@ def present(spec, solution, lang, digits=DEFAULT_DIGITS):
     r, rep, csv_text, warnings = _present(spec, solution, lang, digits)
     if solution.curve is not None:
         rep.blocks.append(curve_outputs(solution.curve, spec.problem.curve_step, lang)[1])
-    return r, rep, csv_text, warnings
+    rep.title = book_title(rep.title)
+    return with_units(r, spec.header.unit, spec.kind), rep, csv_text, warnings
+
+
+#: results that are lengths in the spec's unit, by kind: their names carry the unit
+#: (``longest`` -> ``longest_mm``); the bare names stay as aliases for one release (issue 18
+#: item 8).  A five-bar's ``shortest`` is two link numbers, not a length.
+LENGTH_RESULTS = {
+    "fourbar": frozenset(("longest", "shortest", "excess")),
+    "slider_crank": frozenset(("stroke", "x_ext", "x_fold", "dead_points_slider_driving")),
+    "fivebar": frozenset(("longest", "excess")),
+    "rrrrp": frozenset(("slider_lo", "slider_hi", "slider_inner_hi")),
+}
+#: the length ranges of a four-bar's link for a type: ``l1_crank_rocker`` (interval text)
+_RANGE = re.compile(r"l\d+_\w+")
+
+
+def unit_name(key, unit, kind):
+    """*key* with the unit of a length result of *kind* (``excess`` -> ``excess_mm``), else
+    *key*."""
+    lengths = LENGTH_RESULTS.get(kind, ())
+    if key in lengths or (kind == "fourbar" and _RANGE.fullmatch(key)):
+        return f"{key}_{unit}"
+    return key
+
+
+def with_units(results, unit, kind):
+    """*results* with every length under its name with the unit, in order, then the old
+    bare names (``longest``, ``stroke``, ``l1_crank_rocker`` …) as aliases of the same
+    values, kept for one release."""
+    named, aliases = {}, {}
+    for key, value in results.items():
+        new = unit_name(key, unit, kind)
+        if new != key:
+            aliases[key] = value
+        named[new] = value
+    return {**named, **aliases}
 
 
 def _present(spec, sol, lang, digits=DEFAULT_DIGITS):
