@@ -11,6 +11,7 @@ import math
 import numpy as np
 
 from mechcli.core.cam.geometry import RHO_CAP
+from mechcli.core.cam.motion import LAW_ALIASES, POLYNOMIAL_LAWS, PolynomialLaw
 from mechcli.report.files import Outputs
 from mechcli.report.kin import book_title
 from mechcli.report.run import finish
@@ -38,6 +39,8 @@ LABELS = {
         "soft": "soft impact (acceleration jump)", "none": "none (velocity and acceleration "
         "continuous)",
         "title_default": "Disc cam",
+        "program": "Motion program", "rise": "rise", "return": "return", "dwell": "dwell",
+        "lift": "lift", "polynomial": "polynomial", "inside": "inside",
     },
     "zh": {
         "table": "推杆运动规律与凸轮廓线",
@@ -57,6 +60,8 @@ LABELS = {
         "right": "右侧", "left": "左侧", "impacts": "冲击",
         "rigid": "刚性冲击 (速度突变)", "soft": "柔性冲击 (加速度突变)",
         "none": "无冲击 (速度、加速度连续)", "title_default": "盘形凸轮",
+        "program": "推杆运动规律", "rise": "推程", "return": "回程", "dwell": "休止",
+        "lift": "行程", "polynomial": "多项式", "inside": "内部",
     },
 }
 
@@ -77,13 +82,95 @@ def _angle(delta):
     return 0.0 if d > 360.0 - 1e-9 else d
 
 
+def law_text(law, lang="en", width=60):
+    """A segment's law as the report names it: ``(name, formula lines)``; the lines
+    (``s/h = 3u² − 2u³``, broken between terms to at most *width* characters) are
+    empty for a law that is not a polynomial."""
+    if law is None:
+        return "", []
+    if isinstance(law, PolynomialLaw):
+        name, poly = LABELS[lang]["polynomial"], law
+    else:
+        name = LAW_ALIASES.get(law, law)
+        if name not in POLYNOMIAL_LAWS:
+            return name, []
+        poly = PolynomialLaw(POLYNOMIAL_LAWS[name])
+    tokens = str(poly).split(" ")        # "3u²", "−", "2u³": a term, then (sign, term) pairs
+    words = [tokens[0]] + [f"{a} {b}" for a, b in zip(tokens[1::2], tokens[2::2])]
+    lines, cur = [], "s/h ="
+    for word in words:
+        if len(cur) + 1 + len(word) > width:
+            lines.append(cur)
+            cur = "     " + word
+        else:
+            cur += " " + word
+    lines.append(cur)
+    return name, lines
+
+
+def _law_name(law):
+    if law is None:
+        return None
+    return "polynomial" if isinstance(law, PolynomialLaw) else LAW_ALIASES.get(law, law)
+
+
+def _impact_segments(program, delta):
+    """Indices into ``program.segments`` of the segment before and after a jump at
+    *delta* (the same index twice for a jump inside a segment)."""
+    allp = program.pieces()
+    k = min(range(len(allp)), key=lambda j: abs(allp[j][1] - delta))
+    return allp[k - 1][0], allp[k][0]
+
+
+def _jump_text(cs, imp):
+    """The size of a jump: of ds/dδ (rigid) or d²s/dδ² (soft), in the table's units,
+    right minus left."""
+    u, unit = cs.header.scale, cs.header.unit
+    y = "ψ" if cs.angular else "s"
+    what = f"d{y}/dδ" if imp.kind == "rigid" else f"d²{y}/dδ²"
+    if cs.angular:
+        value, per = imp.jump, ("" if imp.kind == "rigid" else " 1/rad")
+    else:
+        value, per = imp.jump / u, f" {unit}/rad" + ("" if imp.kind == "rigid" else "²")
+    return f"Δ({what}) = {value:+.4f}{per}"
+
+
+def _impact_where(design, imp, lang):
+    L = LABELS[lang]
+    segs = design.program.segments
+    i, j = _impact_segments(design.program, imp.delta)
+
+    def seg(k):
+        law = _law_name(segs[k].law)
+        return L[segs[k].kind] + (f" ({law})" if law else "")
+    return f"{L['inside']} {seg(j)}" if i == j else f"{seg(i)} → {seg(j)}"
+
+
+def _n_points(p):
+    """Grid points per revolution of a profile (its jump samples not counted)."""
+    return (len(p.delta) if p.grid is None else int(np.count_nonzero(p.grid))) - 1
+
+
+def table_rows(p, every):
+    """Indices of the report table's rows: every *every*-th grid sample, each preceded by
+    the left limit of a jump at its angle (*p* a
+    :class:`~mechcli.core.cam.geometry.CamProfile`)."""
+    grid = np.arange(len(p.delta)) if p.grid is None else np.flatnonzero(p.grid)
+    rows = []
+    for i in grid[::every]:
+        if p.left is not None and i > 0 and p.left[i - 1]:
+            rows.append(i - 1)
+        rows.append(int(i))
+    return rows
+
+
 def results_dict(cs, design):
     """Scalar results in the spec's units (angles in degrees) for ``--json``."""
     u = cs.header.scale
     fol, ch = design.follower, design.checks
     deg = math.degrees
-    r = {"units": cs.header.unit, "r0": fol.r0 / u, "n_points": len(design.profile.delta) - 1,
-         "step_deg": 360.0 / (len(design.profile.delta) - 1)}
+    n = _n_points(design.profile)
+    r = {"units": cs.header.unit, "r0": fol.r0 / u, "n_points": n, "step_deg": 360.0 / n}
     if cs.angular:
         r.update(psi_deg=deg(cs.stroke), phi0_deg=deg(fol.phi0), a=fol.a / u, l=fol.l / u)
     else:
@@ -118,6 +205,28 @@ def results_dict(cs, design):
     soft = [round(deg(i.delta), 9) for i in design.impacts if i.kind == "soft"]
     r.update(n_rigid_impacts=len(rigid), n_soft_impacts=len(soft), rigid_impacts_deg=rigid,
              soft_impacts_deg=soft)
+    segs = design.program.segments
+    scale = 1.0 if cs.angular else 1.0 / u
+    impacts = []
+    for imp in design.impacts:
+        i, j = _impact_segments(design.program, imp.delta)
+        impacts.append({"at_deg": round(_angle(imp.delta), 9), "kind": imp.kind,
+                        "jump": imp.jump * scale, "before": segs[i].kind,
+                        "after": segs[j].kind, "inside_segment": i == j})
+    r["impacts"] = impacts
+    seg_out = []
+    for s in segs:
+        item = {"kind": s.kind, "start_deg": deg(s.start), "end_deg": deg(s.end),
+                "law": _law_name(s.law)}
+        if s.law is not None:
+            item["lift"] = deg(abs(s.lift)) if cs.angular else abs(s.lift) / u
+            law = s.law if isinstance(s.law, PolynomialLaw) else \
+                POLYNOMIAL_LAWS.get(LAW_ALIASES.get(s.law, s.law))
+            if law is not None:
+                c = law.coefficients if isinstance(law, PolynomialLaw) else law
+                item["coefficients"] = [float(x) for x in c]
+        seg_out.append(item)
+    r["segments"] = seg_out
     sz = design.sizing
     if sz is not None:
         r["r0_min"] = sz.r0_min / u
@@ -258,9 +367,8 @@ def build_report(cs, design, lang="en"):
     p, fol, ch = design.profile, design.follower, design.checks
     deg = math.degrees
     rep = Report(book_title(cs.header.title))
-    n = len(p.delta) - 1
+    n = _n_points(p)
     every = max(1, int(round(cs.table_step / (2 * math.pi / n))))
-    idx = np.arange(0, n + 1, every)
     if cs.angular:
         heads = [L["delta"], L["psi"], L["vpsi"], L["apsi"]]
         motion = [np.degrees(p.s), p.s1, p.s2]
@@ -278,10 +386,12 @@ def build_report(cs, design, lang="en"):
     heads.append(L["rho"])
     cap = RHO_CAP * fol.r0 / u
     rows = []
-    for i in idx:
-        rows.append([_f(deg(p.delta[i]), 1)] + [_f(c[i]) for c in motion]
-                    + [_f(deg(p.alpha[i]))] + [_f(c[i]) for c in geo]
-                    + [_rho_text(p.rho_work[i] / u, cap)])
+    for i in table_rows(p, every):    # a jump: two rows (left limit first), unless they read alike
+        row = ([_f(deg(p.delta[i]), 1)] + [_f(c[i]) for c in motion]
+               + [_f(deg(p.alpha[i]))] + [_f(c[i]) for c in geo]
+               + [_rho_text(p.rho_work[i] / u, cap)])
+        if not rows or row != rows[-1]:
+            rows.append(row)
     rep.blocks.append(Block(L["table"], [h.format(u=unit) for h in heads], rows))
     kv = []
     sz = design.sizing
@@ -311,7 +421,21 @@ def build_report(cs, design, lang="en"):
             kv.append([L["r0_other"], f"{sz.r0_min_other_side / u:.4f} {unit}"])
             kv.append([L["best_side"], L["right"] if sz.best_side > 0 else L["left"]])
     rep.blocks.append(Block(L["summary"], [], kv))
-    imp = [[L[i.kind], f"δ = {deg(i.delta):.4f}°"] for i in design.impacts]
+    prog = []
+    for s in design.program.segments:
+        text = f"δ = {_f(deg(s.start), 1)}° … {_f(deg(s.end), 1)}°"
+        formula = []
+        if s.law is not None:
+            name, formula = law_text(s.law, lang)
+            lift = (f"{deg(abs(s.lift)):.4f}°" if cs.angular else f"{abs(s.lift) / u:.4f} {unit}")
+            text += f", {name}, {L['lift']} {lift}"
+        # a polynomial's formula on its own lines (80 columns)
+        prog += [[L[s.kind], text]] + [["", line] for line in formula]
+    rep.blocks.append(Block(L["program"], [], prog))
+    # two lines per jump (where, then its size) so that a line fits 80 columns
+    imp = [row for i in design.impacts
+           for row in ([L[i.kind], f"δ = {deg(i.delta):.4f}°, {_impact_where(design, i, lang)}"],
+                       ["", _jump_text(cs, i)])]
     rep.blocks.append(Block(L["impacts"], [], imp or [[L["none"], ""]]))
     return rep
 

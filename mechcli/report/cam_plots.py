@@ -217,8 +217,9 @@ def animate(cs, design, out, lang, fps=12, progress=False):
     With *progress*, a rich progress bar on stderr counts the frames.
     """
     p, fol, unit, u = design.profile, design.follower, cs.header.unit, cs.header.scale
-    n = len(p.delta) - 1
-    idx = np.unique(np.round(np.linspace(0, n, cs.frames, endpoint=False)).astype(int))
+    grid = np.arange(len(p.delta)) if p.grid is None else np.flatnonzero(p.grid)
+    n = len(grid) - 1         # frames at grid samples (a jump's left limit is not a frame)
+    idx = grid[np.unique(np.round(np.linspace(0, n, cs.frames, endpoint=False)).astype(int))]
     fig, (ax, axs) = plt.subplots(1, 2, figsize=(10, 4.8), dpi=plotting.GIF_DPI,
                                   gridspec_kw={"width_ratios": [1.2, 1]})
     reach = float(np.max(np.hypot(*p.work))) / u

@@ -10,13 +10,26 @@ from __future__ import annotations
 import dataclasses
 import math
 
+from mechcli.core.cam.motion import PolynomialLaw
 from mechcli.spec.common import read_expected, read_header
 from mechcli.spec.errors import SpecError
 
-LAW_CHOICES = ("uniform", "parabolic", "cosine", "sine", "poly345", "poly4567",
-               "modified-trapezoid", "modified-sine", "constant-velocity", "linear",
-               "constant-acceleration", "harmonic", "simple-harmonic", "cycloidal",
-               "3-4-5", "4-5-6-7")
+LAW_CHOICES = ("uniform", "parabolic", "cosine", "sine", "cubic", "poly345", "poly4567",
+               "modified-trapezoid", "modified-sine", "polynomial", "constant-velocity",
+               "linear", "constant-acceleration", "harmonic", "simple-harmonic", "cycloidal",
+               "poly23", "2-3", "3-4-5", "4-5-6-7")
+
+#: a polynomial law must start at s/h = 0 and reach s/h = 1 to this tolerance (1e-6 of the
+#: segment's lift: 0.06 µm on a 60 mm stroke, below any machining tolerance, and above the
+#: rounding of coefficients typed with 7 or more significant digits); within it the
+#: coefficients are scaled to reach the lift exactly
+POLY_TOL = 1e-6
+#: at most 16 coefficients (degree 15): the polydyne and 4-5-6-7 families of the literature
+#: stay below degree 12, and beyond 15 the monomial form loses more digits than POLY_TOL
+MAX_POLY_TERMS = 16
+#: |c_k| <= 1e6: a degree-15 law with a bounded acceleration has coefficients below ~1e5;
+#: larger ones cancel to nothing in double precision (1e6 * 1e-16 = 1e-10 << POLY_TOL)
+MAX_POLY_COEF = 1e6
 
 #: default sampling step of the profile, degrees (see docs/cam.md and benchmarks/bench_cam.py)
 DEFAULT_STEP_DEG = 0.1
@@ -118,6 +131,8 @@ def _segments(motion_sec, stroke, angular, file):
             law, lift = None, 0.0
         else:
             law = sec.string("law", choices=list(LAW_CHOICES))
+            if law == "polynomial":
+                law = _polynomial(sec)
             if angular:
                 lift = math.radians(sec.number("lift", math.degrees(stroke), positive=True,
                                                hi=180.0))   # at most psi
@@ -140,6 +155,8 @@ def _segments(motion_sec, stroke, angular, file):
                 lift, new = level, 0.0
             elif abs(new - stroke) <= tol and kind == "rise":
                 lift, new = stroke - level, stroke
+            if isinstance(law, PolynomialLaw):
+                _check_range(sec, law, kind, level, lift, stroke, angular)
             level = 0.0 if abs(new) <= tol else new
         sec.finish()
         total += span
@@ -161,6 +178,49 @@ def _segments(motion_sec, stroke, angular, file):
     # checks the sum to 1e-9 rad)
     return tuple((kind, span * (2 * math.pi / sum(o[1] for o in out)), law, lift)
                  for kind, span, law, lift in out)
+
+
+def _polynomial(sec):
+    """The ``coefficients`` of a ``law = "polynomial"`` segment: s/h = Σ c_k u^k,
+    u = δ/δ0, checked to start at 0 and reach 1 (within POLY_TOL, then exactly)."""
+    key = "coefficients"
+    c = sec.numbers(key)
+    if not 2 <= len(c) <= MAX_POLY_TERMS:
+        raise sec.error(key, f"2 to {MAX_POLY_TERMS} coefficients c0, c1, ... of "
+                        "s/h = c0 + c1 u + c2 u^2 + ... (u = δ/δ0)", f"{len(c)}")
+    for i, ck in enumerate(c):
+        if abs(ck) > MAX_POLY_COEF:
+            raise SpecError(sec.file, sec.key(f"{key}[{i}]"),
+                            f"a coefficient within ±{MAX_POLY_COEF:g}", f"{ck:g}")
+    if abs(c[0]) > POLY_TOL:
+        raise sec.error(key, "a polynomial that starts at s/h = 0 at u = 0 (c0 = 0): the "
+                        "segment starts where the one before it ends", f"c0 = {c[0]:g}")
+    total = math.fsum(c)
+    if abs(total - 1.0) > POLY_TOL:
+        raise sec.error(key, "a polynomial that reaches the lift, s/h = c0 + c1 + ... = 1 at "
+                        "u = 1", f"a sum of {total:.9g}")
+    c[0] = 0.0
+    total = math.fsum(c)
+    return PolynomialLaw(tuple(ck / total for ck in c))
+
+
+def _check_range(sec, law, kind, level, lift, stroke, angular):
+    """The follower stays within [0, stroke] inside a polynomial segment."""
+    fmin, umin, fmax, umax = law.extremes()
+    sign = 1.0 if kind == "rise" else -1.0
+    lo, ulo = (level + lift * fmin, umin) if sign > 0 else (level - lift * fmax, umax)
+    hi, uhi = (level + lift * fmax, umax) if sign > 0 else (level - lift * fmin, umin)
+    tol = POLY_TOL * stroke
+    sym = "psi" if angular else "s"
+    if lo < -tol:
+        raise sec.error("coefficients", "a polynomial that keeps the follower within "
+                        "[0, stroke] (s/h between 0 and 1)",
+                        f"{sym} = {_show(lo, angular, sec.unit)} at u = {ulo:.6g}")
+    if hi > stroke + tol:
+        raise sec.error("coefficients", "a polynomial that keeps the follower within "
+                        "[0, stroke] (s/h between 0 and 1)",
+                        f"{sym} = {_show(hi, angular, sec.unit)} at u = {uhi:.6g}, beyond "
+                        f"the stroke {_show(stroke, angular, sec.unit)}")
 
 
 def _levels(segs):

@@ -73,10 +73,17 @@ def test_outputs_csv_report_and_json(tmp_path):
                 "x_pitch_mm", "y_pitch_mm", "x_work_mm", "y_work_mm", "pressure_angle_deg",
                 "rho_pitch_mm", "rho_work_mm", "roller_angle_deg"):
         assert col in head
-    assert len(rows) == 362   # header + 0° … 360° by 1° (the closing 360° repeated)
+    # header + 0° … 360° by 1° (the closing 360° repeated) + one left-limit row at each of the
+    # five acceleration jumps 50° (parabolic midpoint), 100°, 160°, 250° and 360° (≡ 0°)
+    assert len(rows) == 362 + 5
     row = dict(zip(head, map(float, rows[51])))    # δ = 50°: s = h/2 = 30 of the parabolic rise
-    assert row["delta_deg"] == pytest.approx(50.0)
-    assert row["s_mm"] == pytest.approx(30.0, abs=1e-9)
+    after = dict(zip(head, map(float, rows[52])))  # the same δ, limit from the right
+    assert row["delta_deg"] == after["delta_deg"] == pytest.approx(50.0)
+    assert row["s_mm"] == after["s_mm"] == pytest.approx(30.0, abs=1e-9)
+    # hand: the parabolic law's d²s/dδ² = ±4h/δ0² = ±4·60/(100π/180)² = ±78.7873524 mm/rad²,
+    # + before the midpoint, − after it
+    jump = 4 * 60 / math.radians(100) ** 2
+    assert (row["a_mm_rad2"], after["a_mm_rad2"]) == pytest.approx((jump, -jump), rel=1e-9)
     report = (tmp_path / "o" / "report.txt").read_text(encoding="utf-8")
     # BASE is 例 4-1 (configs/ch4/ex4-1.toml): hand calculation of the rise's largest pressure
     # angle at the parabolic kink, atan((2h/delta0 - e)/(sqrt(r0^2 - e^2) + h/2)) = 38.7067°

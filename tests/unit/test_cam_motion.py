@@ -16,6 +16,7 @@ PROPERTIES = {
     "parabolic": (True, False, 4.0, 2.0),
     "cosine": (True, False, math.pi ** 2 / 2, math.pi / 2),
     "sine": (True, True, 2 * math.pi, 2.0),
+    "cubic": (True, False, 6.0, 1.5),   # f = 3u² − 2u³: f'' = 6 − 12u, f'(1/2) = 3/2
     "poly345": (True, True, 10 / math.sqrt(3), 1.875),
     "poly4567": (True, True, 7.5132, 2.1875),
     "modified-trapezoid": (True, True, 4.8881, 2.0),

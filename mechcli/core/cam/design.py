@@ -12,7 +12,7 @@ import math
 
 import numpy as np
 
-from mechcli.core.cam.motion import Impact, MotionProgram, build_program
+from mechcli.core.cam.motion import Impact, MotionProgram, build_program, jump_samples
 from mechcli.core.cam.checks import CamChecks, check_cam
 from mechcli.core.cam.geometry import (CamGeometryError, CamProfile, Follower, UndercutError,
                                        cam_profile)
@@ -53,7 +53,8 @@ class CamDesign:
         With the base radius actually used (the sized one if r0 was not given).
     program : MotionProgram
     profile : CamProfile
-        Sampled at the requested step.
+        Sampled at the requested step, with two samples (left, then right limit)
+        at every jump of the motion.
     checks : CamChecks
     impacts : tuple of Impact
     sizing : CamSizing or None
@@ -183,8 +184,10 @@ def design_cam(motion, contact, r0, follower_args, segments, stroke, *, angular=
             "the line through the pivot and the cam centre", "arm_past_centre_line",
             angle=fol.phi0 + stroke)
     n = max(int(round(2 * math.pi / step)), 36)
-    delta = np.linspace(0.0, 2 * math.pi, n + 1)
-    profile = cam_profile(fol, program, delta)
+    # at a jump (segment end, the parabolic midpoint) two samples: the limits from the left
+    # and from the right
+    delta, left, grid = jump_samples(program, np.linspace(0.0, 2 * math.pi, n + 1))
+    profile = cam_profile(fol, program, delta, left, grid)
     checks = check_cam(fol, program, search)
     if checks.distorted and forbid_undercut:
         raise UndercutError(

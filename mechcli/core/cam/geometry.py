@@ -281,6 +281,13 @@ class CamProfile:
         curve arc length from δ = 0 divided by r_r, rad.
     face_offset : ndarray or None
         Flat face: contact point measured from the follower axis, m.
+    left : ndarray of bool or None
+        True where the sample is the limit from the left at a jump (the next
+        sample has the same δ and is the limit from the right); None: no such
+        sample.
+    grid : ndarray of bool or None
+        True where the sample is one of the uniform grid (the others are the
+        added jump samples); None: all are.
     """
 
     delta: np.ndarray
@@ -296,9 +303,11 @@ class CamProfile:
     rho_work: np.ndarray
     roller_angle: np.ndarray | None
     face_offset: np.ndarray | None
+    left: np.ndarray | None = None
+    grid: np.ndarray | None = None
 
 
-def cam_profile(fol, program: MotionProgram, delta):
+def cam_profile(fol, program: MotionProgram, delta, left=None, grid=None):
     """Pitch and working curves of the cam at cam angles *delta*.
 
     Parameters
@@ -307,6 +316,10 @@ def cam_profile(fol, program: MotionProgram, delta):
     program : MotionProgram
     delta : ndarray
         Cam angles, rad (increasing, typically 0 … 2π).
+    left, grid : ndarray of bool, optional
+        The limit from the left where *left* is true (see
+        :func:`mechcli.core.cam.motion.jump_samples`, which makes all three
+        arrays); both are kept in the profile.
 
     Returns
     -------
@@ -318,8 +331,9 @@ def cam_profile(fol, program: MotionProgram, delta):
         ``reason = "pitch_cusp"``, ``at`` the cam angle (rad): the follower
         point moves with the cam, the pitch curve has no normal there.
     """
-    st = program.evaluate(delta)
+    st = program.evaluate(delta, left)
     s, s1, s2, s3 = st.s, st.s1, st.s2, st.s3
+    marks = dict(left=left, grid=grid)
     sg = fol.sigma
     rot = -sg * np.asarray(delta, dtype=float)
     P, V1, V2, V3, d, d1 = _derived(fol, s, s1, s2, s3)
@@ -330,7 +344,7 @@ def cam_profile(fol, program: MotionProgram, delta):
         normal = _rotate(np.stack([np.zeros_like(s), np.ones_like(s)]), rot)
         rho = fol.r0 + s + s2
         return CamProfile(st.delta, s, s1, s2, s3, None, work, normal, alpha, None,
-                          np.clip(rho, -cap, cap), None, sg * s1 - fol.e)
+                          np.clip(rho, -cap, cap), None, sg * s1 - fol.e, **marks)
     speed = np.sqrt(_dot(V1, V1))
     if not np.all(speed > 1e-12 * fol.r0):
         at = float(np.asarray(delta, dtype=float)[np.argmin(speed)])
@@ -352,7 +366,7 @@ def cam_profile(fol, program: MotionProgram, delta):
     else:
         work, rho_w, roller = pitch, rho_p, None
     return CamProfile(st.delta, s, s1, s2, s3, pitch, work, normal, alpha, rho_p, rho_w,
-                      roller, None)
+                      roller, None, **marks)
 
 
 
@@ -458,12 +472,15 @@ def working_outline(fol, program, profile, corners, arc_step=math.radians(2.0)):
     ndarray, shape (2, m)
         Closed polyline in the cam frame, m.
     """
-    work = profile.work
+    work, delta = profile.work, profile.delta
     if fol.contact != "roller" or not corners:
         return work
+    if profile.left is not None:             # one sample per angle: the arcs and cuts join
+        keep = ~profile.left                 # the branches at the corners themselves
+        work, delta = work[:, keep], delta[keep]
     n = work.shape[1] - 1
     base = work[:, :-1]                      # cyclic: point n is point 0 again
-    idx = [int(np.searchsorted(profile.delta[:-1], dc - 1e-12)) % n for dc, _ in corners]
+    idx = [int(np.searchsorted(delta[:-1], dc - 1e-12)) % n for dc, _ in corners]
     # start the cyclic walk in the middle of the largest gap between corners
     cuts = sorted(idx)
     gaps = [((cuts[(i + 1) % len(cuts)] - c) % n or n, c) for i, c in enumerate(cuts)]

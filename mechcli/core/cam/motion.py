@@ -13,11 +13,13 @@ Notes
 -----
 The book's four laws are those of 表 4-1 (uniform velocity 等速, constant
 acceleration/deceleration 等加速等减速, cosine acceleration 余弦加速度 (simple
-harmonic), sine acceleration 正弦加速度 (cycloidal)).  The 3-4-5 and 4-5-6-7
+harmonic), sine acceleration 正弦加速度 (cycloidal)).  The cubic ``3u² − 2u³``
+(the lowest polynomial with zero velocity at both ends), the 3-4-5 and 4-5-6-7
 polynomials, the modified trapezoid and the modified sine are the standard
 laws of modern cam design (their acceleration shapes are integrated here in
-closed form).  A return segment uses ``s = s_start - lift * f(u)``, which
-reproduces the return column of 表 4-1.
+closed form).  Any other polynomial ``f(u) = Σ c_k u^k`` is a
+:class:`PolynomialLaw`.  A return segment uses ``s = s_start - lift * f(u)``,
+which reproduces the return column of 表 4-1.
 """
 
 from __future__ import annotations
@@ -29,7 +31,7 @@ import math
 import numpy as np
 
 #: the law names accepted by :func:`law_pieces`
-LAWS = ("uniform", "parabolic", "cosine", "sine", "poly345", "poly4567",
+LAWS = ("uniform", "parabolic", "cosine", "sine", "cubic", "poly345", "poly4567",
         "modified-trapezoid", "modified-sine")
 
 #: alternative names (textbook English and Chinese-pinyin-free synonyms)
@@ -39,6 +41,14 @@ LAW_ALIASES = {
     "harmonic": "cosine", "simple-harmonic": "cosine",
     "cycloidal": "sine",
     "3-4-5": "poly345", "4-5-6-7": "poly4567",
+    "poly23": "cubic", "2-3": "cubic",
+}
+
+#: coefficients ``c_0 … c_n`` of ``f(u) = Σ c_k u^k`` of the named polynomial laws
+POLYNOMIAL_LAWS = {
+    "cubic": (0.0, 0.0, 3.0, -2.0),
+    "poly345": (0.0, 0.0, 0.0, 10.0, -15.0, 6.0),
+    "poly4567": (0.0, 0.0, 0.0, 0.0, 35.0, -84.0, 70.0, -20.0),
 }
 
 SEGMENT_KINDS = ("rise", "dwell", "return")
@@ -98,8 +108,82 @@ def _poly(coeffs):
     return func
 
 
-_poly345 = _poly([0, 0, 0, 10, -15, 6])
-_poly4567 = _poly([0, 0, 0, 0, 35, -84, 70, -20])
+@dataclasses.dataclass(frozen=True)
+class PolynomialLaw:
+    """A motion law given by its coefficients: ``f(u) = Σ_k c_k u^k``, ``u = δ/δ0``.
+
+    Dimensionless: the segment's displacement is ``s_start + lift f(u)`` (rise)
+    or ``s_start − lift f(u)`` (return), so ``f(0) = 0`` and ``f(1) = 1`` are
+    needed for the segment to start where the previous one ended and to cover
+    its lift; :func:`build_program` checks both (to 1e-9).  A law with
+    ``f'(0) ≠ 0`` or ``f''(0) ≠ 0`` (or at ``u = 1``) is allowed: the velocity
+    or acceleration jump against the neighbouring segment is an
+    :class:`Impact` like any other law's.
+
+    Attributes
+    ----------
+    coefficients : tuple of float
+        ``c_0, c_1, …, c_n`` (at least two), finite.
+
+    Notes
+    -----
+    The book's form ``s = C_0 + C_1 δ + … + C_n δ^n`` (δ in rad, s in m) is
+    this law with ``c_k = C_k δ0^k / h``.
+    """
+
+    coefficients: tuple
+
+    def __post_init__(self):
+        c = tuple(float(x) for x in self.coefficients)
+        if len(c) < 2 or not all(math.isfinite(x) for x in c):
+            raise ValueError("a polynomial law needs at least two finite coefficients")
+        object.__setattr__(self, "coefficients", c)
+
+    def ends(self):
+        """``(f, f', f'')`` at ``u = 0`` and at ``u = 1``: two tuples of 3 floats."""
+        c = np.polynomial.Polynomial(self.coefficients)
+        return tuple(tuple(float(c.deriv(k)(u)) if k else float(c(u)) for k in range(3))
+                     for u in (0.0, 1.0))
+
+    def extremes(self):
+        """Smallest and largest ``f`` on ``0 ≤ u ≤ 1``.
+
+        Returns
+        -------
+        tuple
+            ``(f_min, u_at_min, f_max, u_at_max)``: from the ends and the roots
+            of ``f'`` inside ``(0, 1)`` (their real parts: a double root comes
+            out of the eigenvalue solver as a pair ``x ± 1e-8 i``, and ``f`` at
+            a point that is not an extreme changes nothing).
+        """
+        c = np.polynomial.Polynomial(self.coefficients)
+        cand = [0.0, 1.0]
+        d = c.deriv().trim()
+        if d.degree() > 0:
+            cand += [float(x.real) for x in np.atleast_1d(d.roots()) if 0.0 < x.real < 1.0]
+        u = np.array(cand)
+        f = c(u)
+        lo, hi = int(np.argmin(f)), int(np.argmax(f))
+        return float(f[lo]), float(u[lo]), float(f[hi]), float(u[hi])
+
+    def __str__(self):
+        """``3u² − 2u³``: the book's way of writing the law (superscript powers)."""
+        sup = str.maketrans("0123456789", "⁰¹²³⁴⁵⁶⁷⁸⁹")
+        terms = []
+        for k, ck in enumerate(self.coefficients):
+            if ck == 0:
+                continue
+            mag = abs(ck)
+            num = "" if (mag == 1 and k) else f"{mag:.10g}"
+            var = "" if k == 0 else "u" if k == 1 else "u" + str(k).translate(sup)
+            terms.append(("−" if ck < 0 else "+", num + var))
+        if not terms:
+            return "0"
+        first = ("−" if terms[0][0] == "−" else "") + terms[0][1]
+        return first + "".join(f" {s} {x}" for s, x in terms[1:])
+
+
+_named_polys = {name: _poly(list(c)) for name, c in POLYNOMIAL_LAWS.items()}
 
 
 def _trig_piece(u0, c0, cs, cc, k, v0, s0, scale):
@@ -144,8 +228,9 @@ def law_pieces(law):
 
     Parameters
     ----------
-    law : str
-        One of :data:`LAWS` (or an alias of :data:`LAW_ALIASES`).
+    law : str or PolynomialLaw
+        One of :data:`LAWS` (or an alias of :data:`LAW_ALIASES`), or a
+        polynomial given by its coefficients.
 
     Returns
     -------
@@ -160,6 +245,8 @@ def law_pieces(law):
     sine quarter-waves of period ``1/2`` on ``[0, 1/8]`` and ``[7/8, 1]`` joined
     by a cosine of period ``3/2`` (peak ``5.528 h/β²``).
     """
+    if isinstance(law, PolynomialLaw):
+        return (LawPiece(0.0, 1.0, _poly(list(law.coefficients))),)
     law = LAW_ALIASES.get(law, law)
     w = 4 * math.pi
     if law == "uniform":
@@ -170,10 +257,8 @@ def law_pieces(law):
         return (LawPiece(0.0, 1.0, _cosine),)
     if law == "sine":
         return (LawPiece(0.0, 1.0, _sine),)
-    if law == "poly345":
-        return (LawPiece(0.0, 1.0, _poly345),)
-    if law == "poly4567":
-        return (LawPiece(0.0, 1.0, _poly4567),)
+    if law in _named_polys:
+        return (LawPiece(0.0, 1.0, _named_polys[law]),)
     if law == "modified-trapezoid":
         return _acc_shape_pieces([
             (0.0, 1 / 8, 0.0, 1.0, 0.0, w),
@@ -229,7 +314,7 @@ class Segment:
         Cam angle at the start of the segment, rad.
     span : float
         Cam angle the segment lasts (δ0, δ01, δ'0, δ02 of the book), rad.
-    law : str or None
+    law : str, PolynomialLaw or None
         Motion law (None for a dwell).
     s_start : float
         Follower displacement at the start (m, or rad when oscillating).
@@ -339,11 +424,20 @@ class MotionProgram:
         i, _, _, p = self.pieces()[k]
         return _piece_state(self.segments[i], p, delta)
 
-    def evaluate(self, delta):
+    def evaluate(self, delta, left=None):
         """Displacement and derivatives at cam angles *delta* (rad, any array).
 
         Angles are taken modulo 2π; at a piece boundary the following piece is
-        used (one-sided from the right).
+        used (one-sided from the right), except where *left* is true.
+
+        Parameters
+        ----------
+        delta : array_like
+            Cam angles, rad.
+        left : array_like of bool, optional
+            Where true, the limit from the left: at a piece boundary the piece
+            that ends there, evaluated by its own formula at its end (exact, no
+            nudge); δ = 0 (mod 2π) is then the end of the last piece.
         """
         delta = np.asarray(delta, dtype=float)
         d = np.mod(delta, 2 * math.pi)
@@ -351,6 +445,12 @@ class MotionProgram:
         pieces = self.pieces()
         bounds = np.array([p[1] for p in pieces])
         idx = np.clip(np.searchsorted(bounds, d, side="right") - 1, 0, len(pieces) - 1)
+        if left is not None:
+            left = np.broadcast_to(np.asarray(left, dtype=bool), d.shape)
+            dl = np.where(d > 0.0, d, 2 * math.pi)
+            il = np.clip(np.searchsorted(bounds, dl, side="left") - 1, 0, len(pieces) - 1)
+            idx = np.where(left, il, idx)
+            d = np.where(left, dl, d)
         for k in np.unique(idx):
             mask = idx == k
             vals = self.piece_state(int(k), d[mask])
@@ -387,14 +487,95 @@ class MotionProgram:
         return tuple(out)
 
 
+    def jumps(self, rtol=1e-9):
+        """Cam angles where the motion jumps: ds/dδ, d²s/dδ² or d³s/dδ³ differ on the
+        two sides of a piece boundary (segment ends, the parabolic law's midpoint).
+
+        Parameters
+        ----------
+        rtol : float
+            A difference counts when larger than *rtol* × stroke / β^k (k = 1, 2,
+            3 for the three derivatives; β the shorter of the two segments that
+            meet), the scale of :meth:`impacts`.
+
+        Returns
+        -------
+        tuple of float
+            Piece starts in ``[0, 2π)``, rad, increasing (each the exact float of
+            :meth:`pieces`).  A jump of the displacement itself cannot happen
+            (:func:`build_program` makes the segments meet).
+        """
+        pieces = self.pieces()
+        n = len(pieces)
+        out = []
+        for k in range(n):
+            prev = (k - 1) % n
+            left = self.piece_state(prev, np.array([pieces[prev][2]]))
+            right = self.piece_state(k, np.array([pieces[k][1]]))
+            span = min(self.segments[pieces[k][0]].span, self.segments[pieces[prev][0]].span)
+            if any(abs(float(r[0] - l[0])) > rtol * self.stroke / span ** m
+                   for m, (l, r) in enumerate(zip(left[1:], right[1:]), start=1)):
+                out.append(pieces[k][1])
+        return tuple(out)
+
+
+def jump_samples(program, delta, rtol=1e-9):
+    """Sample angles with both sides of every jump of *program*.
+
+    Parameters
+    ----------
+    program : MotionProgram
+    delta : ndarray
+        Increasing cam angles, rad (the uniform grid, 0 … 2π).
+    rtol : float
+        As :meth:`MotionProgram.jumps`.
+
+    Returns
+    -------
+    delta, left, grid : ndarray
+        At every jump angle (and its images by 2π) after ``delta[0]`` and up to
+        ``delta[-1]``, two samples at the same angle: the limit from the left
+        (``left`` true), then from the right.  A grid angle within 1e-9 of a step
+        of a jump is moved onto it (the jump's exact float); a jump between grid
+        angles gets two new samples.  ``grid`` marks the samples of *delta* (their
+        right-hand rows).  The first angle keeps one sample (nothing lies to its
+        left in the range).
+    """
+    delta = np.asarray(delta, dtype=float)
+    jumps = np.array(program.jumps(rtol))
+    n = len(delta)
+    if not len(jumps) or n < 2:
+        return delta, np.zeros(n, dtype=bool), np.ones(n, dtype=bool)
+    period = 2 * math.pi
+    lo, hi = delta[0], delta[-1]
+    step = (hi - lo) / (n - 1)
+    tol = 1e-9 * step
+    m = np.arange(math.floor((lo - jumps.max()) / period), math.ceil((hi - jumps.min()) / period)
+                  + 1)
+    cand = (jumps[None, :] + period * m[:, None]).ravel()
+    cand = np.sort(cand[(cand > lo + tol) & (cand <= hi + tol)])
+    d = delta.copy()
+    near = np.clip(np.searchsorted(d, cand), 1, n - 1)
+    near = np.where(np.abs(d[near - 1] - cand) < np.abs(d[near] - cand), near - 1, near)
+    on = np.abs(d[near] - cand) <= tol
+    d[near[on]] = cand[on]
+    rows = np.concatenate([d, cand, cand[~on]])
+    left = np.concatenate([np.zeros(n, dtype=bool), np.ones(len(cand), dtype=bool),
+                           np.zeros(int(np.count_nonzero(~on)), dtype=bool)])
+    grid = np.concatenate([np.ones(n, dtype=bool), np.zeros(len(rows) - n, dtype=bool)])
+    order = np.lexsort((~left, rows))
+    return rows[order], left[order], grid[order]
+
+
 def build_program(segments, stroke, angular=False):
     """Make a :class:`MotionProgram` from ``(kind, span, law, lift)`` tuples.
 
     Parameters
     ----------
-    segments : sequence of (str, float, str or None, float)
-        Kind (``rise``/``dwell``/``return``), span (rad), law (None for a
-        dwell) and lift magnitude (m or rad; ignored for a dwell).
+    segments : sequence of (str, float, str or PolynomialLaw or None, float)
+        Kind (``rise``/``dwell``/``return``), span (rad), law (a name, a
+        :class:`PolynomialLaw`, None for a dwell) and lift magnitude (m or rad;
+        ignored for a dwell).
     stroke : float
         Lift h (m) or swing ψ (rad) of the program.
     angular : bool
@@ -404,8 +585,9 @@ def build_program(segments, stroke, angular=False):
     ------
     ValueError
         If the spans do not sum to 2π, the follower does not come back to its
-        start, or the displacement leaves ``[0, stroke]``.  The spec layer
-        checks all of this first and names the key.
+        start, the displacement leaves ``[0, stroke]``, or a polynomial law
+        does not go from ``f(0) = 0`` to ``f(1) = 1``.  The spec layer checks
+        all of this first and names the key.
     """
     out = []
     start = 0.0
@@ -415,6 +597,11 @@ def build_program(segments, stroke, angular=False):
             raise ValueError(f"unknown segment kind '{kind}'")
         if not span > 0:
             raise ValueError("segment spans must be positive")
+        if isinstance(law, PolynomialLaw) and kind != "dwell":
+            (f0, *_), (f1, *_) = law.ends()
+            if abs(f0) > 1e-9 or abs(f1 - 1.0) > 1e-9:
+                raise ValueError(f"the polynomial law {law} does not go from 0 to 1 "
+                                 f"(f(0) = {f0:g}, f(1) = {f1:g})")
         signed = 0.0 if kind == "dwell" else (lift if kind == "rise" else -lift)
         out.append(Segment(kind, start, span, None if kind == "dwell" else
                            LAW_ALIASES.get(law, law), s, signed))
