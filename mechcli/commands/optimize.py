@@ -75,11 +75,10 @@ def problem_results(problem, prob):
         res = analyse_sweep(prob.linkage, prob.input.sweep(), q, prob.output.order,
                             partial=prob.input.partial)
         return rk.scalar_results(prob, q, res)
-    from mechcli.core.linkage.force_analysis import analyse_forces
+    from mechcli.commands.force import solve
     from mechcli.report import force as rf
-    res = analyse_forces(prob.linkage, prob.topology, prob.input.sweep(), prob.bodies,
-                         prob.gravity, prob.loads, partial=prob.input.partial)
-    return rf.scalar_results(prob, res)
+    res, extra, _ = solve(prob, prob.input.sweep())
+    return rf.scalar_results(prob, res, None, extra)
 
 
 def build_problem(spec):

@@ -2,10 +2,14 @@
 
 from __future__ import annotations
 
+import dataclasses
+from typing import Optional
+
 import numpy as np
 
 from mechcli.core.linkage.kinetostatics import COND_FLAG
-from mechcli.report.kin import (accuracy_note, accuracy_results, accuracy_warnings,  # noqa: F401
+from mechcli.report.kin import (dead_point_note, dead_point_results,  # noqa: F401
+                                accuracy_note, accuracy_results, accuracy_warnings,
                                 assembly_message, book_title, degrees_hint,
                                 excluded_warnings, fixed, header, input_column, input_factor,
                                 input_header, input_suffix, input_symbol, input_value,
@@ -13,8 +17,33 @@ from mechcli.report.kin import (accuracy_note, accuracy_results, accuracy_warnin
 from mechcli.report.table import Block, Report
 
 
+@dataclasses.dataclass(frozen=True)
+class Extra:
+    """What a ``force`` run adds to the sweep: ``engine`` the piston's named results
+    (core.linkage.piston.EngineSweep or None); ``at`` input [rad or m] -> {symbol:
+    value} at ``output.at``; ``exact`` the exact model's series at the analysed
+    positions when the approximate model ran (else None)."""
+
+    engine: object = None
+    at: dict = dataclasses.field(default_factory=dict)
+    exact: Optional[dict] = None
+
+
+#: the engine's named results, in report order, with their descriptions
+ENGINE_NAMES = {
+    "FL": ("gas force on the piston (toward the crank)", "活塞上的气体力"),
+    "FI": ("inertia force of the reciprocating mass, m·a", "往复质量惯性力"),
+    "FP": ("piston effort (piston on the rod, along the stroke)", "活塞推力"),
+    "FQ": ("force along the connecting rod (compression +)", "连杆力"),
+    "FN": ("thrust on the cylinder walls", "气缸壁侧压力"),
+    "FT": ("crank effort (tangential force at the crank pin)", "曲柄销切向力"),
+    "Frad": ("radial force on the crank (toward its axis)", "曲柄径向力"),
+    "T": ("turning moment on the crank", "曲轴转矩"),
+}
+
+
 def _unit(sym):
-    if sym.startswith(("Mb", "MR", "Msh")):
+    if sym.startswith(("Mb", "MR", "Msh")) or sym == "T":
         return "N_m"
     if sym == "P":
         return "W"
@@ -24,9 +53,10 @@ def _unit(sym):
 _PRETTY = {"N_m": "N·m", "N": "N", "W": "W"}
 
 
-def columns(spec, res):
+def columns(spec, res, extra=None):
     """CSV columns: input, balancing, every pair (x, y, magnitude, direction,
-    couple), frame force/moment, input power, condition number, load flags."""
+    couple), frame force/moment, input power, the engine's named results,
+    condition number, load flags."""
     cols = [(input_column(spec), res.q * input_factor(spec))]
     for sym, v in res.series.items():
         cols.append((f"{sym}_{_unit(sym)}", v))
@@ -34,6 +64,9 @@ def columns(spec, res):
             lab = sym
             cols.append((f"{lab}_dir_deg", np.degrees(np.arctan2(res.series[lab + "y"],
                                                                  res.series[lab + "x"]))))
+    if extra is not None and extra.engine is not None:
+        for sym, v in extra.engine.series.items():
+            cols.append((f"{sym}_{_unit(sym)}", v))
     cols.append(("cond", res.forces.cond))
     for name, on in res.active_mask.items():
         if any(p.load.name == name and p.conditional for p in spec.loads):
@@ -45,7 +78,45 @@ def _threshold(spec, accuracy_warn):
     return spec.output.accuracy_warn if accuracy_warn is None else accuracy_warn
 
 
-def scalar_results(spec, res, accuracy_warn=None):
+def _at_key(spec, x):
+    """``_at_60deg`` (rotary input) or ``_at_12p5mm``: an input as a key part."""
+    unit = "deg" if spec.input.rotary else spec.header.unit
+    return f"_at_{at_text(x * input_factor(spec))}{unit}"
+
+
+def at_text(v):
+    """An ``output.at`` input (°, or the spec's length unit) as the value part of a result
+    name: rounded to 9 decimals (the spec refuses two inputs equal after that rounding),
+    trailing zeros dropped, a decimal point written ``p`` and a minus ``m`` (``60``,
+    ``12p5``, ``m30``, ``10p0000001``, ``0p000025``)."""
+    txt = f"{round(float(v), 9) + 0.0:.9f}".rstrip("0").rstrip(".")
+    return txt.replace("-", "m").replace(".", "p")
+
+
+def _extra_results(spec, extra, out):
+    fin = input_factor(spec)
+    at_u = "deg" if spec.input.rotary else spec.header.unit
+    if extra.engine is not None:
+        for sym, (hi, lo) in extra.engine.extremes.items():
+            u = _unit(sym)
+            for name, (val, at, tol) in (("max", hi), ("min", lo)):
+                out[f"{sym}_{name}_{u}"] = val
+                if at is not None:   # none for a quantity constant to round-off
+                    out[f"{sym}_{name}_at_{at_u}"] = at * fin
+                    out[f"{sym}_{name}_at_{at_u}_tol"] = tol * fin
+            out[f"{sym}_abs_max_{u}"] = max(abs(hi[0]), abs(lo[0]))
+        pst = spec.piston
+        out[f"stroke_{spec.header.unit}"] = pst.stroke / spec.header.scale
+        out["head_end_at_deg"] = float(np.degrees(pst.theta_head))
+        out["crank_end_at_deg"] = float(np.degrees(pst.theta_crank))
+    for x, values in extra.at.items():
+        key = _at_key(spec, x)
+        for sym, v in values.items():
+            out[f"{sym}{key}_{_unit(sym)}"] = v + 0.0
+    return out
+
+
+def scalar_results(spec, res, accuracy_warn=None, extra=None):
     """``--json`` results: extremes with input angles (with the tolerance of the
     refinement and the grid error), mean/RMS, checks, loads, estimated accuracy."""
     fin = input_factor(spec)
@@ -84,8 +155,30 @@ def scalar_results(spec, res, accuracy_warn=None):
     for name, (lo, hi) in res.band.items():
         out[f"band_{name}_{spec.header.unit}"] = [lo / spec.header.scale, hi / spec.header.scale]
     out["excluded"] = [[a * fin, b * fin, why] for a, b, why in res.kin.excluded]
+    out.update(dead_point_results(spec, res.kin))
     out["accuracy"] = accuracy_results(res.accuracy, _threshold(spec, accuracy_warn))
+    if extra is not None:
+        _extra_results(spec, extra, out)
+        if extra.exact is not None:
+            _approx_results(spec, res, extra, out)
     return out
+
+
+def _approx_results(spec, res, extra, out):
+    """The model and the largest |approximate − exact| of Mb and the engine's results
+    over the analysed positions (absolute, and relative to the exact peak)."""
+    out["model"] = spec.model
+    approx = dict(res.series)
+    if extra.engine is not None:
+        approx.update(extra.engine.series)
+    for sym in [s for s in res.series if s.startswith(("Mb", "Fb"))] + list(ENGINE_NAMES):
+        if sym not in approx or sym not in extra.exact or not np.size(approx[sym]):
+            continue
+        diff = float(np.max(np.abs(np.asarray(approx[sym]) - extra.exact[sym])))
+        peak = float(np.max(np.abs(extra.exact[sym])))
+        u = _unit(sym)
+        out[f"approx_error_{sym}_max_{u}"] = diff
+        out[f"approx_error_{sym}_max_rel"] = diff / peak if peak > 0 else 0.0
 
 
 def warnings(spec, res, accuracy_warn=None):
@@ -93,7 +186,8 @@ def warnings(spec, res, accuracy_warn=None):
     positions, ranges that keep fewer than ``accuracy_warn`` (default: the spec's
     ``output.accuracy_warn``) correct digits, conditional loads that never act."""
     hint = degrees_hint(spec)
-    out = ([hint] if hint else []) + excluded_warnings(spec, res.kin.excluded, res.kin.toggles)
+    out = ([hint] if hint else []) + excluded_warnings(spec, res.kin.excluded, res.kin.toggles,
+                                                        res.kin.dead_points)
     out += accuracy_warnings(spec, res.accuracy, _threshold(spec, accuracy_warn))
     if res.flagged:
         where = []
@@ -106,14 +200,35 @@ def warnings(spec, res, accuracy_warn=None):
     for p in spec.loads:
         if p.conditional and not res.active.get(p.load.name):
             out.append(f"load '{p.load.name}' is never active over the analysed range")
+    out += _cycle_warnings(spec)
+    return out
+
+
+def _cycle_warnings(spec):
+    """A four-stroke indicator diagram analysed over less than its two turns: the strokes
+    left out (compression and suction, or the expansion) are silently missing from the
+    mean of Mb and the extremes."""
+    out = []
+    span = abs(spec.input.stop - spec.input.start)
+    for p in spec.loads:
+        g = p.source
+        if not hasattr(g, "piston") or not spec.input.rotary:
+            continue
+        for key, curve in (("pressure", g.head), ("crank_side_pressure", g.crank)):
+            if curve is not None and curve.strokes == 4 and span < 4 * np.pi * (1 - 1e-9):
+                out.append(f"load '{p.load.name}': {key} is a four-stroke indicator diagram "
+                           f"(a cycle of 720°) but the input spans {np.degrees(span):g}°: "
+                           "only part of the cycle is analysed (input.stop = input.start + "
+                           "720 for the whole cycle)")
     return out
 
 
 _ZH_HEAD = {"Mb": "平衡力矩", "Fb": "平衡力", "Fsh": "机架总反力", "Msh": "机架总力矩"}
 
 
-def build_report(spec, res, lang="en"):
-    """The book-style report: reactions and Mb every ``table_step``, extremes, loads."""
+def build_report(spec, res, lang="en", extra=None):
+    """The book-style report: reactions and Mb every ``table_step``, extremes, loads;
+    the engine's named results and the values at ``output.at`` when asked."""
     zh = lang == "zh"
     digits = spec.output.digits
     fin = input_factor(spec)
@@ -134,11 +249,16 @@ def build_report(spec, res, lang="en"):
                  "force of link i on link j)"),
         headers=headers, rows=rows))
     ext = []
+    flat = _constant(res)
     for sym, (hi, lo) in res.extremes.items():
         u = _PRETTY[_unit(sym)]
         signed = not (sym.startswith("FR") or sym == "Fsh")
         name = sym if not sym.startswith("FR") else f"|{sym}|"
         label = header(name, u, _ZH_HEAD.get(sym, "") if zh else "")
+        if sym in flat:     # constant to round-off: no location
+            ext.append([label, fixed(hi.value, digits), "常量" if zh else "constant",
+                        fixed(lo.value, digits) if signed else "", ""])
+            continue
         ext.append([label, fixed(hi.value, digits), fixed(hi.at * fin, 4),
                     fixed(lo.value, digits) if signed else "", fixed(lo.at * fin, 4)
                     if signed else ""])
@@ -174,21 +294,109 @@ def build_report(spec, res, lang="en"):
                 ("从不" if zh else "never")
         else:
             where = "全程" if zh else "always"
+        if p.source is not None and hasattr(p.source, "piston"):
+            g = p.source
+            what = (f"gas pressure on piston {ld.link}, area {g.area:.6g} m²"
+                    + (f", crank side {g.area - g.rod_area:.6g} m²" if g.crank is not None
+                       else "") + " (toward the crank)")
+        elif p.source is not None:
+            what = "piston inertia force from the series in 1/n"
         loads.append([f"{ld.name} (link {ld.link}): {what}", where])
     if loads:
         report.blocks.append(Block(heading="外载荷作用区间" if zh else "Loads and where they act",
                                    rows=loads))
+    if extra is not None:
+        _engine_blocks(spec, res, extra, report, zh, digits)
     n = res.q.size
     report.notes.append((f"共 {n} 个位置" if zh else f"{n} positions analysed")
                         + (f"; ω1 = {spec.input.omega:g} rad/s" if spec.input.rotary else ""))
     if res.accuracy is not None:
         report.notes.append(accuracy_note(res.accuracy, zh))
+    if dead_point_note(spec, res.kin, zh):
+        report.notes.append(dead_point_note(spec, res.kin, zh))
     return report
 
 
+def _engine_blocks(spec, res, extra, report, zh, digits):
+    fin = input_factor(spec)
+    at_u = "°" if spec.input.rotary else spec.header.unit
+    eng = extra.engine
+    if eng is not None:
+        syms = list(eng.series)
+        headers = [input_header(spec, zh)] + [header(s, _PRETTY[_unit(s)]) for s in syms]
+        rows = [[fixed(res.q[i] * fin, 2)] + [fixed(eng.series[s][i], digits) for s in syms]
+                for i in table_rows(spec, res, spec.output.table_step)]
+        pst = spec.piston
+        report.blocks.append(Block(
+            heading=("活塞与曲柄上的力 (F_L 气体力, F_I = m·a, F_P 活塞推力, F_Q 连杆力, "
+                     "F_N 侧压力, F_T 切向力, T 转矩)" if zh else
+                     "Engine forces (FL gas force, FI = m·a of the reciprocating mass, FP "
+                     "piston effort, FQ along the rod, FN on the cylinder wall, FT crank "
+                     "effort, Frad radial, T turning moment)"),
+            headers=headers, rows=rows))
+        ext = []
+        for sym, (hi, lo) in eng.extremes.items():
+            u = _PRETTY[_unit(sym)]
+            label = header(sym, u, ENGINE_NAMES[sym][1] if zh else "")
+            if hi[1] is None:
+                ext.append([label, fixed(hi[0], digits), "常量" if zh else "constant",
+                            fixed(lo[0], digits), ""])
+            else:
+                ext.append([label, fixed(hi[0], digits), fixed(hi[1] * fin, 4),
+                            fixed(lo[0], digits), fixed(lo[1] * fin, 4)])
+        tols = [e[2] for pair in eng.extremes.values() for e in pair if e[1] is not None]
+        report.blocks.append(Block(
+            heading=(f"活塞力极值 (位置精确到 ±{max(tols) * fin:.0e}{input_suffix(spec)})"
+                     if zh else f"Engine forces: extremes (input located to "
+                     f"±{max(tols) * fin:.0e}{input_suffix(spec)})") if tols else
+            ("活塞力极值" if zh else "Engine forces: extremes"),
+            headers=["量" if zh else "quantity", "最大值" if zh else "max",
+                     header("位置" if zh else "at", at_u), "最小值" if zh else "min",
+                     header("位置" if zh else "at", at_u)], rows=ext))
+        report.notes.append(
+            (f"活塞 {pst.link}: 行程 {pst.stroke / spec.header.scale:.6g} "
+             f"{spec.header.unit}, 外止点 θ = {np.degrees(pst.theta_head):.4f}°" if zh else
+             f"piston {pst.link}: stroke {pst.stroke / spec.header.scale:.6g} "
+             f"{spec.header.unit}, head-end dead centre at {np.degrees(pst.theta_head):.4f}°, "
+             f"crank end at {np.degrees(pst.theta_crank):.4f}°; the signs: see docs/force.md"))
+    for x, values in extra.at.items():
+        shown = at_text(x * fin).replace("p", ".").replace("m", "-")
+        rows = [[header(sym, _PRETTY[_unit(sym)]), fixed(v, digits)]
+                for sym, v in values.items() if not sym.endswith(("x", "y"))
+                or sym in ENGINE_NAMES]
+        report.blocks.append(Block(
+            heading=(f"{input_symbol(spec)} = {shown}{at_u} 时的值" if zh else
+                     f"Values at {input_symbol(spec)} = {shown}{at_u}"),
+            headers=["量" if zh else "quantity", "值" if zh else "value"], rows=rows))
+    if extra.exact is not None:
+        diffs = {}
+        _approx_results(spec, res, extra, diffs)
+        parts = [f"{k[len('approx_error_'):-len('_max_rel')]} {v:.2%}"
+                 for k, v in diffs.items() if k.endswith("_max_rel")]
+        report.notes.append(
+            ("模型: 近似 (活塞惯性力按 1/n 级数), 与精确模型的最大相对差: " if zh else
+             "model: approximate (the piston's inertia force from the series in 1/n, the "
+             "rest exact); largest differences to the exact model, relative to its peak: ")
+            + ", ".join(parts))
+
+
+def _constant(res):
+    """The symbols of the extremes whose quantity is constant to round-off (the shaking
+    moment of a linkage without a moment on the frame, ~1e-12 N·m): no location."""
+    from mechcli.core.linkage.piston import EPS, NOISE
+    # as core.linkage.piston.is_constant with noise_level over the forces and moments
+    vals = [np.asarray(v, dtype=float) for k, v in res.series.items() if k != "P"]
+    noise = NOISE * EPS * max((float(np.max(np.abs(v))) for v in vals if v.size), default=0.0)
+    return {sym for sym in res.extremes if np.size(res.series[sym]) == 0 or
+            float(np.max(res.series[sym]) - np.min(res.series[sym])) <= 100.0 * noise}
+
+
 def _extreme_tol(res):
-    """The largest refinement tolerance of the extremes [rad or m]."""
-    tols = [e.tol for pair in res.extremes.values() for e in pair]
+    """The largest refinement tolerance of the extremes [rad or m] (of the quantities
+    that are not constant to round-off)."""
+    flat = _constant(res)
+    tols = [e.tol for sym, (hi, lo) in res.extremes.items() if sym not in flat
+            for e in ((hi, lo) if not (sym.startswith("FR") or sym == "Fsh") else (hi,))]
     return max(tols) if tols else 0.0
 
 

@@ -23,13 +23,18 @@ _TEXT = {
            "shake_f": "Shaking force (force on the frame)",
            "shake_m": "Shaking moment Msh (about the origin)", "power": "Input power P",
            "active": "load '{name}' acts", "anim": "Pair reactions",
-           "at": "θ{n} = {v:.0f}°", "at_s": "s{n} = {v:.4g} {u}"},
+           "at": "θ{n} = {v:.0f}°", "at_s": "s{n} = {v:.4g} {u}",
+           "piston": "Forces on the piston (toward the crank +)",
+           "rod": "Rod force, wall thrust and crank effort",
+           "torque": "Turning moment diagram T (mean {m:.4g} N·m)"},
     "zh": {"pair": "运动副反力 F_R{lab} 曲线图", "Mb": "平衡力矩 {sym} 曲线图",
            "Fb": "平衡力 {sym} 曲线图", "hodo": "F_R{lab} 矢端曲线",
            "crank": "曲柄转角 θ{n}/°", "slide": "滑块位移 s{n}/{u}",
            "shake_f": "机架总反力 (摆动力) 曲线图", "shake_m": "机架总力矩 (摆动力矩) Msh 曲线图",
            "power": "输入功率 P 曲线图", "active": "载荷 {name} 作用区间",
-           "anim": "运动副反力", "at": "θ{n} = {v:.0f}°", "at_s": "s{n} = {v:.4g} {u}"},
+           "anim": "运动副反力", "at": "θ{n} = {v:.0f}°", "at_s": "s{n} = {v:.4g} {u}",
+           "piston": "活塞上的力 (指向曲柄为正)", "rod": "连杆力、侧压力与曲柄切向力",
+           "torque": "曲轴转矩图 T (平均 {m:.4g} N·m)"},
 }
 
 
@@ -207,6 +212,41 @@ def plot_frame(spec, result, outputs, t):
     plotting.save_png(fig, outputs, "frame.png")
 
 
+def plot_engine(spec, result, engine, outputs, t):
+    """``engine.png``: FL, FI, FP; FQ, FN, FT, Frad; and the turning moment T (the
+    turning-moment diagram of the engine books) against the input."""
+    from mechcli.report.plotting import plt
+
+    fin = input_factor(spec)
+    kin, s = result.kin, engine.series
+    x = broken(kin, result.q * fin)
+    fig, axs = plt.subplots(3, 1, figsize=(9, 9), sharex=True)
+    groups = ((axs[0], ("FL", "FI", "FP"), "piston", "F / N"),
+              (axs[1], ("FQ", "FN", "FT", "Frad"), "rod", "F / N"))
+    for ax, syms, key, ylabel in groups:
+        for k, sym in enumerate(syms):
+            ax.plot(x, broken(kin, s[sym]), "-", color=f"C{k}", lw=1.3,
+                    label=plotting.symbol(sym))
+        ax.set_ylabel(ylabel)
+        ax.set_title(_t(t, key), fontsize=10)
+        plotting.legend_outside(ax, fontsize=7)
+    ax = axs[2]
+    T = s["T"]
+    q = result.q
+    # the trapezoidal mean over the sweep (the report's mean Mb is Gauss-Legendre exact)
+    mean = (float(np.sum(0.5 * (T[1:] + T[:-1]) * np.diff(q)) / (q[-1] - q[0]))
+            if q.size > 1 and q[-1] > q[0] else float(np.mean(T)))
+    ax.plot(x, broken(kin, T), "-", color="k", lw=1.5, label="T")
+    ax.axhline(mean, color="C3", lw=0.9, ls="--")
+    ax.set_ylabel("T / N·m")
+    ax.set_title(_t(t, "torque", m=mean), fontsize=10)
+    ax.set_xlabel(_input_label(spec, t))
+    for ax in axs:
+        ax.axhline(0, color="0.5", lw=0.6)
+    fig.suptitle(plotting.text(spec.header.title))
+    plotting.save_png(fig, outputs, "engine.png")
+
+
 def _frame_indices(result, frames, periodic):
     """``frames`` indices spread over the analysed positions (no repeated closing
     position of a full turn), keeping only positions with finite forces."""
@@ -279,8 +319,53 @@ def animate_reactions(spec, result, sweep, outputs, t):
     return []
 
 
-def write(spec, result, sweep, outputs, lang, plots=True, animate=False):
-    """Write ``force.png``, ``hodograph.png``, ``frame.png`` and, if asked, ``force.gif``.
+def with_switch_rows(spec, result, switches, engine=None):
+    """The sweep and the engine's series with the rows of both sides of every load
+    switch (:class:`~mechcli.core.linkage.load_switches.SwitchRows`), as the plots
+    read them: the two rows at one input make a curve jump vertically, and the
+    hodographs break between them.  Returns ``(result, engine)`` unchanged without
+    switches."""
+    import types
+
+    from mechcli.report.force_rows import merge, merged_order
+
+    if switches is None or not len(switches):
+        return result, engine
+    keep, order = merged_order(result.q, switches)
+
+    def m(v, sym):
+        return merge(v, switches.series[sym], keep, order)
+
+    q = merge(result.q, switches.q, keep, order)
+    pairs = []
+    for pf in result.forces.pairs:
+        lab = pf.pair.label
+        couple = (m(pf.couple, f"MR{lab}") if pf.pair.kind == "P"
+                  else np.zeros(q.size))
+        pairs.append(types.SimpleNamespace(pair=pf.pair, fx=m(pf.fx, f"FR{lab}x"),
+                                           fy=m(pf.fy, f"FR{lab}y"), couple=couple))
+    balancing = {link: m(v, balancing_symbol(spec.linkage, link))
+                 for link, v in result.forces.balancing.items()}
+    # a load without conditions acts everywhere
+    masks = {name: merge(on, switches.active.get(name, np.ones(len(switches), dtype=bool)),
+                         keep, order) for name, on in result.active_mask.items()}
+    runs = [(int(np.searchsorted(q, result.q[a], side="left")),
+             int(np.searchsorted(q, result.q[b - 1], side="right"))) for a, b in result.kin.runs]
+    view = types.SimpleNamespace(
+        q=q, kin=types.SimpleNamespace(runs=runs), active=result.active, active_mask=masks,
+        series={sym: m(v, sym) for sym, v in result.series.items()},
+        forces=types.SimpleNamespace(pairs=pairs, balancing=balancing))
+    if engine is not None:
+        engine = types.SimpleNamespace(series={sym: merge(v, switches.extra[sym], keep, order)
+                                               for sym, v in engine.series.items()})
+    return view, engine
+
+
+def write(spec, result, sweep, outputs, lang, plots=True, animate=False, engine=None,
+          switches=None):
+    """Write ``force.png``, ``hodograph.png``, ``frame.png``, with an engine load
+    ``engine.png`` (``engine``: core.linkage.piston.EngineSweep) and, if asked,
+    ``force.gif``.
 
     Parameters
     ----------
@@ -291,6 +376,9 @@ def write(spec, result, sweep, outputs, lang, plots=True, animate=False):
     sweep : Sweep
     outputs : Outputs
     lang : {"en", "zh"}
+    switches : SwitchRows or None
+        Both sides of every load switch: the diagrams draw the jumps vertically
+        (:func:`with_switch_rows`); the animation shows the sweep's positions.
 
     Returns
     -------
@@ -303,9 +391,12 @@ def write(spec, result, sweep, outputs, lang, plots=True, animate=False):
         warnings.append("no CJK font installed: plot labels are in English")
     t = _TEXT[used]
     if plots:
-        plot_reactions(spec, result, outputs, t)
-        plot_hodographs(spec, result, outputs, t)
-        plot_frame(spec, result, outputs, t)
+        view, eng = with_switch_rows(spec, result, switches, engine)
+        plot_reactions(spec, view, outputs, t)
+        plot_hodographs(spec, view, outputs, t)
+        plot_frame(spec, view, outputs, t)
+        if engine is not None:
+            plot_engine(spec, view, eng, outputs, t)
     if animate:
         warnings += animate_reactions(spec, result, sweep, outputs, t)
     return warnings

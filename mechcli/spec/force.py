@@ -24,6 +24,18 @@ this module adds the inertia of the links, gravity and the external loads::
     factor = { at = [0, 180, 360], value = [1, 0.5, 1] }  # tabulated against the input
     when = { window = [90, 210], velocity = "vE", sign = "negative",
              band = [0.05, 0.95], slide = "E" }
+
+    [[load]]                   # a gas pressure on a piston (docs/force.md, "Engine loads")
+    name = "gas"
+    link = 3                   # a block on a frame guide, its rod on the driving crank
+    bore = 100                 # or area = … (spec length unit squared)
+    pressure_unit = "bar"      # Pa, kPa, kN/m2, MPa, N/mm2, bar, psi
+    pressure = 12              # or {angle|fraction|x = […], value = […]}
+                               # or {fraction|x = […], strokes = [[…], […](, […], […])]}
+    crank_side_pressure = 1    # optional, same forms; rod = … reduces its area
+
+    [output]
+    at = [60]                  # values at these inputs, by name (T_at_60deg_N_m …)
 """
 
 from __future__ import annotations
@@ -37,8 +49,7 @@ import numpy as np
 from mechcli.core.linkage.kinetostatics import Body, ForceModelError, LoadProgram, topology
 from mechcli.spec.common import Header, read_expected, read_header
 from mechcli.spec.errors import SpecError, closest
-from mechcli.spec.kin import (InputSpec, _empty, read_input, read_mechanism,
-                              refuse_approximate)
+from mechcli.spec.kin import InputSpec, _empty, read_input, read_mechanism
 from mechcli.spec.reader import MAX_LENGTH, load_spec
 
 
@@ -79,6 +90,8 @@ class ForceOutput:
     digits: int
     #: warn where fewer correct significant digits than this remain (estimated)
     accuracy_warn: float = 8.0
+    #: inputs [rad or m] whose values are reported by name (``<sym>_at_<v><unit>``)
+    at: tuple = ()
 
 
 @dataclasses.dataclass(frozen=True)
@@ -95,6 +108,12 @@ class ForceSpec:
     output: ForceOutput
     expected: dict
     guide_length: Optional[float] = None
+    #: ``[mechanism] model``: "exact" or "approximate" (the piston's inertia force
+    #: from the series in 1/n, docs/approximate.md)
+    model: str = "exact"
+    #: the engine's piston (core.linkage.piston.Piston) when a pressure load or the
+    #: approximate model names one; its named results are reported
+    piston: object = None
 
 
 def _link_number(sec, key, topo, frame):
@@ -172,10 +191,15 @@ def read_bodies(root, topo, frame):
     return bodies
 
 
-def read_loads(root, topo, frame, rotary, quantities):
-    """``[[load]]`` tables -> LoadProgram tuple (windows in degrees of a rotary input)."""
-    from mechcli.core.linkage.kinetostatics import Load
+def read_loads(root, topo, frame, rotary, quantities, span=None, pressure=False,
+               direction=1):
+    """``[[load]]`` tables -> LoadProgram tuple (windows in degrees of a rotary input).
 
+    With ``pressure`` a load may be a gas pressure on a piston (``mechcli force``;
+    other commands leave those keys unknown); ``span`` (start, stop) [rad] of the
+    analysed input: a pressure table against the input angle must span it (or one
+    whole cycle, 360° or 720°); ``direction`` the sense of rotation of the crank (−1:
+    ω1 < 0), in which the strokes of an indicator diagram follow each other."""
     by_symbol = {q.symbol: q for q in quantities}
     velocities = sorted(s for s, q in by_symbol.items() if q.order == 1 and q.kind in
                         ("angvel", "velocity"))
@@ -183,35 +207,26 @@ def read_loads(root, topo, frame, rotary, quantities):
                     and q.symbol.startswith("s"))
     unit = math.pi / 180 if rotary else root.unit
     out, names = [], set()
+    piston_link = None
     for i, t in enumerate(root.tables("load", [])):
         name = t.name("name", f"load{i + 1}")
         if name in names:
             raise t.error("name", "a name not used by another load", f"'{name}'")
         names.add(name)
         link = _link_number(t, "link", topo, frame)
-        fx = fy = 0.0
-        has_force = t.has("force") or t.has("magnitude")
-        if t.has("force") and t.has("magnitude"):
-            raise t.error("magnitude", "either force or magnitude, not both", "both")
-        if t.has("force"):
-            fx, fy = _bounded(t, "force", t.numbers("force", size=2), MAX_FORCE,
-                              "components [N]")
-        elif t.has("magnitude"):
-            mag = t.number("magnitude", nonneg=True, hi=MAX_FORCE)
-            ang = math.radians(t.number("angle"))
-            fx, fy = mag * math.cos(ang), mag * math.sin(ang)
-        relative = t.boolean("relative", False)
-        torque = t.number("torque", 0.0, lo=-MAX_FORCE, hi=MAX_FORCE)
-        if not has_force and not t.has("torque"):
-            raise t.error("force", "a force (force = [fx, fy] or magnitude/angle) or a torque",
-                          "neither")
-        origin, along, normal = None, 0.0, 0.0
-        if t.has("at") or t.has("at_from"):
-            if not has_force:
-                raise t.error("at" if t.has("at") else "at_from",
-                              "no point of action for a pure torque", "a point")
-            origin, along, normal = _place(t, "at", "at_from", topo, link, allow_mid=False) \
-                or (t.name("at_from"), 0.0, 0.0)
+        gas = None
+        if pressure and t.has("pressure"):
+            gas, load = _gas_load(t, name, link, topo, rotary, span, direction)
+            if piston_link is not None and link != piston_link:
+                raise t.error("link", f"the piston of the other pressure loads (link "
+                              f"{piston_link}): one piston per spec", str(link))
+            piston_link = link
+        else:
+            for key in PRESSURE_KEYS[1:] if pressure else ():
+                if t.has(key):
+                    raise t.error(key, "a pressure load (pressure = …) to go with it",
+                                  "no pressure")
+            load = _force_load(t, name, link, topo)
         table = None
         if t.has("factor"):
             ft = t.table("factor")
@@ -272,9 +287,203 @@ def read_loads(root, topo, frame, rotary, quantities):
                 raise w.error("slide", "a band to go with the slide (when.band)", "a slide alone")
             w.finish()
         t.finish()
-        load = Load(name, link, fx, fy, torque, origin, along, normal, relative)
-        out.append(LoadProgram(load, window, rotary, velocity, sign, slide, band, table))
+        out.append(LoadProgram(load, window, rotary, velocity, sign, slide, band, table,
+                               source=gas))
     return tuple(out)
+
+
+#: the keys of a pressure (gas) load on a piston; the first makes a load one
+PRESSURE_KEYS = ("pressure", "crank_side_pressure", "pressure_unit", "bore", "area", "rod")
+#: pressure units [Pa]: N/mm² = MPa and kN/m² = kPa as the engine books write them
+PRESSURE_UNITS = {"Pa": 1.0, "kPa": 1e3, "kN/m2": 1e3, "MPa": 1e6, "N/mm2": 1e6, "bar": 1e5,
+                  # lbf/in²: 4.4482216152605 N (lbf, exact by definition) / 0.0254² m²
+                  "psi": 4.4482216152605 / 0.0254 ** 2}
+#: bound of a pressure in its unit (1e11: 100 GPa in Pa, far above any engine or press;
+#: in MPa or psi still finite through p·A and the solve)
+MAX_PRESSURE = 1e11
+#: the force keys a pressure load cannot have (it acts along the line of stroke at the pin)
+_FORCE_KEYS = ("force", "magnitude", "angle", "torque", "at", "at_from", "relative")
+
+
+_PRESSURE_FORMS = ("a pressure (a number) or a table {angle|fraction|x = [...], value = "
+                   "[...]} or {fraction|x = [...], strokes = [[...], [...]]}")
+
+
+def _pressure_curve(t, key, scale, rotary, span, piston, direction=1):
+    """``pressure`` (a number or a table) -> :class:`PressureCurve` [Pa]."""
+    from mechcli.core.linkage.piston import PressureCurve
+
+    raw = t.raw(key)
+    if not isinstance(raw, dict):
+        value = t.number(key, lo=-MAX_PRESSURE, hi=MAX_PRESSURE, expected=_PRESSURE_FORMS)
+        return PressureCurve("constant", value * scale)
+    pt = t.table(key)
+    bases = [b for b in ("angle", "fraction", "x") if pt.has(b)]
+    if len(bases) != 1:
+        raise pt.error("angle", "exactly one of angle (input angles, °), fraction (of the "
+                       "stroke) or x (displacement from the head end)",
+                       ", ".join(bases) or "none")
+    basis = bases[0]
+    xs = pt.numbers(basis)
+    if len(xs) < 2 or any(b <= a for a, b in zip(xs, xs[1:])):
+        raise pt.error(basis, "at least 2 increasing values", repr(xs))
+    rows = None
+    if pt.has("strokes"):
+        if basis == "angle":
+            raise pt.error("strokes", "an indicator diagram against fraction or x (a "
+                           "table against angle takes value = [...])", "strokes")
+        raw = pt.raw("strokes")
+        want = (f"2 or 4 strokes, each an array of {len(xs)} pressures (one per {basis}): "
+                "[[...], [...]]")
+        if not isinstance(raw, list) or not 2 <= len(raw) <= 4:
+            raise pt.error("strokes", want, f"{len(raw) if isinstance(raw, list) else raw!r}"
+                           + (" strokes" if isinstance(raw, list) else ""))
+        rows = []
+        for i, row in enumerate(raw):
+            ok = isinstance(row, list) and len(row) == len(xs) and all(
+                isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
+                and abs(v) <= MAX_PRESSURE for v in row)
+            if not ok:
+                raise SpecError(pt.file, pt.key(f"strokes[{i}]"),
+                                f"an array of {len(xs)} finite pressures within "
+                                f"±{MAX_PRESSURE:g} (one per {basis})", repr(row))
+            rows.append([float(v) for v in row])
+        if len(rows) == 3:
+            raise pt.error("strokes", "2 strokes (one turn) or 4 strokes (two turns)",
+                           "3 strokes")
+        ys = np.asarray(rows, dtype=float) * scale
+    else:
+        ys = pt.numbers("value")
+        if len(ys) != len(xs):
+            raise pt.error("value", f"as many values as {basis} points ({len(xs)})",
+                           f"{len(ys)} values")
+        _bounded(pt, "value", ys, MAX_PRESSURE, "pressures")
+        ys = np.asarray(ys, dtype=float) * scale
+    xs = np.asarray(xs, dtype=float)
+    if basis == "angle":
+        if not rotary:
+            raise pt.error("angle", "a table against fraction or x (the input is a slider, "
+                           "not a crank)", "angle")
+        width = xs[-1] - xs[0]
+        whole = [c for c in (360.0, 720.0) if abs(width - c) <= 1e-9 * c]
+        pt.finish()
+        lo, hi = sorted(math.degrees(v) for v in span) if span is not None else (None, None)
+        spans = span is not None and xs[0] <= lo + 1e-9 and xs[-1] >= hi - 1e-9
+        # a whole cycle repeats when both ends give the same pressure (they are the same
+        # crank position); with unequal ends it is read as it stands, over the input it spans
+        if whole and ys[0] == ys[-1]:
+            return PressureCurve("angle", xs=np.radians(xs), ys=ys,
+                                 period=math.radians(whole[0]))
+        if spans:
+            return PressureCurve("angle", xs=np.radians(xs), ys=ys)
+        if whole:
+            raise pt.error("value", f"equal values at both ends of a table repeating every "
+                           f"{whole[0]:g}° (the same crank position), or angles spanning the "
+                           f"analysed input {lo:g}° … {hi:g}°",
+                           f"{ys[0] / scale:g} at {xs[0]:g}° and {ys[-1] / scale:g} at "
+                           f"{xs[-1]:g}°")
+        if span is not None:
+            raise pt.error("angle", f"input angles spanning the analysed input {lo:g}° … "
+                           f"{hi:g}° (or one whole cycle of 360° or 720°)",
+                           f"{xs[0]:g}° … {xs[-1]:g}°")
+        raise pt.error("angle", "input angles spanning one whole cycle (360° or 720°)",
+                       f"{xs[0]:g}° … {xs[-1]:g}°")
+    pt.finish()
+    # against the stroke: the table must span it, head end (0) to crank end
+    stroke = piston.stroke / t.unit if basis == "x" else 1.0
+    if not (xs[0] <= 1e-9 * stroke and xs[-1] >= stroke * (1 - 1e-9)):
+        what = (f"x from 0 to the stroke {stroke:.6g} (the displacement from the head-end "
+                "dead centre, spec units)" if basis == "x" else
+                "fractions from 0 (head end) to 1 (crank end)")
+        raise pt.error(basis, f"a table spanning the stroke: {what}",
+                       f"{xs[0]:g} … {xs[-1]:g}")
+    if basis == "x":
+        xs = xs / stroke
+    return PressureCurve("indicator" if rows is not None else "stroke", xs=xs, ys=ys,
+                         direction=-1 if direction < 0 else 1)
+
+
+def _gas_load(t, name, link, topo, rotary, span, direction=1):
+    """A pressure load on a piston -> ``(GasLoad, Load)`` (the load's components are
+    the unit vector of the line of stroke toward the crank; the source scales them)."""
+    from mechcli.core.linkage.kinetostatics import Load
+    from mechcli.core.linkage.piston import GasLoad, Piston, PistonError
+
+    for key in ("pressure", "crank_side_pressure"):
+        # a number or a table, checked first: a wrong type is named at its own key
+        if t.has(key) and not isinstance(t.raw(key), dict):
+            t.number(key, lo=-MAX_PRESSURE, hi=MAX_PRESSURE, expected=_PRESSURE_FORMS)
+    for key in _FORCE_KEYS:
+        if t.has(key):
+            raise t.error(key, "no force, torque or point with pressure (the gas force acts "
+                          "along the line of stroke at the piston pin)", key)
+    try:
+        piston = Piston.of(topo.linkage, link)
+    except PistonError as exc:
+        found = str(exc)
+        if exc.lengths is not None:   # worded in the spec's length unit
+            from mechcli.spec.reader import LENGTH_UNITS
+            u = next((k for k, v in LENGTH_UNITS.items() if v == t.unit), "m")
+            sc = LENGTH_UNITS.get(u, 1.0)
+            ln = {k: f"{v / sc:.6g} {u}" for k, v in exc.lengths.items()}
+            found = (f"the crank of piston {link} cannot make a whole turn (rod {ln['rod']} "
+                     f"≤ crank {ln['crank']} + offset {ln['offset']})")
+        raise t.error("link", "a piston: a block on a guide of the frame, pinned to a rod "
+                      "on the crank that drives the linkage", found) from None
+    unit = t.string("pressure_unit", choices=list(PRESSURE_UNITS))
+    scale = PRESSURE_UNITS[unit]
+    if t.has("bore") == t.has("area"):
+        raise t.error("bore", "either bore (the cylinder diameter) or area (the piston "
+                      "area), not both", "both" if t.has("bore") else "neither")
+    if t.has("bore"):
+        area = math.pi / 4 * t.length("bore") ** 2
+    else:
+        # the bounds of a length (Section.length), squared
+        area = t.number("area", positive=True, hi=(MAX_LENGTH / t.unit) ** 2) * t.unit ** 2
+    rod = t.length("rod", 0.0, positive=False, nonneg=True)
+    rod_area = math.pi / 4 * rod * rod
+    if rod_area >= area:
+        raise t.error("rod", "a piston-rod diameter smaller than the bore",
+                      f"{t.raw('rod')!r}")
+    head = _pressure_curve(t, "pressure", scale, rotary, span, piston, direction)
+    crank = (_pressure_curve(t, "crank_side_pressure", scale, rotary, span, piston, direction)
+             if t.has("crank_side_pressure") else None)
+    if crank is None and t.has("rod"):
+        raise t.error("rod", "a crank_side_pressure for the rod to reduce (the rod is on "
+                      "the crank side)", f"{t.raw('rod')!r}")
+    dx, dy = piston.d
+    load = Load(name, link, dx, dy, 0.0, piston.pin, 0.0, 0.0, False)
+    return GasLoad(piston, head, area, crank, rod_area), load
+
+
+def _force_load(t, name, link, topo):
+    """A force and/or torque load (``force``/``magnitude``, ``torque``, ``at``)."""
+    from mechcli.core.linkage.kinetostatics import Load
+
+    fx = fy = 0.0
+    has_force = t.has("force") or t.has("magnitude")
+    if t.has("force") and t.has("magnitude"):
+        raise t.error("magnitude", "either force or magnitude, not both", "both")
+    if t.has("force"):
+        fx, fy = _bounded(t, "force", t.numbers("force", size=2), MAX_FORCE,
+                          "components [N]")
+    elif t.has("magnitude"):
+        mag = t.number("magnitude", nonneg=True, hi=MAX_FORCE)
+        ang = math.radians(t.number("angle"))
+        fx, fy = mag * math.cos(ang), mag * math.sin(ang)
+    relative = t.boolean("relative", False)
+    torque = t.number("torque", 0.0, lo=-MAX_FORCE, hi=MAX_FORCE)
+    if not has_force and not t.has("torque"):
+        raise t.error("force", "a force (force = [fx, fy] or magnitude/angle) or a torque",
+                      "neither")
+    origin, along, normal = None, 0.0, 0.0
+    if t.has("at") or t.has("at_from"):
+        if not has_force:
+            raise t.error("at" if t.has("at") else "at_from",
+                          "no point of action for a pure torque", "a point")
+        origin, along, normal = _place(t, "at", "at_from", topo, link, allow_mid=False) \
+            or (t.name("at_from"), 0.0, 0.0)
+    return Load(name, link, fx, fy, torque, origin, along, normal, relative)
 
 
 def _output(sec, inp):
@@ -293,9 +502,28 @@ def _output(sec, inp):
     # correct significant digits below which a warning is given: a float64 result
     # has at most 15.7 (-log10 of the rounding unit), so 16 warns everywhere, 0 never
     accuracy_warn = sec.number("accuracy_warn", 8.0, lo=0.0, hi=16.0)
+    # inputs whose values are reported by name (a worked example's crank angle)
+    at = sec.numbers("at", [])
+    if len(at) > 100:
+        raise sec.error("at", "at most 100 input positions", f"{len(at)}")
+    lo, hi = sorted((inp.start / unit, inp.stop / unit))
+    named = {}
+    for i, v in enumerate(at):
+        if not lo - 1e-9 <= v <= hi + 1e-9:
+            raise SpecError(sec.file, sec.key(f"at[{i}]"), f"an input within the analysed "
+                            f"range {lo:g} … {hi:g}", f"{v:g}")
+        # the results are named by the input rounded to 9 decimals (report.force.at_text):
+        # one name per input, or they would overwrite each other
+        key = round(float(v), 9) + 0.0
+        if key in named:
+            raise SpecError(sec.file, sec.key(f"at[{i}]"), "inputs that differ after "
+                            "rounding to 9 decimals (each names its results "
+                            "<sym>_at_<value>)", f"{v!r}, the same as at[{named[key]}] = "
+                            f"{at[named[key]]!r}")
+        named[key] = i
     sec.finish()
     return ForceOutput(table_step, plots, animate, frames, draw_at, digits,
-                       accuracy_warn)
+                       accuracy_warn, tuple(v * unit for v in at))
 
 
 def load_force_spec(path, overrides=()) -> ForceSpec:
@@ -309,7 +537,8 @@ def read_force_root(root) -> ForceSpec:
     from mechcli.core.linkage.kinematics import default_quantities
 
     header = read_header(root, "force", default_unit="mm")
-    refuse_approximate(root, "force")
+    mech = root.data.get("mechanism")
+    model = mech.get("model", "exact") if isinstance(mech, dict) else "exact"
     kind, linkage, tracers, followers, guide_length = read_mechanism(root)
     try:
         topo = topology(linkage)
@@ -320,9 +549,15 @@ def read_force_root(root) -> ForceSpec:
     grav = read_gravity(root)
     bodies = read_bodies(root, topo, linkage.frame)
     quantities = default_quantities(linkage, 2, [p for p in linkage.point_names])
-    loads = read_loads(root, topo, linkage.frame, inp.rotary, quantities)
+    loads = read_loads(root, topo, linkage.frame, inp.rotary, quantities,
+                       (inp.start, inp.stop), pressure=True,
+                       direction=-1 if inp.rotary and inp.omega < 0 else 1)
     out = _output(root.table("output") if root.has("output") else _empty(root, "output"), inp)
     expected = read_expected(root)
     root.finish()
+    piston = next((p.source.piston for p in loads if p.source is not None), None)
+    if model == "approximate":
+        from mechcli.core.linkage.piston import Piston
+        piston = Piston.of(linkage, 3)      # the slider-crank preset's slider
     return ForceSpec(header, kind, linkage, topo, tracers, inp, bodies, grav, loads, out,
-                     expected, guide_length)
+                     expected, guide_length, model, piston)

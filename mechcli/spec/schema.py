@@ -100,8 +100,10 @@ class Recorder:
 # -- running a reader -----------------------------------------------------------------
 def _reader(command):
     if command == "kin":
+        import functools
+
         from mechcli.spec.kin import load_kin_spec
-        return load_kin_spec
+        return functools.partial(load_kin_spec, stream=True)  # as `mechcli kin` reads it
     if command == "force":
         from mechcli.spec.force import load_force_spec
         return load_force_spec
@@ -193,6 +195,23 @@ _SLIDER = {"mechanism": {"type": "general", "frame": 2, "ground": {"O": [0, 0]},
 PROBES = {"kin": [_SLIDER], "force": [_SLIDER]}
 
 
+def _engine(form):
+    """A slider-crank engine (stroke 200 mm) whose gas load has *form* on both sides."""
+    return {"units": "mm", "mechanism": {"type": "slider_crank", "l1": 100, "l2": 400},
+            "input": {"omega1": 100, "step": 10},
+            "load": [{"name": "gas", "link": 3, "bore": 100, "rod": 20, "pressure_unit": "bar",
+                      "pressure": form, "crank_side_pressure": copy.deepcopy(form)}]}
+
+
+#: probe specs run after the configs (their own runs, not their mutations, are what
+#: counts: the runs of a command are capped at MAX_RUNS): every form of a pressure table,
+#: which the configs use on one side or the other only
+LATE_PROBES = {"force": [_engine(f) for f in (
+    1.0, {"angle": [0, 360], "value": [1, 1]}, {"fraction": [0, 1], "value": [1, 2]},
+    {"x": [0, 200], "value": [1, 2]}, {"fraction": [0, 1], "strokes": [[1, 1], [0, 0]]},
+    {"x": [0, 200], "strokes": [[1, 1], [0, 0], [0, 0], [1, 1]]})]}
+
+
 def _seeds(command, configs=None):
     seeds = [(dict(copy.deepcopy(p), command=command), None) for p in PROBES.get(command, ())]
     here = Path(__file__).resolve().parent.parent
@@ -211,6 +230,8 @@ def _seeds(command, configs=None):
         if data.get("command") == command or (f == template and "command" not in data):
             data["command"] = command
             seeds.append((data, str(f.parent)))
+    seeds += [(dict(copy.deepcopy(p), command=command), None)
+              for p in LATE_PROBES.get(command, ())]
     seeds.append(({"command": command}, None))
     return seeds
 

@@ -77,7 +77,10 @@ def test_outputs_csv_report_json(tmp_path):
     for col in ("FR23x_N", "MR23_N_m", "FR56_N", "MR56_N_m", "Fsh_N", "Msh_N_m", "P_W",
                 "cond", "active_cutting"):
         assert col in head
-    assert len(rows) == 362        # header + 361 positions
+    # header + 361 positions + two rows (without, then with the load, or the reverse) at each
+    # of the cutting force's two switches, both between grid angles (0.0138673834° above, and
+    # where the ram leaves the band near 176.4°)
+    assert len(rows) == 362 + 4
     assert all(math.isfinite(float(x)) for r in rows[1:] for x in r)
     report = (tmp_path / "report.txt").read_text()
     assert "例 2-4" in report and "cutting" in report and "Extremes" in report

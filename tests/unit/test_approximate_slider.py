@@ -127,9 +127,10 @@ def test_exact_default_has_no_model_keys(tmp_path):
     assert "approx_error_a_max_rel" not in json.loads(r.stdout)["results"]
 
 
-def test_the_other_commands_refuse_the_approximate_model(tmp_path):
-    """force, flywheel and optimize move the exact linkage: model = "approximate" is exit
-    2 naming the key, never silently ignored."""
+def test_force_takes_the_approximate_model_and_flywheel_refuses_it(tmp_path):
+    """force builds the piston's inertia force on the series (docs/approximate.md; its
+    numbers are tested in tests/unit/test_engine_loads.py); flywheel moves the exact linkage
+    and refuses the key (exit 2 naming it), never silently ignoring it."""
     from tests.conftest import one_line_error, run_inprocess
     base = (ROOT / "configs" / "ch2" / "ex2-2.toml").read_text(encoding="utf-8")
     assert 'type = "slider_crank"' in base       # 例 2-2 is the slider-crank preset
@@ -137,11 +138,18 @@ def test_the_other_commands_refuse_the_approximate_model(tmp_path):
     spec.write_text(base.replace('type = "slider_crank"',
                                  'type = "slider_crank"\nmodel = "approximate"', 1),
                     encoding="utf-8")
-    proc = run_inprocess("force", spec, "--out", tmp_path / "o", "--no-plot", "-q")
-    assert proc.returncode == 2
-    line = one_line_error(proc)
-    assert "mechanism" in line and "model" in line and "'approximate'" in line
-    # without the key the same spec runs (the refusal is the key's, not the spec's)
-    spec.write_text(base, encoding="utf-8")
-    assert run_inprocess("force", spec, "--out", tmp_path / "p", "--no-plot",
-                         "-q").returncode == 0
+    proc = run_inprocess("force", spec, "--out", tmp_path / "o", "--no-plot", "--json")
+    assert proc.returncode == 0, proc.stderr
+    res = json.loads(proc.stdout)["results"]
+    assert res["model"] == "approximate" and res["approx_error_Mb_max_N_m"] > 0
+    from mechcli.spec.errors import SpecError
+    from mechcli.spec.kin import refuse_approximate
+    from mechcli.spec.reader import load_spec
+    with pytest.raises(SpecError, match="model"):
+        refuse_approximate(load_spec(spec), "flywheel")
+    # with an offset the series does not apply: exit 2 naming the key
+    spec.write_text(base.replace('type = "slider_crank"',
+                                 'type = "slider_crank"\nmodel = "approximate"', 1)
+                    .replace("e = 0", "e = 5"), encoding="utf-8")
+    proc = run_inprocess("force", spec, "--out", tmp_path / "p", "--no-plot", "-q")
+    assert proc.returncode == 2 and "e" in one_line_error(proc)

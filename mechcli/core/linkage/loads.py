@@ -3,7 +3,8 @@
 A :class:`LoadProgram` wraps a :class:`~mechcli.core.linkage.force_model.Load`
 with a window of input angle, a velocity-sign condition, a stroke band or a
 tabulated factor (例 2-3's working-stroke-only resistance, 例 2-4's cutting
-force in part of the stroke).
+force in part of the stroke) or a magnitude computed from the motion
+(``source``: the gas force on a piston, :mod:`mechcli.core.linkage.piston`).
 """
 
 from __future__ import annotations
@@ -25,7 +26,9 @@ class LoadProgram:
     ``slide`` a slide quantity that must lie within ``band`` (absolute limits
     [m], see :meth:`with_band_limits`; fractions of the stroke until then);
     ``table`` (xs, ys) a factor tabulated against the input (linear, periodic
-    when rotary).
+    when rotary).  ``source`` an object with ``force(q, motion) -> array``: a
+    magnitude over the positions [N] that multiplies the load's components (a
+    unit direction then), e.g. :class:`~mechcli.core.linkage.piston.GasLoad`.
     """
 
     load: Load
@@ -37,6 +40,7 @@ class LoadProgram:
     band: Optional[Tuple[float, float]] = None
     table: Optional[Tuple[np.ndarray, np.ndarray]] = None
     band_limits: Optional[Tuple[float, float]] = None
+    source: object = None
 
     @property
     def conditional(self):
@@ -75,6 +79,26 @@ class LoadProgram:
             on = on & (s >= lo) & (s <= hi)
         return on
 
+    def breaks(self, lo, hi):
+        """The inputs in [lo, hi] where the load's magnitude has a kink or a jump from its
+        tabulated ``factor`` (with its repeats when rotary) or its ``source`` (one with a
+        ``breaks(lo, hi)``); the switches of the conditions are found separately."""
+        out = []
+        if self.table is not None:
+            xs = self.table[0]
+            if self.rotary:
+                period = 2 * np.pi
+                for x in xs:
+                    k = np.ceil((lo - x) / period)
+                    while x + k * period <= hi:
+                        out.append(float(x + k * period))
+                        k += 1
+            else:
+                out += [float(x) for x in xs if lo <= x <= hi]
+        if self.source is not None and hasattr(self.source, "breaks"):
+            out += list(self.source.breaks(lo, hi))
+        return out
+
     def factor(self, q):
         if self.table is None:
             return 1.0
@@ -92,5 +116,7 @@ class LoadProgram:
         """The load with its components as arrays over ``q``; and the active mask."""
         on = self.active(q, motion)
         f = np.where(on, 1.0, 0.0) * self.factor(q)
+        if self.source is not None:
+            f = f * self.source.force(q, motion)
         ld = self.load
         return dataclasses.replace(ld, fx=ld.fx * f, fy=ld.fy * f, torque=ld.torque * f), on
