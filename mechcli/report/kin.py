@@ -133,7 +133,7 @@ def _dyads(spec):
     return [j for j in out if j]
 
 
-def singular_groups(spec, intervals, toggles=()):
+def singular_groups(spec, intervals, toggles=(), dead_points=()):
     """The input intervals where the linkage cannot be analysed, as the user reads them.
 
     *intervals* hold ``(start, stop, reason)`` in core units.  An interval narrower
@@ -141,6 +141,9 @@ def singular_groups(spec, intervals, toggles=()):
     position; the intervals that meet across the 0°/360° seam of a whole turn are one;
     the dyad is the one whose transmission angle vanishes there (*toggles*, a
     :class:`~mechcli.core.linkage.kinematics.Toggle` list), or the linkage's only dyad.
+    A one-position interval is named by its refined dead point (*dead_points*, a
+    :class:`~mechcli.core.linkage.kinematics.DeadPoint` list) where there is one, else
+    by its middle.
 
     Returns ``[(reason, joint or None, [(a, b) or (x,) ...])]``: one group per reason
     and dyad, in the order of their first position, each in order of the input.
@@ -179,7 +182,8 @@ def singular_groups(spec, intervals, toggles=()):
         else:
             joint = only[0] if len(only) == 1 else None
         if b - a <= point_tol:
-            x = 0.5 * (a + b)
+            x = next((d.at for d in dead_points if a - d.tol <= d.at <= b + d.tol),
+                     0.5 * (a + b))
             item = (inp.start if inp.periodic and abs(x - inp.start) <= point_tol else x,)
         elif wrap is not None and a < inp.start:
             item = (wrap[0], wrap[1], "seam")
@@ -190,6 +194,19 @@ def singular_groups(spec, intervals, toggles=()):
 
 
 _ZH_WHY = {"cannot assemble": "无法装配", "dead point": "死点"}
+#: the words of an excluded interval narrowed to one position: a ``cannot assemble``
+#: interval of no width is the sweep ending on a limit of assembly (docs/accuracy.md §4)
+_AT_ONE = {"cannot assemble": ("limit of assembly", "limits of assembly", "装配极限")}
+
+
+def _one_position_words(why, n, zh=False):
+    """``dead point(s)`` or ``limit(s) of assembly``: a group of *n* single positions."""
+    if why in _AT_ONE:
+        one, many, chinese = _AT_ONE[why]
+        return chinese if zh else (many if n > 1 else one)
+    if zh:
+        return _ZH_WHY.get(why, why)
+    return why + ("s" if n > 1 else "")
 
 
 def _item_text(spec, item, seam_note=True):
@@ -212,20 +229,65 @@ def singular_text(spec, why, joint, items):
     notes += [f"dyad {joint}"] if joint else []
     dyad = f" ({'; '.join(notes)})" if notes else ""
     if all(len(it) == 1 for it in items):
-        plural = "s" if len(items) > 1 else ""
-        return f"{why}{plural} at {sym} = {where}{dyad}"
+        return f"{_one_position_words(why, len(items))} at {sym} = {where}{dyad}"
     what = "input angle" if spec.input.rotary else "input"
     return f"{why} for {what} {sym} = {where}{dyad}"
 
 
-def excluded_warnings(spec, excluded, toggles=()):
+def excluded_warnings(spec, excluded, toggles=(), dead_points=()):
     """One line per group of input positions left out of the analysis
     (``partial = true``), merged, rounded and in order (:func:`singular_groups`).
 
     *excluded* holds ``(start, stop, reason)`` in core units (rad or m).
     """
     return [f"{singular_text(spec, *g)}: excluded from the analysis"
-            for g in singular_groups(spec, excluded, toggles)]
+            for g in singular_groups(spec, excluded, toggles, dead_points)]
+
+
+def located(spec, x, tol):
+    """An input *x* with its uncertainty *tol* [rad or m], with as many decimals as the
+    uncertainty allows (at least those of :func:`input_value`): ``180° ± 1e-11°``."""
+    f = input_factor(spec)
+    t = abs(tol * f)
+    suffix = input_suffix(spec)
+    digits = 4 if spec.input.rotary else 6
+    if t > 0:
+        digits = max(digits, min(15, math.ceil(-math.log10(t))))
+    text = f"{round(x * f, digits) + 0.0:.{digits}f}".rstrip("0").rstrip(".")
+    return f"{text}{suffix} ± {t:.0e}{suffix}"
+
+
+def dead_point_results(spec, result):
+    """JSON of the refined dead points (:class:`~mechcli.core.linkage.kinematics.DeadPoint`):
+    ``dead_points_deg`` and ``dead_points_tol_deg`` (input and its uncertainty, lists in
+    order), ``dead_points`` (``{at, tol, joint, dyad, shape}``), and ``excluded_tol_deg``:
+    how closely each end of every ``excluded`` interval is located (``[tol_start,
+    tol_stop]``; the ends of a ``cannot assemble`` interval are the roots of the dyad's
+    discriminant).  ``deg`` is the spec's length unit for a slider input."""
+    fin = input_factor(spec)
+    at_u = "deg" if spec.input.rotary else spec.header.unit
+    deads = getattr(result, "dead_points", []) or []
+    return {
+        f"dead_points_{at_u}": [d.at * fin for d in deads],
+        f"dead_points_tol_{at_u}": [d.tol * fin for d in deads],
+        "dead_points": [{"at": d.at * fin, "tol": d.tol * fin, "joint": d.joint,
+                         "dyad": d.kind, "shape": d.shape} for d in deads],
+        f"excluded_tol_{at_u}": [[a * fin, b * fin]
+                                 for a, b in getattr(result, "excluded_tol", []) or []],
+    }
+
+
+def dead_point_note(spec, result, zh=False):
+    """One line naming every refined dead point with its uncertainty, or None."""
+    deads = getattr(result, "dead_points", []) or []
+    if not deads:
+        return None
+    sym = input_symbol(spec)
+    parts = [f"{sym} = {located(spec, d.at, d.tol)} ({'杆组' if zh else 'dyad'} {d.joint})"
+             for d in deads]
+    if zh:
+        return "死点 (sin γ = 0 处, 精确到所示误差): " + ", ".join(parts)
+    return "dead points (where sin γ reaches 0, to the uncertainty shown): " + ", ".join(parts)
 
 
 def assembly_message(spec, exc):
@@ -235,7 +297,8 @@ def assembly_message(spec, exc):
     if not exc.intervals:
         return str(exc)
     text = "; ".join(singular_text(spec, *g) for g in singular_groups(spec, exc.intervals))
-    text += " (set input.partial = true to analyse the feasible ranges only)"
+    if not getattr(spec.input, "partial", False):
+        text += " (set input.partial = true to analyse the feasible ranges only)"
     hint = degrees_hint(spec)
     if hint:
         text += f"; {hint}"
@@ -264,27 +327,49 @@ def warnings(spec, result, accuracy_warn=None):
     grow without bound towards a dead point, and ranges that keep fewer than
     ``accuracy_warn`` (default: the spec's ``output.accuracy_warn``) correct digits."""
     hint = degrees_hint(spec)
-    return ([hint] if hint else []) + excluded_warnings(spec, result.excluded, result.toggles) \
-        + unbounded_warnings(spec, result.extremes) \
+    return ([hint] if hint else []) + excluded_warnings(spec, result.excluded, result.toggles,
+                                                        result.dead_points) \
+        + unbounded_warnings(spec, result.extremes, result.excluded) \
         + accuracy_warnings(spec, result.accuracy, _threshold(spec, accuracy_warn))
 
 
-def unbounded_warnings(spec, extremes):
-    """One line per set of dead points that quantities grow without bound towards:
-    ``omega2, omega3 grow without bound towards the dead points at θ1 = 7.85°, 352.15°``
-    (the quantities that share the same dead points merged, in order of the input)."""
+def _singular_kind(x, excluded):
+    """What an unbounded extreme at input *x* [rad or m] grows towards: the ``dead point``
+    or the ``limit of assembly`` (a ``cannot assemble`` interval's end) of the excluded
+    interval nearest to it."""
+    best = None
+    for a, b, why in excluded or ():
+        d = min(abs(x - a), abs(x - b))
+        if best is None or d < best[0]:
+            best = (d, why)
+    return "dead point" if best is not None and best[1] == "dead point" else \
+        "limit of assembly"
+
+
+def unbounded_warnings(spec, extremes, excluded=()):
+    """One line per set of dead points or limits of assembly that quantities grow without
+    bound towards: ``omega2, omega3 grow without bound towards the limits of assembly at
+    θ1 = 104.5597°, 255.4403°`` (the quantities that share the same positions merged, in
+    order of the input).  *excluded* (the result's ``(start, stop, reason)``) tells a dead
+    point (reason ``dead point``) from a limit of assembly (an end of a ``cannot assemble``
+    interval: the linkage does not assemble beyond it); without it every position is
+    called a limit of assembly."""
     towards = {}
     for sym, pair in extremes.items():
-        ats = sorted({input_value(spec, e.at): e.at for e in pair if not e.bounded}.items(),
-                     key=lambda kv: kv[1])
-        if ats:
-            key = tuple(t for t, _ in ats)
-            towards.setdefault(key, (ats[0][1], []))[1].append(sym)
+        ats = sorted({(input_value(spec, e.at), _singular_kind(e.at, excluded)): e.at
+                      for e in pair if not e.bounded}.items(), key=lambda kv: kv[1])
+        for kind in ("dead point", "limit of assembly"):
+            these = [(t, x) for (t, k), x in ats if k == kind]
+            if these:
+                key = (kind, tuple(t for t, _ in these))
+                towards.setdefault(key, (these[0][1], []))[1].append(sym)
     out = []
-    for ats, (_first, syms) in sorted(towards.items(), key=lambda kv: (kv[1][0], -len(kv[0]))):
+    for (kind, ats), (_first, syms) in sorted(towards.items(),
+                                              key=lambda kv: (kv[1][0], -len(kv[0][1]))):
         verb = "grows" if len(syms) == 1 else "grow"
-        plural = "s" if len(ats) > 1 else ""
-        out.append(f"{', '.join(syms)} {verb} without bound towards the dead point{plural} "
+        what = _one_position_words("cannot assemble" if kind != "dead point" else kind,
+                                   len(ats))
+        out.append(f"{', '.join(syms)} {verb} without bound towards the {what} "
                    f"at {input_symbol(spec)} = {', '.join(ats)}")
     return out
 
@@ -381,13 +466,86 @@ def scalar_results(spec, quantities, result, accuracy_warn=None, approx=None):
             out[f"{q.symbol}_stroke_{u}"] = (hi.value - lo.value) * f
         if q.kind == "angle" and q.symbol.startswith("theta"):
             out[f"{q.symbol}_swing_deg"] = (hi.value - lo.value) * f
+    out.update(slider_results(spec, quantities, result, approx))
     out["unbounded"] = unbounded
     out["excluded"] = [[a * fin, b * fin, why] for a, b, why in result.excluded]
+    out.update(dead_point_results(spec, result))
     out["toggles"] = [{"at": t.at * fin, "joint": t.joint, "dyad": t.kind,
                        "gamma_deg": math.degrees(math.asin(min(1.0, t.sin_gamma)))}
                       for t in result.toggles]
     out["accuracy"] = accuracy_results(result.accuracy, _threshold(spec, accuracy_warn))
     return out
+
+
+def _is_slide(q):
+    return bool(q.source) and q.source[0] == "slide"
+
+
+def slider_results(spec, quantities, result, approx=None):
+    """Named results of every slider (slide) output (issue 19): where it moves fastest
+    in each direction and where its acceleration is 0.
+
+    * ``<v>_max_forward_<u>``, ``..._at_<deg>``, ``..._at_<deg>_tol``: the greatest
+      speed while s grows (the refined ``<v>_max``, when it is > 0);
+    * ``<v>_max_backward_<u>`` (a speed, > 0), ``..._at_<deg>``, ``..._tol``: while s
+      falls (minus the refined ``<v>_min``, when it is < 0);
+    * ``<a>_zero_at_<deg>`` and ``<a>_zero_at_<deg>_tol``: every input where the
+      acceleration is 0, in order (not for ``model = "approximate"``, whose series
+      acceleration is not the engine's).
+    """
+    unit, scale = spec.header.unit, spec.header.scale
+    fin = input_factor(spec)
+    at_unit = "deg" if spec.input.rotary else unit
+    zeros = getattr(result, "zeros", {}) or {}
+    out = {}
+    for q in quantities:
+        if not _is_slide(q):
+            continue
+        u = unit_of(q.kind, unit)
+        f = factor_of(q.kind, scale)
+        if q.kind == "velocity" and q.symbol in result.extremes:
+            hi, lo = result.extremes[q.symbol]
+            for name, e, sign in (("forward", hi, 1.0), ("backward", lo, -1.0)):
+                if e.bounded and sign * e.value > 0:
+                    out[f"{q.symbol}_max_{name}_{u}"] = sign * e.value * f
+                    out[f"{q.symbol}_max_{name}_at_{at_unit}"] = e.at * fin
+                    out[f"{q.symbol}_max_{name}_at_{at_unit}_tol"] = e.tol * fin
+        if q.kind == "acceleration" and q.symbol in zeros and approx is None:
+            out[f"{q.symbol}_zero_at_{at_unit}"] = [a * fin for a, _t in zeros[q.symbol]]
+            out[f"{q.symbol}_zero_at_{at_unit}_tol"] = [t * fin for _a, t in zeros[q.symbol]]
+    return out
+
+
+def slider_note(spec, quantities, result, zh=False, approx=None):
+    """One line per slider: its greatest speed each way and where its acceleration is 0."""
+    res = slider_results(spec, quantities, result, approx)
+    unit = spec.header.unit
+    sym = input_symbol(spec)
+    at_unit = "deg" if spec.input.rotary else unit
+    lines = []
+    for q in quantities:
+        if not (_is_slide(q) and q.kind == "velocity"):
+            continue
+        u = unit_of(q.kind, unit)
+        parts = []
+        for name, word, zh_word in (("forward", "s growing", "s 增大"),
+                                    ("backward", "s falling", "s 减小")):
+            base = f"{q.symbol}_max_{name}"
+            if f"{base}_{u}" in res:
+                at = input_value(spec, res[f"{base}_at_{at_unit}"] / input_factor(spec))
+                parts.append(f"{res[f'{base}_{u}']:.6g} {pretty_unit(q.kind, unit)} "
+                             f"({zh_word if zh else word}) {'于' if zh else 'at'} {sym} = {at}")
+        acc = "a" + q.symbol[1:]
+        zeros = res.get(f"{acc}_zero_at_{at_unit}")
+        if not parts and not zeros:
+            continue
+        text = (f"滑块 {q.symbol[1:]}: 最大速度 " if zh else
+                f"slider {q.symbol[1:]}: greatest speed ") + ", ".join(parts)
+        if zeros:
+            where = ", ".join(input_value(spec, z / input_factor(spec)) for z in zeros)
+            text += (f"; {acc} = 0 于 {sym} = {where}" if zh else f"; {acc} = 0 at {sym} = {where}")
+        lines.append(text)
+    return lines
 
 
 def pretty_unit(kind, length_unit):
@@ -416,7 +574,9 @@ def table_rows(spec, result, step):
     left = np.clip(idx - 1, 0, q.size - 1)
     idx = np.where(np.abs(q[left] - targets) < np.abs(q[idx] - targets), left, idx)
     keep = np.abs(q[idx] - targets) <= 0.5 * step
-    return np.unique(idx[keep])
+    # distinct sorted indices; np.unique would import numpy.ma (~7 ms of start-up)
+    idx = np.sort(idx[keep])
+    return idx[np.concatenate(([True], idx[1:] != idx[:-1]))] if idx.size else idx
 
 
 def _extreme_tol(result):
@@ -442,6 +602,8 @@ def _grid_error_note(spec, quantities, result, zh):
     if sym is None:
         return None
     step = (result.q[1] - result.q[0]) * input_factor(spec) if result.q.size > 1 else 0.0
+    if getattr(spec.input, "count", 0):   # streamed: the CSV has every row, finer than q's
+        step = (spec.input.stop - spec.input.start) / (spec.input.count - 1) * input_factor(spec)
     at_u = input_suffix(spec)
     if zh:
         return f"{step:g}{at_u} CSV 行上的峰值误差 ≤ 峰值的 {worst:.1e} ({sym})"
@@ -500,6 +662,10 @@ def build_report(spec, quantities, result, lang="en", approx=None):
         report.notes.append(note)
     if result.accuracy is not None and result.accuracy.digits:
         report.notes.append(accuracy_note(result.accuracy, zh))
+    note = dead_point_note(spec, result, zh)
+    if note:
+        report.notes.append(note)
+    report.notes.extend(slider_note(spec, quantities, result, zh, approx))
     return report
 
 
@@ -524,10 +690,12 @@ def flags_blocks(spec, result, zh=False):
     dyad (:func:`singular_groups`), then the near-dead positions they do not
     already name, each once and rounded."""
     flags = []
-    groups = singular_groups(spec, result.excluded, result.toggles)
+    groups = singular_groups(spec, result.excluded, result.toggles, result.dead_points)
     for why, joint, items in groups:
-        label = _ZH_WHY[why] if zh else (why + ("s" if len(items) > 1 and
-                                               all(len(it) == 1 for it in items) else ""))
+        if all(len(it) == 1 for it in items):
+            label = _one_position_words(why, len(items), zh)
+        else:
+            label = _ZH_WHY[why] if zh else why
         if joint:
             label += f" (杆组 {joint})" if zh else f" (dyad {joint})"
         flags.append([label, ", ".join(_item_text(spec, it) for it in items)])

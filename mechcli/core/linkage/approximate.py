@@ -24,8 +24,11 @@ import math
 
 import numpy as np
 
-#: golden-section iterations of an extreme's refinement (bracket shrinks 0.618^k)
-_ITERATIONS = 80
+from mechcli.core.refine import bracketed_root
+
+#: the rounding of a derivative of the series, relative to the sum of its terms' sizes
+#: (a few operations on the rounded angle and lengths)
+_EPS = float(np.finfo(float).eps)
 
 
 def series(q, r, l, branch=1):
@@ -59,36 +62,65 @@ def motion(q, r, l, omega, alpha=0.0, branch=1):
     return s, ds * omega, dds * omega ** 2 + ds * alpha
 
 
-def _golden(f, a, b, sign):
-    """The input in [a, b] where ``sign * f`` is largest, and the final half-bracket."""
-    g = (math.sqrt(5) - 1) / 2
-    c, d = b - g * (b - a), a + g * (b - a)
-    fc, fd = sign * f(c), sign * f(d)
-    for _ in range(_ITERATIONS):
-        if fc >= fd:
-            b, d, fd = d, c, fc
-            c = b - g * (b - a)
-            fc = sign * f(c)
-        else:
-            a, c, fc = c, d, fd
-            d = a + g * (b - a)
-            fd = sign * f(d)
-        if b - a < 1e-15 * max(1.0, abs(a)):
-            break
-    return 0.5 * (a + b), 0.5 * (b - a)
+def slopes(q, r, l, omega, alpha=0.0, branch=1):
+    """d/dθ of :func:`motion`'s ``(s, v, a)`` and of their derivatives, in closed form,
+    at crank angles *q* [rad], with *omega* and *alpha* held at every angle (the book's
+    convention: alpha enters the acceleration only).
+
+    Returns ``((ds, dv, da), (dds, ddv, dda), (scale_s, scale_v, scale_a))``: the first
+    and second derivatives with respect to θ, and the sum of the sizes of the terms of
+    each first derivative (what its rounding is relative to)."""
+    q = np.asarray(q, dtype=float)
+    n = l / r
+    b = 1.0 if branch >= 0 else -1.0
+    sin, cos, sin2, cos2 = np.sin(q), np.cos(q), np.sin(2 * q), np.cos(2 * q)
+    d1 = -r * (sin + b * sin2 / (2 * n))            # ds/dθ
+    d2 = -r * (cos + b * cos2 / n)                  # d²s/dθ²
+    d3 = r * (sin + 2 * b * sin2 / n)               # d³s/dθ³
+    d4 = r * (cos + 4 * b * cos2 / n)               # d⁴s/dθ⁴
+    size1 = r * (np.abs(sin) + np.abs(sin2) / (2 * n))
+    size2 = r * (np.abs(cos) + np.abs(cos2) / n)
+    size3 = r * (np.abs(sin) + 2 * np.abs(sin2) / n)
+    first = (d1, d2 * omega, d3 * omega ** 2 + d2 * alpha)
+    second = (d2, d3 * omega, d4 * omega ** 2 + d3 * alpha)
+    sizes = (size1, size2 * abs(omega), size3 * omega ** 2 + size2 * abs(alpha))
+    return first, second, sizes
 
 
-def extremes(q, values, func):
+def extremes(q, values, func, slope=None):
     """``(max, min)`` of ``func(x)`` (a closed form) over the sweep *q*, refined
-    between the neighbours of the best sample.  Returns two ``(value, at, tol)``."""
+    between the neighbours of the best sample.  Returns two ``(value, at, tol)``.
+
+    ``slope(x) -> (d/dθ, d²/dθ², rounding of d/dθ)`` (arrays) is the closed-form
+    derivative: the extreme is its root, closed by a safeguarded secant
+    (:func:`~mechcli.core.refine.bracketed_root`) to a float spacing, and ``tol`` is
+    half the final bracket or the rounding of the derivative over its slope, whichever is
+    larger.  An extreme at an end of the sweep (no root of the slope beside the best
+    sample) is that sample, exactly (``tol = 0``).
+    """
     out = []
     for sign, pick in ((1.0, np.argmax), (-1.0, np.argmin)):
         i = int(pick(values))
-        lo, hi = q[max(i - 1, 0)], q[min(i + 1, q.size - 1)]
-        at, tol = _golden(func, lo, hi, sign)
-        value = float(func(at))
-        if sign * value < sign * float(values[i]):   # never worse than the sample
-            at, value, tol = float(q[i]), float(values[i]), 0.0
+        at, value, tol = float(q[i]), float(values[i]), 0.0
+        if slope is not None and q.size > 1:
+            d_i = sign * float(slope(np.array([q[i]]))[0][0])
+            j = i + 1 if d_i > 0 else i - 1          # the side the function still rises on
+            if d_i != 0 and 0 <= j < q.size:
+                d_j = sign * float(slope(np.array([q[j]]))[0][0])
+                # rising towards the root, falling past it: sign * slope > 0 at lo, <= 0 at hi
+                (lo, d_lo), (hi, d_hi) = ((q[i], d_i), (q[j], d_j)) if j > i else \
+                    ((q[j], d_j), (q[i], d_i))
+                if d_lo > 0 >= d_hi:                  # the slope changes sign: a root inside
+                    a, b = bracketed_root(np.array([lo]), np.array([hi]),
+                                          lambda x: sign * slope(x)[0], 1e-15,
+                                          f_lo=np.array([d_lo]), f_hi=np.array([d_hi]))
+                    x = 0.5 * float(a[0] + b[0])
+                    _d, dd, noise = (float(v[0]) for v in slope(np.array([x])))
+                    t = max(0.5 * abs(float(b[0] - a[0])), float(np.spacing(abs(x))),
+                            4.0 * _EPS * noise / abs(dd) if dd else 0.0)
+                    v = float(func(x))
+                    if sign * v >= sign * value:     # never worse than the sample
+                        at, value, tol = x, v, t
         out.append((value, float(at), float(tol)))
     return tuple(out)
 
@@ -130,7 +162,8 @@ def slider_crank_parts(linkage):
 def apply(linkage, sweep, result):
     """*result* (an exact :class:`~mechcli.core.linkage.kinematics.SweepResult` of a
     centred slider-crank) with the slide's s, v, a replaced by the series, their
-    extremes refined on the closed form; the other links' quantities stay exact.
+    extremes refined on the roots of the closed-form derivatives; the other links'
+    quantities stay exact.
 
     Returns ``(result, differences)``: :func:`differences` of the series to the
     exact closed form at the analysed positions [m, m/s, m/s²].
@@ -151,7 +184,58 @@ def apply(linkage, sweep, result):
             continue
         values[sym] = approx[k]
         func = (lambda x, k=k: float(motion(np.array([x]), r, l, omega, alpha, branch)[k][0]))
+
+        def slope(x, k=k):
+            first, second, sizes = slopes(x, r, l, omega, alpha, branch)
+            return first[k], second[k], sizes[k]
         if q.size:
-            (hv, ha, ht), (lv, la, lt) = extremes(q, approx[k], func)
+            (hv, ha, ht), (lv, la, lt) = extremes(q, approx[k], func, slope)
             ext[sym] = (Extreme(hv, ha, True, ht), Extreme(lv, la, True, lt))
     return dataclasses.replace(result, values=values, extremes=ext), diffs
+
+
+class SeriesInertia:
+    """The d'Alembert force of a centred slider-crank's piston from the series:
+    ``force(q, motion) = -mass * a`` [N] along the slide's direction (+s), with
+    ``a`` the first-order series acceleration (:func:`motion`) at crank speed
+    ``omega`` [rad/s] and acceleration ``alpha`` [rad/s²].  A ``source`` of a
+    :class:`~mechcli.core.linkage.loads.LoadProgram` whose load is the unit
+    direction of the slide: the approximate model of ``mechcli force``."""
+
+    def __init__(self, r, l, branch, mass, omega, alpha=0.0):
+        self.r, self.l, self.branch = float(r), float(l), int(branch)
+        self.mass, self.omega, self.alpha = float(mass), float(omega), float(alpha)
+
+    def acceleration(self, q):
+        """The series acceleration of the slide [m/s²] at crank angles ``q``."""
+        return motion(q, self.r, self.l, self.omega, self.alpha, self.branch)[2]
+
+    def force(self, q, motion_=None):
+        return -self.mass * self.acceleration(q)
+
+
+def force_model(piston, bodies, programs, gravity, omega, alpha=0.0):
+    """The approximate model of ``mechcli force`` for a centred slider-crank.
+
+    The piston's d'Alembert force −m a is taken from the series (its exact value
+    is along the guide too), everything else stays exact: the piston's body
+    loses its mass and gains two loads at its pin, its weight m g (when gravity
+    acts) and ``SeriesInertia``.  Returns ``(bodies, programs, inertia)``.
+    """
+    from mechcli.core.linkage.force_model import Load
+    from mechcli.core.linkage.loads import LoadProgram
+
+    body = bodies.get(piston.link)
+    mass = float(body.mass) if body is not None else 0.0
+    inertia = SeriesInertia(piston.r, piston.l, piston.branch, mass, omega, alpha)
+    if body is None:
+        return bodies, tuple(programs), inertia
+    bodies = {k: v for k, v in bodies.items() if k != piston.link}
+    ux, uy = piston.u
+    extra = [LoadProgram(Load("approx_inertia", piston.link, ux, uy, 0.0, piston.pin),
+                         source=inertia)]
+    gx, gy = gravity or (0.0, 0.0)
+    if gx or gy:
+        extra.append(LoadProgram(Load("approx_weight", piston.link, mass * gx, mass * gy, 0.0,
+                                      piston.pin)))
+    return bodies, tuple(programs) + tuple(extra), inertia

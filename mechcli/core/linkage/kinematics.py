@@ -4,7 +4,9 @@
 cannot assemble (or is at a dead point) and refines those boundaries by
 bisection, restricts the analysis to the regular positions when asked, and
 refines the extremes of every requested quantity by a bracketed search on the
-exact solution (to ~1e-10 rad of input angle).
+exact solution (to 1e-15 ... 1e-11 rad of input angle, each with its tolerance); gives
+every dead point as one input with its uncertainty (:func:`dead_points`) and the ends of
+every gap as the roots of a dyad's discriminant (:func:`assembly_limits`).
 
 Secondary drivers (a 2-DOF five-bar driven by two geared cranks) follow the
 primary one linearly: ``q_k = phase_k + ratio_k * q_1``.
@@ -140,6 +142,29 @@ class Toggle:
 
 
 @dataclasses.dataclass(frozen=True)
+class DeadPoint:
+    """An isolated dead point: the dyad ``joint``'s sin(gamma) reaches 0 at input ``at``
+    [rad or m], located to ``at ± tol``.
+
+    ``interval`` is the excluded interval it lies in (``SweepResult.excluded``: the
+    inputs where sin(gamma) <= ``SINGULAR_TOL``, whose width that threshold sets).
+    ``shape`` says how sin(gamma) reaches 0: ``"touch"`` (it falls to 0 and rises again:
+    a change point, the folded kite; located as the minimum of sin^2(gamma), smooth there)
+    or ``"limit"`` (the dyad's discriminant crosses 0 and the linkage cannot go on:
+    located as that root, e.g. a slider-crank driven by its slider at a stroke end).
+    :func:`analyse_sweep` reports a ``"limit"`` as what it is, a limit of assembly (a
+    ``cannot assemble`` interval's end), not among its dead points.
+    """
+
+    at: float
+    tol: float
+    joint: str
+    kind: str
+    interval: Tuple[float, float]
+    shape: str = "touch"
+
+
+@dataclasses.dataclass(frozen=True)
 class SweepResult:
     """Kinematics over the regular positions of a sweep.
 
@@ -154,7 +179,9 @@ class SweepResult:
         ``symbol -> (max Extreme, min Extreme)``.
     excluded : list of (float, float, str)
         Input intervals left out, with the reason (``cannot assemble`` or
-        ``dead point``); boundaries refined by bisection.
+        ``dead point``).  The ends of a ``cannot assemble`` interval are the roots of
+        the failing dyad's discriminant (:func:`assembly_limits`); those of a ``dead
+        point`` interval the last regular inputs (sin(gamma) > ``SINGULAR_TOL``).
     toggles : list of Toggle
         Near-dead positions (refined minima of sin(gamma) below
         ``NEAR_TOGGLE_SIN``) and the refined ends of excluded intervals.
@@ -173,6 +200,21 @@ class SweepResult:
     runs: list = dataclasses.field(default_factory=list)
     #: estimated correct digits (:class:`Accuracy`); None when not estimated
     accuracy: Optional["Accuracy"] = None
+    #: per excluded interval, how closely its two ends are located [rad or m]: a
+    #: ``cannot assemble`` end is the root of the dyad's discriminant (to the
+    #: rounding of the inputs, see :func:`assembly_limits`), a ``dead point`` end the
+    #: last regular input (sin(gamma) = ``SINGULAR_TOL``, to 1e-15 relative)
+    excluded_tol: list = dataclasses.field(default_factory=list)
+    #: isolated dead points, one input each (:class:`DeadPoint`), in order: zeros of a
+    #: dyad's sin(gamma) with the linkage assembled on both sides (shape ``"touch"``).  A
+    #: limit of assembly (the linkage does not assemble beyond it) is not one: it is the
+    #: end of a ``cannot assemble`` interval of ``excluded``, also where the sweep ends
+    #: exactly on it (:func:`_limits_are_not_dead_points`)
+    dead_points: list = dataclasses.field(default_factory=list)
+    #: ``symbol -> [(at, tol), ...]``: the inputs where a slide's acceleration is 0
+    #: (its velocity is greatest in either direction there when the input speed is
+    #: constant), refined between samples of opposite sign (:func:`zero_crossings`)
+    zeros: Dict[str, list] = dataclasses.field(default_factory=dict)
 
 
 def default_quantities(linkage: Linkage, order: int, tracers=()):
@@ -249,6 +291,153 @@ def _wrap(x):
     return (x + np.pi) % (2 * np.pi) - np.pi
 
 
+#: sin(gamma) at or below this is zero to round-off: a dyad's sin(gamma) is the root of
+#: its (rounded) discriminant, clipped at 0 where that is negative, and its rounding
+#: noise there is a few EPS, so sin(gamma)^2 = 1e-26 is 1e-26 / slope past the root
+SIN_ZERO = 1e-13
+#: the rounding of a dyad's sin(gamma)^2 (proportional to its discriminant), relative to
+#: 1: a few operations on the rounded inputs (a crank's cos/sin, the lengths).  Measured
+#: on the four-bar gap of tests/unit/test_gap_boundaries.py against a 40-digit root:
+#: 9.4 EPS; about 3.5 times that is taken
+ROUNDING = 32 * float(np.finfo(float).eps)
+
+
+def _assembles(linkage, sweep, x):
+    """Does the linkage assemble at inputs ``x`` with every dyad's discriminant > 0?
+    Also returns the smallest sin(gamma) of the dyads there."""
+    m = solve(linkage, sweep.inputs(np.asarray(x, dtype=float)), order=0)
+    low = np.min([c.sin_gamma for c in m.conditions], axis=0) if m.conditions else \
+        np.ones(np.shape(x))
+    return m.feasible & (low > SIN_ZERO), low
+
+
+def _input_scale(linkage, sweep):
+    """1 rad for a crank, the sweep's span [m] for a slider: what 'relative' input means."""
+    if linkage.driver(sweep.driver).rotary:
+        return 1.0
+    q = np.asarray(sweep.q, dtype=float)
+    return max(float(abs(q[-1] - q[0])) if q.size else 0.0, float(np.max(linkage.scale())))
+
+
+def assembly_limits(linkage, sweep, inside, outside, iterations=80):
+    """The inputs where the linkage stops assembling, between ``inside`` (assembles) and
+    ``outside`` (does not), and how closely each is located.
+
+    The limit is where a dyad's discriminant crosses 0 (for an RRR dyad between
+    points P and Q: PQ = l_a + l_b or |l_a - l_b|; sin(gamma)^2 is proportional
+    to the discriminant).  Bisection on the sign of the discriminant as the engine
+    rounds it (sin(gamma) > ``SIN_ZERO``) closes on its root to a float spacing; the
+    root itself is known only as well as the rounded discriminant allows, about
+    ``ROUNDING / k`` with k = d(sin^2 gamma)/dq there, which ``tol`` includes.
+
+    Returns
+    -------
+    at, tol : ndarray
+        The last input that assembles, and the half-width of the uncertainty [rad or m].
+    """
+    inside = np.asarray(inside, dtype=float)
+    outside = np.asarray(outside, dtype=float)
+    if inside.size == 0:
+        return inside.copy(), inside.copy()
+    lo, hi = bisect(inside, outside, lambda x: _assembles(linkage, sweep, x)[0], 0.0,
+                    iterations)
+    # the slope of sin^2(gamma) just inside the limit: k = s^2 / delta
+    delta = 1e-6 * _input_scale(linkage, sweep) * np.sign(inside - outside)
+    probe = lo + delta
+    ok, low = _assembles(linkage, sweep, probe)
+    k = np.where(ok, low * low / np.abs(delta), 0.0)
+    with np.errstate(divide="ignore"):
+        noise = np.where(k > 0, ROUNDING / np.where(k > 0, k, 1.0), np.abs(delta))
+    tol = np.maximum.reduce([0.5 * np.abs(hi - lo), np.minimum(noise, np.abs(delta)),
+                             np.spacing(np.abs(lo))])
+    return lo, tol
+
+
+def _touch_minimum(linkage, sweep, ci, c0, R):
+    """The minimum of sin^2(gamma) of condition ``ci`` near ``c0``, from the 6-point
+    stencil c0 ± R, ± 2R, ± 3R (a degree-5 interpolant; sin^2(gamma) is smooth through
+    a touching zero, sin(gamma) is not).  Returns ``(t, noise)`` in input units, or
+    None where a stencil point does not assemble."""
+    t = np.array([-3.0, -2.0, -1.0, 1.0, 2.0, 3.0])
+    m = solve(linkage, sweep.inputs(c0 + R * t), order=0)
+    if not m.feasible.all():
+        return None
+    g = m.conditions[ci].sin_gamma ** 2
+    p = np.polynomial.Polynomial.fit(t, g, 5, domain=[-1, 1], window=[-1, 1])
+    dp, ddp = p.deriv(), p.deriv(2)
+    roots = dp.roots()
+    roots = roots[np.abs(roots.imag) < 1e-9].real
+    roots = roots[(np.abs(roots) <= 1.5) & (ddp(roots) > 0)]
+    if roots.size == 0:
+        return None
+    r = roots[np.argmin(np.abs(roots))]
+    # rounding: sin^2(gamma) carries about ROUNDING; p'(0) weighs the samples by
+    # (45, 9, 1) / 60 per side, so p' is off by ~1.83 ROUNDING (per R), and t by that / p''
+    noise = 1.83 * ROUNDING / max(float(ddp(r)), 1e-300)
+    return float(r) * R, noise * R
+
+
+def dead_points(linkage, sweep, excluded):
+    """One input, with its uncertainty, for every ``dead point`` interval of ``excluded``
+    that holds an isolated zero of a dyad's sin(gamma) (see :class:`DeadPoint`).
+
+    The dyad is the one with the smallest sin(gamma) at the interval's middle.  Where
+    sin(gamma) falls to 0 and rises again (a touch), the dead point is the minimum of
+    sin^2(gamma) -- smooth there, ~ k (q - q0)^2 -- from a 6-point stencil at a radius R
+    where sin(gamma) is >= 1e-3 (so its rounding, a few EPS / sin(gamma), hardly
+    matters), applied twice; the uncertainty is the second correction plus the rounding
+    of the stencil (about 2 ``ROUNDING`` / (k R)).  Where sin(gamma) reaches 0 at a limit of
+    assembly (no assembly on one side), the dead point is that limit
+    (:func:`assembly_limits`).  An interval where sin(gamma) stays 0 (two parallel guides)
+    has no single dead point and gives none.
+    """
+    scale = _input_scale(linkage, sweep)
+    out = []
+    for a, b, why in excluded:
+        if why != "dead point":
+            continue
+        c0 = 0.5 * (a + b)
+        m0 = solve(linkage, sweep.inputs(np.array([c0])), order=0)
+        if not m0.conditions:
+            continue
+        ci = int(np.argmin([float(c.sin_gamma[0]) for c in m0.conditions]))
+        cond = m0.conditions[ci]
+        # a ladder of radii: the smallest where both sides have sin(gamma) >= 1e-3
+        radii = max(4.0 * (b - a), 1e-9 * scale) * 4.0 ** np.arange(16)
+        radii = radii[radii <= 0.05 * scale]
+        if radii.size == 0:
+            continue
+        m = solve(linkage, sweep.inputs(np.concatenate([c0 - radii, c0 + radii])), order=0)
+        s = m.conditions[ci].sin_gamma
+        n = radii.size
+        left_ok = m.feasible[:n] & (s[:n] > SIN_ZERO)
+        right_ok = m.feasible[n:] & (s[n:] > SIN_ZERO)
+        both = left_ok & right_ok & (np.minimum(s[:n], s[n:]) >= 1e-3)
+        found = None
+        if both.any():
+            R = float(radii[np.argmax(both)]) / 3.0
+            first = _touch_minimum(linkage, sweep, ci, c0, R)
+            if first is not None:
+                c1 = c0 + first[0]
+                second = _touch_minimum(linkage, sweep, ci, c1, R)
+                if second is not None:
+                    at = c1 + second[0]
+                    tol = max(abs(second[0]), 2.0 * second[1], float(np.spacing(abs(at))))
+                    found = (at, tol, "touch")
+        elif left_ok.any() != right_ok.any():
+            # assembles on one side only: the dead point is the limit of assembly
+            side = left_ok if left_ok.any() else right_ok
+            sign = -1.0 if left_ok.any() else 1.0
+            inside = c0 + sign * float(radii[np.argmax(side)])
+            outside = c0 - sign * float(radii[0])
+            if not _assembles(linkage, sweep, [outside])[0][0]:
+                at, tol = assembly_limits(linkage, sweep, [inside], [outside])
+                found = (float(at[0]), float(tol[0]), "limit")
+        if found is not None:
+            out.append(DeadPoint(found[0], found[1], cond.joint, cond.kind, (a, b), found[2]))
+    return out
+
+
 class _Domain:
     """The analysed input domain: continuous arcs (runs) of the grid ``q``, how
     far each run really extends (refined assembly limits), and whether the
@@ -290,26 +479,57 @@ class _Domain:
         return lo, hi
 
 
+def _steady(sweep):
+    """The sweep with no input acceleration, where its input speed is one constant
+    (None otherwise).
+
+    The time rate of a velocity is ``J'(q) dq^2 + J(q) ddq``; its derivative along the
+    sweep, ``d(J dq)/dq``, is ``J'(q) dq`` when ``dq`` is one constant, whatever the
+    sweep's ``ddq`` (the book's ``alpha1`` is used in the accelerations only, with
+    ``omega1`` held at every position).  So with ``ddq = 0`` the rate over ``dq`` is that
+    derivative exactly; with ``dq`` varying along the sweep it is not, and a difference
+    is taken instead.
+    """
+    if callable(sweep.dq) or np.ndim(sweep.dq) != 0:
+        return None
+    if not callable(sweep.ddq) and np.ndim(sweep.ddq) == 0 and sweep.ddq == 0:
+        return sweep
+    return dataclasses.replace(sweep, ddq=0.0)
+
+
+def _rate_is_slope(sweep, getter, speed):
+    """Does ``getter``'s exact time rate over ``speed`` give its d/dq (see :func:`_steady`)?
+    A position's rate (``J dq``) always does; a velocity's only at a constant input speed."""
+    return getter[1] is not None and speed != 0 and (
+        getter[3] == 0 or _steady(sweep) is not None)
+
+
 def _derivative_probe(linkage, sweep, order, getters, x, h):
     """Sign-carrying d/dq of every target at inputs ``x``.
 
-    ``getters[j]`` is ``(get, rate, is_angle)``: with an exact time rate the
-    derivative is ``rate / dq`` (one solve); otherwise a central difference
-    with step ``h`` (one-sided where a probe leaves the regular domain).
+    ``getters[j]`` is ``(get, rate, is_angle, order)``: with an exact time rate the
+    derivative is ``rate / dq``, solved with no input acceleration (:func:`_steady`; one
+    solve); otherwise a central difference with step ``h`` (one-sided where a probe
+    leaves the regular domain).
     """
     T = len(getters)
     speed = np.broadcast_to(sweep.speed(x), np.shape(x))
-    need_fd = [j for j, g in enumerate(getters) if g[1] is None or speed[j] == 0]
-    probe = x
-    if need_fd:
-        probe = np.concatenate([x, x - h, x + h])
-    m = solve(linkage, sweep.inputs(probe), order=min(order + 1, 2))
+    exact = [_rate_is_slope(sweep, g, speed[j]) for j, g in enumerate(getters)]
+    need_fd = not all(exact)
+    steady = _steady(sweep)
+    if steady is None:   # only positions' rates are used: they do not depend on ddq
+        steady = dataclasses.replace(sweep, ddq=0.0)
+    probe = np.concatenate([x, x - h, x + h]) if need_fd else x
+    m = solve(linkage, sweep.inputs(probe), order=min(order + 1, 2)) if need_fd else None
+    if any(exact):
+        m_rate = m if steady is sweep and m is not None else \
+            solve(linkage, steady.inputs(x), order=min(order + 1, 2))
     out = np.zeros(T)
-    reg = m.regular
-    for j, (get, rate, is_angle) in enumerate(getters):
-        if rate is not None and speed[j] != 0:
-            out[j] = rate(m)[j] / speed[j]
+    for j, (get, rate, is_angle, _k) in enumerate(getters):
+        if exact[j]:
+            out[j] = rate(m_rate)[j] / speed[j]
             continue
+        reg = m.regular
         f = get(m)
         f0, fm, fp = f[j], f[T + j], f[2 * T + j]
         rm, rp = reg[T + j], reg[2 * T + j]
@@ -322,7 +542,7 @@ def _derivative_probe(linkage, sweep, order, getters, x, h):
         else:
             d = 0.0
         out[j] = _wrap(d) if is_angle else d
-    return out, m
+    return out, (m if m is not None else m_rate)
 
 
 def refine_extremes(linkage, sweep, order, quantities, values, domain, iterations=64,
@@ -371,8 +591,8 @@ def refine_extremes(linkage, sweep, order, quantities, values, domain, iteration
     for j, (qi, sign, r, k) in enumerate(targets):
         lo[j], hi[j] = domain.bracket(r, k, wraps[quantities[qi].symbol])
     width0 = np.abs(hi - lo)   # the search brackets, before refinement
-    getters = [(quantities[qi].get, quantities[qi].rate, quantities[qi].is_angle)
-               for qi, *_ in targets]
+    getters = [(quantities[qi].get, quantities[qi].rate, quantities[qi].is_angle,
+                quantities[qi].order) for qi, *_ in targets]
     signs = np.array([t[1] for t in targets])
 
     def slope(idx):
@@ -409,6 +629,7 @@ def refine_extremes(linkage, sweep, order, quantities, values, domain, iteration
                                           d_lo[idx], d_hi[idx])
     at = 0.5 * (lo + hi)
     m = solve(linkage, sweep.inputs(at), order=order)
+    spd = np.broadcast_to(sweep.speed(at), at.shape)
     best = {}
     for j, (qi, sign, r, k) in enumerate(targets):
         qt = quantities[qi]
@@ -419,8 +640,10 @@ def refine_extremes(linkage, sweep, order, quantities, values, domain, iteration
             if qt.is_angle:
                 val = vgrid + float(_wrap(val - vgrid))
             if sign * val >= sign * vgrid:
-                cand = (val, float(at[j]), max(0.5 * abs(float(hi[j] - lo[j])),
-                                                 float(np.spacing(abs(at[j])))))
+                tol = max(0.5 * abs(float(hi[j] - lo[j])), float(np.spacing(abs(at[j]))))
+                if not _rate_is_slope(sweep, getters[j], spd[j]):
+                    tol = max(tol, _difference_tol(values[qt.symbol], q, domain.runs[r], k, h))
+                cand = (val, float(at[j]), tol)
         key = (qt.symbol, sign)
         if key not in best or sign * cand[0] > sign * best[key][0]:
             best[key] = cand
@@ -438,6 +661,81 @@ def refine_extremes(linkage, sweep, order, quantities, values, domain, iteration
             ext.append(Extreme(val, float(pos), bounded, tol))
         out[qt.symbol] = (ext[0], ext[1])
     return out
+
+
+def zero_crossings(q, values, runs, f, rtol=1e-15, iterations=64):
+    """Every input where a sampled function crosses or touches 0, refined.
+
+    Parameters
+    ----------
+    q, values : ndarray
+        The samples (inputs [rad or m], values).
+    runs : list of (int, int)
+        Index ranges of ``q`` that are continuous arcs (no root is sought across a gap).
+    f : callable
+        ``f(x) -> ndarray``, the function at inputs ``x`` (one call for all brackets).
+    rtol : float
+        Relative bracket width at which the search stops.
+
+    Returns
+    -------
+    list of (float, float)
+        ``(at, tol)`` in order: a sample that is exactly 0 is a root with ``tol = 0``;
+        a sign change between neighbours is closed by :func:`bracketed_root` and ``tol``
+        is half its final bracket (at least a float spacing).
+    """
+    out, lo, hi, sgn = [], [], [], []
+    for i0, i1 in runs:
+        w = np.asarray(values[i0:i1], dtype=float)
+        for k in np.flatnonzero(w == 0.0):
+            out.append((float(q[i0 + k]), 0.0))
+        for k in np.flatnonzero(w[:-1] * w[1:] < 0):
+            lo.append(q[i0 + k]); hi.append(q[i0 + k + 1]); sgn.append(np.sign(w[k]))
+    if lo:
+        lo, hi, sgn = np.array(lo, float), np.array(hi, float), np.array(sgn)
+        a, b = bracketed_root(lo, hi, lambda x: np.tile(sgn, x.size // sgn.size) * f(x),
+                              rtol, iterations)
+        for x0, x1 in zip(a, b):
+            at = 0.5 * (x0 + x1)
+            out.append((float(at), max(0.5 * abs(float(x1 - x0)), float(np.spacing(abs(at))))))
+    return sorted(out)
+
+
+def _slide_zeros(linkage, sweep, order, quantities, values, q, runs, periodic, q0, period):
+    """:func:`zero_crossings` of every slide acceleration (``SweepResult.zeros``)."""
+    out = {}
+    for qt in quantities:
+        if qt.kind != "acceleration" or not qt.source or qt.source[0] != "slide" \
+                or order < 2:
+            continue
+
+        def f(x, qt=qt):
+            m = solve(linkage, sweep.inputs(x), order=2)
+            return np.where(m.regular, np.asarray(qt.get(m), dtype=float), np.nan)
+        roots = zero_crossings(q, values[qt.symbol], runs, f)
+        if periodic:   # 0° and 360° of a whole turn are one input
+            roots = sorted((_periodic(a, q0, period), t) for a, t in roots)
+            roots = [r for i, r in enumerate(roots)
+                     if i == 0 or abs(r[0] - roots[i - 1][0]) > max(r[1], roots[i - 1][1])]
+        out[qt.symbol] = roots
+    return out
+
+
+def _difference_tol(v, q, run, k, h):
+    """How closely a central difference of step ``h`` locates the extreme of the samples
+    ``v`` near grid index ``k``: its rounding, about 2 EPS |f|, over its slope
+    2 h |f''| (f'' from the grid's second difference at ``k``), with a factor 2 of
+    margin: ``4 EPS |f| / (h |f''|)``.  0 where the grid cannot tell f''."""
+    i0, i1 = run
+    if not i0 < k < i1 - 1:
+        return 0.0
+    d2 = abs(float(v[k - 1] - 2 * v[k] + v[k + 1]))
+    dq = 0.5 * float(q[k + 1] - q[k - 1])
+    if d2 == 0.0 or dq <= 0.0:
+        return 0.0
+    f2 = d2 / (dq * dq)
+    peak = float(np.max(np.abs(v[i0:i1])))
+    return 4.0 * EPS * peak / (h * f2)
 
 
 def _scan_gaps(linkage, sweep, order, q, motion, runs):
@@ -775,7 +1073,8 @@ def analyse_sweep(linkage: Linkage, sweep: Sweep, quantities, order: int,
         # below then starts from its neighbours
         good[k] = False
     bad_runs = true_runs(~good)
-    excluded = []
+    excluded, excluded_tol, ends, deads = [], [], [], []
+    excluded_reg = excluded   # the regular ends (the analysis extends to them)
     if bad_runs:
         goods, bads, where = [], [], []
         hidden = {k: x for x, k in gaps}
@@ -800,6 +1099,26 @@ def analyse_sweep(linkage: Linkage, sweep: Sweep, quantities, order: int,
             reason = "cannot assemble" if not mid.feasible[0] or not np.all(
                 motion.feasible[i0:i1]) else "dead point"
             excluded.append((start, stop, reason))
+            # where assembly is lost, inside the interval: the first and last input that
+            # does not assemble (a grid point, or the middle)
+            infeasible = np.flatnonzero(~motion.feasible[i0:i1])
+            if infeasible.size:
+                out_lo, out_hi = q_all[i0 + infeasible[0]], q_all[i0 + infeasible[-1]]
+            elif not mid.feasible[0]:
+                out_lo = out_hi = 0.5 * (start + stop)
+            else:
+                out_lo = out_hi = None
+            end = ((i0, 0) in bounds and out_lo is not None,
+                   (i1 - 1, 1) in bounds and out_hi is not None, out_lo, out_hi)
+            if bounds.get((i0, 0), float(q_all[i0])) > bounds.get((i1 - 1, 1),
+                                                                   float(q_all[i1 - 1])):
+                end = (end[1], end[0], end[3], end[2])   # start and stop were swapped
+            ends.append(end)
+        excluded_reg = excluded
+        excluded, excluded_tol = _refined_exclusions(linkage, sweep, excluded, ends, bounds)
+        deads = dead_points(linkage, sweep, excluded)
+        excluded, excluded_tol, deads = _limits_are_not_dead_points(excluded, excluded_tol,
+                                                                    deads)
         if not partial:
             raise AssemblyError(_describe_exclusions(excluded), excluded)
     idx = np.flatnonzero(good)
@@ -811,11 +1130,11 @@ def analyse_sweep(linkage: Linkage, sweep: Sweep, quantities, order: int,
     cuts = np.flatnonzero(np.diff(idx) > 1) + 1
     edges = np.concatenate(([0], cuts, [idx.size]))
     runs = list(zip(edges[:-1].tolist(), edges[1:].tolist()))
-    lo_ext = [_nearest_boundary(excluded, q[i0], before=True) for i0, _ in runs]
-    hi_ext = [_nearest_boundary(excluded, q[i1 - 1], before=False) for _, i1 in runs]
+    lo_ext = [_nearest_boundary(excluded_reg, q[i0], before=True) for i0, _ in runs]
+    hi_ext = [_nearest_boundary(excluded_reg, q[i1 - 1], before=False) for _, i1 in runs]
     period = float(q_all[-1] - q_all[0])
     connected = bool(sweep.periodic and idx[0] == 0 and idx[-1] == q_all.size - 1)
-    for start, stop, _r in excluded:
+    for start, stop, _r in excluded_reg:
         for b in (start, stop):
             if q_all[0] < b < q_all[-1]:
                 m1 = solve(linkage, sweep.inputs(np.array([b])), order=0)
@@ -830,6 +1149,8 @@ def analyse_sweep(linkage: Linkage, sweep: Sweep, quantities, order: int,
         values[qt.symbol] = v
     domain = _Domain(q, runs, lo_ext, hi_ext, connected, period, (q_all[0], q_all[-1]))
     ext = refine_extremes(linkage, sweep, order, quantities, values, domain) if extremes else {}
+    zeros = _slide_zeros(linkage, sweep, order, quantities, values, q, runs,
+                         sweep.periodic and connected, q_all[0], period) if extremes else {}
     # the output rows: the regular output positions, as a subset of the grid
     keep = out_idx[good[out_idx]]
     pos = np.searchsorted(idx, keep)  # positions of the kept rows within the grid's idx
@@ -847,8 +1168,71 @@ def analyse_sweep(linkage: Linkage, sweep: Sweep, quantities, order: int,
     q_rows = q_all[keep]
     accuracy = _accuracy_of_sweep(linkage, sweep, quantities, order, q_rows, out_values, ext,
                                   out_motion, out_runs, toggles)
+    if sweep.periodic:
+        deads = [dataclasses.replace(d, at=_periodic(d.at, q_all[0], period)) for d in deads]
+    deads.sort(key=lambda d: d.at)
+    unique = []
+    for d in deads:   # 0° and 360° of a whole turn are one dead point
+        if unique and abs(unique[-1].at - d.at) <= max(unique[-1].tol, d.tol) \
+                and unique[-1].joint == d.joint:
+            if d.tol < unique[-1].tol:
+                unique[-1] = d
+            continue
+        unique.append(d)
     return SweepResult(q_rows, out_values, ext, excluded, toggles, out_motion, out_runs,
-                       accuracy)
+                       accuracy, excluded_tol, unique, zeros)
+
+
+def _refined_exclusions(linkage, sweep, excluded, ends, bounds):
+    """The excluded intervals with every ``cannot assemble`` end that lies between a
+    regular input and one that does not assemble moved onto the root of the dyad's
+    discriminant (:func:`assembly_limits`); the other ends stay the last regular input.
+    Returns ``(excluded, tol)``: ``tol`` holds ``(tol_start, tol_stop)`` per interval."""
+    inside, outside, where = [], [], []
+    for j, ((start, stop, why), (do_lo, do_hi, out_lo, out_hi)) in enumerate(zip(excluded,
+                                                                                ends)):
+        if why != "cannot assemble":
+            continue
+        if do_lo:
+            inside.append(start); outside.append(out_lo); where.append((j, 0))
+        if do_hi:
+            inside.append(stop); outside.append(out_hi); where.append((j, 1))
+    out = [list(e) for e in excluded]
+    # an end the bisection placed is good to its bracket (~1e-15 relative); a sweep end is exact
+    tol = [[1e-15 * max(1.0, abs(a)) if a in bounds.values() else 0.0,
+            1e-15 * max(1.0, abs(b)) if b in bounds.values() else 0.0]
+           for a, b, _w in excluded]
+    if inside:
+        at, t = assembly_limits(linkage, sweep, inside, outside)
+        for (j, side), x, tx in zip(where, at, t):
+            out[j][side] = float(x)
+            tol[j][side] = float(tx)
+    return [tuple(e) for e in out], [tuple(t) for t in tol]
+
+
+def _limits_are_not_dead_points(excluded, excluded_tol, deads):
+    """A ``dead point`` interval whose zero of sin(gamma) is a limit of assembly (the
+    sweep ends on it: a :class:`DeadPoint` of shape ``"limit"``) is what a gap's end is,
+    a limit of assembly, not a dead point: it becomes a ``cannot assemble`` interval that
+    starts (or stops) at that limit, with its uncertainty, and leaves the dead points.
+    A dead point is a zero of sin(gamma) with the linkage assembled on both sides of it
+    (shape ``"touch"``).  Returns ``(excluded, excluded_tol, dead points)``."""
+    excluded, excluded_tol = list(excluded), list(excluded_tol)
+    spans = [tuple(e[:2]) for e in excluded]
+    keep = []
+    for d in deads:
+        if d.shape != "limit" or tuple(d.interval) not in spans:
+            keep.append(d)
+            continue
+        j = spans.index(tuple(d.interval))
+        a, b, _why = excluded[j]
+        ta, tb = excluded_tol[j] if j < len(excluded_tol) else (0.0, 0.0)
+        # the limit lies at the end of the sweep the interval reaches: from it to that end
+        if abs(d.at - a) <= abs(d.at - b):   # the sweep starts on it
+            excluded[j], excluded_tol[j] = (a, max(d.at, a), "cannot assemble"), (ta, d.tol)
+        else:
+            excluded[j], excluded_tol[j] = (min(d.at, b), b, "cannot assemble"), (d.tol, tb)
+    return excluded, excluded_tol, keep
 
 
 def _nearest_boundary(excluded, x, before):
