@@ -2,7 +2,10 @@
 
 Prints `name: value unit` lines.  Compare ratios within one run: machines are
 shared and noisy.  Target (issue #6): 36,001 positions of 例 2-4 (the shaper
-six-bar, 15 unknowns) solved in <= 50 ms of compute.
+six-bar, 15 unknowns) solved in <= 50 ms of compute.  Issue 17: the forces given
+the motion <= 2x hand-written numpy for the same model (:func:`hand_written_shaper`,
+timed in the same run); the fixed cost of one kinetostatics call (one position,
+given its motion) <= 0.5 ms, against one position solve.
 
 Usage: python benchmarks/bench_force.py [--quick] [--json]
 """
@@ -31,6 +34,45 @@ from mechcli.core.linkage import solve  # noqa: E402
 from mechcli.spec.force import load_force_spec  # noqa: E402
 
 
+def hand_written_shaper(motion, cutting_fx, m3=20.0, j3=0.12, m4=3.0, j4=0.00025, m5=62.0,
+                        x_s5=-0.15, g=9.8):
+    """Kinetostatics of 例 2-4's shaper given its motion, written by hand in numpy
+    (the baseline of issue 17): the book's order, dyad by dyad, in closed form.
+
+    d'Alembert: Q_i = m_i (g - a_Si) at the centre of mass S_i, M_i = -J_i alpha_i.
+    Dyad 4-5 (rod DE, ram on y = l6'): ΣFx of the ram gives F45x, Σ moments of
+    the rod about D give F45y, ΣF of the rod gives F34.  Dyad 2-3: the massless
+    block 2 passes a force normal to the guide, N23 n; Σ moments of link 3 about C
+    give N23 (its arm is the slide CB).  Crank: F12 = N23 n, Mb = (B - A) x F12.
+    S3, S4 are the midpoints of CD, DE and S5 = E + (x_s5, 0) (the spec's bodies).
+    Returns Mb, F34 (x, y), F45 (x, y), N23 [N m, N].
+    """
+    P, L = motion.points, motion.links
+    bx, by, ax_, ay_ = P["B"].x, P["B"].y, P["A"].x, P["A"].y
+    dx, dy, ex, ey = P["D"].x, P["D"].y, P["E"].x, P["E"].y
+    # inertia and gravity (C is fixed: a_S3 = a_D / 2)
+    q3x, q3y = -m3 * 0.5 * P["D"].ax, -m3 * (g + 0.5 * P["D"].ay)
+    q4x = -m4 * 0.5 * (P["D"].ax + P["E"].ax)
+    q4y = -m4 * (g + 0.5 * (P["D"].ay + P["E"].ay))
+    q5x, q5y = cutting_fx - m5 * P["E"].ax, -m5 * (g + P["E"].ay)
+    m3i, m4i = -j3 * L[3].alpha, -j4 * L[4].alpha
+    # dyad 4-5
+    f45x = -q5x
+    rex, rey = ex - dx, ey - dy
+    k4 = 0.5 * (rex * q4y - rey * q4x) + m4i  # S4 - D = (E - D) / 2
+    f45y = (rey * f45x + k4) / rex
+    f34x, f34y = f45x - q4x, f45y - q4y
+    # dyad 2-3 about C = (0, 0): guide direction u = D / |D|, normal n = i u
+    l3 = np.hypot(dx, dy)
+    ux, uy = dx / l3, dy / l3
+    s23 = bx * ux + by * uy
+    k3 = -(dx * f34y - dy * f34x) + 0.5 * (dx * q3y - dy * q3x) + m3i
+    n23 = -k3 / s23
+    f12x, f12y = -n23 * uy, n23 * ux
+    mb = (bx - ax_) * f12y - (by - ay_) * f12x
+    return mb, (f34x, f34y), (f45x, f45y), n23
+
+
 def main(quick=False):
     keep_heap_warm()
     spec = load_force_spec(ROOT / "configs" / "ch2" / "ex2-4.toml")
@@ -56,6 +98,27 @@ def main(quick=False):
                      condition=True)
 
     pipe = ForceEvaluator(spec.linkage, spec.topology, sweep, spec.bodies, spec.gravity, progs)
+    # issue 17: the forces given the motion against hand-written numpy for the same model
+    cut = loads[0].fx
+
+    def engine_given_motion():
+        return solve_forces(spec.topology, motion, spec.bodies, loads, spec.gravity,
+                            condition=False)
+
+    t_engine = best_of(engine_given_motion, rep)
+    t_hand = best_of(lambda: hand_written_shaper(motion, cut), rep)
+    fr = engine_given_motion()
+    mb, f34, f45, _n23 = hand_written_shaper(motion, cut)
+    pf = {pf_.pair.label: pf_ for pf_ in fr.pairs}
+    diff = max(np.max(np.abs(fr.balancing[1] - mb)) / np.max(np.abs(mb)),
+               np.max(np.hypot(pf["34"].fx - f34[0], pf["34"].fy - f34[1]))
+               / np.max(np.hypot(*f34)),
+               np.max(np.hypot(pf["45"].fx - f45[0], pf["45"].fy - f45[1]))
+               / np.max(np.hypot(*f45)))
+    print(f"ex2-4_forces_36001_engine_given_motion: {t_engine * 1e3:.2f} ms")
+    print(f"ex2-4_forces_36001_hand_written_numpy: {t_hand * 1e3:.2f} ms")
+    print(f"ex2-4_forces_36001_engine_over_hand_written: {t_engine / t_hand:.2f} x (goal <= 2)")
+    print(f"ex2-4_forces_36001_max_rel_difference_to_hand_written: {diff:.1e} 1")
     t = best_of(force_only, rep)
     print(f"ex2-4_forces_36001_given_motion: {t * 1e3:.1f} ms (target <= 50)")
     print(f"ex2-4_forces_36001_given_motion_with_condition: "
@@ -79,6 +142,11 @@ def main(quick=False):
     print(f"ex2-4_forces_1_position_with_condition: {t_one_c * 1e3:.3f} ms")
     print(f"ex2-4_pipeline_1_position: {t_pipe1 * 1e3:.3f} ms")
     print(f"ex2-4_pipeline_1_position_over_position_solve: {t_pipe1 / t_pos:.2f} x")
+    # the fixed cost of the kinetostatics alone (issue 17: <= 0.5 ms), given the motion
+    t_fix = best_of(lambda: solve_forces(spec.topology, m1, spec.bodies, l1, spec.gravity, u1,
+                                         condition=True), 200)
+    print(f"ex2-4_forces_fixed_cost: {t_fix * 1e3:.3f} ms (goal <= 0.5)")
+    print(f"ex2-4_forces_fixed_cost_over_position_solve: {t_fix / t_pos:.2f} x")
     # accuracy vs cost: the mean and the extremes against the step of the sweep
     ref = None
     for step in (0.01, 0.1, 0.5, 1.0, 5.0, 10.0):

@@ -11,7 +11,9 @@ same run.
 
 Issue 17: the same 36,001 positions in a fresh process with no allocator
 setting <= 0.6x the numpy closed form timed in that process; peak memory of
-1e6 positions at order 2 <= 200 B/position (tracemalloc).
+1e6 positions at order 2 <= 200 B/position (tracemalloc); a 1e7-row `kin` sweep
+streamed to its CSV in bounded memory (peak RSS against the in-memory run at
+600,001 rows).
 
 Usage: python benchmarks/bench_kin.py [--quick] [--json]
 """
@@ -179,9 +181,42 @@ def plain_process(repeat):
     print(f"plain_process_engine_over_closed_form: {te / tc:.2f} x")
 
 
+def _peak_rss_run(args):
+    """``(seconds, peak RSS [B])`` of ``mechcli ARGS`` in a fresh process."""
+    code = ("import resource, sys\n"
+            "from mechcli.cli import main\n"
+            "try:\n    main(sys.argv[1:])\nexcept SystemExit:\n    pass\n"
+            "print(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss, file=sys.stderr)\n")
+    t = time.perf_counter()
+    res = subprocess.run([sys.executable, "-c", code, *args], cwd=ROOT, capture_output=True,
+                         text=True, check=True)
+    return time.perf_counter() - t, int(res.stderr.strip().splitlines()[-1]) * 1024
+
+
+def streamed(quick):
+    """Issue 17: a sweep past the in-memory limit streams its rows to the CSV in bounded
+    memory: peak RSS of `mechcli kin ex1-1` at 1e7 rows (1e6 with --quick) against the
+    in-memory run at 600,001 rows (kin's limit), both measured here."""
+    cfg = str(ROOT / "configs" / "ch1" / "ex1-1.toml")
+    rows, step = (1_000_001, "0.00036") if quick else (10_000_001, "0.000036")
+    with tempfile.TemporaryDirectory() as out:
+        t_mem, rss_mem = _peak_rss_run(["kin", cfg, "--set", "input.step=0.0006", "--out", out,
+                                        "--no-plot", "--quiet"])
+        t_str, rss_str = _peak_rss_run(["kin", cfg, "--set", f"input.step={step}", "--out",
+                                        out, "--no-plot", "--quiet"])
+    tag = f"kin_streamed_{rows}"
+    print(f"kin_in_memory_600001_peak_rss: {rss_mem / 2**20:.0f} MB")
+    print(f"kin_in_memory_600001_peak_rss_per_position: {rss_mem / 600_001:.0f} B")
+    print(f"{tag}_peak_rss: {rss_str / 2**20:.0f} MB")
+    print(f"{tag}_peak_rss_per_position: {rss_str / rows:.1f} B")
+    print(f"{tag}_peak_rss_over_in_memory_600001: {rss_str / rss_mem:.2f} x")
+    print(f"{tag}_time: {t_str:.1f} s ({t_str / rows * 1e6:.2f} us per row, CSV included)")
+
+
 def main():
     quick = "--quick" in sys.argv
     r = 3 if quick else 7
+    streamed(quick)
     plain_process(10 if quick else 20)
     n = 1000001
     print(f"engine_fourbar_1000001_peak_memory_per_position: {peak_memory(n) / n:.0f} B")

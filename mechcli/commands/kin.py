@@ -25,7 +25,10 @@ def kin(spec_path, accuracy_warn=None, **opts):
     from mechcli.report.run import finish
     from mechcli.spec.kin import load_kin_spec
 
-    spec = load_kin_spec(spec_path, run.sets)
+    spec = load_kin_spec(spec_path, run.sets, stream=True)
+    streamed = spec.input.count > 0   # past the in-memory limit: rows streamed to the CSV
+    if streamed:
+        spec = _analysed_rows(spec)
     inp = spec.input
     sweep = inp.sweep()
     quantities = default_quantities(spec.linkage, spec.output.order,
@@ -37,20 +40,113 @@ def kin(spec_path, accuracy_warn=None, **opts):
         raise AssemblyError(report.assembly_message(spec, exc), exc.intervals) from None
     approx = None
     if spec.mechanism == "slider_crank" and _model(spec_path, run.sets) == "approximate":
+        if streamed:
+            from mechcli.spec.errors import SpecError
+            from mechcli.spec.kin import MAX_POSITIONS
+            raise SpecError(spec_path, "input.step", f"at most {MAX_POSITIONS:,} positions "
+                            "with [mechanism] model = \"approximate\"",
+                            f"{inp.count:,} positions")
         from mechcli.core.linkage import approximate
         result, approx = approximate.apply(spec.linkage, sweep, result)
     outputs = Outputs(run.out_dir, digits=run.digits)
-    outputs.csv("kin.csv", report.columns(spec, quantities, result))
     warnings = []
+    if streamed:
+        rows = _stream_csv(spec, sweep, quantities, result, outputs, report)
+        warnings += _streamed_warnings(spec, quantities, result, rows, report)
+    else:
+        outputs.csv("kin.csv", report.columns(spec, quantities, result))
     animate = spec.output.animate if run.animate is None else run.animate
     if (run.plot and spec.output.plots) or animate:
         from mechcli.report import kin_plots
         warnings += kin_plots.write(spec, quantities, result, sweep, outputs, run.lang,
                                     plots=run.plot and spec.output.plots, animate=animate)
     warnings += report.warnings(spec, result, accuracy_warn)
+    results = report.scalar_results(spec, quantities, result, accuracy_warn, approx)
+    if streamed:   # the CSV's rows; the analysis, table and plots ran on a subset of them
+        results["positions"] = rows.rows
+        results["positions_analysed"] = int(result.q.size)
+        _streamed_grid_errors(spec, quantities, result, rows, results, report)
     finish(run, "kin", report.build_report(spec, quantities, result, run.lang, approx),
-           report.scalar_results(spec, quantities, result, accuracy_warn, approx), outputs,
-           warnings)
+           results, outputs, warnings)
+
+
+def _analysed_rows(spec):
+    """A streamed spec with ``input.q``: the analysed rows, every table row among them."""
+    import dataclasses
+
+    import numpy as np
+
+    from mechcli.core.linkage.streaming import stream_grid
+
+    inp, step = spec.input, spec.output.table_step
+    targets = np.arange(inp.start, inp.stop + step * 1e-9, step)
+    q = stream_grid(inp.start, inp.stop, inp.count, targets)
+    return dataclasses.replace(spec, input=dataclasses.replace(inp, q=q))
+
+
+def _stream_csv(spec, sweep, quantities, result, outputs, report):
+    """Solve every row of a streamed sweep chunk by chunk into ``kin.csv``; the CSV
+    is written to a temporary file and renamed at the end (none if a row fails)."""
+    import types
+
+    from mechcli.core.errors import AssemblyError
+    from mechcli.core.linkage.streaming import StreamedRows
+
+    inp = spec.input
+    rows = StreamedRows(spec.linkage, sweep, quantities, spec.output.order, inp.start,
+                        inp.stop, inp.count, result)
+    headers = [h for h, _col in report.columns(spec, quantities, result)]
+
+    def chunks():
+        for q, values in rows:
+            if rows.irregular is not None and not inp.partial:
+                # a gap narrower than the analysed rows' step: refused like any other
+                lo, hi = rows.irregular
+                exc = AssemblyError("", [(lo, hi, "dead point")])
+                raise AssemblyError(report.assembly_message(spec, exc), exc.intervals)
+            chunk = types.SimpleNamespace(q=q, values=values)
+            yield [col for _h, col in report.columns(spec, quantities, chunk)]
+
+    outputs.csv_stream("kin.csv", headers, chunks())
+    return rows
+
+
+def _streamed_grid_errors(spec, quantities, result, rows, results, report):
+    """``*_grid_error_*``: refined extreme minus the best of the CSV's rows (all of them,
+    as the stream saw them; not only the analysed ones)."""
+    for q in quantities:
+        if q.symbol not in result.extremes or q.symbol not in rows.peaks:
+            continue
+        u, f = report.unit_of(q.kind, spec.header.unit), report.factor_of(q.kind,
+                                                                            spec.header.scale)
+        top, _at, bottom, _at2 = rows.peaks[q.symbol]
+        for name, e, best in zip(("max", "min"), result.extremes[q.symbol], (top, bottom)):
+            key = f"{q.symbol}_{name}_grid_error_{u}"
+            if key in results:
+                results[key] = float(e.value - best) * f + 0.0
+
+
+def _streamed_warnings(spec, quantities, result, rows, report):
+    """Warnings of a streamed sweep: rows left out that the analysis did not see (a
+    gap narrower than its step), a row past a refined extreme (never expected: the
+    extremes are refined on the exact solution)."""
+    out = []
+    if rows.irregular is not None:
+        lo, hi = rows.irregular
+        f = report.input_factor(spec)
+        unit = "°" if spec.input.rotary else f" {spec.header.unit}"
+        out.append(f"rows between input {lo * f:.6g}{unit} and {hi * f:.6g}{unit} are not "
+                   "regular and were left out (a gap narrower than the analysed rows' step)")
+    for q in quantities:
+        if q.symbol not in result.extremes or q.symbol not in rows.peaks:
+            continue
+        hi, lo = result.extremes[q.symbol]
+        top, at_top, bottom, at_bottom = rows.peaks[q.symbol]
+        slack = 1e-9 * max(abs(hi.value), abs(lo.value), 1e-300)
+        if (hi.bounded and top > hi.value + slack) or (lo.bounded and bottom < lo.value - slack):
+            out.append(f"{q.symbol}: a streamed row lies beyond the refined extreme "
+                       f"(the analysed rows may miss a narrow peak; use a larger step)")
+    return out
 
 
 def _model(spec_path, sets):

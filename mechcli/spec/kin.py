@@ -33,6 +33,11 @@ QUANTITIES = ("position", "velocity", "acceleration")
 #: the shaper with --animate at 0.89 GB (2,000,001 used to be allowed: 2.8 GB)
 MAX_POSITIONS = 600_001
 POSITIONS_WHY = "1 GiB budget at ~1.5 kB per position"
+#: `mechcli kin` streams a longer sweep to its CSV chunk by chunk in bounded memory (issue
+#: 17; the analysis, table and plots run on every k-th row, see InputSpec.count); the cap
+#: bounds the run's time and the CSV's size (~10 GB at 1e8 rows)
+MAX_STREAMED = 100_000_001
+STREAMED_WHY = f"rows past {MAX_POSITIONS:,} are streamed to the CSV"
 
 
 @dataclasses.dataclass(frozen=True)
@@ -61,6 +66,10 @@ class InputSpec:
     alpha: float
     followers: dict
     partial: bool
+    #: rows of a streamed sweep (more than MAX_POSITIONS): ``q`` then holds every k-th
+    #: of them and the last (:func:`mechcli.core.linkage.streaming.stream_grid`), the
+    #: rows are ``np.linspace(start, stop, count)``; 0 when ``q`` is the whole sweep
+    count: int = 0
 
     def sweep(self):
         """The core's :class:`~mechcli.core.linkage.kinematics.Sweep` of this program."""
@@ -327,7 +336,11 @@ def _degrees_hint(rotary, start, stop):
             f"stop = {a + 360:g})")
 
 
-def _input(sec, linkage, followers, max_positions=MAX_POSITIONS, why=POSITIONS_WHY):
+def _input(sec, linkage, followers, max_positions=MAX_POSITIONS, why=POSITIONS_WHY,
+           stream_max=None):
+    in_memory = max_positions
+    if stream_max is not None and stream_max > max_positions:  # kin: longer sweeps stream
+        max_positions, why = stream_max, STREAMED_WHY
     first = linkage.drivers[0]
     rotary = first.rotary
     if rotary:
@@ -377,10 +390,15 @@ def _input(sec, linkage, followers, max_positions=MAX_POSITIONS, why=POSITIONS_W
                             f"{step / unit:g} for {(stop - start) / unit:g}"
                             + _degrees_hint(rotary, start, stop))
         count = max(count, 2)
-    q = np.linspace(start, stop, count)
+    if count > in_memory:
+        from mechcli.core.linkage.streaming import stream_grid
+        q, streamed = stream_grid(start, stop, count), count
+    else:
+        q, streamed = np.linspace(start, stop, count), 0
     partial = sec.boolean("partial", False)
     sec.finish()
-    return InputSpec(first.link, rotary, start, stop, q, omega, alpha, followers, partial)
+    return InputSpec(first.link, rotary, start, stop, q, omega, alpha, followers, partial,
+                     streamed)
 
 
 def _output(sec, inp):
@@ -434,33 +452,37 @@ def read_mechanism(root):
     return kind, linkage, tuple(tracers), followers, guide_length
 
 
-def read_input(root, linkage, followers, max_positions=MAX_POSITIONS, why=POSITIONS_WHY):
+def read_input(root, linkage, followers, max_positions=MAX_POSITIONS, why=POSITIONS_WHY,
+               stream_max=None):
     """Read ``[input]`` (the primary driver's program) for *linkage*.
 
     *max_positions* caps ``count`` (and the count a ``step`` gives); *why* is said
-    with the cap in the error, e.g. the memory budget it comes from.
+    with the cap in the error, e.g. the memory budget it comes from.  With
+    *stream_max* a sweep of up to that many rows is accepted as streamed
+    (``InputSpec.count``).
     """
     return _input(root.table("input") if root.has("input") else _empty(root, "input"),
-                  linkage, followers, max_positions, why)
+                  linkage, followers, max_positions, why, stream_max)
 
 
-def load_kin_spec(path, overrides=()) -> KinSpec:
-    """Read and validate a ``mechcli kin`` spec.
+def load_kin_spec(path, overrides=(), stream=False) -> KinSpec:
+    """Read and validate a ``mechcli kin`` spec (*stream*: accept a sweep of up to
+    ``MAX_STREAMED`` rows, streamed to the CSV; see ``InputSpec.count``).
 
     Raises
     ------
     SpecError
         With the file, key, expectation and what was found.
     """
-    return read_kin_root(load_spec(path, overrides))
+    return read_kin_root(load_spec(path, overrides), stream)
 
 
-def read_kin_root(root) -> KinSpec:
+def read_kin_root(root, stream=False) -> KinSpec:
     """:func:`load_kin_spec` on a root table already loaded (``optimize``
     reads its problem's tables this way)."""
     header = read_header(root, "kin", default_unit="mm")
     kind, linkage, tracers, followers, guide_length = read_mechanism(root)
-    inp = read_input(root, linkage, followers)
+    inp = read_input(root, linkage, followers, stream_max=MAX_STREAMED if stream else None)
     out_sec = root.table("output") if root.has("output") else _empty(root, "output")
     output = _output(out_sec, inp)
     expected = read_expected(root)

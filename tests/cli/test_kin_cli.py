@@ -158,7 +158,8 @@ def test_unknown_command_suggests(tmp_path):
     ("input.omega1=1e160", "[input] omega1: expected a number in [-1e+06, 1e+06]"),
     ("input.start=1e9", "[input] start: expected a number in [-36000, 36000]"),
     ("input.stop=-10", "[input] stop: expected a value above start (0), got -10"),
-    ("input.count=1", "[input] count: expected an integer in [2, 600001], got 1"),
+    # kin streams past 600,001 rows (issue 17), up to 100,000,001
+    ("input.count=1", "[input] count: expected an integer in [2, 100000001], got 1"),
 ])
 def test_out_of_range_angles_and_counts_exit_2(tmp_path, override, fragment):
     spec = write(tmp_path, GOOD.replace("step = 5\n", ""))

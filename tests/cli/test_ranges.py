@@ -173,19 +173,23 @@ def test_force_count_at_the_memory_limit_is_accepted_by_the_reader():
 
 
 def test_kin_keeps_its_documented_position_limit():
-    from mechcli.spec.kin import MAX_POSITIONS, load_kin_spec
-    # README.md: at most 600,001 positions (1 GiB at the measured ~1.5 kB per position;
-    # 2,000,001 used to be accepted and peaked at 2.8 GB for the shaper)
-    assert MAX_POSITIONS == 600_001
+    from mechcli.spec.kin import MAX_POSITIONS, MAX_STREAMED, load_kin_spec
+    # README.md: at most 600,001 positions in memory (1 GiB at the measured ~1.5 kB per
+    # position; 2,000,001 used to be accepted and peaked at 2.8 GB for the shaper); past
+    # that `kin` streams the rows to its CSV in bounded memory (issue 17), up to 1e8
+    assert MAX_POSITIONS == 600_001 and MAX_STREAMED == 100_000_001
     spec = load_kin_spec(CONFIGS / "ch1" / "ex1-4.toml", ["input.count=150001"])
     assert len(spec.input.q) == 150_001  # past force's limit, well within kin's
-    line = _refused("kin", CONFIGS / "ch1" / "ex1-4.toml", "--set", "input.count=600002",
-                    key="[input] count")
-    assert "at most 600,001 positions" in line and "1 GiB" in line
-    # a step of 0.0005 deg over a turn is 720,001 positions: refused, the limit named
-    line = _refused("kin", CONFIGS / "ch1" / "ex1-1.toml", "--set", "input.step=0.0005",
+    # 600,002 rows: streamed (the analysis on every k-th), not held in memory
+    spec = load_kin_spec(CONFIGS / "ch1" / "ex1-4.toml", ["input.count=600002"], stream=True)
+    assert spec.input.count == 600_002 and len(spec.input.q) <= 36_001
+    line = _refused("kin", CONFIGS / "ch1" / "ex1-4.toml", "--set",
+                    f"input.count={MAX_STREAMED + 1}", key="[input] count")
+    assert "at most 100,000,001 positions" in line and "streamed" in line
+    # a step of 1e-6 deg over a turn is 360,000,001 positions: refused, the limit named
+    line = _refused("kin", CONFIGS / "ch1" / "ex1-1.toml", "--set", "input.step=0.000001",
                     key="[input] step")
-    assert "at most 600,001 positions" in line
+    assert "at most 100,000,001 positions" in line
 
 
 @pytest.mark.parametrize("args, key", [

@@ -50,6 +50,7 @@ SPEC_CORE_FUNCTIONS = {
     "topology",            # the pair model of a linkage (which pairs carry forces)
     "default_quantities",  # the names of the quantities a linkage has
     "stack",               # one batched linkage of a population (optimize's candidates)
+    "stream_grid",         # the analysed rows of a streamed kin sweep (a grid, no solve)
 }
 
 #: report module -> the core package of its command (functions only from there)
@@ -58,6 +59,7 @@ OWN_CORE = {
     "mechcli.report.kin_plots": "mechcli.core.linkage",
     "mechcli.report.force": "mechcli.core.linkage",
     "mechcli.report.force_plots": "mechcli.core.linkage",
+    "mechcli.report.force_rows": "mechcli.core.linkage",
     "mechcli.report.cam": "mechcli.core.cam",
     "mechcli.report.cam_plots": "mechcli.core.cam",
     "mechcli.report.gear": "mechcli.core.gear",

@@ -178,37 +178,120 @@ class _GuideLine:
     The line passes through the known point ``point`` of that link, shifted
     by ``offset`` [m] along its left normal, in direction ``angle`` [rad]
     relative to the link: unit direction ``(ux, uy)``, base ``(bx, by)``.
-    A block on it at slide ``s`` is at ``base + s * u``.
+    A block on it at slide ``s`` is at ``base + s * u``.  On the frame they
+    keep the parameters' own shape; on a moving link they are full arrays in
+    scratch buffers ``slot ... slot + 3`` (the direction in fresh arrays when
+    ``keep``: a later element reads the block's cosine and sine), and the
+    block's angle is an output row.
     """
 
-    def __init__(self, st, link, point, angle, offset):
+    def __init__(self, st, link, point, angle, offset, slot, keep):
         self.p, self.g = st.P[point], st.L[link]
         self.moving = link != st.frame
         g, c, s = self.g, np.cos(angle), np.sin(angle)
-        self.ux, self.uy = st.full(g.c * c - g.s * s), st.full(g.s * c + g.c * s)
-        self.bx, self.by = self.p.x - offset * self.uy, self.p.y + offset * self.ux
-        self.theta = st.full(g.theta + angle)
+        if self.moving:
+            tmp = st.tmp
+            self.ux = np.multiply(g.c, c, out=np.empty(st.shape) if keep else tmp(slot))
+            self.ux -= np.multiply(g.s, s, out=tmp(slot + 2))
+            self.uy = np.multiply(g.s, c, out=np.empty(st.shape) if keep else tmp(slot + 1))
+            self.uy += np.multiply(g.c, s, out=tmp(slot + 2))
+            self.bx = np.multiply(self.uy, offset, out=tmp(slot + 2))
+            np.subtract(self.p.x, self.bx, out=self.bx)
+            self.by = np.multiply(self.ux, offset, out=tmp(slot + 3))
+            np.add(self.p.y, self.by, out=self.by)
+            self.theta = np.add(g.theta, angle, out=st.out())
+        else:
+            self.ux, self.uy = g.c * c - g.s * s, g.s * c + g.c * s
+            self.bx, self.by = self.p.x - offset * self.uy, self.p.y + offset * self.ux
+            self.theta = st.full(angle)
+        self.keep = keep or not self.moving
 
-    def carried_velocity(self, rx, ry):
-        """Velocity [m/s] of the guide link's point at ``point + (rx, ry)``."""
+    def carried_velocity(self, rx, ry, ox, oy):
+        """Velocity [m/s] of the guide link's point at ``point + (rx, ry)``
+        (into ``ox``, ``oy`` when the link moves)."""
         p, w = self.p, self.g.w
         if not self.moving:
             return p.vx, p.vy
-        return p.vx - w * ry, p.vy + w * rx
+        np.multiply(w, ry, out=ox)
+        np.subtract(p.vx, ox, out=ox)
+        np.multiply(w, rx, out=oy)
+        np.add(p.vy, oy, out=oy)
+        return ox, oy
 
-    def carried_acceleration(self, rx, ry, sd):
+    def carried_acceleration(self, rx, ry, sd, ox, oy, t):
         """Acceleration [m/s^2] of the guide link's point at ``point + (rx, ry)``
-        plus the Coriolis term ``2 omega x (sd u)`` of a block sliding at ``sd`` [m/s]."""
+        plus the Coriolis term ``2 omega x (sd u)`` of a block sliding at ``sd``
+        [m/s] (into ``ox``, ``oy`` when the link moves; ``t``: two scratch arrays)."""
         p, g = self.p, self.g
         if not self.moving:
             return p.ax, p.ay
-        w2, cor = g.w * g.w, 2 * sd * g.w
-        return (p.ax - g.al * ry - w2 * rx - cor * self.uy,
-                p.ay + g.al * rx - w2 * ry + cor * self.ux)
+        w2 = np.multiply(g.w, g.w, out=t[0])
+        cor = np.multiply(sd, 2.0, out=t[1])
+        cor *= g.w
+        np.multiply(g.al, ry, out=ox)
+        np.subtract(p.ax, ox, out=ox)
+        ox -= np.multiply(w2, rx, out=oy)
+        ox -= np.multiply(cor, self.uy, out=oy)
+        np.multiply(g.al, rx, out=oy)
+        np.add(p.ay, oy, out=oy)
+        oy -= np.multiply(w2, ry, out=w2)
+        oy += np.multiply(cor, self.ux, out=cor)
+        return ox, oy
 
-    def block(self):
+    def block(self, st):
         """State of a block sliding on this line: turned with the guide link."""
-        return LinkState(self.theta, self.ux, self.uy, self.g.w, self.g.al)
+        if self.keep:
+            return LinkState(self.theta, st.full(self.ux), st.full(self.uy), self.g.w,
+                             self.g.al)
+        return LinkState(self.theta, None, None, self.g.w, self.g.al)
+
+
+def _prismatic_solve(hx, hy, rx, ry, ux, uy, k, a, b, t, bad):
+    """RRP's 2x2 system ``a (i r) - b u = h``: ``a = (hx uy - hy ux) k``,
+    ``b = (rx hx + ry hy) k`` with ``k`` the negated inverse of ``r . u``;
+    ``t`` is scratch; 0 where ``bad``."""
+    np.multiply(hx, uy, out=a)
+    a -= np.multiply(hy, ux, out=t)
+    a *= k
+    np.multiply(rx, hx, out=b)
+    b += np.multiply(ry, hy, out=t)
+    b *= k
+    if bad is not None:
+        np.copyto(a, 0.0, where=bad)
+        np.copyto(b, 0.0, where=bad)
+
+
+def _guide_solve(hx, hy, ux, uy, dx, dy, k, t1, t2, bad):
+    """RPR's 2x2 system ``a u + b (i d) = h`` in place of ``hx, hy``:
+    ``a = (hx dx + hy dy) k``, ``b = (ux hy - uy hx) k`` with ``k = 1 / (u . d)``;
+    ``t1``, ``t2`` are scratch; 0 where ``bad``."""
+    np.multiply(uy, hx, out=t1)
+    np.multiply(ux, hy, out=t2)
+    np.multiply(hx, dx, out=hx)
+    hx += np.multiply(hy, dy, out=hy)
+    hx *= k
+    np.subtract(t2, t1, out=hy)
+    hy *= k
+    if bad is not None:
+        np.copyto(hx, 0.0, where=bad)
+        np.copyto(hy, 0.0, where=bad)
+
+
+def _cross_solve(hx, hy, a, b, k, t1, t2, bad):
+    """PRP's 2x2 system ``x u_a - y u_b = h`` in place of ``hx, hy``:
+    ``x = (hx b_uy - hy b_ux) k``, ``y = (a_uy hx - a_ux hy) k`` with
+    ``k = 1 / (u_a x u_b)``; ``t1``, ``t2`` are scratch; 0 where ``bad``."""
+    np.multiply(hy, b.ux, out=t1)
+    np.multiply(a.uy, hx, out=t2)
+    np.multiply(hx, b.uy, out=hx)
+    hx -= t1
+    hx *= k
+    np.multiply(a.ux, hy, out=hy)
+    np.subtract(t2, hy, out=hy)
+    hy *= k
+    if bad is not None:
+        np.copyto(hx, 0.0, where=bad)
+        np.copyto(hy, 0.0, where=bad)
 
 
 def _nonpositive(*lengths):
@@ -216,10 +299,19 @@ def _nonpositive(*lengths):
     the common case costs one comparison per parameter and changes nothing)."""
     void = None
     for v in lengths:
+        if type(v) is float and v > 0.0:   # one design: a plain comparison
+            continue
         if np.any(np.less_equal(v, 0.0)):
             m = np.less_equal(v, 0.0)
             void = m if void is None else void | m
     return void
+
+
+def _flips(branch):
+    """Does ``branch`` (+1/-1, or an array of them) take -1 anywhere?"""
+    if type(branch) is int:
+        return branch != 1
+    return bool(np.any(np.not_equal(branch, 1)))
 
 
 def _slide_symbol(name, block, guide, frame):
@@ -304,7 +396,7 @@ class Element:
         """Solve this element on the state ``st`` (see ``engine.solve``)."""
         raise NotImplementedError
 
-    def _out_rows(self, vel, acc):
+    def _out_rows(self, vel, acc, frame=None):
         """How many output arrays of the full shape ``step`` takes from ``st.out()``
         (the engine preallocates them in one block)."""
         return 0
@@ -396,7 +488,7 @@ class Crank(Element):
         st.P[self.point] = rotate_about(st.P[self.pivot], link, rx, ry, st.vel, st.acc, st)
         st.L[self.link] = link
 
-    def _out_rows(self, vel, acc):
+    def _out_rows(self, vel, acc, frame=None):
         return 2 + 2 * vel + 2 * acc
 
     def pairs(self, tb):
@@ -554,7 +646,7 @@ class RRR(Element):
         ok &= h >= -4 * ASSEMBLY_TOL * la2
         np.maximum(h, 0.0, out=h)
         np.sqrt(h, out=h)
-        if np.any(np.not_equal(self.branch, 1)):
+        if _flips(self.branch):
             h *= self.branch
         along *= inv  # (along, h) / dist: the joint from pa in units of (dx, dy)
         h *= inv
@@ -624,7 +716,7 @@ class RRR(Element):
                                       rbx * (1 / lb) if self.link_b in needed else None,
                                       rby * (1 / lb) if self.link_b in needed else None, wb, ab)
 
-    def _out_rows(self, vel, acc):
+    def _out_rows(self, vel, acc, frame=None):
         return 6 + 4 * vel + 4 * acc
 
     def pairs(self, tb):
@@ -685,58 +777,131 @@ class RRP(Element):
         return (self.link,) if self.guide_link == frame else (self.link, self.slider)
 
     def step(self, st):
+        # written like RRR's: every array of the full shape is an output row
+        # (st.out) or a scratch buffer (st.tmp) reused in place; the operations
+        # (and so the rounding) are those of the plain closed form
         pp, pg, g = st.P[self.point], st.P[self.guide_point], st.L[self.guide_link]
+        out, tmp = st.out, st.tmp
         cphi, sphi = np.cos(self.guide_angle), np.sin(self.guide_angle)
-        ux, uy = st.full(g.c * cphi - g.s * sphi), st.full(g.s * cphi + g.c * sphi)
         moving = self.guide_link != st.frame
+        keep_u = self.slider in st.needed_links
         e = self.offset
-        bx, by = pg.x - e * uy, pg.y + e * ux  # base of the slide
-        wx, wy = bx - pp.x, by - pp.y
-        b = wx * ux + wy * uy
+        if moving:
+            # the guide's direction and base turn with its link: full arrays (kept
+            # for a later element that reads the slider's cosine and sine)
+            ux = np.multiply(g.c, cphi, out=np.empty(st.shape) if keep_u else tmp(6))
+            ux -= np.multiply(g.s, sphi, out=tmp(0))
+            uy = np.multiply(g.s, cphi, out=np.empty(st.shape) if keep_u else tmp(7))
+            uy += np.multiply(g.c, sphi, out=tmp(0))
+            bx = np.multiply(uy, e, out=tmp(4))
+            np.subtract(pg.x, bx, out=bx)
+            by = np.multiply(ux, e, out=tmp(5))
+            np.add(pg.y, by, out=by)
+        else:  # a frame guide: direction and base at the parameters' own shape
+            ux, uy = g.c * cphi - g.s * sphi, g.s * cphi + g.c * sphi
+            bx, by = pg.x - e * uy, pg.y + e * ux
         length = self.length
         void = _nonpositive(length)  # a rod of zero length: infeasible (see RRR)
         if void is not None:
             length = np.where(void, 1.0, length)
         length2 = length * length
-        disc = b * b - (wx * wx + wy * wy - length2)
-        ok = disc >= -4 * ASSEMBLY_TOL * length2
+        ilen = 1 / length
+        # the slide s from |base + s u - point| = length, s = -b +- sqrt(b^2 - c)
+        wx = np.subtract(bx, pp.x, out=tmp(0))
+        wy = np.subtract(by, pp.y, out=tmp(1))
+        b = np.multiply(wx, ux, out=tmp(2))
+        b += np.multiply(wy, uy, out=tmp(3))
+        c = np.multiply(wx, wx, out=tmp(3))
+        c += np.multiply(wy, wy, out=wx)
+        c -= length2
+        s = np.multiply(b, b, out=out())
+        s -= c  # the discriminant
+        ok = s >= -4 * ASSEMBLY_TOL * length2
         if void is not None:
-            ok = ok & ~void
-        s = np.sqrt(np.maximum(disc, 0.0)) * (self.branch * 1.0) - b
-        qx, qy = bx + s * ux, by + s * uy
-        rx, ry = qx - pp.x, qy - pp.y
-        sing = np.abs(rx * ux + ry * uy) * (1.0 / length)
+            ok &= ~void
+        np.maximum(s, 0.0, out=s)
+        np.sqrt(s, out=s)
+        if _flips(self.branch):
+            s *= self.branch
+        s -= b
+        qx = np.multiply(s, ux, out=out())
+        qx += bx
+        qy = np.multiply(s, uy, out=out())
+        qy += by
+        rx = np.subtract(qx, pp.x, out=tmp(0))  # rod: point -> pin
+        ry = np.subtract(qy, pp.y, out=tmp(1))
+        dot = np.multiply(rx, ux, out=tmp(2))  # the velocity system's determinant
+        dot += np.multiply(ry, uy, out=tmp(3))
+        sing = np.abs(dot, out=out())
+        sing *= ilen
         st.condition(self, self.joint, sing)
         bad = st.mark(ok, sing)
         q = PointState(qx, qy)
+        theta = np.arctan2(ry, rx, out=out())
+        needed = self.link in st.needed_links
+        st.L[self.link] = LinkState(theta, rx * ilen if needed else None,
+                                    ry * ilen if needed else None, None, None)
         wr = ar = sd = sdd = None
         if st.vel:
-            solve2 = Solve2(-ry, rx, -ux, -uy, bad)
-            rhs_x, rhs_y = pg.vx - pp.vx, pg.vy - pp.vy
+            # wr (i r) - sd u = v_base(pin) - v_point by Cramer's rule, with the
+            # negated inverse of the determinant r . u
+            if bad is not None:
+                np.copyto(dot, 1.0, where=bad)
+            ninv = np.divide(-1.0, dot, out=dot)
+            hx = np.subtract(pg.vx, pp.vx, out=tmp(3))
+            hy = np.subtract(pg.vy, pp.vy, out=tmp(4) if not moving else tmp(8))
             if moving:
-                gx, gy = bx - pg.x, by - pg.y
-                rhs_x = rhs_x - g.w * (gy + s * uy)
-                rhs_y = rhs_y + g.w * (gx + s * ux)
-            wr, sd = solve2(rhs_x, rhs_y)
-            q.vx, q.vy = pp.vx - wr * ry, pp.vy + wr * rx
+                gw = g.w
+                lx = np.subtract(bx, pg.x, out=tmp(9))  # base -> pin from the guide point
+                lx += np.multiply(s, ux, out=tmp(10))
+                ly = np.subtract(by, pg.y, out=tmp(11))
+                ly += np.multiply(s, uy, out=tmp(10))
+                hx -= np.multiply(gw, ly, out=tmp(10))
+                hy += np.multiply(gw, lx, out=tmp(10))
+            wr, sd = out(), out()
+            _prismatic_solve(hx, hy, rx, ry, ux, uy, ninv, wr, sd, tmp(5), bad)
+            q.vx = np.multiply(wr, ry, out=out())
+            np.subtract(pp.vx, q.vx, out=q.vx)
+            q.vy = np.multiply(wr, rx, out=out())
+            np.add(pp.vy, q.vy, out=q.vy)
             if st.acc:
-                wr2 = wr * wr
-                rhs_x = pg.ax - pp.ax + wr2 * rx
-                rhs_y = pg.ay - pp.ay + wr2 * ry
+                wr2 = np.multiply(wr, wr, out=tmp(4) if not moving else tmp(12))
+                hx = np.subtract(pg.ax, pp.ax, out=tmp(3))
+                hx += np.multiply(wr2, rx, out=tmp(5))
+                q.ay = hy = np.subtract(pg.ay, pp.ay, out=out())
+                hy += np.multiply(wr2, ry, out=tmp(5))
                 if moving:
-                    w2 = g.w * g.w
-                    lx, ly = gx + s * ux, gy + s * uy  # base->pin relative to the guide point
-                    rhs_x = rhs_x - g.al * ly - w2 * lx - 2 * sd * g.w * uy
-                    rhs_y = rhs_y + g.al * lx - w2 * ly + 2 * sd * g.w * ux
-                ar, sdd = solve2(rhs_x, rhs_y)
-                q.ax = pp.ax - ar * ry - wr2 * rx
-                q.ay = pp.ay + ar * rx - wr2 * ry
+                    w2 = np.multiply(gw, gw, out=tmp(8))
+                    cor = np.multiply(sd, 2.0, out=tmp(13))
+                    cor *= gw
+                    hx -= np.multiply(g.al, ly, out=tmp(5))
+                    hx -= np.multiply(w2, lx, out=tmp(5))
+                    hx -= np.multiply(cor, uy, out=tmp(5))
+                    hy += np.multiply(g.al, lx, out=tmp(5))
+                    hy -= np.multiply(w2, ly, out=tmp(5))
+                    hy += np.multiply(cor, ux, out=tmp(5))
+                ar, sdd = out(), out()
+                _prismatic_solve(hx, hy, rx, ry, ux, uy, ninv, ar, sdd, tmp(5), bad)
+                q.ax = np.multiply(ar, ry, out=out())
+                np.subtract(pp.ax, q.ax, out=q.ax)
+                q.ax -= np.multiply(wr2, rx, out=tmp(5))
+                np.multiply(ar, rx, out=q.ay)
+                np.add(pp.ay, q.ay, out=q.ay)
+                q.ay -= np.multiply(wr2, ry, out=tmp(5))
+            st.L[self.link].w, st.L[self.link].al = wr, ar
         st.P[self.joint] = q
-        st.L[self.link] = LinkState(np.arctan2(ry, rx), rx * (1 / length),
-                                    ry * (1 / length), wr, ar)
-        st.L[self.slider] = LinkState(g.theta + self.guide_angle if moving
-                                      else st.full(self.guide_angle), ux, uy, g.w, g.al)
+        if moving:
+            th_s = np.add(g.theta, self.guide_angle, out=out())
+            if not keep_u:
+                ux = uy = None  # scratch: never kept past this step
+        else:
+            th_s = st.full(self.guide_angle)
+            ux, uy = st.full(ux), st.full(uy)
+        st.L[self.slider] = LinkState(th_s, ux, uy, g.w, g.al)
         st.slide(self.slide_names(st.frame)[0], self.slider, self.guide_link, s, sd, sdd)
+
+    def _out_rows(self, vel, acc, frame=None):
+        return 5 + (self.guide_link != frame) + 4 * vel + 4 * acc
 
     def pairs(self, tb):
         tb.revolute(self.point, self.link)
@@ -788,38 +953,84 @@ class RPR(Element):
         return (self.guide,)  # the block turns with the guide
 
     def step(self, st):
+        # in place like RRR's (output rows and scratch buffers), with the
+        # operations of the plain closed form
         pp, pc = st.P[self.point], st.P[self.pivot]
+        out, tmp = st.out, st.tmp
         e = self.offset
         scale = st.scale
-        dx, dy = pp.x - pc.x, pp.y - pc.y
-        d2 = dx * dx + dy * dy
-        disc = d2 - e * e
-        ok = disc >= -ASSEMBLY_TOL * scale * scale
-        s = np.sqrt(np.maximum(disc, 0.0)) * (self.branch * 1.0)
+        dx = np.subtract(pp.x, pc.x, out=tmp(0))
+        dy = np.subtract(pp.y, pc.y, out=tmp(1))
+        d2 = np.multiply(dx, dx, out=tmp(2))
+        d2 += np.multiply(dy, dy, out=tmp(3))
+        s = np.subtract(d2, e * e, out=out())  # the discriminant, then the slide
+        ok = s >= -ASSEMBLY_TOL * scale * scale
+        np.maximum(s, 0.0, out=s)
+        np.sqrt(s, out=s)
+        if _flips(self.branch):
+            s *= self.branch
         # d = (s + i e) u  =>  u = d (s - i e) / |d|^2
-        inv = 1.0 / np.maximum(d2, 1e-300 * scale * scale + 1e-300)
-        ux, uy = (dx * s + dy * e) * inv, (dy * s - dx * e) * inv
+        inv = np.maximum(d2, 1e-300 * scale * scale + 1e-300, out=tmp(3))
+        np.divide(1.0, inv, out=inv)
+        keep = self.guide in st.needed_links or self.block in st.needed_links
+        ux = np.empty(st.shape) if keep else tmp(6)
+        uy = np.empty(st.shape) if keep else tmp(7)
         centred = np.equal(e, 0.0)
+        if not np.all(centred):
+            np.multiply(dx, s, out=ux)
+            ux += np.multiply(dy, e, out=tmp(4))
+            ux *= inv
+            np.multiply(dy, s, out=uy)
+            uy -= np.multiply(dx, e, out=tmp(4))
+            uy *= inv
         if np.any(centred):
             # exact unit vector even where d -> 0 (the foot of the pivot)
-            ux = np.where(centred, dx * (inv * s), ux) if np.ndim(e) else dx * (inv * s)
-            uy = np.where(centred, dy * (inv * s), uy) if np.ndim(e) else dy * (inv * s)
+            t = np.multiply(inv, s, out=tmp(4))
+            if np.ndim(e):
+                np.copyto(ux, np.multiply(dx, t, out=tmp(5)), where=centred)
+                np.copyto(uy, np.multiply(dy, t, out=tmp(5)), where=centred)
+            else:
+                np.multiply(dx, t, out=ux)
+                np.multiply(dy, t, out=uy)
         # det of the velocity system is s: singular when the block passes the
         # foot of the pivot (the guide's direction is then undefined)
-        sing = np.abs(s) / np.maximum(np.sqrt(d2), scale)
+        dist = np.sqrt(d2, out=d2)
+        np.maximum(dist, scale, out=dist)
+        sing = np.abs(s, out=out())
+        sing /= dist
         st.condition(self, self.point, sing)
         bad = st.mark(ok, sing, centred & (sing <= SINGULAR_TOL) if np.any(centred) else None)
         wg = ag = sd = sdd = None
         if st.vel:
-            solve2 = Solve2(ux, uy, -dy, dx, bad)
-            sd, wg = solve2(pp.vx - pc.vx, pp.vy - pc.vy)
+            # sd u + wg (i d) = v_point - v_pivot by Cramer's rule: det = u . d
+            det = np.multiply(ux, dx, out=tmp(2))
+            det += np.multiply(uy, dy, out=tmp(3))
+            if bad is not None:
+                np.copyto(det, 1.0, where=bad)
+            idet = np.divide(1.0, det, out=det)
+            sd = hx = np.subtract(pp.vx, pc.vx, out=out())
+            wg = hy = np.subtract(pp.vy, pc.vy, out=out())
+            _guide_solve(hx, hy, ux, uy, dx, dy, idet, tmp(3), tmp(4), bad)
             if st.acc:
-                w2 = wg * wg
-                sdd, ag = solve2(pp.ax - pc.ax + 2 * sd * wg * uy + w2 * dx,
-                                 pp.ay - pc.ay - 2 * sd * wg * ux + w2 * dy)
-        st.L[self.guide] = LinkState(np.arctan2(uy, ux), ux, uy, wg, ag)
+                cor = np.multiply(sd, 2.0, out=tmp(3))  # Coriolis: 2 sd wg
+                cor *= wg
+                w2 = np.multiply(wg, wg, out=tmp(4))
+                sdd = hx = np.subtract(pp.ax, pc.ax, out=out())
+                hx += np.multiply(cor, uy, out=tmp(5))
+                hx += np.multiply(w2, dx, out=tmp(5))
+                ag = hy = np.subtract(pp.ay, pc.ay, out=out())
+                hy -= np.multiply(cor, ux, out=tmp(5))
+                hy += np.multiply(w2, dy, out=tmp(5))
+                _guide_solve(hx, hy, ux, uy, dx, dy, idet, tmp(3), tmp(4), bad)
+        theta = np.arctan2(uy, ux, out=out())
+        if not keep:
+            ux = uy = None  # scratch: never kept past this step
+        st.L[self.guide] = LinkState(theta, ux, uy, wg, ag)
         st.L[self.block] = st.L[self.guide]
         st.slide(self.slide_names(st.frame)[0], self.block, self.guide, s, sd, sdd)
+
+    def _out_rows(self, vel, acc, frame=None):
+        return 3 + 2 * vel + 2 * acc
 
     def pairs(self, tb):
         tb.revolute(self.point, self.block)
@@ -859,12 +1070,16 @@ class PointOnLink(Element):
         return (self.name,), ()
 
     def step(self, st):
-        k = st.L[self.link]
-        rx = self.along * k.c - self.normal * k.s
-        ry = self.along * k.s + self.normal * k.c
+        # the arm (rx, ry) in scratch buffers 3, 4 (rotate_about takes 5 and output rows)
+        k, tmp = st.L[self.link], st.tmp
+        rx = np.multiply(self.along, k.c, out=tmp(3))
+        ry = np.multiply(self.along, k.s, out=tmp(4))
+        if np.ndim(self.normal) or self.normal != 0.0:
+            rx -= np.multiply(self.normal, k.s, out=tmp(5))
+            ry += np.multiply(self.normal, k.c, out=tmp(5))
         st.P[self.name] = rotate_about(st.P[self.origin], k, rx, ry, st.vel, st.acc, st)
 
-    def _out_rows(self, vel, acc):
+    def _out_rows(self, vel, acc, frame=None):
         return 2 + 2 * vel + 2 * acc
 
     def pairs(self, tb):
@@ -953,33 +1168,67 @@ class PRP(Element):
         return tuple(sl for sl, gl, *_ in self._sides() if gl != frame)
 
     def step(self, st):
-        a, b = (_GuideLine(st, gl, gp, ang, off) for _, gl, gp, ang, off, _ in self._sides())
+        # in place like RRR's: outputs in st.out rows, intermediates in scratch
+        # buffers (0-7 and, for moving guides, 8-19), the plain closed form's operations
+        out, tmp = st.out, st.tmp
+        a, b = (_GuideLine(st, gl, gp, ang, off, slot, sl in st.needed_links)
+                for (sl, gl, gp, ang, off, _), slot in zip(self._sides(), (8, 12)))
         # s_a u_a - s_b u_b = base_b - base_a: its determinant is -(u_a x u_b)
-        sing = np.abs(a.ux * b.uy - a.uy * b.ux)
+        cross = np.multiply(a.ux, b.uy, out=tmp(2))
+        cross -= np.multiply(a.uy, b.ux, out=tmp(3))
+        sing = np.abs(cross, out=out())
         st.condition(self, self.joint, sing)
         parallel = sing <= SINGULAR_TOL
         st.mark(True, sing, parallel)
-        solve2 = Solve2(a.ux, a.uy, -b.ux, -b.uy, parallel if parallel.any() else None)
-        sa, sb = solve2(b.bx - a.bx, b.by - a.by)
-        q = PointState(a.bx + sa * a.ux, a.by + sa * a.uy)
+        bad = parallel if parallel.any() else None
+        if bad is not None:
+            np.copyto(cross, 1.0, where=bad)
+        k = np.divide(1.0, cross, out=cross)
+        sa = np.subtract(b.bx, a.bx, out=out())
+        sb = np.subtract(b.by, a.by, out=out())
+        _cross_solve(sa, sb, a, b, k, tmp(3), tmp(4), bad)
+        qx = np.multiply(sa, a.ux, out=out())
+        qx += a.bx
+        qy = np.multiply(sa, a.uy, out=out())
+        qy += a.by
+        q = PointState(qx, qy)
         sda = sdb = sdda = sddb = None
         if st.vel:
-            rax, ray = q.x - a.p.x, q.y - a.p.y
-            rbx, rby = q.x - b.p.x, q.y - b.p.y
-            (vax, vay), (vbx, vby) = a.carried_velocity(rax, ray), b.carried_velocity(rbx, rby)
-            sda, sdb = solve2(vbx - vax, vby - vay)
-            q.vx, q.vy = vax + sda * a.ux, vay + sda * a.uy
+            rax = np.subtract(qx, a.p.x, out=tmp(0))
+            ray = np.subtract(qy, a.p.y, out=tmp(1))
+            rbx = np.subtract(qx, b.p.x, out=tmp(5))
+            rby = np.subtract(qy, b.p.y, out=tmp(6))
+            vax, vay = a.carried_velocity(rax, ray, tmp(16), tmp(17))
+            vbx, vby = b.carried_velocity(rbx, rby, tmp(18), tmp(19))
+            sda = np.subtract(vbx, vax, out=out())
+            sdb = np.subtract(vby, vay, out=out())
+            _cross_solve(sda, sdb, a, b, k, tmp(3), tmp(4), bad)
+            q.vx = np.multiply(sda, a.ux, out=out())
+            q.vx += vax
+            q.vy = np.multiply(sda, a.uy, out=out())
+            q.vy += vay
             if st.acc:
-                aax, aay = a.carried_acceleration(rax, ray, sda)
-                abx, aby = b.carried_acceleration(rbx, rby, sdb)
-                sdda, sddb = solve2(abx - aax, aby - aay)
-                q.ax, q.ay = aax + sdda * a.ux, aay + sdda * a.uy
+                aax, aay = a.carried_acceleration(rax, ray, sda, tmp(16), tmp(17),
+                                                  (tmp(3), tmp(4)))
+                abx, aby = b.carried_acceleration(rbx, rby, sdb, tmp(18), tmp(19),
+                                                  (tmp(3), tmp(4)))
+                sdda = np.subtract(abx, aax, out=out())
+                sddb = np.subtract(aby, aay, out=out())
+                _cross_solve(sdda, sddb, a, b, k, tmp(3), tmp(4), bad)
+                q.ax = np.multiply(sdda, a.ux, out=out())
+                q.ax += aax
+                q.ay = np.multiply(sdda, a.uy, out=out())
+                q.ay += aay
         st.P[self.joint] = q
         for (sl, gl, *_), name, line, s, v, acc in zip(
                 self._sides(), self.slide_names(st.frame), (a, b), (sa, sb), (sda, sdb),
                 (sdda, sddb)):
-            st.L[sl] = line.block()
+            st.L[sl] = line.block(st)
             st.slide(name, sl, gl, s, v, acc)
+
+    def _out_rows(self, vel, acc, frame=None):
+        return (5 + (self.guide_link_a != frame) + (self.guide_link_b != frame)
+                + 4 * vel + 4 * acc)
 
     def pairs(self, tb):
         for sl, gl, gp, *_ in self._sides():

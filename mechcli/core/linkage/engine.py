@@ -17,6 +17,7 @@ from __future__ import annotations
 import contextlib
 import dataclasses
 import functools
+import sys
 import threading
 from typing import Dict, Optional, Tuple, Union
 
@@ -369,7 +370,8 @@ class SolveState:
         self.feasible = np.ones(shape, dtype=bool)
         self.regular = np.ones(shape, dtype=bool)
         self.vel, self.acc = order >= 1, order >= 2
-        self.scale = linkage.scale()
+        facts = _facts(linkage)
+        self.scale = facts.scale
         self.frame = linkage.frame
         self.P = {}
         self.L = {self.frame: LinkState(self.zero, 1.0, 0.0, self.zero, self.zero)}
@@ -377,8 +379,8 @@ class SolveState:
         self.conds = []
         self.index = None
         #: links some element reads (their cosine and sine are kept for it)
-        self.needed_links = _needed_links(linkage)
-        self._rows = _out_rows(linkage, order)
+        self.needed_links = facts.needed_links
+        self._rows = facts.rows[order]
         self._arena = arena  # (rows, *shape): the outputs, allocated in one block
         self._next = 0
         self._tmp = {}
@@ -388,7 +390,7 @@ class SolveState:
         """A fresh output array of the full shape (uninitialised): the next row
         of one block preallocated for every element's outputs."""
         if self._arena is None:
-            self._arena = np.empty((self._rows,) + self.shape)
+            self._arena = _output_block((self._rows,) + self.shape)
         if self._next < len(self._arena):
             self._next += 1
             row = self._arena[self._next - 1, ...]
@@ -397,7 +399,7 @@ class SolveState:
         return np.empty(self.shape)
 
     def tmp(self, i):
-        """Scratch buffer ``i`` (0-5) of the full shape: shared by the elements,
+        """Scratch buffer ``i`` (0-7) of the full shape: shared by the elements,
         valid only inside one element's step (never stored in the results)."""
         t = self._tmp.get(i)
         if t is None:
@@ -436,8 +438,8 @@ class SolveState:
 
 #: positions per chunk of a long one-dimensional sweep (bounded scratch memory)
 CHUNK = 1 << 16
-_SCRATCH_ROWS = 6
-_POOL_SIZE = 1 << 16  # per-thread scratch kept between solves: 6 x 512 KiB
+_SCRATCH_ROWS = 8
+_POOL_SIZE = 1 << 16  # per-thread scratch kept between solves: 8 x 512 KiB
 _POOL = threading.local()
 
 
@@ -454,16 +456,87 @@ def _scratch(i, shape):
     return pool[i, :size].reshape(shape)
 
 
+#: output blocks of up to this many float64 (8 MiB) are kept per thread for reuse
+_KEEP_BLOCK = 1 << 20
+
+
+def _free_refs():
+    """What ``sys.getrefcount`` says of an array that only a list holds (measured, as
+    interpreters count differently); None where there is no reference count."""
+    if not hasattr(sys, "getrefcount"):
+        return None
+    probe = [np.empty(1)]
+    free = sys.getrefcount(probe[0])
+    holder = probe[0][:]   # a view holds its base: the count must rise by exactly one
+    held = sys.getrefcount(probe[0])
+    del holder
+    # an interpreter whose count does not see a holder gets no reuse at all
+    return free if held == free + 1 and sys.getrefcount(probe[0]) == free else None
+
+
+_FREE_REFS = _free_refs()
+
+
+def _output_block(shape):
+    """A block for a solve's outputs: one of the last two handed out on this
+    thread if nothing references it any more (its results were dropped: its
+    pages are mapped already, so the next solve pays no page faults), else a
+    new one.  A result still held anywhere (any view of the block) keeps its
+    block out of reuse, so results are never overwritten."""
+    kept = getattr(_POOL, "blocks", None)
+    if kept is None:
+        kept = _POOL.blocks = []
+    if _FREE_REFS is not None:
+        for i in range(len(kept)):
+            # as many references as a block in a list that nothing else holds
+            if kept[i].shape == shape and sys.getrefcount(kept[i]) == _FREE_REFS:
+                return kept[i]
+    block = np.empty(shape)
+    if block.size <= _KEEP_BLOCK:
+        kept.insert(0, block)
+        del kept[2:]
+    return block
+
+
+class _Facts:
+    """What a solve needs to know of a linkage beyond its elements' steps,
+    worked out once per linkage (a ``Linkage`` is frozen): the parameters'
+    broadcast shape, the designs with finite parameters, the scale, the links
+    some element reads and the output rows per order."""
+
+    __slots__ = ("shape", "finite", "scale", "needed_links", "rows", "drivers")
+
+    def __getstate__(self):    # pickle protocols 0 and 1 need it with __slots__
+        return {k: getattr(self, k) for k in self.__slots__}
+
+    def __setstate__(self, state):
+        for k, v in state.items():
+            setattr(self, k, v)
+
+    def __init__(self, linkage):
+        self.shape = linkage.shape
+        self.finite = _finite_designs(linkage)
+        self.scale = linkage.scale()
+        self.needed_links = frozenset(ln for el in linkage.elements for ln in el.needs()[1])
+        self.drivers = frozenset(d.link for d in linkage.drivers)
+        self.rows = tuple(sum(el._out_rows(order >= 1, order >= 2, linkage.frame)
+                              for el in linkage.elements) for order in (0, 1, 2))
+
+
+def _facts(linkage):
+    facts = linkage.__dict__.get("_facts")
+    if facts is None:
+        facts = _Facts(linkage)
+        object.__setattr__(linkage, "_facts", facts)
+    return facts
+
+
 def _needed_links(linkage):
-    cache = linkage.__dict__.get("_needed_links")
-    if cache is None:
-        cache = frozenset(ln for el in linkage.elements for ln in el.needs()[1])
-        object.__setattr__(linkage, "_needed_links", cache)
-    return cache
+    return _facts(linkage).needed_links
 
 
 def _out_rows(linkage, order):
-    return sum(el._out_rows(order >= 1, order >= 2) for el in linkage.elements)
+    return _facts(linkage).rows[order]
 
 
 def solve(linkage: Linkage, inputs, order: int = 2, on_fail: str = "mask") -> LinkageMotion:
@@ -503,9 +576,10 @@ def solve(linkage: Linkage, inputs, order: int = 2, on_fail: str = "mask") -> Li
         raise ValueError(f"order must be 0, 1 or 2, got {order}")
     if on_fail not in ("mask", "raise"):
         raise ValueError(f"on_fail must be 'mask' or 'raise', got {on_fail!r}")
-    shape = _input_shape(linkage, inputs, order)
-    finite = _finite_designs(linkage)
-    if finite is None and len(shape) == 1 and shape[0] > CHUNK and linkage.shape == ():
+    facts = _facts(linkage)
+    shape = _input_shape(linkage, inputs, order, facts.shape)
+    finite = facts.finite
+    if finite is None and len(shape) == 1 and shape[0] > CHUNK and facts.shape == ():
         st = _solve_chunked(linkage, inputs, shape, order)
     else:
         st = SolveState(linkage, inputs, shape, order)
@@ -592,15 +666,18 @@ def _solve_chunked(linkage, inputs, shape, order):
     return whole
 
 
-def _input_shape(linkage, inputs, order):
+def _input_shape(linkage, inputs, order, params_shape=None):
     """Broadcast shape of the inputs (the rates that ``order`` uses) and the
     linkage parameters; a clear ValueError naming every shape when they do not
     broadcast, or when a driver has no input or an input has no driver."""
-    drivers = {d.link for d in linkage.drivers}
-    for d in sorted(drivers):
-        if d not in inputs:
-            raise LinkageDefinitionError(f"no input given for driver link {d} "
-                                         f"(inputs are needed for links {sorted(drivers)})")
+    if params_shape is None:
+        params_shape = linkage.shape
+    drivers = _facts(linkage).drivers
+    if len(inputs) != len(drivers) or any(d not in inputs for d in drivers):
+        for d in sorted(drivers):
+            if d not in inputs:
+                raise LinkageDefinitionError(f"no input given for driver link {d} (inputs "
+                                             f"are needed for links {sorted(drivers)})")
     for link, m in inputs.items():
         if link not in drivers:
             raise LinkageDefinitionError(f"an input is given for link {link!r}, which is not "
@@ -608,21 +685,22 @@ def _input_shape(linkage, inputs, order):
         if not isinstance(m, DriverMotion):
             raise TypeError(f"the input of driver link {link} must be a DriverMotion(q, dq, ddq),"
                             f" got {type(m).__name__}")
-    named = [(f"q of link {k}", np.shape(m.q)) for k, m in inputs.items()]
-    used = [(f"q of link {k}", np.shape(m.q)) for k, m in inputs.items()]
-    for k, m in inputs.items():
-        for i, attr in ((1, "dq"), (2, "ddq")):
-            item = (f"{attr} of link {k}", np.shape(getattr(m, attr)))
-            named.append(item)
-            if order >= i:
-                used.append(item)
+    shapes = [np.shape(v) for m in inputs.values() for v in (m.q, m.dq, m.ddq)]
+    distinct = set(shapes)
+    distinct.add(params_shape)
+    distinct.discard(())
+    if len(distinct) <= 1:  # the common case: one shape, or scalars beside it
+        used = {sh for i, sh in enumerate(shapes) if i % 3 <= order and sh}
+        return distinct.pop() if used or params_shape else ()
     try:
-        np.broadcast_shapes(*(sh for _n, sh in named), linkage.shape)
-        return np.broadcast_shapes(*(sh for _n, sh in used), linkage.shape)
+        np.broadcast_shapes(*shapes, params_shape)
+        return np.broadcast_shapes(*(sh for i, sh in enumerate(shapes) if i % 3 <= order),
+                                   params_shape)
     except ValueError:
+        named = ", ".join(f"{attr} of link {k} {np.shape(getattr(m, attr))}"
+                          for k, m in inputs.items() for attr in ("q", "dq", "ddq"))
         raise ValueError("the driver inputs and the linkage parameters do not broadcast "
-                         "together: " + ", ".join(f"{n} {sh}" for n, sh in named)
-                         + f", linkage parameters {linkage.shape}") from None
+                         f"together: {named}, linkage parameters {params_shape}") from None
 
 
 def _finite_designs(linkage):

@@ -18,8 +18,9 @@ reverse solving order: each element's 3 or 6 unknowns are solved for all
 positions at once by a batched Gaussian elimination with partial pivoting
 (:mod:`.elimination`), from the last dyad back to the drivers.  The model
 (bodies, loads, pairs, results) is in :mod:`.force_model`, the load programs
-in :mod:`.loads`.  :func:`square_system` assembles the
-whole matrix of one position (for tests and inspection).
+in :mod:`.loads`.  The structure of the system (which equations each unknown
+enters, the blocks, the order) is worked out once per topology (``_Plan``);
+a call computes only the coefficients and solves the blocks.
 
 Conventions (as the book, 第二章第一节)
 ---------------------------------------
@@ -46,7 +47,7 @@ from typing import Dict, Optional
 import numpy as np
 
 from mechcli.core.linkage.elimination import gauss
-from mechcli.core.linkage.engine import LinkageMotion
+from mechcli.core.linkage.engine import LinkageMotion, _facts
 # the model and the load programs, re-exported: this module is the entry point
 from mechcli.core.linkage.force_model import (COND_FLAG, Body, ForceModelError,  # noqa: F401
                                               ForceResult, Load, Pair, PairForce, Topology,
@@ -56,8 +57,9 @@ from mechcli.core.linkage.loads import LoadProgram  # noqa: F401
 # ---------------------------------------------------------------------------
 # solve
 # ---------------------------------------------------------------------------
-def _point(motion, topo, origin, link, along, normal, order=2):
-    """Position (and velocity, acceleration) of a point fixed on ``link``."""
+def _point(motion, topo, origin, link, along, normal, order=2, cos_sin=None):
+    """Position (and velocity, acceleration) of a point fixed on ``link``
+    (``cos_sin(link)``: the cosine and sine of its angle, when already known)."""
     o = motion.points[origin]
     k = motion.links[link]
     if along is None:  # the midpoint of the link's two points
@@ -68,9 +70,12 @@ def _point(motion, topo, origin, link, along, normal, order=2):
         return (x, y, 0.5 * (o.vx + second.vx), 0.5 * (o.vy + second.vy),
                 0.5 * (o.ax + second.ax) if order > 1 else None,
                 0.5 * (o.ay + second.ay) if order > 1 else None)
-    c, s = np.cos(k.theta), np.sin(k.theta)
-    rx = along * c - normal * s
-    ry = along * s + normal * c
+    if np.ndim(along) == 0 and np.ndim(normal) == 0 and along == 0.0 and normal == 0.0:
+        rx = ry = 0.0  # the origin itself: no angle needed
+    else:
+        c, s = cos_sin(link) if cos_sin is not None else (np.cos(k.theta), np.sin(k.theta))
+        rx = along * c - normal * s
+        ry = along * s + normal * c
     if order == 0:
         return o.x + rx, o.y + ry
     w = k.omega
@@ -80,6 +85,162 @@ def _point(motion, topo, origin, link, along, normal, order=2):
     w2 = w * w
     return (o.x + rx, o.y + ry, vx, vy,
             o.ax - k.alpha * ry - w2 * rx, o.ay + k.alpha * rx - w2 * ry)
+
+
+# ---------------------------------------------------------------------------
+# the system's structure, built once per topology
+# ---------------------------------------------------------------------------
+class _Plan:
+    """The structure of a linkage's kinetostatic system, worked out once per
+    topology (cached on it): the unknowns, which equations each enters and how
+    its coefficient is computed, and, per element block (in the reverse solving
+    order), where each coefficient goes in the block's matrix and which solved
+    unknowns of later blocks enter its right-hand side.
+
+    Unknowns are solved scaled: forces as they are, couples and balancing
+    torques divided by the length scale L (the moment rows are divided by L),
+    so every coefficient below is dimensionless: ``("c", v)`` a constant,
+    ``("mx"|"my", link, point, sign)`` the moment arm of a force component
+    about the link's centre of mass, ``("ux"|"uy"|"um", link, point, direction,
+    sign)`` a force along a (normal or driver) direction.
+    """
+
+    def __init__(self, topo):
+        linkage = topo.linkage
+        frame = linkage.frame
+        self.eq_of = eq_of = {link: 3 * i for i, link in enumerate(topo.links)}
+        columns, owners, self.pair_cols, self.driver_cols = [], [], [], {}
+
+        def force(col_x, col_y, link, sign, point, direction=None):
+            if link == frame:
+                return
+            e = eq_of[link]
+            if direction is None:
+                col_x += [(e, ("c", sign)), (e + 2, ("mx", link, point, sign))]
+                col_y += [(e + 1, ("c", sign)), (e + 2, ("my", link, point, sign))]
+            else:
+                col_x += [(e, ("ux", link, point, direction, sign)),
+                          (e + 1, ("uy", link, point, direction, sign)),
+                          (e + 2, ("um", link, point, direction, sign))]
+
+        for pi, pr in enumerate(topo.pairs):
+            if pr.kind == "R":
+                cx, cy = [], []
+                for link, sign in ((pr.j, 1.0), (pr.i, -1.0)):
+                    force(cx, cy, link, sign, pr.point)
+                self.pair_cols.append((len(columns), len(columns) + 1))
+                columns += [cx, cy]
+                owners += [("R", pi, 0), ("R", pi, 1)]
+            else:
+                cn, cm = [], []
+                for link, sign in ((pr.j, 1.0), (pr.i, -1.0)):
+                    force(cn, None, link, sign, pr.point, ("n", pi))
+                    if link != frame:
+                        cm.append((eq_of[link] + 2, ("c", sign)))  # the couple (scaled)
+                self.pair_cols.append((len(columns), len(columns) + 1))
+                columns += [cn, cm]
+                owners += [("P", pi, 0), ("P", pi, 1)]
+        for d in linkage.drivers:
+            col = []
+            if d.rotary:
+                col.append((eq_of[d.link] + 2, ("c", 1.0)))  # the torque (scaled)
+            else:
+                force(col, None, d.link, 1.0, d.point, ("d", d.link))
+            self.driver_cols[d.link] = len(columns)
+            columns.append(col)
+            owners.append(("D", d.link, 0))
+        # couples and balancing torques: the scaled unknown is value / L
+        self.is_couple = [o[0] == "P" and o[2] == 1
+                          or (o[0] == "D" and linkage.driver(o[1]).rotary) for o in owners]
+        self.columns = columns
+        self.nrows = 3 * len(topo.links)
+        self.blocks = []
+        solved = []
+        for idx, new_links, pidx in reversed(topo.blocks):
+            unk = [u for pi in pidx for u in self.pair_cols[pi]]
+            el = linkage.elements[idx]
+            if el.is_driver:
+                unk.append(self.driver_cols[el.link])
+            rows = [eq_of[ln] + c for ln in new_links for c in range(3)]
+            if len(unk) != len(rows):  # pragma: no cover - every engine element is determinate
+                raise ForceModelError(f"element {idx} is not statically determinate")
+            row_pos = {r: i for i, r in enumerate(rows)}
+            entries = [(row_pos[r], jc, spec) for jc, u in enumerate(unk)
+                       for r, spec in columns[u] if r in row_pos]
+            known = [(row_pos[r], u, spec) for u in solved for r, spec in columns[u]
+                     if r in row_pos]
+            self.blocks.append((unk, rows, entries, known))
+            solved += unk
+
+
+def _plan(topo):
+    plan = topo.__dict__.get("_force_plan")
+    if plan is None:
+        plan = _Plan(topo)
+        object.__setattr__(topo, "_force_plan", plan)
+    return plan
+
+
+#: at most this many positions are solved by LAPACK's batched solve (a few
+#: microseconds per call); longer sweeps by the structured elimination
+#: (:func:`~mechcli.core.linkage.elimination.gauss`), which skips the zeros.  Measured
+#: on 例 2-4 (2026-11-25): one position 0.31 vs 0.56 ms (0.35 vs 0.78 with the
+#: condition numbers); even at 128 (0.83 vs 0.88 ms with them), the elimination ahead
+#: from 256 (1.31 vs 0.98 ms)
+DENSE_MAX = 128
+
+
+def _solve_block(A, b, flat, condition):
+    """Solve one element block ``A x = b`` at every position: ``(X, cond)``.
+
+    ``A`` is a k x k list of floats or arrays over the positions, ``b`` a list
+    of k arrays.  Short sweeps go through one batched LAPACK solve (with its
+    inverse for the condition number); long ones, and any sweep with an exactly
+    singular position, through :func:`gauss` (zeros there, cond = inf).
+    """
+    k = len(A)
+    if flat <= DENSE_MAX:
+        M = np.empty((flat, k, k))
+        for i in range(k):
+            for j in range(k):
+                M[:, i, j] = A[i][j]
+        rhs = np.empty((flat, k, 1))
+        for i in range(k):
+            rhs[:, i, 0] = b[i]
+        try:
+            with np.errstate(over="raise", invalid="raise", divide="raise"):
+                X = np.linalg.solve(M, rhs)[..., 0]
+                c_blk = None
+                if condition:
+                    inv = np.linalg.inv(M)
+                    c_blk = (np.abs(M).sum(axis=1).max(axis=1)
+                             * np.abs(inv).sum(axis=1).max(axis=1))
+            if np.all(np.isfinite(X)):
+                return [X[:, i] for i in range(k)], c_blk
+        except (np.linalg.LinAlgError, FloatingPointError):
+            pass  # an exactly singular position: the elimination flags it
+    if condition:
+        # 1-norm of the block: largest column sum of |A| (floats stay floats)
+        nrm = np.zeros(flat)
+        for j in range(k):
+            np.maximum(nrm, sum(abs(A[i][j]) for i in range(k)), out=nrm)
+        # the inverse's columns solved with the right-hand side: rows 1..k of X
+        eye = np.zeros((k, k + 1, flat))
+        for i in range(k):
+            eye[i, 1 + i] = 1.0
+            eye[i, 0] = b[i]
+        b = list(eye)
+    X, sing = gauss(A, b)
+    c_blk = None
+    if condition:
+        inv_nrm = np.zeros(flat)
+        for j in range(k):
+            np.maximum(inv_nrm, sum(np.abs(X[i][1 + j]) for i in range(k)), out=inv_nrm)
+        c_blk = nrm * inv_nrm
+        if sing is not None:
+            c_blk = np.where(sing, np.inf, c_blk)
+        X = [xi[0] for xi in X]
+    return X, c_blk
 
 
 def _broadcasts(a, b):
@@ -121,7 +282,7 @@ def solve_forces(topo: Topology, motion: LinkageMotion, bodies: Dict[int, Body],
     frame = linkage.frame
     n = motion.feasible.shape
     flat = motion.feasible.size
-    L = linkage.scale() if scale is None else scale
+    L = _facts(linkage).scale if scale is None else scale
     gx, gy = gravity
 
     def arr(x):
@@ -135,7 +296,10 @@ def solve_forces(topo: Topology, motion: LinkageMotion, bodies: Dict[int, Body],
                               + [(f"load '{ld.name}'", ld, ("fx", "fy", "torque", "along",
                                                             "normal")) for ld in loads]):
         for f in fields:
-            sh = np.shape(getattr(obj, f))
+            v = getattr(obj, f)
+            if type(v) is float or type(v) is int or v is None:
+                continue
+            sh = np.shape(v)
             if sh and not (_broadcasts(sh, n) and np.broadcast_shapes(sh, n) == n):
                 raise ValueError(f"{what}: {f} of shape {sh} does not broadcast to the "
                                  f"motion's shape {n} (a batch of designs needs a batched "
@@ -145,19 +309,34 @@ def solve_forces(topo: Topology, motion: LinkageMotion, bodies: Dict[int, Body],
         # positions), so each design's system is scaled as when solved alone
         L = arr(L)
 
+    # cosine and sine of each link's angle, once per call (the centres of mass,
+    # the loads and the virtual power share them)
+    trig = {}
+
+    def cos_sin(link):
+        cs = trig.get(link)
+        if cs is None:
+            th = motion.links[link].theta
+            cs = trig[link] = (np.cos(th), np.sin(th))
+        return cs
+
     # centre of mass, its acceleration, and the known force/moment on each link
     com, known = {}, {}
     for link in topo.links:
         b = bodies.get(link) or Body(link)
         origin, along, normal = com_of(topo, b, link)
-        x, y, _vx, _vy, ax, ay = _point(motion, topo, origin, link, along, normal)
+        x, y, _vx, _vy, ax, ay = _point(motion, topo, origin, link, along, normal,
+                                        cos_sin=cos_sin)
         x, y = arr(x), arr(y)
         com[link] = (x, y, origin, along, normal)
         kl = motion.links[link]
         # masses and inertias may be arrays of a batch of designs: arr() flattens
         # them with the positions
-        fx = arr(b.mass * (gx - arr(ax).reshape(n)))
-        fy = arr(b.mass * (gy - arr(ay).reshape(n)))
+        if type(b.mass) is float and b.mass == 0.0:
+            fx = fy = np.zeros(flat)
+        else:
+            fx = arr(b.mass * (gx - arr(ax).reshape(n)))
+            fy = arr(b.mass * (gy - arr(ay).reshape(n)))
         m = (arr(-b.inertia * arr(kl.alpha).reshape(n)) if np.any(b.inertia)
              else np.zeros(flat))
         known[link] = [fx, fy, m]
@@ -169,8 +348,7 @@ def solve_forces(topo: Topology, motion: LinkageMotion, bodies: Dict[int, Body],
         tq = arr(ld.torque)
         fx, fy = arr(ld.fx), arr(ld.fy)
         if ld.relative:
-            th = arr(motion.links[ld.link].theta)
-            c, s = np.cos(th), np.sin(th)
+            c, s = (arr(v) for v in cos_sin(ld.link))
             fx, fy = fx * c - fy * s, fx * s + fy * c
         if np.any(fx) or np.any(fy):
             origin = ld.origin
@@ -181,133 +359,83 @@ def solve_forces(topo: Topology, motion: LinkageMotion, bodies: Dict[int, Body],
                 px, py = com[ld.link][0], com[ld.link][1]
             else:
                 px, py = (arr(v) for v in _point(motion, topo, origin, ld.link, ld.along,
-                                                 ld.normal, order=0))
+                                                 ld.normal, order=0, cos_sin=cos_sin))
             sx, sy = com[ld.link][0], com[ld.link][1]
             f[0] = f[0] + fx
             f[1] = f[1] + fy
             tq = tq + (px - sx) * fy - (py - sy) * fx
         f[2] = f[2] + tq
 
-    eq_of = {link: 3 * i for i, link in enumerate(topo.links)}
-    # unknown columns: list of (eq row, coefficient array) per unknown; moment
-    # rows are divided by L and couple unknowns multiplied by L (scaled system)
-    columns, owners = [], []  # owners: (kind, pair index or driver link, component)
+    # the coefficients of this call: moment arms about the centres of mass
+    # (scaled by L) and the directions of the prismatic pairs and slider drivers
+    plan = _plan(topo)
+    levers, directions = {}, {}
 
-    def lever(link, px, py):
-        return (px - com[link][0]) / L, (py - com[link][1]) / L
+    def lever(link, point):
+        lv = levers.get((link, point))
+        if lv is None:
+            p = motion.points[point]
+            lv = levers[(link, point)] = ((arr(p.x) - com[link][0]) / L,
+                                          (arr(p.y) - com[link][1]) / L)
+        return lv
 
-    def add_force(col_x, col_y, link, sign, px, py, ux=None, uy=None):
-        if link == frame:
-            return
-        e = eq_of[link]
-        dx, dy = lever(link, px, py)
-        if ux is None:
-            col_x.append((e, sign * 1.0)); col_x.append((e + 2, -sign * dy))
-            col_y.append((e + 1, sign * 1.0)); col_y.append((e + 2, sign * dx))
-        else:
-            col_x.append((e, sign * ux)); col_x.append((e + 1, sign * uy))
-            col_x.append((e + 2, sign * (dx * uy - dy * ux)))
+    def direction(key):
+        u = directions.get(key)
+        if u is None:
+            if key[0] == "n":  # the left normal of a prismatic pair's guide
+                th = arr(motion.links[topo.pairs[key[1]].block].theta)
+                u = (-np.sin(th), np.cos(th))
+            else:  # a slider driver's line
+                ang = linkage.driver(key[1]).angle
+                u = (np.cos(ang), np.sin(ang))
+                if np.ndim(ang):
+                    u = (arr(u[0]), arr(u[1]))
+            directions[key] = u
+        return u
 
-    pair_cols = []
-    for pi, pr in enumerate(topo.pairs):
-        p = motion.points[pr.point]
-        px, py = arr(p.x), arr(p.y)
-        if pr.kind == "R":
-            cx, cy = [], []
-            for link, sign in ((pr.j, 1.0), (pr.i, -1.0)):
-                add_force(cx, cy, link, sign, px, py)
-            pair_cols.append((len(columns), len(columns) + 1))
-            columns += [cx, cy]
-            owners += [("R", pi, 0), ("R", pi, 1)]
-        else:
-            th = arr(motion.links[pr.block].theta)
-            nx, ny = -np.sin(th), np.cos(th)  # left normal of the guide
-            cn, cm = [], []
-            for link, sign in ((pr.j, 1.0), (pr.i, -1.0)):
-                add_force(cn, None, link, sign, px, py, nx, ny)
-                if link != frame:
-                    cm.append((eq_of[link] + 2, sign / L))
-            pair_cols.append((len(columns), len(columns) + 1, nx, ny))
-            columns += [cn, cm]
-            owners += [("P", pi, 0), ("P", pi, 1)]
-    driver_cols = {}
-    for d in linkage.drivers:
-        col = []
-        if d.rotary:
-            col.append((eq_of[d.link] + 2, 1.0 / L))
-        else:
-            p = motion.points[d.point]
-            ux, uy = np.cos(d.angle), np.sin(d.angle)
-            if np.ndim(d.angle):
-                ux, uy = arr(ux), arr(uy)
-            add_force(col, None, d.link, 1.0, arr(p.x), arr(p.y), ux, uy)
-        driver_cols[d.link] = len(columns)
-        columns.append(col)
-        owners.append(("D", d.link, 0))
-    # couples and balancing torques: the scaled unknown is value / L
-    is_couple = [o[0] == "P" and o[2] == 1 or (o[0] == "D" and linkage.driver(o[1]).rotary)
-                 for o in owners]
+    def coef(spec):
+        kind = spec[0]
+        if kind == "c":
+            return spec[1]
+        if kind == "mx":
+            return -spec[3] * lever(spec[1], spec[2])[1]
+        if kind == "my":
+            return spec[3] * lever(spec[1], spec[2])[0]
+        ux, uy = direction(spec[3])
+        if kind == "ux":
+            return spec[4] * ux
+        if kind == "uy":
+            return spec[4] * uy
+        dx, dy = lever(spec[1], spec[2])
+        return spec[4] * (dx * uy - dy * ux)
 
-    rhs = np.zeros((3 * len(topo.links), flat))
+    rhs = [None] * plan.nrows
     for link in topo.links:
-        e = eq_of[link]
+        e = plan.eq_of[link]
         f = known[link]
-        rhs[e] = -f[0]
-        rhs[e + 1] = -f[1]
-        rhs[e + 2] = -f[2] / L
+        rhs[e], rhs[e + 1], rhs[e + 2] = -f[0], -f[1], -f[2] / L
 
-    # element blocks: unknowns of the element's pairs (and its driver), rows of its links
-    x = [None] * len(columns)
+    # element blocks, from the last element back to the drivers (block
+    # lower-triangular): each one's unknowns from its links' equations
+    xs = [None] * len(plan.columns)  # scaled solution
     cond = np.ones(flat)
-    for idx, new_links, pidx in reversed(topo.blocks):
-        unk = []
-        for pi in pidx:
-            unk += list(pair_cols[pi][:2])
-        el = linkage.elements[idx]
-        if el.is_driver:
-            unk.append(driver_cols[el.link])
-        rows = [eq_of[ln] + c for ln in new_links for c in range(3)]
+    for unk, rows, entries, solved in plan.blocks:
         k = len(rows)
-        if len(unk) != k:  # pragma: no cover - every engine element is determinate
-            raise ForceModelError(f"element {idx} is not statically determinate")
-        row_pos = {r: i for i, r in enumerate(rows)}
         A = [[0.0] * k for _ in range(k)]
-        for jc, u in enumerate(unk):
-            f = L if is_couple[u] else 1.0  # couple unknowns scaled by 1/L
-            for r, coef in columns[u]:
-                if r in row_pos:
-                    A[row_pos[r]][jc] = A[row_pos[r]][jc] + coef * f
+        for i, j, spec in entries:
+            A[i][j] = A[i][j] + coef(spec)
         b = [rhs[r] for r in rows]
-        # contributions of already solved unknowns (later elements) on these rows
-        for u, val in enumerate(x):
-            if val is None:
-                continue
-            for r, coef in columns[u]:
-                if r in row_pos:
-                    b[row_pos[r]] = b[row_pos[r]] - coef * val
-        if condition:
-            # 1-norm of the block: largest column sum of |A| (floats stay floats)
-            nrm = np.zeros(flat)
-            for j in range(k):
-                np.maximum(nrm, sum(abs(A[i][j]) for i in range(k)), out=nrm)
-            # the inverse's columns solved with the right-hand side: rows 1..k of X
-            eye = np.zeros((k, k + 1, flat))
-            for i in range(k):
-                eye[i, 1 + i] = 1.0
-                eye[i, 0] = b[i]
-            b = list(eye)
-        X, sing = gauss(A, b)
-        if condition:
-            inv_nrm = np.zeros(flat)
-            for j in range(k):
-                np.maximum(inv_nrm, sum(np.abs(X[i][1 + j]) for i in range(k)), out=inv_nrm)
-            c_blk = nrm * inv_nrm
-            if sing is not None:
-                c_blk = np.where(sing, np.inf, c_blk)
+        for i, u, spec in solved:
+            b[i] = b[i] - coef(spec) * xs[u]
+        X, c_blk = _solve_block(A, b, flat, condition)
+        if c_blk is not None:
             cond = np.maximum(cond, c_blk)
-            X = [xi[0] for xi in X]
         for jc, u in enumerate(unk):
-            x[u] = X[jc] * (L if is_couple[u] else 1.0)
+            xs[u] = X[jc]
+    x = [v * L if c else v for v, c in zip(xs, plan.is_couple)]
+    pair_cols = [pc + ((direction(("n", pi)) if pr.kind == "P" else ()))
+                 for pi, (pr, pc) in enumerate(zip(topo.pairs, plan.pair_cols))]
+    driver_cols = plan.driver_cols
 
     # results
     balancing = {d.link: x[driver_cols[d.link]].reshape(n) for d in linkage.drivers}
@@ -363,8 +491,11 @@ def solve_forces(topo: Topology, motion: LinkageMotion, bodies: Dict[int, Body],
                 pres += val * arr(unit_motion.slides[d.slide_names(frame)[0]].v)
         for link in topo.links:
             x0, y0, origin, along, normal = com[link]
+            # the same positions as the motion (as the callers solve it): its angles' trig
+            same = unit_motion.links[link].theta is motion.links[link].theta or np.array_equal(
+                unit_motion.links[link].theta, motion.links[link].theta)
             _x, _y, vx, vy, _a, _b = _point(unit_motion, topo, origin, link, along, normal,
-                                             order=1)
+                                             order=1, cos_sin=cos_sin if same else None)
             f = known[link]
             # the known moment is about the centre of mass: P = F·v_S + M·ω
             pres += f[0] * arr(vx) + f[1] * arr(vy) + f[2] * arr(unit_motion.links[link].omega)
