@@ -5,19 +5,23 @@ Prints ``name: value unit`` lines (``--json``: the same figures as JSON,
 
 * ``import_numpy_process`` -- the baseline, ``python -c "import numpy"`` [ms];
 * ``kin_ex1-1_png_process`` [ms] and ``kin_ex1-1_png_over_import_numpy`` [x]:
-  ``mechcli kin configs/ch1/ex1-1.toml`` (kin.png), a fresh process each time,
-  round-robin with the baseline so both see the same load, minimum of the runs
+  ``mechcli kin configs/ch1/ex1-1.toml`` (kin.png), a fresh process each time
+  (bytecode cached, ``benchmarks/_process.py``), round-robin with the baseline so
+  both see the same load, minimum of the runs
   (goal <= 5x); ``kin_ex1-1_png_dpi100_*`` the same at ``--dpi 100`` (the
   default is 200 dpi);
 * ``kin_ex1-1_no_plot_process`` [ms]: the same run without pictures, so that
   ``kin_ex1-1_png_cost`` [ms] is what the pictures add;
+* ``import_numpy_cpu``, ``<case>_cpu`` [ms], ``<case>_cpu_over_import_numpy`` [x]:
+  the same with the CPU time of the processes' main thread, which a shared, loaded
+  machine disturbs less than the wall time (``benchmarks/_process.py``);
 * ``gif_<config>_frames`` [1], ``gif_<config>_ms_per_frame`` [ms/frame]: the
   whole animation of ``mechcli kin CONFIG --animate`` (figure set-up, every
   frame, GIF encoding) divided by its frames, in a fresh process (matplotlib
   imported before the clock starts), minimum of the runs (goal <= 8 ms/frame);
   ``gif_<config>_frame_over_import_numpy`` [x] relates it to the baseline.
 
-Usage: python benchmarks/bench_pictures.py [--runs N] [--json]
+Usage: python benchmarks/bench_pictures.py [--runs N] [--no-bytecode-cache] [--json]
 """
 
 from __future__ import annotations
@@ -26,11 +30,11 @@ import argparse
 import subprocess
 import sys
 import tempfile
-import time
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _figures import run  # noqa: E402
+from _process import bench_env, round_robin  # noqa: E402
 
 ROOT = Path(__file__).resolve().parent.parent
 EX11 = str(ROOT / "configs" / "ch1" / "ex1-1.toml")
@@ -66,33 +70,28 @@ print(best, n)
 """
 
 
-def once(argv):
-    t0 = time.perf_counter()
-    subprocess.run(argv, cwd=ROOT, check=True, capture_output=True)
-    return time.perf_counter() - t0
-
-
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--runs", type=int, default=5, help="runs of each case (minimum taken)")
+    ap.add_argument("--no-bytecode-cache", action="store_true",
+                    help="keep the environment's PYTHONDONTWRITEBYTECODE (if set)")
     args = ap.parse_args()
     mech = [sys.executable, "-m", "mechcli"]
-    with tempfile.TemporaryDirectory() as out:
+    with tempfile.TemporaryDirectory() as out, tempfile.TemporaryDirectory() as cache:
+        env = bench_env(cache, not args.no_bytecode_cache)
         cmds = {"import_numpy": [sys.executable, "-c", "import numpy"],
                 "kin_ex1-1_no_plot": mech + ["kin", EX11, "--no-plot", "-q", "--out", out],
                 "kin_ex1-1_png": mech + ["kin", EX11, "-q", "--out", out],
                 "kin_ex1-1_png_dpi100": mech + ["kin", EX11, "-q", "--dpi", "100", "--out", out]}
-        for argv in cmds.values():           # bytecode caches, font cache, page cache
-            once(argv)
-        best = {name: float("inf") for name in cmds}
-        for _ in range(args.runs):
-            for name, argv in cmds.items():
-                best[name] = min(best[name], once(argv))
+        best, cpu = round_robin(cmds, args.runs, ROOT, env)
     base = best["import_numpy"]
     print(f"import_numpy_process: {base * 1e3:.1f} ms")
+    print(f"import_numpy_cpu: {cpu['import_numpy'] * 1e3:.1f} ms")
     for name in ("kin_ex1-1_no_plot", "kin_ex1-1_png", "kin_ex1-1_png_dpi100"):
         print(f"{name}_process: {best[name] * 1e3:.1f} ms")
         print(f"{name}_over_import_numpy: {best[name] / base:.2f} x")
+        print(f"{name}_cpu: {cpu[name] * 1e3:.1f} ms")
+        print(f"{name}_cpu_over_import_numpy: {cpu[name] / cpu['import_numpy']:.2f} x")
     print(f"kin_ex1-1_png_cost: {(best['kin_ex1-1_png'] - best['kin_ex1-1_no_plot']) * 1e3:.1f} ms")
     for name, path in GIF_CONFIGS.items():
         if not path.exists():

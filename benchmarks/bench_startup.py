@@ -1,8 +1,9 @@
 """Process start-up of the commands users run from Makefiles and CI (issue 17).
 
 Each command is run as a fresh process (stdout a pipe, bytecode cached by a
-warm-up run), round-robin with the baseline ``python -c "import numpy"`` so that
-both see the same load; the figure is the minimum over the runs.  Prints
+warm-up run, see ``benchmarks/_process.py``), round-robin with the baseline
+``python -c "import numpy"`` so that both see the same load; the figure is the
+minimum over the runs.  Prints
 ``name: value unit`` lines, ``--json`` the same figures as JSON
 (``benchmarks/_figures.py``):
 
@@ -10,25 +11,27 @@ both see the same load; the figure is the minimum over the runs.  Prints
 * ``<case>_process`` [ms] and ``<case>_over_import_numpy`` [x] for ``version``
   (``mechcli --version``), ``grashof_quick`` (``mechcli grashof --lengths
   40,90,70,100``), ``kin_ex1-1_no_plot`` and ``kin_ex1-1_png`` (the PNGs of
-  ``configs/ch1/ex1-1.toml``).
+  ``configs/ch1/ex1-1.toml``);
+* ``import_numpy_cpu``, ``<case>_cpu`` [ms] and ``<case>_cpu_over_import_numpy`` [x]:
+  the same with the CPU time of the processes' main thread, which a shared, loaded
+  machine disturbs less than the wall time (``benchmarks/_process.py``).
 
 Goals (issue 17): grashof quick form <= 1.0x, kin --no-plot <= 1.5x, kin with
 PNGs <= 5x ``import numpy``.
 
-Usage: python benchmarks/bench_startup.py [--runs N] [--json]
+Usage: python benchmarks/bench_startup.py [--runs N] [--no-bytecode-cache] [--json]
 """
 
 from __future__ import annotations
 
 import argparse
-import subprocess
 import sys
 import tempfile
-import time
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _figures import run  # noqa: E402
+from _process import bench_env, round_robin  # noqa: E402
 
 ROOT = Path(__file__).resolve().parent.parent
 EX11 = str(ROOT / "configs" / "ch1" / "ex1-1.toml")
@@ -45,29 +48,23 @@ def cases(out):
     }
 
 
-def once(argv):
-    t0 = time.perf_counter()
-    subprocess.run(argv, cwd=ROOT, check=True, capture_output=True)
-    return time.perf_counter() - t0
-
-
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--runs", type=int, default=7, help="runs of each command (minimum taken)")
+    ap.add_argument("--no-bytecode-cache", action="store_true",
+                    help="keep the environment's PYTHONDONTWRITEBYTECODE (if set)")
     args = ap.parse_args()
-    with tempfile.TemporaryDirectory() as out:
-        cmds = cases(out)
-        for argv in cmds.values():           # bytecode caches, font cache, page cache
-            once(argv)
-        best = {name: float("inf") for name in cmds}
-        for _ in range(args.runs):
-            for name, argv in cmds.items():
-                best[name] = min(best[name], once(argv))
-    base = best.pop("import_numpy")
+    with tempfile.TemporaryDirectory() as out, tempfile.TemporaryDirectory() as cache:
+        env = bench_env(cache, not args.no_bytecode_cache)
+        best, cpu = round_robin(cases(out), args.runs, ROOT, env)
+    base, cpu_base = best.pop("import_numpy"), cpu.pop("import_numpy")
     print(f"import_numpy_process: {base * 1e3:.1f} ms")
+    print(f"import_numpy_cpu: {cpu_base * 1e3:.1f} ms")
     for name, t in best.items():
         print(f"{name}_process: {t * 1e3:.1f} ms")
         print(f"{name}_over_import_numpy: {t / base:.2f} x")
+        print(f"{name}_cpu: {cpu[name] * 1e3:.1f} ms")
+        print(f"{name}_cpu_over_import_numpy: {cpu[name] / cpu_base:.2f} x")
 
 
 if __name__ == "__main__":

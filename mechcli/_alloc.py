@@ -13,13 +13,13 @@ sandboxes) a fresh temporary was measured 6-7x slower than a warm one; where
 glibc's dynamic threshold already keeps the buffers, the gain is nil.  The
 price is memory the process keeps after its largest solve.  Measure with
 ``benchmarks/`` on the target machine.
-Called once by the command line and the benchmarks, never by
-``mechcli.core`` itself.  A no-op where ``mallopt`` is not available
+Called once by the command line (for every command but ``grashof``, ``new``
+and ``schema``, which repeat no large temporaries: ``mechcli.cli``) and by the
+benchmarks, never by ``mechcli.core`` itself.  A no-op where ``mallopt`` is not available
 (non-glibc platforms).
 """
 
 import ctypes
-import ctypes.util
 
 _M_TRIM_THRESHOLD = -1
 _M_TOP_PAD = -2
@@ -32,10 +32,15 @@ def keep_heap_warm(mmap_threshold=1 << 30, trim_threshold=1 << 31, top_pad=64 <<
     if _done:
         return True
     try:
-        libc = ctypes.CDLL(ctypes.util.find_library("c") or "libc.so.6")
-        mallopt = libc.mallopt
+        # the running interpreter's own symbols include libc's: no ``ctypes.util``
+        # (it imports subprocess and runs ``ldconfig``, ~5 ms of a start-up)
+        mallopt = ctypes.CDLL(None).mallopt
     except (OSError, AttributeError):
-        return False
+        try:
+            from ctypes.util import find_library
+            mallopt = ctypes.CDLL(find_library("c") or "libc.so.6").mallopt
+        except (OSError, AttributeError):
+            return False
     mallopt.argtypes = [ctypes.c_int, ctypes.c_int]
     ok = all(mallopt(opt, val) == 1 for opt, val in (
         (_M_MMAP_THRESHOLD, min(mmap_threshold, 2**31 - 1)),

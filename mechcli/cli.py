@@ -3,8 +3,8 @@
 Exit codes (:class:`ExitStatus`): 0 ok, 1 internal error, 2 bad spec or usage,
 3 the problem has no solution, 4 ``mechcli check``: an expected value is not met,
 130 interrupted.  Subcommand modules are imported only when the subcommand runs,
-so ``mechcli --version`` never imports numpy (the library versions are read with
-:mod:`importlib.metadata`).
+so ``mechcli --version`` never imports numpy (the library versions are read from
+their installed metadata, :mod:`mechcli._versions`).
 """
 
 from __future__ import annotations
@@ -40,6 +40,11 @@ COMMANDS = {
     "schema": ("mechcli.commands.schema", "schema",
                "Print the JSON Schema of a command's spec (for editors)."),
 }
+
+
+#: commands that never repeat large numpy temporaries: no allocator setting for them
+#: (``mechcli._alloc``; it costs the ``ctypes`` import, ~1.5 ms of a ~90 ms start-up)
+_LIGHT_COMMANDS = frozenset({"grashof", "new", "schema"})
 
 
 #: subcommand -> the example its ``--help`` ends with (a shipped example, so that it runs
@@ -117,17 +122,13 @@ class LazyGroup(click.Group):
 
 def versions():
     """``[(name, version)]`` of mechcli, Python, numpy, scipy and matplotlib, read
-    with :mod:`importlib.metadata` (never imported: ``--version`` stays fast);
+    from their installed metadata (never imported: ``--version`` stays fast);
     ``"not installed"`` for a missing library."""
-    import importlib.metadata
-    import platform
+    from mechcli._versions import python_version, version
 
-    out = [("python", platform.python_version())]
+    out = [("python", python_version())]
     for lib in ("numpy", "scipy", "matplotlib"):
-        try:
-            out.append((lib, importlib.metadata.version(lib)))
-        except importlib.metadata.PackageNotFoundError:
-            out.append((lib, "not installed"))
+        out.append((lib, version(lib) or "not installed"))
     return out
 
 
@@ -187,7 +188,7 @@ def main(argv=None):
 
     args = list(sys.argv[1:] if argv is None else argv)
     show_tb = "--traceback" in args
-    if not any(a in ("--version", "--help", "-h") for a in args[:1]):
+    if args and args[0] in COMMANDS and args[0] not in _LIGHT_COMMANDS:
         from mechcli._alloc import keep_heap_warm
         keep_heap_warm()
     try:

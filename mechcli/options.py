@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import dataclasses
-import hashlib
 import re
 from pathlib import Path
 
@@ -102,6 +101,8 @@ _NAME_MAX = 64
 
 
 def _short_hash(parts):
+    import hashlib   # only for --set and long quick forms: not on every start-up
+
     return hashlib.sha256("\0".join(parts).encode("utf-8")).hexdigest()[:8]
 
 

@@ -84,9 +84,14 @@ def subplots(nrows=1, ncols=1, *, figsize=None, dpi=None, sharex=False, sharey=F
 
 
 def close(fig=None):
-    """Release a figure (drop its artists; nothing global to unregister without pyplot)."""
+    """Release a figure's pixels now: its Agg canvas (and the canvas' buffer, ~15 MB at
+    200 dpi) is replaced by a bare one; the artists go with the figure (nothing global
+    holds it without pyplot).  ``fig.clear()`` would rebuild every axis' ticks only
+    to drop them (~40 ms of a 2x2 figure)."""
     if fig is not None:
-        fig.clear()
+        from matplotlib.backend_bases import FigureCanvasBase
+
+        FigureCanvasBase(fig)   # the figure's canvas now; the Agg one is freed
 
 
 class _Figures:
@@ -267,7 +272,6 @@ def save_png(fig, outputs, name, dpi=None, layout=True):
     (:func:`tight`), so nothing sticks out of it; ``layout=False`` keeps the
     figure's own layout (it has room for everything)."""
     import numpy as np
-    from PIL import Image
 
     res = int(dpi or globals()["dpi"]())
     try:
@@ -276,13 +280,59 @@ def save_png(fig, outputs, name, dpi=None, layout=True):
         fig.set_dpi(res)
         _rendered(fig.canvas.draw)
         rgba = np.asarray(fig.canvas.buffer_rgba())
-        r0, r1, c0, c1 = _ink_box(rgba, _background(fig), int(round(_MARGIN_IN * res)))
-        buf = io.BytesIO()
-        Image.fromarray(np.ascontiguousarray(rgba[r0:r1, c0:c1, :3])).save(
-            buf, format="png", dpi=(res, res), compress_level=3)
+        box = _ink_box(rgba, _background(fig), int(round(_MARGIN_IN * res)))
+        data = png_bytes(_rgb(rgba, box), res)
     finally:
         close(fig)
-    return outputs.bytes(name, buf.getvalue())
+    return outputs.bytes(name, data)
+
+
+def _rgb(rgba, box):
+    """The RGB pixels of the canvas' RGBA array *rgba* inside *box* ``(r0, r1, c0, c1)``,
+    C-contiguous: ``rgba[r0:r1, c0:c1, :3]`` copied as 3-byte items (one item per
+    pixel; numpy copies a strided 3-channel slice byte by byte, twice as slowly)."""
+    import numpy as np
+
+    r0, r1, c0, c1 = (int(v) for v in box)
+    px = np.dtype({"names": ["rgb"], "formats": ["V3"], "offsets": [0], "itemsize": 4})
+    crop = np.asarray(rgba[r0:r1, c0:c1], dtype=np.uint8)
+    if crop.strides[1:] != (4, 1):   # each pixel's 4 bytes together, as on the canvas
+        crop = np.ascontiguousarray(crop)
+    rgb = np.ascontiguousarray(crop.view(px)[..., 0]["rgb"])
+    return rgb.view(np.uint8).reshape(r1 - r0, c1 - c0, 3)
+
+
+def png_bytes(rgb, res=None, level=3):
+    """A PNG file (8-bit RGB) of an H×W×3 ``uint8`` array.
+
+    The pixels are written exactly; what differs from Pillow's writer is only the
+    row filter: every row is "Up"-filtered (its difference to the row above, one numpy
+    subtraction) instead of choosing per row among PNG's five filters, which cost
+    ~60 ms of a 2000×1600 picture (now ~20 ms, the file within 2 % of the size).
+    *res* [dpi] goes into a ``pHYs`` chunk, as Pillow's ``dpi=`` does."""
+    import struct
+    import zlib
+
+    import numpy as np
+
+    h, w, _ = rgb.shape
+    rows = np.ascontiguousarray(rgb, dtype=np.uint8).reshape(h, 3 * w)
+    raw = np.empty((h, 1 + 3 * w), dtype=np.uint8)
+    raw[:, 0] = 2                              # filter type Up (the row above: 0 for row 0)
+    raw[:1, 1:] = rows[:1]
+    np.subtract(rows[1:], rows[:-1], out=raw[1:, 1:])   # modulo 256, as PNG wants
+
+    def chunk(tag, payload):
+        return (struct.pack(">I", len(payload)) + tag + payload
+                + struct.pack(">I", zlib.crc32(tag + payload) & 0xFFFFFFFF))
+
+    parts = [b"\x89PNG\r\n\x1a\n",
+             chunk(b"IHDR", struct.pack(">IIBBBBB", w, h, 8, 2, 0, 0, 0))]
+    if res:
+        ppm = int(res / 0.0254 + 0.5)          # pixels per metre
+        parts.append(chunk(b"pHYs", struct.pack(">IIB", ppm, ppm, 1)))
+    parts += [chunk(b"IDAT", zlib.compress(raw, level)), chunk(b"IEND", b"")]
+    return b"".join(parts)
 
 
 def _palette(frames):

@@ -140,22 +140,12 @@ def finish(run, command, report, results, outputs, warnings=()):
 def library_versions():
     """``{"mechcli", "python", "numpy", "scipy", "matplotlib"}`` versions (None for a
     library that is not installed), from the loaded module when there is one."""
-    import importlib.metadata
-    import platform
-    import sys
-
     from mechcli import __version__
+    from mechcli._versions import loaded_or_installed, python_version
 
-    out = {"mechcli": __version__, "python": platform.python_version()}
+    out = {"mechcli": __version__, "python": python_version()}
     for lib in ("numpy", "scipy", "matplotlib"):
-        mod = sys.modules.get(lib)
-        version = getattr(mod, "__version__", None)
-        if version is None:
-            try:
-                version = importlib.metadata.version(lib)
-            except importlib.metadata.PackageNotFoundError:
-                version = None
-        out[lib] = version
+        out[lib] = loaded_or_installed(lib)
     return out
 
 

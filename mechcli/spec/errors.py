@@ -1,7 +1,5 @@
 """Spec errors: one line naming the file, the key, what was expected, what was found."""
 
-import difflib
-
 
 class SpecError(ValueError):
     """A problem file (or a ``--set`` override) is invalid; exit code 2.
@@ -46,5 +44,7 @@ class SpecError(ValueError):
 
 def closest(name, candidates):
     """Nearest valid key to *name*, or None."""
+    import difflib   # only when a key is wrong: not on every start-up
+
     hits = difflib.get_close_matches(str(name), list(candidates), n=1, cutoff=0.5)
     return hits[0] if hits else None

@@ -13,14 +13,26 @@ import math
 import re
 import sys
 
-if sys.version_info >= (3, 11):
-    import tomllib
-else:  # pragma: no cover
-    import tomli as tomllib
-
 from mechcli.spec.errors import SpecError, closest
 
 REQUIRED = object()
+
+
+def _toml():
+    """``tomllib`` (``tomli`` before Python 3.11), imported on first use: the quick forms
+    (``grashof --lengths``) read no file and skip its ~3 ms of import."""
+    if sys.version_info >= (3, 11):
+        import tomllib
+    else:  # pragma: no cover
+        import tomli as tomllib
+    return tomllib
+
+
+def __getattr__(name):
+    # ``from mechcli.spec.reader import tomllib`` (spec/schema.py) still works
+    if name == "tomllib":
+        return _toml()
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 #: the lengths mechcli accepts [m]: 1 nm to 1,000 km
 MIN_LENGTH, MAX_LENGTH = 1e-9, 1e6
@@ -98,6 +110,7 @@ def parse_override(file, text):
         raise SpecError(file, "--set", "KEY=VALUE with a dotted key such as mechanism.l1=120",
                         f"'{text}'")
     raw = raw.strip()
+    tomllib = _toml()
     try:
         value = tomllib.loads(f"v = {raw}")["v"]
     except tomllib.TOMLDecodeError:
@@ -160,6 +173,7 @@ def load_spec(path, overrides=()):
         raise SpecError(file, "", "an existing TOML file", "no such file") from None
     except OSError as exc:
         raise SpecError(file, "", "a readable TOML file", exc.strerror or str(exc)) from None
+    tomllib = _toml()
     try:
         data = tomllib.loads(raw.decode("utf-8"))
     except UnicodeDecodeError:

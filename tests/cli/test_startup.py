@@ -1,13 +1,18 @@
-"""``mechcli grashof --lengths`` starts without the heavy libraries.
+"""Commands start without the libraries they do not need (issue 17, start-up).
 
-The quick form classifies a handful of numbers: numpy alone costs about as much
-as everything else it does (issue 17, start-up).  Each test runs the real
-command in a fresh ``python -X importtime`` process and reads, from the import
-log on stderr, which top-level packages were imported; it also checks the
-numbers the command printed, so a run that fails early cannot pass.
+``mechcli grashof --lengths`` classifies a handful of numbers: numpy alone costs
+about as much as everything else it does.  ``mechcli kin --no-plot`` needs numpy,
+but no picture library (matplotlib, PIL), no scipy, no rich in a pipe and not
+``numpy.ma`` (``np.unique`` imports it).  ``mechcli --version`` and every run's
+``outputs.json`` name the library versions without :mod:`importlib.metadata`
+(~15 ms).  Each test runs the real command in a fresh ``python -X importtime``
+process and reads, from the import log on stderr, which modules were imported;
+it also checks the numbers the command printed, so a run that fails early cannot
+pass.
 """
 
 import json
+import math
 import re
 import subprocess
 import sys
@@ -21,14 +26,14 @@ HEAVY = ("numpy", "scipy", "matplotlib", "PIL", "rich")
 _IMPORT = re.compile(r"^import time:\s*\d+ \|\s*\d+ \|( *)([\w.]+)\s*$")
 
 
+def imported_modules(stderr):
+    """Full names of every module in a ``-X importtime`` log."""
+    return {m.group(2) for m in map(_IMPORT.match, stderr.splitlines()) if m}
+
+
 def imported_packages(stderr):
     """Top-level names of every module in a ``-X importtime`` log."""
-    names = set()
-    for line in stderr.splitlines():
-        m = _IMPORT.match(line)
-        if m:
-            names.add(m.group(2).split(".")[0])
-    return names
+    return {name.split(".")[0] for name in imported_modules(stderr)}
 
 
 def run_importtime(*args, cwd):
@@ -38,12 +43,18 @@ def run_importtime(*args, cwd):
     return proc, imported_packages(proc.stderr)
 
 
+#: what reading the versions of numpy, scipy and matplotlib must not cost (~15 ms)
+SLOW_VERSIONS = ("importlib.metadata",)
+
+
 def test_the_import_log_is_read():
     # the parser must see what a numpy import logs, or the tests below prove nothing
-    proc = subprocess.run([sys.executable, "-X", "importtime", "-c", "import numpy"],
+    proc = subprocess.run([sys.executable, "-X", "importtime", "-c",
+                           "import numpy, numpy.ma, importlib.metadata"],
                           capture_output=True, text=True, timeout=120)
     names = imported_packages(proc.stderr)
     assert "numpy" in names and "json" not in names
+    assert {"numpy.ma", "importlib.metadata"} <= imported_modules(proc.stderr)
 
 
 def test_fourbar_text_form_imports_no_heavy_library(tmp_path):
@@ -52,6 +63,11 @@ def test_fourbar_text_form_imports_no_heavy_library(tmp_path):
                                  "--out", str(tmp_path), cwd=tmp_path)
     assert "mechcli" in names
     assert sorted(set(HEAVY) & names) == []
+    # outputs.json names the library versions (below) without importlib.metadata; no
+    # spec file to read, so no TOML parser either
+    assert sorted(set(SLOW_VERSIONS + ("tomllib",)) & imported_modules(proc.stderr)) == []
+    versions = json.loads((tmp_path / "outputs.json").read_text())["versions"]
+    assert versions["numpy"] == _installed("numpy") and versions["python"] == _python()
     # the crank-rocker of the quick form: K = 1.0971 (law of cosines, see
     # tests/unit/test_speed_grashof_scalar.py::test_example_3_1_crank_rocker)
     assert "crank rocker" in proc.stdout and "1.0971" in proc.stdout
@@ -71,3 +87,57 @@ def test_json_form_imports_no_heavy_library(tmp_path, args, key, value):
     assert sorted(set(HEAVY) & names) == []
     got = json.loads(proc.stdout)["results"][key]
     assert got == (pytest.approx(value, abs=1e-9) if isinstance(value, float) else value)
+
+
+def _installed(lib):
+    """The installed version as the standard library reads it (the reference)."""
+    import importlib.metadata
+    return importlib.metadata.version(lib)
+
+
+def _python():
+    import platform
+    return platform.python_version()
+
+
+def test_version_reads_versions_without_importlib_metadata(tmp_path):
+    proc = subprocess.run([sys.executable, "-X", "importtime", "-m", "mechcli", "--version"],
+                          capture_output=True, text=True, cwd=tmp_path, timeout=120)
+    assert proc.returncode == 0, proc.stderr[-2000:]
+    mods = imported_modules(proc.stderr)
+    assert sorted(set(SLOW_VERSIONS) & mods) == []
+    assert sorted(set(HEAVY) & {m.split(".")[0] for m in mods}) == []
+    line = proc.stdout.splitlines()[1]
+    assert line == ", ".join([f"python {_python()}"] + [f"{lib} {_installed(lib)}" for lib in
+                                                        ("numpy", "scipy", "matplotlib")])
+
+
+def _theta3_at_0(l1, l2, l3, l4):
+    """θ3 [°] of the open four-bar at θ1 = 0, by hand: B lies on the frame line, so
+    BD = l4 - l1, and the cosine rule in triangle BCD gives the angle at D; the open
+    branch has C above the frame: θ3 = 180° - angle BDC."""
+    bd = l4 - l1
+    return 180.0 - math.degrees(math.acos((l3 ** 2 + bd ** 2 - l2 ** 2) / (2 * l3 * bd)))
+
+
+@pytest.mark.parametrize("extra", [[], ["--json"]])
+def test_kin_without_pictures_imports_no_picture_library(tmp_path, extra):
+    proc, names = run_importtime("kin", str(ROOT / "configs" / "ch1" / "ex1-1.toml"),
+                                 "--no-plot", "--out", str(tmp_path), *extra, cwd=tmp_path)
+    mods = imported_modules(proc.stderr)
+    assert "numpy" in names and "mechcli" in names
+    assert sorted({"scipy", "matplotlib", "PIL", "rich"} & names) == []
+    assert sorted({"numpy.ma", *SLOW_VERSIONS} & mods) == []
+    assert not list(tmp_path.glob("*.png"))
+    # 例 1-1 (l1 = 101.6, l2 = 254, l3 = 177.8, l4 = 304.8 mm): θ3 at θ1 = 0 against
+    # the cosine rule (_theta3_at_0, 96.6654°); the CSV has 10 significant digits
+    head, row = (tmp_path / "kin.csv").read_text().splitlines()[:2]
+    cells = dict(zip(head.split(","), row.split(",")))
+    assert float(cells["theta1_deg"]) == 0.0
+    assert float(cells["theta3_deg"]) == pytest.approx(_theta3_at_0(101.6, 254, 177.8, 304.8),
+                                                       abs=1e-7)
+    if extra:
+        # the rocker's largest angle, 159.1513° (configs/ch1/ex1-1.toml: cosine rule with
+        # crank and coupler stretched in line, AC = l1 + l2), printed to 4 decimals
+        doc = json.loads(proc.stdout)
+        assert doc["results"]["theta3_max_deg"] == pytest.approx(159.1513, abs=5e-5)
