@@ -20,6 +20,7 @@ benchmarks, never by ``mechcli.core`` itself.  A no-op where ``mallopt`` is not 
 """
 
 import ctypes
+import sys
 
 _M_TRIM_THRESHOLD = -1
 _M_TOP_PAD = -2
@@ -31,15 +32,17 @@ def keep_heap_warm(mmap_threshold=1 << 30, trim_threshold=1 << 31, top_pad=64 <<
     global _done
     if _done:
         return True
+    if not sys.platform.startswith("linux"):   # mallopt and these options are glibc's
+        return False
     try:
         # the running interpreter's own symbols include libc's: no ``ctypes.util``
         # (it imports subprocess and runs ``ldconfig``, ~5 ms of a start-up)
         mallopt = ctypes.CDLL(None).mallopt
-    except (OSError, AttributeError):
+    except (OSError, AttributeError, TypeError):   # TypeError: CDLL(None) on Windows
         try:
             from ctypes.util import find_library
             mallopt = ctypes.CDLL(find_library("c") or "libc.so.6").mallopt
-        except (OSError, AttributeError):
+        except (OSError, AttributeError, TypeError):
             return False
     mallopt.argtypes = [ctypes.c_int, ctypes.c_int]
     ok = all(mallopt(opt, val) == 1 for opt, val in (

@@ -188,10 +188,10 @@ def main(argv=None):
 
     args = list(sys.argv[1:] if argv is None else argv)
     show_tb = "--traceback" in args
-    if args and args[0] in COMMANDS and args[0] not in _LIGHT_COMMANDS:
-        from mechcli._alloc import keep_heap_warm
-        keep_heap_warm()
     try:
+        if args and args[0] in COMMANDS and args[0] not in _LIGHT_COMMANDS:
+            from mechcli._alloc import keep_heap_warm
+            keep_heap_warm()
         # with standalone_mode=False click returns (not raises) the code of an Exit
         rv = cli.main(args=args, prog_name="mechcli", standalone_mode=False)
     except (SpecError, OutputPathError) as exc:

@@ -81,3 +81,25 @@ def test_the_license_is_a_file_of_the_package():
     assert project["license"] == "MIT" and project["license-files"] == ["LICENSE"]
     text = (ROOT / "LICENSE").read_text(encoding="utf-8")
     assert text.startswith("MIT License") and "WITHOUT WARRANTY OF ANY KIND" in text
+
+
+def test_the_allocator_setting_is_a_no_op_off_linux(monkeypatch):
+    """On Windows ``ctypes.CDLL(None)`` raises TypeError (CPython issue 83424): the
+    setting must give up quietly there, never crash a command (review of issue 17)."""
+    import ctypes
+    import sys
+
+    from mechcli import _alloc
+
+    monkeypatch.setattr(_alloc, "_done", False)
+    monkeypatch.setattr(sys, "platform", "win32")
+    assert _alloc.keep_heap_warm() is False
+
+    def windows_cdll(name, *a, **k):          # what CPython's Windows branch does
+        if "/" in name:
+            pass
+        raise OSError(name)
+
+    monkeypatch.setattr(sys, "platform", "linux")
+    monkeypatch.setattr(ctypes, "CDLL", windows_cdll)
+    assert _alloc.keep_heap_warm() is False
