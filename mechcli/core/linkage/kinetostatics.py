@@ -15,8 +15,14 @@ square linear system per position.  It is assembled from the engine's topology
 and, because every driver and every dyad of the engine is a statically
 determinate group (an Assur group), it is block lower-triangular in the
 reverse solving order: each element's 3 or 6 unknowns are solved for all
-positions at once by a batched Gaussian elimination with partial pivoting
-(:mod:`.elimination`), from the last dyad back to the drivers.  The model
+positions at once, from the last dyad back to the drivers, in closed form as by
+hand (:mod:`.dyad_statics`: the moments about the outer pins give the inner
+pair, then each outer pair) for every driver and dyad, and by a batched Gaussian
+elimination with partial pivoting (:mod:`.elimination`, or LAPACK for short
+sweeps) for any block the dyad layout does not describe and where a position
+overflows.  Exact zeros and values that are the same at every position (a fixed
+point, a block on a fixed guide) are folded as Python floats, so they cost no
+pass over memory.  The model
 (bodies, loads, pairs, results) is in :mod:`.force_model`, the load programs
 in :mod:`.loads`.  The structure of the system (which equations each unknown
 enters, the blocks, the order) is worked out once per topology (``_Plan``);
@@ -46,6 +52,8 @@ from typing import Dict, Optional
 
 import numpy as np
 
+from mechcli.core.linkage import dyad_statics
+from mechcli.core.linkage.dyad_statics import _add, _div, _mul, _sub, const
 from mechcli.core.linkage.elimination import gauss
 from mechcli.core.linkage.engine import LinkageMotion, _facts
 # the model and the load programs, re-exported: this module is the entry point
@@ -59,14 +67,20 @@ from mechcli.core.linkage.loads import LoadProgram  # noqa: F401
 # ---------------------------------------------------------------------------
 def _point(motion, topo, origin, link, along, normal, order=2, cos_sin=None):
     """Position (and velocity, acceleration) of a point fixed on ``link``
-    (``cos_sin(link)``: the cosine and sine of its angle, when already known)."""
+    (``cos_sin(link)``: the cosine and sine of its angle, when already known).
+    ``order`` "a": the position and the acceleration only (velocities None)."""
     o = motion.points[origin]
     k = motion.links[link]
+    acc_only = order == "a"
+    if acc_only:
+        order = 2
     if along is None:  # the midpoint of the link's two points
         second = motion.points[topo.frames[link][1]]
         x, y = 0.5 * (o.x + second.x), 0.5 * (o.y + second.y)
         if order == 0:
             return x, y
+        if acc_only:
+            return (x, y, None, None, 0.5 * (o.ax + second.ax), 0.5 * (o.ay + second.ay))
         return (x, y, 0.5 * (o.vx + second.vx), 0.5 * (o.vy + second.vy),
                 0.5 * (o.ax + second.ax) if order > 1 else None,
                 0.5 * (o.ay + second.ay) if order > 1 else None)
@@ -74,14 +88,22 @@ def _point(motion, topo, origin, link, along, normal, order=2, cos_sin=None):
         rx = ry = 0.0  # the origin itself: no angle needed
     else:
         c, s = cos_sin(link) if cos_sin is not None else (np.cos(k.theta), np.sin(k.theta))
-        rx = along * c - normal * s
-        ry = along * s + normal * c
+        rx = _sub(_mul(along, c), _mul(normal, s))
+        ry = _add(_mul(along, s), _mul(normal, c))
     if order == 0:
         return o.x + rx, o.y + ry
     w = k.omega
-    vx, vy = o.vx - w * ry, o.vy + w * rx
+    if acc_only:  # (the acceleration is only read: o.ax itself when rx = ry = 0)
+        al, w = const(k.alpha), const(w)
+        w2 = _mul(w, w)
+        return (o.x + rx, o.y + ry, None, None,
+                _sub(_sub(o.ax, _mul(al, ry)), _mul(w2, rx)),
+                _sub(_add(o.ay, _mul(al, rx)), _mul(w2, ry)))
     if order == 1:
-        return o.x + rx, o.y + ry, vx, vy, None, None
+        wc = const(w)
+        return (o.x + rx, o.y + ry, _sub(o.vx, _mul(wc, ry)), _add(o.vy, _mul(wc, rx)),
+                None, None)
+    vx, vy = o.vx - w * ry, o.vy + w * rx
     w2 = w * w
     return (o.x + rx, o.y + ry, vx, vy,
             o.ax - k.alpha * ry - w2 * rx, o.ay + k.alpha * rx - w2 * ry)
@@ -169,8 +191,18 @@ class _Plan:
                        for r, spec in columns[u] if r in row_pos]
             known = [(row_pos[r], u, spec) for u in solved for r, spec in columns[u]
                      if r in row_pos]
-            self.blocks.append((unk, rows, entries, known))
+            # the closed-form layout of the block (a driver or a dyad), if it has one
+            cols_of_rows = [{} for _ in unk]
+            for i, jc, spec in entries:
+                cols_of_rows[jc][i] = spec[0] == "c"
+            kind_of = [(topo.pairs[pi].kind,
+                        tuple(k for k, ln in enumerate(new_links)
+                              if ln in (topo.pairs[pi].i, topo.pairs[pi].j)))
+                       for pi in pidx]
+            lay = dyad_statics.layout(kind_of, cols_of_rows, len(rows))
+            self.blocks.append((unk, rows, entries, known, lay))
             solved += unk
+        self.all_closed = all(blk[-1] is not None for blk in self.blocks)
 
 
 def _plan(topo):
@@ -186,7 +218,9 @@ def _plan(topo):
 #: (:func:`~mechcli.core.linkage.elimination.gauss`), which skips the zeros.  Measured
 #: on 例 2-4 (2026-11-25): one position 0.31 vs 0.56 ms (0.35 vs 0.78 with the
 #: condition numbers); even at 128 (0.83 vs 0.88 ms with them), the elimination ahead
-#: from 256 (1.31 vs 0.98 ms)
+#: from 256 (1.31 vs 0.98 ms).  With the condition numbers the closed form
+#: (:func:`_solve_closed`) takes over from the same length (one position: 0.60 vs 0.40
+#: ms the whole call by LAPACK); without them it is used at every length.
 DENSE_MAX = 128
 
 
@@ -243,6 +277,47 @@ def _solve_block(A, b, flat, condition):
     return X, c_blk
 
 
+def _solve_closed(lay, A, b, flat, condition):
+    """Solve one driver or dyad block in closed form (:mod:`.dyad_statics`):
+    ``(X, cond)`` as :func:`_solve_block`, or None when a position overflows
+    (a nearly singular one: the general elimination then solves the block).
+    The condition number's inverse is solved column by column with the same
+    factor (unit right-hand sides: Python floats, folded)."""
+    k = len(A)
+    try:
+        with np.errstate(over="raise", invalid="raise", divide="raise"):
+            fac = dyad_statics.factor(lay, A)
+            X = dyad_statics.apply(fac, A, b, (flat,))
+            if not condition:  # (cond stays ones, as the general path leaves it)
+                return X, None
+            # 1-norm of the block (largest column sum of |A|) and of its inverse
+            nrm = np.zeros(flat)
+            for j in range(k):
+                np.maximum(nrm, sum(abs(A[i][j]) for i in range(k)), out=nrm)
+            inv_nrm = np.zeros(flat)
+            for j in range(k):
+                e = [0.0] * k
+                e[j] = 1.0
+                col = dyad_statics.apply(fac, A, e, (flat,), arrays=False)
+                np.maximum(inv_nrm, sum(abs(v) for v in col), out=inv_nrm)
+    except FloatingPointError:
+        return None
+    c_blk = nrm * inv_nrm
+    sing = fac[4]
+    if sing is not None:
+        c_blk = np.where(sing, np.inf, c_blk)
+    return X, c_blk
+
+
+#: solve driver and dyad blocks in closed form (:mod:`.dyad_statics`); False: every
+#: block by the general elimination (the tests compare the two)
+CLOSED_FORM = True
+
+
+def _exact_zero(v):
+    return (type(v) is float or type(v) is int) and v == 0
+
+
 def _broadcasts(a, b):
     try:
         np.broadcast_shapes(a, b)
@@ -291,6 +366,12 @@ def solve_forces(topo: Topology, motion: LinkageMotion, bodies: Dict[int, Body],
             return x.reshape(flat)
         return np.broadcast_to(np.asarray(x, dtype=float), n).reshape(flat)
 
+    def _zarr(x):
+        # an exact zero as the float 0.0 (skipped), anything else as arr()
+        if (type(x) is float or type(x) is int) and x == 0:
+            return 0.0
+        return arr(x)
+
     for what, obj, fields in ([(f"body of link {k}", b, ("mass", "inertia", "along", "normal"))
                                for k, b in bodies.items()]
                               + [(f"load '{ld.name}'", ld, ("fx", "fy", "torque", "along",
@@ -308,45 +389,67 @@ def solve_forces(topo: Topology, motion: LinkageMotion, bodies: Dict[int, Body],
         # a batch of designs: one moment scale per design (flattened like the
         # positions), so each design's system is scaled as when solved alone
         L = arr(L)
+    # the moment equations are scaled by L for the condition numbers and for the
+    # general elimination's pivots; when every block is solved in closed form
+    # without condition numbers the scaling changes nothing but round-off: skipped
+    # (fewer passes over memory)
+    plan = _plan(topo)
+    Ls = 1.0 if not condition and CLOSED_FORM and plan.all_closed else L
 
     # cosine and sine of each link's angle, once per call (the centres of mass,
     # the loads and the virtual power share them)
     trig = {}
 
     def cos_sin(link):
-        cs = trig.get(link)
-        if cs is None:
-            th = motion.links[link].theta
-            cs = trig[link] = (np.cos(th), np.sin(th))
-        return cs
+        th = motion.links[link].theta
+        cs = trig.get(id(th))
+        if cs is None:  # keyed by the angle array: a block shares its guide's
+            if type(th) is np.ndarray and th.ndim and not any(th.strides):
+                # one angle at every position (a block on a fixed guide): floats
+                t1 = th.reshape(-1)[:1]
+                cs = (float(np.cos(t1)[0]), float(np.sin(t1)[0]), th)
+            else:
+                cs = (np.cos(th), np.sin(th), th)
+            trig[id(th)] = cs
+        return cs[0], cs[1]
 
     # centre of mass, its acceleration, and the known force/moment on each link
-    com, known = {}, {}
+    com, known, com_off = {}, {}, {}
     for link in topo.links:
         b = bodies.get(link) or Body(link)
         origin, along, normal = com_of(topo, b, link)
-        x, y, _vx, _vy, ax, ay = _point(motion, topo, origin, link, along, normal,
-                                        cos_sin=cos_sin)
+        massless = type(b.mass) in (float, int) and b.mass == 0.0
+        if massless:  # no acceleration needed
+            x, y = _point(motion, topo, origin, link, along, normal, 0, cos_sin=cos_sin)
+        else:
+            x, y, _vx, _vy, ax, ay = _point(motion, topo, origin, link, along, normal, "a",
+                                            cos_sin=cos_sin)
         x, y = arr(x), arr(y)
         com[link] = (x, y, origin, along, normal)
+        if (along is not None and np.ndim(along) == 0 and np.ndim(normal) == 0
+                and not (along == 0 and normal == 0)
+                and type(const(motion.links[link].theta)) is float):
+            c, s = cos_sin(link)  # a fixed angle: the centre's offset from its origin
+            com_off[link] = (along * c - normal * s, along * s + normal * c)
         kl = motion.links[link]
         # masses and inertias may be arrays of a batch of designs: arr() flattens
         # them with the positions
-        if type(b.mass) is float and b.mass == 0.0:
-            fx = fy = np.zeros(flat)
+        # (an exact zero stays the float 0.0: skipped by the arithmetic below)
+        if massless:
+            fx = fy = 0.0
         else:
             fx = arr(b.mass * (gx - arr(ax).reshape(n)))
             fy = arr(b.mass * (gy - arr(ay).reshape(n)))
-        m = (arr(-b.inertia * arr(kl.alpha).reshape(n)) if np.any(b.inertia)
-             else np.zeros(flat))
+        al = const(kl.alpha)
+        m = (arr(-b.inertia * arr(kl.alpha).reshape(n))
+             if np.any(b.inertia) and not _exact_zero(al) else 0.0)
         known[link] = [fx, fy, m]
     for ld in loads:
         if ld.link not in known:
             raise ForceModelError(f"load '{ld.name}' is on link {ld.link}, which does not move",
                                   ("link", ld.link))
         f = known[ld.link]
-        tq = arr(ld.torque)
-        fx, fy = arr(ld.fx), arr(ld.fy)
+        tq, fx, fy = _zarr(ld.torque), _zarr(ld.fx), _zarr(ld.fy)
         if ld.relative:
             c, s = (arr(v) for v in cos_sin(ld.link))
             fx, fy = fx * c - fy * s, fx * s + fy * c
@@ -361,30 +464,35 @@ def solve_forces(topo: Topology, motion: LinkageMotion, bodies: Dict[int, Body],
                 px, py = (arr(v) for v in _point(motion, topo, origin, ld.link, ld.along,
                                                  ld.normal, order=0, cos_sin=cos_sin))
             sx, sy = com[ld.link][0], com[ld.link][1]
-            f[0] = f[0] + fx
-            f[1] = f[1] + fy
-            tq = tq + (px - sx) * fy - (py - sy) * fx
-        f[2] = f[2] + tq
+            f[0] = _add(f[0], fx)
+            f[1] = _add(f[1], fy)
+            tq = _add(tq, _sub(_mul(px - sx, fy), _mul(py - sy, fx)))
+        f[2] = _add(f[2], tq)
 
     # the coefficients of this call: moment arms about the centres of mass
     # (scaled by L) and the directions of the prismatic pairs and slider drivers
-    plan = _plan(topo)
     levers, directions = {}, {}
 
     def lever(link, point):
         lv = levers.get((link, point))
+        if lv is None and point == com[link][2]:
+            if _exact_zero(com[link][3]) and _exact_zero(com[link][4]):
+                lv = levers[(link, point)] = (0.0, 0.0)  # the centre of mass itself
+            elif link in com_off:  # a constant offset: floats
+                off = com_off[link]
+                lv = levers[(link, point)] = (_div(-off[0], Ls), _div(-off[1], Ls))
         if lv is None:
             p = motion.points[point]
-            lv = levers[(link, point)] = ((arr(p.x) - com[link][0]) / L,
-                                          (arr(p.y) - com[link][1]) / L)
+            lv = levers[(link, point)] = (_div(arr(p.x) - com[link][0], Ls),
+                                          _div(arr(p.y) - com[link][1], Ls))
         return lv
 
     def direction(key):
         u = directions.get(key)
         if u is None:
             if key[0] == "n":  # the left normal of a prismatic pair's guide
-                th = arr(motion.links[topo.pairs[key[1]].block].theta)
-                u = (-np.sin(th), np.cos(th))
+                c, s = cos_sin(topo.pairs[key[1]].block)
+                u = (-s if type(s) is float else -arr(s), c if type(c) is float else arr(c))
             else:  # a slider driver's line
                 ang = linkage.driver(key[1]).angle
                 u = (np.cos(ang), np.sin(ang))
@@ -398,41 +506,48 @@ def solve_forces(topo: Topology, motion: LinkageMotion, bodies: Dict[int, Body],
         if kind == "c":
             return spec[1]
         if kind == "mx":
-            return -spec[3] * lever(spec[1], spec[2])[1]
+            return _mul(-spec[3], lever(spec[1], spec[2])[1])
         if kind == "my":
-            return spec[3] * lever(spec[1], spec[2])[0]
+            return _mul(spec[3], lever(spec[1], spec[2])[0])
         ux, uy = direction(spec[3])
         if kind == "ux":
-            return spec[4] * ux
+            return _mul(spec[4], ux)
         if kind == "uy":
-            return spec[4] * uy
+            return _mul(spec[4], uy)
         dx, dy = lever(spec[1], spec[2])
-        return spec[4] * (dx * uy - dy * ux)
+        return _mul(spec[4], _sub(_mul(dx, uy), _mul(dy, ux)))
 
     rhs = [None] * plan.nrows
     for link in topo.links:
         e = plan.eq_of[link]
         f = known[link]
-        rhs[e], rhs[e + 1], rhs[e + 2] = -f[0], -f[1], -f[2] / L
+        rhs[e], rhs[e + 1], rhs[e + 2] = (_mul(-1.0, f[0]), _mul(-1.0, f[1]),
+                                          _div(_mul(-1.0, f[2]), Ls))
 
     # element blocks, from the last element back to the drivers (block
     # lower-triangular): each one's unknowns from its links' equations
     xs = [None] * len(plan.columns)  # scaled solution
     cond = np.ones(flat)
-    for unk, rows, entries, solved in plan.blocks:
+    for unk, rows, entries, solved, lay in plan.blocks:
         k = len(rows)
         A = [[0.0] * k for _ in range(k)]
         for i, j, spec in entries:
             A[i][j] = A[i][j] + coef(spec)
         b = [rhs[r] for r in rows]
         for i, u, spec in solved:
-            b[i] = b[i] - coef(spec) * xs[u]
-        X, c_blk = _solve_block(A, b, flat, condition)
+            b[i] = _sub(b[i], _mul(coef(spec), xs[u]))
+        got = (_solve_closed(lay, A, b, flat, condition)
+               if lay is not None and CLOSED_FORM and (flat > DENSE_MAX or not condition)
+               else None)
+        if got is None:  # the general elimination (arrays on the right-hand side)
+            b = [np.full(flat, v) if type(v) is float else v for v in b]
+            got = _solve_block(A, b, flat, condition)
+        X, c_blk = got
         if c_blk is not None:
             cond = np.maximum(cond, c_blk)
         for jc, u in enumerate(unk):
             xs[u] = X[jc]
-    x = [v * L if c else v for v, c in zip(xs, plan.is_couple)]
+    x = [_mul(v, Ls) if c else v for v, c in zip(xs, plan.is_couple)]
     pair_cols = [pc + ((direction(("n", pi)) if pr.kind == "P" else ()))
                  for pi, (pr, pc) in enumerate(zip(topo.pairs, plan.pair_cols))]
     driver_cols = plan.driver_cols
@@ -455,18 +570,30 @@ def solve_forces(topo: Topology, motion: LinkageMotion, bodies: Dict[int, Body],
         pr = pf.pair
         if frame not in (pr.i, pr.j):
             continue
-        sign = 1.0 if pr.j == frame else -1.0  # force on the frame
         p = motion.points[pr.point]
-        fx, fy = sign * pf.fx.reshape(flat), sign * pf.fy.reshape(flat)
-        ffx += fx
-        ffy += fy
-        fm += arr(p.x) * fy - arr(p.y) * fx + sign * pf.couple.reshape(flat)
+        fx, fy = pf.fx.reshape(flat), pf.fy.reshape(flat)
+        px, py = const(p.x), const(p.y)
+        t = _sub(_mul(px if type(px) is float else arr(px), fy),
+                 _mul(py if type(py) is float else arr(py), fx))
+        if pr.kind == "P":
+            t = _add(t, pf.couple.reshape(flat))
+        if pr.j == frame:  # the force on the frame: + the pair's, or - when frame < link
+            ffx += fx
+            ffy += fy
+            if type(t) is not float:
+                fm += t
+        else:
+            ffx -= fx
+            ffy -= fy
+            if type(t) is not float:
+                fm -= t
     power = np.zeros(flat)
     for d in linkage.drivers:
         val = balancing[d.link].reshape(flat)
         if d.rotary:
             fm -= val
-            power += val * arr(motion.links[d.link].omega)
+            w = const(motion.links[d.link].omega)
+            power += _mul(val, w if type(w) is float else arr(w))
         else:
             p = motion.points[d.point]
             ux, uy = np.cos(d.angle), np.sin(d.angle)
@@ -479,7 +606,11 @@ def solve_forces(topo: Topology, motion: LinkageMotion, bodies: Dict[int, Body],
     # global balance: Σ known forces (gravity, loads, inertia) = force on the frame
     kfx = sum(known[ln][0] for ln in topo.links)
     kfy = sum(known[ln][1] for ln in topo.links)
-    force_residual = np.hypot(kfx - ffx, kfy - ffy)
+    dx, dy = kfx - ffx, kfy - ffy  # |d| without hypot's cost (no overflow at forces)
+    dx *= dx
+    dy *= dy
+    dx += dy
+    force_residual = np.sqrt(dx, out=dx)
     # virtual power with the velocity coefficients: a second route to the balancing
     if unit_motion is not None:
         pres = np.zeros(flat)
@@ -490,15 +621,21 @@ def solve_forces(topo: Topology, motion: LinkageMotion, bodies: Dict[int, Body],
             else:
                 pres += val * arr(unit_motion.slides[d.slide_names(frame)[0]].v)
         for link in topo.links:
+            f = known[link]
+            if all(type(v) is float and v == 0.0 for v in f):
+                continue  # no known load on this link (massless, unloaded)
             x0, y0, origin, along, normal = com[link]
             # the same positions as the motion (as the callers solve it): its angles' trig
-            same = unit_motion.links[link].theta is motion.links[link].theta or np.array_equal(
-                unit_motion.links[link].theta, motion.links[link].theta)
+            # (only a centre off its origin needs the angle's trig)
+            same = (along is None or (_exact_zero(along) and _exact_zero(normal))
+                    or unit_motion.links[link].theta is motion.links[link].theta
+                    or np.array_equal(unit_motion.links[link].theta,
+                                      motion.links[link].theta))
             _x, _y, vx, vy, _a, _b = _point(unit_motion, topo, origin, link, along, normal,
                                              order=1, cos_sin=cos_sin if same else None)
-            f = known[link]
             # the known moment is about the centre of mass: P = F·v_S + M·ω
-            pres += f[0] * arr(vx) + f[1] * arr(vy) + f[2] * arr(unit_motion.links[link].omega)
+            pres += _add(_add(_mul(f[0], arr(vx)), _mul(f[1], arr(vy))),
+                         _mul(f[2], arr(unit_motion.links[link].omega)))
         power_residual = pres.reshape(n)
     else:
         power_residual = np.zeros(n)

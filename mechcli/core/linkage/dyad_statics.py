@@ -1,0 +1,251 @@
+"""Closed-form statics of one Assur group (a driver or a dyad), vectorized over positions.
+
+:mod:`.kinetostatics` assembles, per element of the linkage, a small block
+``A x = b`` (3 unknowns for a driver, 6 for a dyad) from the last element back
+to the drivers.  Every dyad of the engine (RRR, RRP, RPR, PRP) has the same
+structure: links a and b, an outer pair on each (to an earlier link or the
+frame) and an inner pair between them; each pair has two unknowns (the force
+components of a revolute pair; the normal force and the couple of a prismatic
+one).  Its block is solved here in closed form, as by hand:
+
+1. the outer pair of a link enters its three equations through a 3 x 2 matrix
+   whose left null vector ``w = c1 x c2`` (the cross product of its columns)
+   is the equation free of that pair (the moments about a revolute pin; the
+   forces along a prismatic guide);
+2. that equation of link a and of link b gives a 2 x 2 system for the inner
+   pair's two unknowns (Cramer's rule);
+3. each outer pair then follows from its link's force equations (and, for a
+   prismatic pair, the moment equation for its couple).
+
+A driver block (a crank's pin and torque; a slider driver's guide reaction,
+couple and force) is a 2 x 2 system on the force equations and the moment
+equation for the column that only enters it.
+
+The coefficients are those of the general system (scaled as there), Python
+floats where constant (exact zeros skipped, +-1 folded), arrays over the
+positions otherwise.  :func:`factor` does the part that depends on the matrix
+only, :func:`apply` the rest for one right-hand side (the condition number
+solves the identity's columns with the same factor: unit right-hand sides, all
+floats, a few passes over memory each).  Positions where the
+2 x 2 determinant vanishes give zeros and are reported, as the general
+elimination (:mod:`.elimination`) does; anything the layout does not describe
+is left to it (:func:`layout` returns None).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+_ZERO = 0.0
+
+
+def _isf(v):
+    return type(v) is float
+
+
+def const(a):
+    """A Python float for an array that holds one value at every position (a
+    stride-0 broadcast, as the engine gives a fixed point or a fixed angle),
+    anything else unchanged: the arithmetic here folds it."""
+    if type(a) is np.ndarray and a.ndim and not any(a.strides):
+        return float(a.reshape(-1)[0])
+    return a
+
+
+def _mul(a, b):
+    if _isf(a):
+        if a == 0.0:
+            return _ZERO
+        if a == 1.0:
+            return b
+        if a == -1.0:
+            return -b
+    if _isf(b):
+        if b == 0.0:
+            return _ZERO
+        if b == 1.0:
+            return a
+        if b == -1.0:
+            return -a
+    return a * b
+
+
+def _add(a, b):
+    if _isf(a) and a == 0.0:
+        return b
+    if _isf(b) and b == 0.0:
+        return a
+    return a + b
+
+
+def _sub(a, b):
+    if _isf(b) and b == 0.0:
+        return a
+    if _isf(a) and a == 0.0:
+        return -b
+    return a - b
+
+
+def _div(a, b):
+    if _isf(b):
+        if b == 1.0:
+            return a
+        if b == -1.0:
+            return -a
+    return a / b
+
+
+def _dot3(w, c):
+    """``w . c`` of two 3-vectors (floats or arrays)."""
+    return _add(_add(_mul(w[0], c[0]), _mul(w[1], c[1])), _mul(w[2], c[2]))
+
+
+def _cross(c1, c2):
+    return (_sub(_mul(c1[1], c2[2]), _mul(c1[2], c2[1])),
+            _sub(_mul(c1[2], c2[0]), _mul(c1[0], c2[2])),
+            _sub(_mul(c1[0], c2[1]), _mul(c1[1], c2[0])))
+
+
+def layout(kind_of, cols_of_rows, nrows):
+    """The closed-form layout of one block, or None (the general elimination).
+
+    ``kind_of``: per local pair (in the block's column order, two columns
+    each) its kind "R"/"P" and the local link indices (0 or 1) it acts on;
+    ``cols_of_rows``: per local column, ``{local row: is_const}`` of its
+    nonzero entries; ``nrows``: 3 (a driver) or 6 (a dyad).
+    """
+    if nrows == 3:
+        ncol = len(cols_of_rows)
+        if ncol != 3:
+            return None
+        only_m = [c for c in range(3) if set(cols_of_rows[c]) <= {2}]
+        if len(only_m) != 1 or not cols_of_rows[only_m[0]]:
+            return None
+        m = only_m[0]
+        f = tuple(c for c in range(3) if c != m)
+        return ("driver", f, m)
+    if nrows != 6 or len(kind_of) != 3 or len(cols_of_rows) != 6:
+        return None
+    outer, inner = {}, None
+    for p, (kind, links) in enumerate(kind_of):
+        if len(links) == 2:
+            if inner is not None:
+                return None
+            inner = p
+        elif len(links) == 1 and links[0] not in outer:
+            outer[links[0]] = p
+        else:
+            return None
+    if inner is None or set(outer) != {0, 1}:
+        return None
+    out = []
+    for ln in (0, 1):
+        p = outer[ln]
+        kind = kind_of[p][0]
+        c0, c1 = 2 * p, 2 * p + 1
+        rows = range(3 * ln, 3 * ln + 3)
+        r0, r1 = cols_of_rows[c0], cols_of_rows[c1]
+        if not set(r0) | set(r1) <= set(rows):
+            return None
+        base = 3 * ln
+        if kind == "R":
+            # (s, 0, mx) and (0, s, my): the force rows give the components
+            if not (r0.get(base) and r1.get(base + 1) and base + 1 not in r0
+                    and base not in r1):
+                return None
+        else:
+            # (ux, uy, um) and (0, 0, s): the normal force, then the couple
+            if set(r1) != {base + 2} or not r1[base + 2]:
+                return None
+        out.append((kind, (c0, c1), base))
+    return ("dyad", out[0], (2 * inner, 2 * inner + 1), out[1])
+
+
+def _guard(det):
+    """``(det, singular)``: exact zeros replaced by 1 (flagged)."""
+    if _isf(det):
+        if det == 0.0:
+            return 1.0, True
+        return det, None
+    zero = det == 0.0
+    if zero.any():
+        return np.where(zero, 1.0, det), zero
+    return det, None
+
+
+def _outer(kind, cols, base, A, r):
+    """The outer pair's two unknowns from its link's residual equations ``r``."""
+    c0, c1 = cols
+    if kind == "R":
+        return _div(r[0], A[base][c0]), _div(r[1], A[base + 1][c1])
+    ux, uy, um = A[base][c0], A[base + 1][c0], A[base + 2][c0]
+    n = _div(_add(_mul(ux, r[0]), _mul(uy, r[1])), _add(_mul(ux, ux), _mul(uy, uy)))
+    return n, _div(_sub(r[2], _mul(um, n)), A[base + 2][c1])
+
+
+def factor(lay, A):
+    """The part of a block's closed-form solution that depends on ``A`` only
+    (the equations free of the outer pairs, the 2 x 2 determinant), for
+    :func:`apply` to any number of right-hand sides."""
+    if lay[0] == "driver":
+        _, (f0, f1), m = lay
+        a00, a01, a10, a11 = A[0][f0], A[0][f1], A[1][f0], A[1][f1]
+        det, sing = _guard(_sub(_mul(a00, a11), _mul(a01, a10)))
+        return lay, None, (a00, a01, a10, a11), det, sing
+    _, (ka, ca, ba), (i0, i1), (kb, cb, bb) = lay
+    ws, gs = [], []
+    for c, base in ((ca, ba), (cb, bb)):
+        col0 = (A[base][c[0]], A[base + 1][c[0]], A[base + 2][c[0]])
+        col1 = (A[base][c[1]], A[base + 1][c[1]], A[base + 2][c[1]])
+        w = _cross(col0, col1)
+        ws.append(w)
+        gs.append((_dot3(w, (A[base][i0], A[base + 1][i0], A[base + 2][i0])),
+                   _dot3(w, (A[base][i1], A[base + 1][i1], A[base + 2][i1]))))
+    (g00, g01), (g10, g11) = gs
+    det, sing = _guard(_sub(_mul(g00, g11), _mul(g01, g10)))
+    return lay, ws, (g00, g01, g10, g11), det, sing
+
+
+def apply(fac, A, b, shape, arrays=True):
+    """Solve ``A x = b`` with a :func:`factor` of ``A``: X, a list of the unknowns
+    in the block's column order (zero at the singular positions); arrays of
+    ``shape`` (or, with ``arrays`` False, Python floats where they are constant)."""
+    lay, ws, g, det, sing = fac
+    if lay[0] == "driver":
+        _, (f0, f1), m = lay
+        a00, a01, a10, a11 = g
+        x0 = _div(_sub(_mul(a11, b[0]), _mul(a01, b[1])), det)
+        x1 = _div(_sub(_mul(a00, b[1]), _mul(a10, b[0])), det)
+        xm = _div(_sub(_sub(b[2], _mul(A[2][f0], x0)), _mul(A[2][f1], x1)), A[2][m])
+        X = [None] * 3
+        X[f0], X[f1], X[m] = x0, x1, xm
+    else:
+        _, (ka, ca, ba), (i0, i1), (kb, cb, bb) = lay
+        g00, g01, g10, g11 = g
+        h0 = _dot3(ws[0], (b[ba], b[ba + 1], b[ba + 2]))
+        h1 = _dot3(ws[1], (b[bb], b[bb + 1], b[bb + 2]))
+        y0 = _div(_sub(_mul(g11, h0), _mul(g01, h1)), det)
+        y1 = _div(_sub(_mul(g00, h1), _mul(g10, h0)), det)
+        X = [None] * 6
+        X[i0], X[i1] = y0, y1
+        for kind, c, base in ((ka, ca, ba), (kb, cb, bb)):
+            r = [_sub(_sub(b[base + k], _mul(A[base + k][i0], y0)), _mul(A[base + k][i1], y1))
+                 for k in ((0, 1) if kind == "R" else (0, 1, 2))]
+            X[c[0]], X[c[1]] = _outer(kind, c, base, A, r)
+    if sing is not None:
+        if sing is True:
+            X = [np.zeros(shape) for _ in X]
+        else:
+            X = [np.where(sing, 0.0, x) for x in X]
+    if arrays:
+        X = [np.full(shape, x) if _isf(x) else x for x in X]
+    return X
+
+
+def solve(lay, A, b, shape):
+    """Solve one block in closed form: ``(X, singular)`` (X a list of the
+    unknowns in the block's column order, arrays of ``shape``; ``singular`` None,
+    True or a mask of the positions with a vanishing determinant, where X is
+    zero)."""
+    fac = factor(lay, A)
+    return apply(fac, A, b, shape), fac[4]
