@@ -28,6 +28,10 @@ import math
 
 import numpy as np
 
+#: where :func:`bracketed_root` puts its second probe past a secant step, as a fraction
+#: of that step's move
+GUARD = 0.1
+
 #: (√5 − 1)/2: the golden-section ratio that keeps one interior point per step
 GOLDEN = (np.sqrt(5) - 1) / 2
 
@@ -76,9 +80,9 @@ def bracketed_root(lo, hi, f, rtol, iterations=64, f_lo=None, f_hi=None):
     f : callable
         ``f(x) -> array`` of the values at the inputs ``x`` (one call per step
         for every bracket at once).
-    rtol : float
+    rtol : float or array_like
         Stop when every bracket satisfies ``|hi − lo| <= rtol · max(1, |lo|)``,
-        the criterion of :func:`bisect`.
+        the criterion of :func:`bisect` (one value, or one per bracket).
     iterations : int, optional
         Most halvings, as :func:`bisect`: at most ``2 * iterations`` calls of
         ``f`` after the ends (every other step bisects when the secant is slow).
@@ -98,8 +102,11 @@ def bracketed_root(lo, hi, f, rtol, iterations=64, f_lo=None, f_hi=None):
     point (``lo = hi``); one that lands within the tolerance of an end closes
     the bracket by probing half a tolerance either side of it; a step that is
     not finite, or two steps that did not halve the bracket, fall back to
-    bisection.  Smooth
-    functions take 5–10 calls instead of the ~40 of :func:`bisect`.
+    bisection.  Each call probes a second point :data:`GUARD` times the secant's
+    last move past it, on the side the root is expected (towards the end the last
+    step kept): the secant's error being far smaller than its move, the root most
+    often falls between the two and the bracket shrinks to that in one call.  Smooth
+    functions take 3–6 calls instead of the ~40 of :func:`bisect`.
     """
     a = np.asarray(lo, dtype=float)
     b = np.asarray(hi, dtype=float)
@@ -142,8 +149,19 @@ def bracketed_root(lo, hi, f, rtol, iterations=64, f_lo=None, f_hi=None):
         last_bisect = bad
         x = np.where(bad, 0.5 * (left + right), x)
         h = 0.5 * tol
-        p1 = np.where(stalled, np.maximum(x - h, left), x)
-        p2 = np.where(stalled, np.minimum(x + h, right), x)
+        # a secant step's error is far below its move: a second probe a tenth of the
+        # move past it (the first step: of its distance to the nearer end), towards
+        # the end the last step kept (the first step: the farther end), most often
+        # brackets the root tightly, and the bracket shrinks to that in one call
+        guard = ~bad & ~stalled
+        first = ~np.isfinite(x_prev)
+        near, far = np.minimum(x - left, right - x), np.where(x - left > right - x, -1, 1)
+        move = np.where(first, near, np.abs(x - np.where(first, x, x_prev)))
+        reach = np.maximum(h, GUARD * move)
+        ahead = np.where(kept != 0, kept, far)
+        g = np.clip(x + ahead * reach, left, right)
+        p1 = np.where(stalled, np.maximum(x - h, left), np.where(guard, np.minimum(x, g), x))
+        p2 = np.where(stalled, np.minimum(x + h, right), np.where(guard, np.maximum(x, g), x))
         vals = np.asarray(f(np.concatenate([p1, p2])), dtype=float)
         f1, f2 = vals[:a.size], vals[a.size:]
         pl, p1_pos, p2_pos = fl > 0, f1 > 0, f2 > 0

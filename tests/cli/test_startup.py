@@ -120,6 +120,18 @@ def _theta3_at_0(l1, l2, l3, l4):
     return 180.0 - math.degrees(math.acos((l3 ** 2 + bd ** 2 - l2 ** 2) / (2 * l3 * bd)))
 
 
+#: modules of the linkage engine that ``kin --no-plot`` has no use for
+LINKAGE_NOT_FOR_KIN = tuple(f"mechcli.core.linkage.{m}" for m in (
+    "sketch", "kinetostatics", "force_analysis", "force_model", "loads", "piston",
+    "streaming", "approximate"))
+
+
+def test_the_linkage_modules_named_exist():
+    # a renamed module would make the check of kin --no-plot's imports pass vacuously
+    for name in LINKAGE_NOT_FOR_KIN:
+        assert (ROOT / (name.replace(".", "/") + ".py")).is_file(), name
+
+
 @pytest.mark.parametrize("extra", [[], ["--json"]])
 def test_kin_without_pictures_imports_no_picture_library(tmp_path, extra):
     proc, names = run_importtime("kin", str(ROOT / "configs" / "ch1" / "ex1-1.toml"),
@@ -128,6 +140,10 @@ def test_kin_without_pictures_imports_no_picture_library(tmp_path, extra):
     assert "numpy" in names and "mechcli" in names
     assert sorted({"scipy", "matplotlib", "PIL", "rich"} & names) == []
     assert sorted({"numpy.ma", *SLOW_VERSIONS} & mods) == []
+    # nothing of the force analysis, and not the drawing primitives' classes (built
+    # only when a picture is drawn: mechcli.core.linkage.sketch)
+    assert sorted(set(LINKAGE_NOT_FOR_KIN) & mods) == []
+    assert "mechcli.core.linkage.kinematics" in mods   # the list above is of real names
     assert not list(tmp_path.glob("*.png"))
     # 例 1-1 (l1 = 101.6, l2 = 254, l3 = 177.8, l4 = 304.8 mm): θ3 at θ1 = 0 against
     # the cosine rule (_theta3_at_0, 96.6654°); the CSV has 10 significant digits

@@ -51,7 +51,9 @@ def test_bracketed_root_matches_bisection_in_few_calls():
     root = 0.5 * (ref_lo + ref_hi)
     assert np.all(np.abs(b - a) <= 1e-13 * np.maximum(1.0, np.abs(a)))
     np.testing.assert_allclose(0.5 * (a + b), root, rtol=0, atol=2e-13)
-    assert f.calls <= 16          # bisection takes 44 calls for these brackets
+    # bisection takes 44 calls for these brackets, the secant alone 13; with its guard
+    # probe past each step (refine.GUARD) 6
+    assert f.calls <= 8
 
 
 def test_bracketed_root_falls_back_to_bisection_on_a_flat_root():
@@ -87,8 +89,10 @@ def test_extremes_are_stationary_points_in_few_solves(ex1_1, monkeypatch):
 
     monkeypatch.setattr(kinematics, "solve", counting)
     res = kinematics.analyse_sweep(spec.linkage, spec.input.sweep(), qs, spec.output.order)
-    # bisection took 40 solves for this sweep (38 on the extremes)
-    assert len(calls) <= 20
+    # bisection took 40 solves for this sweep (38 on the extremes), the secant 16; with
+    # its guard probes, central differences closed to their own rounding and the
+    # transmission angle refined on a smooth measure 9 (issue 17: "<= 3 ms")
+    assert len(calls) <= 10
     # at the refined max and min of omega3 its derivative alpha3 vanishes: one Newton
     # step |omega3' / omega3''| measures the distance to the true stationary point
     w1 = spec.input.sweep().dq
@@ -101,3 +105,38 @@ def test_extremes_are_stationary_points_in_few_solves(ex1_1, monkeypatch):
     m = real(spec.linkage, spec.input.sweep().inputs(np.array([hi.at])), order=1)
     assert abs(float(m.links[3].omega[0])) <= 1e-9 * abs(w1)
     assert math.isfinite(hi.value)
+
+
+def test_transmission_angle_max_at_its_fold_in_few_solves(ex1_1, monkeypatch):
+    # 例 1-1's γC reaches 90° (configs/ch1/ex1-1.toml: 90.0000° at θ1 = 83.4204°): the
+    # acute angle folds there, a kink where a difference quotient has one magnitude either
+    # side (15 calls of the secant).  Located on the smooth -cos² of the joint angle, in a
+    # few solves; independent check: the joint angle's cosine is 0 there, to the bias of
+    # the central difference (h = 1e-5 rad: O(h²) ≈ 1e-11 rad of input, times the
+    # cosine's rate |d cos/dθ1| <= (|ω2| + |ω3|) / ω1, 1.2 on this grid)
+    spec, qs = ex1_1
+    gamma = [q for q in qs if q.symbol == "gammaC"]
+    sweep = spec.input.sweep()
+    res = kinematics.analyse_sweep(spec.linkage, sweep, qs, spec.output.order)
+    calls = []
+    real = kinematics.solve
+
+    def counting(*a, **k):
+        calls.append(1)
+        return real(*a, **k)
+
+    monkeypatch.setattr(kinematics, "solve", counting)
+    only = kinematics.analyse_sweep(spec.linkage, sweep, gamma, 0)
+    monkeypatch.undo()
+    hi = only.extremes["gammaC"][0]
+    assert math.degrees(hi.at) == pytest.approx(83.4204, abs=5e-5)
+    assert hi.at == pytest.approx(res.extremes["gammaC"][0].at, abs=1e-12)
+    m = real(spec.linkage, sweep.inputs(np.array([hi.at])), order=0)
+    cos_joint = float(m.condition("C").cos_joint[0])
+    rate = float(np.max(np.abs(res.values["omega2"]) + np.abs(res.values["omega3"]))
+                 / sweep.dq)
+    assert abs(cos_joint) <= rate * 1e-11
+    # the value: 90° less the cosine (γ = atan2(|sin|, |cos|) ≈ π/2 - |cos| there)
+    assert hi.value == pytest.approx(math.pi / 2 - abs(cos_joint), abs=1e-15)
+    # the whole analysis of γC alone: 13 solves on γ's difference quotient, 9 on -cos²
+    assert len(calls) <= 10

@@ -47,49 +47,15 @@ SINGULAR_TOL = 1e-7
 ASSEMBLY_TOL = 1e-10
 
 
-# ---------------------------------------------------------------------------
-# drawing primitives (data only; report/kin_plots.py draws them)
-# ---------------------------------------------------------------------------
-@dataclasses.dataclass(frozen=True)
-class Bar:
-    """A bar drawn between two points."""
-
-    a: str
-    b: str
+#: the drawing primitives (:mod:`.sketch`), imported when first drawn
+_SKETCH = ("Bar", "Block", "Guide", "Pivot")
 
 
-@dataclasses.dataclass(frozen=True)
-class Block:
-    """A slider block at ``point``, turned with link ``link`` (``None``: not turned)."""
-
-    point: str
-    link: Optional[int] = None
-
-
-@dataclasses.dataclass(frozen=True)
-class Guide:
-    """A guide line carried by link ``link``.
-
-    It passes through ``point`` shifted by ``offset`` [m] to the left of its
-    direction, which is ``angle`` [rad] relative to the link.  ``ray``: drawn
-    from that point along ``branch`` times the direction (a guide bar pivoted
-    at ``point``); otherwise a line spanning the range of slide ``slide``.
-    """
-
-    link: int
-    point: str
-    angle: float
-    offset: float
-    slide: str
-    ray: bool = False
-    branch: int = 1
-
-
-@dataclasses.dataclass(frozen=True)
-class Pivot:
-    """A point fixed on the frame, drawn as a ground symbol."""
-
-    name: str
+def __getattr__(name):
+    if name in _SKETCH:
+        from mechcli.core.linkage import sketch
+        return getattr(sketch, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 # ---------------------------------------------------------------------------
@@ -442,6 +408,7 @@ class Ground(Element):
         tb.new_point(self.name, tb.frame)
 
     def sketch(self, frame):
+        from mechcli.core.linkage.sketch import Pivot
         return (Pivot(self.name),)
 
 
@@ -498,6 +465,7 @@ class Crank(Element):
         return (self.link,)
 
     def sketch(self, frame):
+        from mechcli.core.linkage.sketch import Bar
         return (Bar(self.pivot, self.point),)
 
 
@@ -556,6 +524,7 @@ class SliderDriver(Element):
         return (self.link,)
 
     def sketch(self, frame):
+        from mechcli.core.linkage.sketch import Block
         return (Block(self.point, None),)
 
 
@@ -729,6 +698,7 @@ class RRR(Element):
         return (self.link_a, self.link_b)
 
     def sketch(self, frame):
+        from mechcli.core.linkage.sketch import Bar
         return (Bar(self.point_a, self.joint), Bar(self.point_b, self.joint))
 
 
@@ -913,6 +883,7 @@ class RRP(Element):
         return (self.link, self.slider)
 
     def sketch(self, frame):
+        from mechcli.core.linkage.sketch import Bar, Block, Guide
         return (Bar(self.point, self.joint), Block(self.joint, self.slider),
                 Guide(self.guide_link, self.guide_point, self.guide_angle, self.offset,
                       self.slide_names(frame)[0]))
@@ -1041,6 +1012,7 @@ class RPR(Element):
         return (self.block, self.guide)
 
     def sketch(self, frame):
+        from mechcli.core.linkage.sketch import Block, Guide
         return (Block(self.point, self.block),
                 Guide(self.guide, self.pivot, 0.0, self.offset, self.slide_names(frame)[0], True,
                       self.branch))
@@ -1091,6 +1063,7 @@ class PointOnLink(Element):
             tb.frames[self.link][1] = self.name
 
     def sketch(self, frame):
+        from mechcli.core.linkage.sketch import Bar
         return (Bar(self.origin, self.name),)
 
 
@@ -1244,6 +1217,7 @@ class PRP(Element):
         return (self.slider_a, self.slider_b)
 
     def sketch(self, frame):
+        from mechcli.core.linkage.sketch import Block, Guide
         return tuple(p for (sl, gl, gp, ang, off, _), name in zip(self._sides(),
                                                                   self.slide_names(frame))
                      for p in (Block(self.joint, sl), Guide(gl, gp, ang, off, name)))

@@ -227,7 +227,10 @@ def _fields(el):
 # ---------------------------------------------------------------------------
 # results
 # ---------------------------------------------------------------------------
-@dataclasses.dataclass(frozen=True)
+# The motion records hold arrays, which ``==`` cannot compare as a whole: they compare
+# (and hash) by identity, ``eq=False``, which also spares the generated ``__eq__`` and
+# ``__hash__`` at start-up (issue 17).
+@dataclasses.dataclass(frozen=True, eq=False)
 class PointMotion:
     """Motion of a point: coordinates x, y [m], velocity vx, vy [m/s] and
     acceleration ax, ay [m/s^2] (``None`` where not computed).
@@ -255,7 +258,7 @@ class PointMotion:
         return None if self.ax is None else self.ax + 1j * self.ay
 
 
-@dataclasses.dataclass(frozen=True)
+@dataclasses.dataclass(frozen=True, eq=False)
 class LinkMotion:
     """Angle ``theta`` [rad], ``omega`` [rad/s], ``alpha`` [rad/s^2]."""
 
@@ -264,7 +267,7 @@ class LinkMotion:
     alpha: Optional[np.ndarray] = None
 
 
-@dataclasses.dataclass(frozen=True)
+@dataclasses.dataclass(frozen=True, eq=False)
 class SlideMotion:
     """Relative slide of a prismatic pair: ``s`` [m], ``v`` [m/s], ``a`` [m/s^2].
 
@@ -280,7 +283,7 @@ class SlideMotion:
     a: Optional[np.ndarray] = None
 
 
-@dataclasses.dataclass(frozen=True)
+@dataclasses.dataclass(frozen=True, eq=False)
 class DyadCondition:
     """Conditioning of one dyad: ``sin_gamma`` is 0 at a toggle/dead point.
 
@@ -306,7 +309,7 @@ class DyadCondition:
         return np.arctan2(self.sin_gamma, np.abs(self.cos_joint))
 
 
-@dataclasses.dataclass(frozen=True)
+@dataclasses.dataclass(frozen=True, eq=False)
 class DriverMotion:
     """Input of one driver: angle [rad] (or slide [m]) with its first two derivatives."""
 
@@ -315,7 +318,7 @@ class DriverMotion:
     ddq: Union[np.ndarray, float] = 0.0
 
 
-@dataclasses.dataclass(frozen=True)
+@dataclasses.dataclass(frozen=True, eq=False)
 class LinkageMotion:
     """Result of :func:`solve` over all input positions.
 

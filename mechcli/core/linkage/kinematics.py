@@ -27,7 +27,9 @@ from mechcli.core.refine import bisect, bracketed_root, sorted_union, true_runs
 NEAR_TOGGLE_SIN = 0.05
 
 
-@dataclasses.dataclass(frozen=True)
+# Records holding arrays compare by identity (``eq=False``, as the engine's motion
+# records): ``==`` cannot compare arrays as a whole.
+@dataclasses.dataclass(frozen=True, eq=False)
 class Sweep:
     """The input program.
 
@@ -164,7 +166,7 @@ class DeadPoint:
     shape: str = "touch"
 
 
-@dataclasses.dataclass(frozen=True)
+@dataclasses.dataclass(frozen=True, eq=False)
 class SweepResult:
     """Kinematics over the regular positions of a sweep.
 
@@ -504,45 +506,123 @@ def _rate_is_slope(sweep, getter, speed):
         getter[3] == 0 or _steady(sweep) is not None)
 
 
-def _derivative_probe(linkage, sweep, order, getters, x, h):
-    """Sign-carrying d/dq of every target at inputs ``x``.
+class _SlopeProbe:
+    """Sign-carrying d/dq of fixed targets, called on ``rep`` inputs per target (``x`` of
+    size ``rep * len(getters)``, target ``j`` at ``x[j::len(getters)]``); returns
+    ``(slopes, motion)``.
 
     ``getters[j]`` is ``(get, rate, is_angle, order)``: with an exact time rate the
     derivative is ``rate / dq``, solved with no input acceleration (:func:`_steady`; one
     solve); otherwise a central difference with step ``h`` (one-sided where a probe
-    leaves the regular domain).
+    leaves the regular domain).  The targets are grouped once by quantity, so that a
+    call evaluates every quantity's getter once on the solved motion and indexes it,
+    whatever the number of targets.
     """
-    T = len(getters)
-    speed = np.broadcast_to(sweep.speed(x), np.shape(x))
-    exact = [_rate_is_slope(sweep, g, speed[j]) for j, g in enumerate(getters)]
-    need_fd = not all(exact)
-    steady = _steady(sweep)
-    if steady is None:   # only positions' rates are used: they do not depend on ddq
-        steady = dataclasses.replace(sweep, ddq=0.0)
-    probe = np.concatenate([x, x - h, x + h]) if need_fd else x
-    m = solve(linkage, sweep.inputs(probe), order=min(order + 1, 2)) if need_fd else None
-    if any(exact):
-        m_rate = m if steady is sweep and m is not None else \
-            solve(linkage, steady.inputs(x), order=min(order + 1, 2))
-    out = np.zeros(T)
-    for j, (get, rate, is_angle, _k) in enumerate(getters):
-        if exact[j]:
-            out[j] = rate(m_rate)[j] / speed[j]
-            continue
-        reg = m.regular
-        f = get(m)
-        f0, fm, fp = f[j], f[T + j], f[2 * T + j]
-        rm, rp = reg[T + j], reg[2 * T + j]
-        if rm and rp:
-            d = fp - fm
-        elif rp:
-            d = fp - f0
-        elif rm:
-            d = f0 - fm
+
+    def __init__(self, linkage, sweep, order, getters, h):
+        self.linkage, self.sweep, self.order, self.h = linkage, sweep, order, h
+        self.n = len(getters)
+        steady = _steady(sweep)
+        # exact where the quantity has a rate usable as d/dq (the input speed != 0 is
+        # checked per input, :func:`_rate_is_slope`)
+        self.has_rate = np.array([g[1] is not None and (g[3] == 0 or steady is not None)
+                                  for g in getters], dtype=bool)
+        # only positions' rates are used when the input speed varies: they do not
+        # depend on ddq
+        self.steady = steady if steady is not None else dataclasses.replace(sweep, ddq=0.0)
+        self.rate_groups = self._groups(getters, 1)
+        self.get_groups = self._groups(getters, 0)
+        self._plans = {}
+
+    @staticmethod
+    def _groups(getters, slot):
+        """``[(function, is_angle, target indices)]``, one entry per distinct function."""
+        seen = {}
+        for j, g in enumerate(getters):
+            fn = g[slot]
+            if fn is None:
+                continue
+            key = (id(fn), g[2])
+            if key not in seen:
+                seen[key] = (fn, g[2], [])
+            seen[key][2].append(j)
+        return [(fn, is_angle, np.array(js)) for fn, is_angle, js in seen.values()]
+
+    def _plan(self, rep, exact):
+        """Per group, the indices of its targets' inputs among ``rep`` copies, split into
+        those taken from the rate (``exact``) and those taken by differences."""
+        n = self.n
+        out = []
+        for groups, keep in ((self.rate_groups, exact), (self.get_groups, ~exact)):
+            plan = []
+            for fn, is_angle, js in groups:
+                at = (js[None, :] + n * np.arange(rep)[:, None]).ravel()
+                at = at[keep[at]]
+                if at.size:
+                    plan.append((fn, is_angle, at))
+            out.append(plan)
+        return out
+
+    def __call__(self, x):
+        x = np.asarray(x, dtype=float)
+        sweep = self.sweep
+        rep = x.size // self.n
+        speed = sweep.speed(x)
+        if np.ndim(speed) == 0:   # one input speed: the plan depends on rep only
+            key = (rep, speed != 0)
+            if key not in self._plans:
+                self._plans[key] = self._plan(rep, np.tile(self.has_rate, rep) & (speed != 0))
+            rates, diffs = self._plans[key]
         else:
-            d = 0.0
-        out[j] = _wrap(d) if is_angle else d
-    return out, (m if m is not None else m_rate)
+            speed = np.broadcast_to(speed, x.shape)
+            rates, diffs = self._plan(rep, np.tile(self.has_rate, rep) & (speed != 0))
+        m = m_rate = None
+        if diffs:
+            probe = np.concatenate([x, x - self.h, x + self.h])
+            m = solve(self.linkage, sweep.inputs(probe), order=min(self.order + 1, 2))
+        out = np.zeros(x.size)
+        if rates:
+            m_rate = m if self.steady is sweep and m is not None else \
+                solve(self.linkage, self.steady.inputs(x), order=min(self.order + 1, 2))
+            for rate, _is_angle, at in rates:
+                out[at] = np.asarray(rate(m_rate), dtype=float)[at] / (
+                    speed if np.ndim(speed) == 0 else speed[at])
+        if diffs:
+            N = x.size
+            reg = m.regular
+            with np.errstate(invalid="ignore", over="ignore"):   # of the sides not taken
+                for get, is_angle, at in diffs:
+                    f = np.asarray(get(m), dtype=float)
+                    f0, fm, fp = f[at], f[N + at], f[2 * N + at]
+                    rm, rp = reg[N + at], reg[2 * N + at]
+                    d = np.where(rm & rp, fp - fm,
+                                 np.where(rp, fp - f0, np.where(rm, f0 - fm, 0.0)))
+                    out[at] = _wrap(d) if is_angle else d
+        return out, (m if m is not None else m_rate)
+
+
+def _transmission_measure(joint):
+    """A smooth function of the motion that rises and falls with the acute transmission
+    angle of the dyad at ``joint`` (``DyadCondition.gamma``): ``-cos_joint**2`` (gamma =
+    atan2(|sin|, |cos|) of the joint angle, the largest where its cosine is 0), or
+    ``sin_gamma**2`` where the dyad gives no cosine (gamma = asin(sin_gamma)).  Gamma
+    folds at 90° (a kink, where its difference quotient has one magnitude either side and
+    a secant search on it only bisects); this measure has a smooth extremum there."""
+    def measure(m):
+        c = m.condition(joint)
+        if c.cos_joint is None:
+            return c.sin_gamma * c.sin_gamma
+        return -(c.cos_joint * c.cos_joint)
+    return measure
+
+
+def _slope_getters(qt):
+    """``(get, rate, is_angle, order)`` whose slope :class:`_SlopeProbe` takes for the
+    extremes of ``qt``: its own, but a transmission angle's smooth measure
+    (:func:`_transmission_measure`, same extrema)."""
+    if qt.rate is None and qt.source and qt.source[0] == "joint" and qt.is_angle:
+        return (_transmission_measure(qt.source[1]), None, False, qt.order)
+    return (qt.get, qt.rate, qt.is_angle, qt.order)
 
 
 def refine_extremes(linkage, sweep, order, quantities, values, domain, iterations=64,
@@ -556,7 +636,10 @@ def refine_extremes(linkage, sweep, order, quantities, values, domain, iteration
     a safeguarded secant where the derivative changes sign across the
     bracket (:func:`~mechcli.core.refine.bracketed_root`, a few solves), by
     bisection on its sign otherwise; the best refined value wins, reported with the
-    input where it was evaluated.
+    input where it was evaluated.  A central difference's bracket closes no further
+    than its rounding error (:func:`_difference_tol`, the tolerance reported for it); a
+    transmission angle is refined on a smooth measure with the same extrema
+    (:func:`_transmission_measure`: it folds at 90°).  All targets share each solve.
     """
     q = domain.q
     span = float(q[-1] - q[0]) if q.size > 1 else 1.0
@@ -591,18 +674,16 @@ def refine_extremes(linkage, sweep, order, quantities, values, domain, iteration
     for j, (qi, sign, r, k) in enumerate(targets):
         lo[j], hi[j] = domain.bracket(r, k, wraps[quantities[qi].symbol])
     width0 = np.abs(hi - lo)   # the search brackets, before refinement
-    getters = [(quantities[qi].get, quantities[qi].rate, quantities[qi].is_angle,
-                quantities[qi].order) for qi, *_ in targets]
+    getters = [_slope_getters(quantities[qi]) for qi, *_ in targets]
     signs = np.array([t[1] for t in targets])
 
     def slope(idx):
         """Signed derivative of the targets ``idx`` (> 0: the extreme lies further on);
         called with several inputs per target (the probes of :func:`bracketed_root`)."""
-        g, sg = [getters[i] for i in idx], signs[idx]
+        probe, sg = _SlopeProbe(linkage, sweep, order, [getters[i] for i in idx], h), signs[idx]
 
         def f(x):
-            rep = x.size // len(idx)
-            return np.tile(sg, rep) * _derivative_probe(linkage, sweep, order, g * rep, x, h)[0]
+            return np.tile(sg, x.size // len(idx)) * probe(x)[0]
         return f
 
     # The first step of a bisection on the sign of the derivative, with the derivative
@@ -625,7 +706,17 @@ def refine_extremes(linkage, sweep, order, quantities, values, domain, iteration
     hi = np.where(~proper & ~to_hi, lo + np.copysign(tol, hi - lo), hi)
     if proper.any():
         idx = np.flatnonzero(proper)
-        lo[idx], hi[idx] = bracketed_root(lo[idx], hi[idx], slope(idx), 1e-13, iterations,
+        # A central difference locates its extreme no closer than its rounding allows
+        # (:func:`_difference_tol`, the tolerance reported for it): its bracket need not
+        # close further than that.
+        rtol = np.full(idx.size, 1e-13)
+        spd0 = np.broadcast_to(sweep.speed(mid), mid.shape)
+        for i, j in enumerate(idx):
+            if not _rate_is_slope(sweep, getters[j], spd0[j]):
+                qi, _sign, r, k = targets[j]
+                dtol = _difference_tol(values[quantities[qi].symbol], q, domain.runs[r], k, h)
+                rtol[i] = max(1e-13, dtol / max(1.0, abs(float(lo[j]))))
+        lo[idx], hi[idx] = bracketed_root(lo[idx], hi[idx], slope(idx), rtol, iterations,
                                           d_lo[idx], d_hi[idx])
     at = 0.5 * (lo + hi)
     m = solve(linkage, sweep.inputs(at), order=order)
