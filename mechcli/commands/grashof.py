@@ -55,7 +55,8 @@ def grashof(spec_path, lengths, frame, input_link, offset, batch, units, **opts)
         res = report.batch_results(an, ok)
         warns = [f"{res['cannot_close']} length sets cannot close (type cannot_close)"] \
             if res["cannot_close"] else []
-        finish(run, "grashof", report.batch_report(bs.header.title, run.lang, res), res,
+        finish(run, "grashof", report.batch_report(bs.header.title, run.lang, res,
+                                                     bs.header.unit), res,
                outputs, warns)
         return
     if lengths:

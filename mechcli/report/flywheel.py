@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import math
 
-from mechcli.report.table import Block, Report
+from mechcli.report.table import Block, Report, book_title
 
 #: rows of the printed table at most (the CSV has every point)
 TABLE_ROWS = 25
@@ -120,7 +120,7 @@ def build_report(spec, sol, lang):
     """The motion at up to 25 angles, then the figures of the run."""
     import numpy as np
     m = sol.motion
-    rep = Report(spec.header.title)
+    rep = Report(book_title(spec.header.title))
     n = len(m.phi)
     idx = np.unique(np.linspace(0, n - 1, min(n, TABLE_ROWS)).round().astype(int))
     if not hasattr(m, "omega"):

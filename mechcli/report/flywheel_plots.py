@@ -11,7 +11,7 @@ _T = {"en": {"je": "Equivalent inertia", "me": "Equivalent moment and work",
              "w": "Speed of the equivalent link", "phi": "φ / °", "t": "t / s",
              "iter": "period-map evaluation", "conv": "Convergence of the steady state"},
       "zh": {"je": "等效转动惯量", "me": "等效力矩与盈亏功", "w": "等效构件角速度",
-             "phi": "转角 φ/°", "t": "时间 t/s", "iter": "迭代次数", "conv": "稳定运转的收敛"}}
+             "phi": "转角 φ / °", "t": "时间 t / s", "iter": "迭代次数", "conv": "稳定运转的收敛"}}
 
 
 def write(spec, sol, outputs, lang):
@@ -34,7 +34,7 @@ def write(spec, sol, outputs, lang):
             ax2 = ax.twinx()
             ax2.plot(deg, m.dJe, "--", color="C1", label=r"$dJ_e/d\varphi$")
             ax2.grid(False)
-            ax2.set_ylabel(r"$dJ_e/d\varphi$ / kg·m²/rad  (- -)")
+            ax2.set_ylabel(r"$dJ_e/d\varphi$ / (kg·m²/rad)  (- -)")
             plotting.tie_axis(ax, "C0", "left")
             plotting.tie_axis(ax2, "C1", "right")
         plotting.save_png(fig, outputs, "flywheel.png")
@@ -49,7 +49,7 @@ def write(spec, sol, outputs, lang):
         ax2 = ax.twinx()
         ax2.plot(deg, m.dJe, "--", color="C1", label=r"$dJ_e/d\varphi$")
         ax2.grid(False)
-        ax2.set_ylabel(r"$dJ_e/d\varphi$ / kg·m²/rad  (- -)")
+        ax2.set_ylabel(r"$dJ_e/d\varphi$ / (kg·m²/rad)  (- -)")
         plotting.tie_axis(ax, "C0", "left")
         plotting.tie_axis(ax2, "C1", "right")
     ax = axs[0, 1]
@@ -69,11 +69,11 @@ def write(spec, sol, outputs, lang):
     axs[1, 0].plot(deg, m.omega, "-", color="C0")
     axs[1, 0].set_title(t["w"])
     axs[1, 0].set_xlabel(t["phi"])
-    axs[1, 0].set_ylabel("ω / rad·s⁻¹")
+    axs[1, 0].set_ylabel("ω / (rad/s)")
     axs[1, 1].plot(m.t, m.omega, "-", color="C4")
     axs[1, 1].set_title(t["w"])
     axs[1, 1].set_xlabel(t["t"])
-    axs[1, 1].set_ylabel("ω / rad·s⁻¹")
+    axs[1, 1].set_ylabel("ω / (rad/s)")
     fig.suptitle(plotting.text(spec.header.title))
     plotting.save_png(fig, outputs, "flywheel.png")
     if sol.steady is not None and sol.steady.history:
@@ -90,7 +90,7 @@ def _convergence(spec, sol, outputs, t):
     floor = 1e-17
     ax.semilogy(range(1, len(res) + 1), [max(r, floor) for r in res], "o-", color="C0")
     ax.set_xlabel(t["iter"])
-    ax.set_ylabel("|ω(φ0 + T) − ω0| / rad·s⁻¹")
+    ax.set_ylabel("|ω(φ0 + T) − ω0| / (rad/s)")
     ax.set_title(plotting.text(spec.header.title) + "\n" + t["conv"]
                  + f" ({sol.steady.root})")
     plotting.save_png(fig, outputs, "convergence.png")
@@ -113,7 +113,7 @@ def animate(spec, sol, outputs, lang, frames=72):
     ax_w.plot(deg, m.omega, "-", color="C0", label="ω(φ)")
     cursor, = ax_w.plot([], [], "o", color="C3", ms=7)
     ax_w.set_xlabel("φ / °")
-    ax_w.set_ylabel("ω / rad·s⁻¹")
+    ax_w.set_ylabel("ω / (rad/s)")
     drawing = None
     moving = [cursor]
     if has_link:

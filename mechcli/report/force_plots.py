@@ -29,7 +29,7 @@ _TEXT = {
            "torque": "Turning moment diagram T (mean {m:.4g} N·m)"},
     "zh": {"pair": "运动副反力 F_R{lab} 曲线图", "Mb": "平衡力矩 {sym} 曲线图",
            "Fb": "平衡力 {sym} 曲线图", "hodo": "F_R{lab} 矢端曲线",
-           "crank": "曲柄转角 θ{n}/°", "slide": "滑块位移 s{n}/{u}",
+           "crank": "曲柄转角 θ{n} / °", "slide": "滑块位移 s{n} / {u}",
            "shake_f": "机架总反力 (摆动力) 曲线图", "shake_m": "机架总力矩 (摆动力矩) Msh 曲线图",
            "power": "输入功率 P 曲线图", "active": "载荷 {name} 作用区间",
            "anim": "运动副反力", "at": "θ{n} = {v:.0f}°", "at_s": "s{n} = {v:.4g} {u}",
@@ -114,7 +114,7 @@ def plot_reactions(spec, result, outputs, t):
         ax.axhline(0, color="0.5", lw=0.6)
         _shade_loads(ax, spec, result, t)
         key = "Mb" if sym.startswith("Mb") else "Fb"
-        ax.set_title(_t(t, key, sym=msym), fontsize=10)
+        ax.set_title(_t(t, key, sym=msym), fontsize=10, pad=16)   # above the legend's row
         ax.set_ylabel(f"{msym} / " + ("N·m" if key == "Mb" else "N"))
         ax.set_xlabel(xlabel)
         plotting.legend_above(ax, fontsize=7)

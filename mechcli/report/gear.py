@@ -324,18 +324,19 @@ def measurement_results(m, sfx, L):
             f"s_n{sfx}": L(m.form.s_n)}
 
 
-def measurement_rows(m, sfx, f3, helical=False):
+def measurement_rows(m, sfx, f3, helical=False, lang="en"):
     """Report rows (en, zh, symbol, text) of one gear's measurements."""
     n = "normal " if helical else ""
+    on = _t(lang, "touching on", "切点在")
     rows = [
         (f"{n}tooth thickness with allowance", "齿厚 (计入减薄量)", f"s{sfx} - E{sfx}",
          f"{f3(m.form.s_n)} (E = {f3(m.form.allowance)})"),
         ("chordal thickness / addendum" + (" (zv)" if helical else ""), "分度圆弦齿厚 / 弦齿高",
          f"s̄{sfx}, h̄{sfx}", f"{f3(m.s_chord)}, {f3(m.h_chord)}"),
         (f"{n}base tangent length over k teeth", "公法线长度 / 跨齿数", f"W{sfx} (k)",
-         f"{f3(m.span.W)} (k = {m.span.k}, touching on d = {f3(m.span.d_contact)})"),
+         f"{f3(m.span.W)} (k = {m.span.k}, {on} d = {f3(m.span.d_contact)})"),
         ("dimension over pins" + (" (balls)" if helical else ""), "量柱(球)测量距",
-         f"M{sfx} (dp)", f"{f3(m.pins.M)} (dp = {f3(m.pins.dp)}, touching on "
+         f"M{sfx} (dp)", f"{f3(m.pins.M)} (dp = {f3(m.pins.dp)}, {on} "
                          f"d = {f3(m.pins.d_contact)})"),
     ]
     if helical:
@@ -738,7 +739,7 @@ def present_spur(spec, sol, run, outputs):
     for k, r in enumerate(p.radii):
         rows.append((f"thickness at r = {r / sc:g}", f"r = {r / sc:g} 处齿厚", f"s_r{k + 1}",
                      f3(g.tooth_thickness(r))))
-    rows += measurement_rows(ms, "", f3)
+    rows += measurement_rows(ms, "", f3, lang=lang)
     for k, (r, (sc_r, hc_r)) in enumerate(zip(p.radii, ms.radii)):
         rows.append((f"chordal thickness / height at r = {r / sc:g}",
                      f"r = {r / sc:g} 处弦齿厚 / 弦齿高", f"s̄_r{k + 1}, h̄_r{k + 1}",
@@ -851,7 +852,7 @@ def present_pair(spec, pairs, run, outputs):
         if k == 0:
             for i, m in enumerate(pairs.measures, start=1):
                 if m is not None:
-                    extra += measurement_rows(m, str(i), f3)
+                    extra += measurement_rows(m, str(i), f3, lang=lang)
             if pairs.loads is not None:
                 extra += loads_rows(pairs.loads, f3)
             pointed = [g for g in (g1, g2) if not g.internal and g.tooth_thickness(g.ra) <= 0]
@@ -970,7 +971,7 @@ def present_helical(spec, sol, run, outputs):
     for i, m in enumerate(sol.measures, start=1):
         results.update(measurement_results(m, str(i), L))
         results[f"b_min{i}"] = L(m.span.b_min)
-        extra += measurement_rows(m, str(i), f3, helical=True)
+        extra += measurement_rows(m, str(i), f3, helical=True, lang=lang)
     if sol.shift is not None:
         sh = sol.shift
         rule = {"x1": "xn1 given", "sliding": "balanced specific sliding",

@@ -32,10 +32,11 @@ def plot_involute(sol, spec, run, outputs):
     ax.plot(x / sc, y / sc, "b-", lw=1.5, label=_t(lang, "involute", "渐开线"))
     _circle(ax, spec.problem.rb / sc, "c--", _t(lang, "base circle", "基圆"))
     ax.set_aspect("equal")
-    ax.set_xlabel(f"x ({u})")
-    ax.set_ylabel(f"y ({u})")
-    ax.set_title(_t(lang, "Involute curve", "渐开线曲线"))
-    ax.legend(loc="lower left")
+    ax.set_xlabel(plotting.axis_label("x", u))
+    ax.set_ylabel(plotting.axis_label("y", u))
+    # the legend in a row above the axes (it covers no curve), the title above it
+    ax.set_title(_t(lang, "Involute curve", "渐开线曲线"), pad=16)
+    plotting.legend_above(ax, fontsize=7)
     plotting.save_png(fig, outputs, "involute.png")
 
 
@@ -57,18 +58,18 @@ def plot_gear(sol, spec, run, outputs):
         a.plot(out.x / sc, out.y / sc, "k-", lw=1.0)
         _gear_axes(a, g, sc, lang, legend=a is ax)
         a.set_aspect("equal")
-        a.set_xlabel(f"x ({u})")
-        a.set_ylabel(f"y ({u})")
-    ax.legend(loc="lower left", fontsize=8)
+        a.set_xlabel(plotting.axis_label("x", u))
+        a.set_ylabel(plotting.axis_label("y", u))
+    plotting.legend_above(ax, fontsize=7, ncol=4)   # above the axes: it covers no tooth
     ax.set_title(_t(lang, f"Spur gear m = {g.m / sc:g}, z = {g.z}, x = {g.x:g}",
-                    f"渐开线直齿圆柱齿轮 m={g.m / sc:g}, z={g.z}, x={g.x:g}"))
+                    f"渐开线直齿圆柱齿轮 m={g.m / sc:g}, z={g.z}, x={g.x:g}"), pad=16)
     half = 1.6 * math.pi / g.z
     r0, r1 = g.rf / sc * 0.97, g.ra / sc * 1.02
     bx.set_xlim(-r1 * math.sin(half), r1 * math.sin(half))
     bx.set_ylim(r0 * math.cos(half), r1)
     _circle(bx, tooth.r_form / sc, "m-", lw=0.6)
     bx.set_title(_t(lang, f"one tooth; involute from r = {tooth.r_form / sc:.3f} {u} (magenta)",
-                    f"单齿; 渐开线起始圆 r = {tooth.r_form / sc:.3f} {u}"))
+                    f"单齿; 渐开线起始圆 r = {tooth.r_form / sc:.3f} {u}"), pad=16)
     plotting.save_png(fig, outputs, "gear.png")
 
 
@@ -125,13 +126,13 @@ def plot_pair(pair, spec, run, outputs):
     ax.set_xlim(-span / sc, span / sc)
     ax.set_ylim((rw1 - span) / sc, (rw1 + span) / sc)
     ax.set_aspect("equal")
-    ax.legend(loc="lower left", fontsize=8)
-    ax.set_xlabel(f"x ({u})")
-    ax.set_ylabel(f"y ({u})")
+    plotting.legend_above(ax, fontsize=7, ncol=4)   # above the axes: it covers no tooth
+    ax.set_xlabel(plotting.axis_label("x", u))
+    ax.set_ylabel(plotting.axis_label("y", u))
     ax.set_title(_t(lang, f"z1 = {g1.z}, z2 = {g2.z}{' (internal)' if g2.internal else ''}, "
                     f"a' = {pair.a_w / sc:g} {u}, ε_α = {pair.epsilon_alpha:.3f}",
                     f"z1={g1.z}, z2={g2.z}{' (内齿轮)' if g2.internal else ''}, "
-                    f"a'={pair.a_w / sc:g}{u}, 重合度 {pair.epsilon_alpha:.3f}"))
+                    f"a'={pair.a_w / sc:g}{u}, 重合度 {pair.epsilon_alpha:.3f}"), pad=16)
     plotting.save_png(fig, outputs, "pair.png")
 
 
@@ -162,8 +163,8 @@ def animate_pair(pair, spec, run, outputs, frames_per_pitch=20, pitches=2):
     p2, = ax.fill([0], [0], facecolor="#fcbba1", edgecolor="r", lw=0.8)
     dots, = ax.plot([], [], "ko", ms=5)
     u = spec.header.unit
-    ax.set_xlabel(f"x ({u})")
-    ax.set_ylabel(f"y ({u})")
+    ax.set_xlabel(plotting.axis_label("x", u))
+    ax.set_ylabel(plotting.axis_label("y", u))
     title = ax.set_title(" ")
     label = plotting.readout(ax)
     plotting.tight(fig)
@@ -211,8 +212,8 @@ def _generation_axes(ax, tooth, phi, spec, lang, teeth, cutter=True):
         _circle(ax, tooth.r_form / sc, "m-", _t(lang, "involute starts here (sharp cutter)",
                                                   "渐开线起始圆 (尖角刀具)"), lw=0.8)
     ax.set_aspect("equal")
-    ax.set_xlabel(f"x ({u})")
-    ax.set_ylabel(f"y ({u})")
+    ax.set_xlabel(plotting.axis_label("x", u))
+    ax.set_ylabel(plotting.axis_label("y", u))
     ax.set_title(_t(lang, f"m = {g.m / sc:g}, z = {g.z}, α = {math.degrees(g.alpha):g}°, "
                     f"x = {g.x:g}"
                     + (": undercut (x < xmin)" if g.undercut else ": no undercut (x ≥ xmin)")

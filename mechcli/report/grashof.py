@@ -269,8 +269,13 @@ def batch_results(an, closes_mask):
     return res
 
 
-def batch_report(title, lang, res):
+def batch_report(title, lang, res, unit=None):
+    """The report of a ``--batch`` run; with *unit*, a note on the unit of the lengths
+    ``l1…l4`` of ``grashof.csv`` (named as the input's columns, see docs/grashof.md)."""
     rep = Report(title)
+    if unit:
+        rep.notes.append(_label(lang, f"grashof.csv: lengths l1…l4 in {unit}, as given",
+                                f"grashof.csv: 杆长 l1…l4 的单位为 {unit} (与输入相同)"))
     rows = [[_type_text(lang, k), str(v)] for k, v in res["counts"].items()]
     if res["cannot_close"]:
         rows.append([_label(lang, "cannot close", "不能构成闭环"), str(res["cannot_close"])])
@@ -468,8 +473,8 @@ def write_curve_png(curve, outputs, lang, title):
     th = np.degrees(curve.theta1)
     g = np.where(curve.feasible, np.degrees(curve.gamma), np.nan)
     ax.plot(th, g)
-    ax.set_xlabel(_label(used, "input angle θ1/(°)", "原动件转角 θ1/(°)"))
-    ax.set_ylabel(_label(used, "transmission angle γ/(°)", "传动角 γ/(°)"))
+    ax.set_xlabel(_label(used, "input angle θ1 / °", "原动件转角 θ1 / °"))
+    ax.set_ylabel(_label(used, "transmission angle γ / °", "传动角 γ / °"))
     if used == "zh" or title.isascii():   # no tofu boxes without a CJK font
         ax.set_title(title)
     ax.set_xlim(th.min(), th.max())
@@ -509,8 +514,8 @@ def write_limits_png(r, scale_unit, outputs, lang, title):
     ax.annotate("A", (0, 0), textcoords="offset points", xytext=(-10, -12))
     ax.annotate("D", (d, 0), textcoords="offset points", xytext=(4, -12))
     ax.set_aspect("equal")
-    ax.set_xlabel(f"x/({unit})")
-    ax.set_ylabel(f"y/({unit})")
+    ax.set_xlabel(plotting.axis_label("x", unit))
+    ax.set_ylabel(plotting.axis_label("y", unit))
     ax.legend(title=f"θ = {r['theta_deg']:.2f}°, ψ = {r['psi_deg']:.2f}°, K = {r['K']:.4f}")
     if used == "zh" or title.isascii():
         ax.set_title(title)

@@ -15,7 +15,7 @@ _TITLES = {
            "mech": "Mechanism at", "input": "crank angle {sym} / °", "curve": "Path of point",
            "anim": "Motion", "path": "path of {name}", "const": "{sym} ≡ {v:.4g} {u}"},
     "zh": {"disp": "位移线图", "vel": "速度线图", "acc": "加速度线图", "mech": "机构位置",
-           "input": "曲柄转角 {sym}/(°)", "curve": "轨迹 点", "anim": "运动仿真",
+           "input": "曲柄转角 {sym} / °", "curve": "轨迹 点", "anim": "运动仿真",
            "path": "{name} 点轨迹", "const": "{sym} ≡ {v:.4g} {u}"},
 }
 
@@ -90,8 +90,9 @@ def _plot_group(ax, spec, result, qs, x, t):
                         label=plotting.symbol(q.symbol))
             handles.append(h)
         mark = "" if len(axes) == 1 else ("  (—)" if style == "-" else "  (- -)")
-        a.set_ylabel(", ".join(plotting.symbol(q.symbol) for q, _ in group)
-                     + f" / {pretty_unit(group[0][0].kind, unit)}" + mark)
+        a.set_ylabel(plotting.axis_label(
+            ", ".join(plotting.symbol(q.symbol) for q, _ in group),
+            pretty_unit(group[0][0].kind, unit)) + mark)
         if len(axes) > 1 and len(group) == 1:
             plotting.tie_axis(a, colors[0], side)
     if not axes:

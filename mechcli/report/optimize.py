@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import math
 
-from mechcli.report.table import Block, Report
+from mechcli.report.table import Block, Report, book_title
 
 
 def _label(lang, en, zh):
@@ -149,7 +149,7 @@ def warnings(spec, result, details=None):
 
 
 def build_report(spec, problem, result, details, lang):
-    rep = Report(spec.header.title)
+    rep = Report(book_title(spec.header.title))
     rows = [[v.key, f"{v.start:.6g}", f"{v.lo:.6g}", f"{v.hi:.6g}", f"{x:.6f}"]
             for v, x in zip(spec.variables, result.x)]
     rep.blocks.append(Block(_label(lang, "Design variables", "设计变量"),

@@ -29,7 +29,7 @@ _T = {"en": {"conv": "Convergence", "iter": "iteration", "record": "record",
              "surf": "目标函数等值线", "infeasible": "不可行域", "start": "初始点 x0",
              "opt": "最优点 x*", "path": "迭代路径", "target": "预期与实际",
              "tgt_fn": "预期", "got_fn": "实际", "dev": "偏差",
-             "input": "输入角 φ/(°)", "input_s": "输入位移 s", "output": "输出角 ψ/(°)",
+             "input": "输入角 φ / °", "input_s": "输入位移 s", "output": "输出角 ψ / °",
              "output_s": "输出位移 s", "points": "给定点", "curve": "轨迹",
              "at": "给定输入角处", "best": "最优值 f*"}}
 
@@ -42,7 +42,8 @@ def _var_label(spec, i):
     v = spec.variables[i]
     last = v.key.split(".")[-1]
     unit = "°" if v.goal or last in _ANGLE_KEYS else spec.header.unit
-    return f"{v.key} / {unit}"
+    from mechcli.report import plotting
+    return plotting.axis_label(v.key, unit)
 
 
 def surface_span(problem, result, margin=0.5, crowded=3.0):
@@ -93,7 +94,7 @@ def _convergence_png(spec, problem, result, outputs, t, title):
                 label=f"{t['best']} = {result.f * factor:.6g}")
     if log_f:
         ax1.set_yscale("log")
-    ax1.set_ylabel(f"{t['f']} / {funit}" if funit not in ("1", "as the result") else t["f"])
+    ax1.set_ylabel(t["f"] if funit == "as the result" else plotting.axis_label(t["f"], funit))
     ax1.legend(fontsize=8, loc="best")
     pos = v > 0
     if pos.any():
@@ -137,7 +138,7 @@ def _surface_png(spec, problem, result, surface, outputs, t, title):
         ax.clabel(cs, fontsize=6, fmt="%.3g")
         cb = fig.colorbar(cf, ax=ax, ticks=levels[::4], format="%.3g")
         cb.minorticks_off()
-        cb.set_label(f"f / {funit}" if funit not in ("1", "as the result") else "f")
+        cb.set_label("f" if funit == "as the result" else plotting.axis_label("f", funit))
     bad = ~np.asarray(feas, dtype=bool)
     if bad.any():
         ax.contourf(U, V, bad.astype(float), levels=[0.5, 1.5], colors=["0.55"], alpha=0.45,
@@ -173,12 +174,14 @@ def _function_png(spec, details, goal, rotary, outputs, t, title):
         size = float(getattr(goal, "scale", 1.0))
         got = psi / spec.unit
         err = dev * size / spec.unit
-        ylab, elab = f"{t['output_s']} / {unit}", f"{t['dev']} / {unit}"
+        ylab = plotting.axis_label(f"{t['output_s']} ({out})", unit)
+        elab = plotting.axis_label(t["dev"], unit)
     else:
         psi = np.unwrap(psi)
         got = np.degrees(psi)
         err = np.degrees(dev)
-        ylab, elab = t["output"], f"{t['dev']} / °"
+        ylab = t["output"].replace(" / ", f" (link {out}) / ")
+        elab = plotting.axis_label(t["dev"], "°")
     target = got - err
     phi0 = float(details["phi0"][0])
     x0 = math.degrees(phi0) if rotary else phi0 / spec.unit
@@ -189,12 +192,12 @@ def _function_png(spec, details, goal, rotary, outputs, t, title):
     ax1.axvline(x0, color="0.5", lw=0.8, ls=":")
     ax1.annotate("φ0" if rotary else "s0", (x0, ax1.get_ylim()[0]), textcoords="offset points",
                  xytext=(3, 3), fontsize=8, color="0.3")
-    ax1.set_ylabel(ylab + (f" ({out})" if slide else f" (link {out})"))
+    ax1.set_ylabel(ylab)
     ax1.legend(fontsize=8, loc="best")
     ax2.plot(x, err, "o-", color="C1", ms=3, lw=1)
     ax2.axhline(0.0, color="0.3", lw=0.8)
     ax2.set_ylabel(elab)
-    ax2.set_xlabel(t["input"] if rotary else f"{t['input_s']} / {unit}")
+    ax2.set_xlabel(t["input"] if rotary else plotting.axis_label(t["input_s"], unit))
     ax1.set_title(plotting.text(title) + "\n" + t["target"])
     plotting.save_png(fig, outputs, "target.png")
 

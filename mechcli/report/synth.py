@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import math
 
-from mechcli.report.table import Block, Report
+from mechcli.report.table import Block, Report, book_title
 
 #: design value (core name, SI) -> (result key, how to show it): "deg" an angle,
 #: "len" a length, "" a plain number
@@ -274,7 +274,7 @@ def _blocks(prob, sol, u, unit, lang, prefix=""):
 def build_report(spec, solutions, lang):
     """The book-format report of every case."""
     u, unit = spec.header.scale, spec.header.unit
-    rep = Report(spec.header.title)
+    rep = Report(book_title(spec.header.title))
     for i, (prob, sol) in enumerate(zip(spec.cases, solutions)):
         prefix = f"[{i + 1}] " if spec.multi else ""
         rep.blocks += _blocks(prob, sol, u, unit, lang, prefix)

@@ -19,7 +19,7 @@ _T = {"en": {"pos": "Design in its prescribed positions", "err": "Structural err
              "bpts": "Burmester points (centre ▲, circle ●)",
              "lim": "Design at its two limit positions"},
       "zh": {"pos": "预定位置", "err": "结构误差", "x": "x", "ey": "y 的误差",
-             "ephi": "输出角误差/°", "burm": "Burmester 曲线", "centre": "圆心点曲线",
+             "ephi": "输出角误差 / °", "burm": "Burmester 曲线", "centre": "圆心点曲线",
              "circle": "圆点曲线", "poses": "位置", "bpts": "Burmester 点 (圆心点 ▲, 圆点 ●)",
              "lim": "极限位置"}}
 
@@ -71,8 +71,8 @@ def _positions_png(sol, outputs, name, title, unit, k, t, q=None):
             ax.plot(p.real, p.imag, ":", lw=1, color="0.4")
     limits(ax, m, k)
     ax.set_title(plotting.text(title) + "\n" + (t["lim"] if limits_only else t["pos"]))
-    ax.set_xlabel(unit)
-    ax.set_ylabel(unit)
+    ax.set_xlabel(plotting.axis_label("x", unit))
+    ax.set_ylabel(plotting.axis_label("y", unit))
     plotting.save_png(fig, outputs, name)
 
 
@@ -126,8 +126,8 @@ def _burmester_png(sol, prob, outputs, name, title, unit, k, t):
     ax.set_aspect("equal", adjustable="box")
     ax.legend(fontsize=7, loc="best")
     ax.set_title(plotting.text(title) + "\n" + (t["burm"] if sol.design is None else t["bpts"]))
-    ax.set_xlabel(unit)
-    ax.set_ylabel(unit)
+    ax.set_xlabel(plotting.axis_label("x", unit))
+    ax.set_ylabel(plotting.axis_label("y", unit))
     plotting.save_png(fig, outputs, name)
 
 

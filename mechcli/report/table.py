@@ -10,7 +10,9 @@ velocities, accelerations (told apart by the unit: ``/s``, ``/s²``), the reacti
 of one joint (``FR16x``, ``FR16y``, ``FR16``, ``MR16``) -- each block fitting
 the width: :data:`REPORT_WIDTH` in ``report.txt``, the terminal's on screen
 (:func:`terminal_width`).  :func:`select_columns` keeps only the columns a user
-names (``--columns theta3,omega3``).
+names (``--columns theta3,omega3``).  Everything else fits the same width by
+wrapping (:func:`wrap`): titles, headings, notes, and the rows of a key/value block,
+whose long values go on under the value column (:func:`kv_layout`).
 """
 
 from __future__ import annotations
@@ -77,10 +79,12 @@ def unit_header(symbol, unit, name=""):
     return f"{name} {text}" if name else text
 
 def display_width(text):
-    """Terminal columns taken by *text* (CJK characters count two)."""
+    """Terminal columns taken by *text* (CJK characters count two, a combining mark
+    such as the bar of ``s̄`` none)."""
     if text.isascii():   # most cells: numbers
         return len(text)
-    return sum(2 if unicodedata.east_asian_width(c) in "WF" else 1 for c in text)
+    return sum(0 if unicodedata.combining(c) else
+               2 if unicodedata.east_asian_width(c) in "WF" else 1 for c in text)
 
 
 def _pad(text, width, left=False):
@@ -224,12 +228,108 @@ def select_columns(report, names):
     return Report(report.title, blocks, list(report.notes))
 
 
+#: where a line of prose may best be broken: after a comma or semicolon, before "("
+_GOOD_BREAK = re.compile(r"[,;:]$")
+
+
+def _breakable(words, i):
+    """May a line end after ``words[i]``?  Not inside ``sym = value`` nor between a
+    number and its unit (``54.113 mm``)."""
+    a, b = words[i], words[i + 1]
+    if a in ("=", "≈", "<", ">", "≤", "≥", "−", "-", "+", "·", "×") or \
+            b in ("=", "≈", "<", ">", "≤", "≥", "·", "×"):
+        return False
+    return not (re.search(r"\d[)\]]?$", a) and re.fullmatch(r"(mm|cm|m|in|N|N·m|rad|s|%|°)"
+                                                             r"[/\w²³·]*[,;)\]]*", b))
+
+
+def wrap(text, width, indent=""):
+    """*text* as lines no wider than *width* (display columns, CJK counts two), the
+    lines after the first starting with *indent*.  Lines break at spaces, best after a
+    comma or semicolon or before a parenthesis, never inside ``x = 1.5 mm``; a word
+    wider than a line (CJK text has no spaces) is cut where it must be."""
+    width = max(width, display_width(indent) + 8)
+    if display_width(text) <= width:
+        return [text]
+    words = text.split(" ")
+    lines, cur = [], []          # cur: the words of the line being filled
+
+    def used(ws, first):
+        body = " ".join(ws)
+        return display_width(body if first else indent + body)
+
+    for k, word in enumerate(words):
+        first = not lines
+        if not cur or used(cur + [word], first) <= width:
+            cur.append(word)
+            continue
+        # the line is full: end it at the best break in its second half, else the last allowed
+        cut, fallback, ahead = None, None, cur + [word]
+        for j in range(len(cur), 0, -1):
+            if not _breakable(ahead, j - 1):
+                continue
+            if fallback is None:
+                fallback = j
+            good = _GOOD_BREAK.search(ahead[j - 1]) or ahead[j].startswith("(")
+            if good and used(cur[:j], first) >= width // 2:
+                cut = j
+                break
+        if cut is None:       # no good break: the last allowed one, unless that leaves a stub
+            short = fallback is None or used(cur[:fallback], first) < width // 3
+            cut = len(cur) if short else fallback
+        lines.append(" ".join(cur[:cut]))
+        cur = cur[cut:] + [word]
+    if cur:
+        lines.append(" ".join(cur))
+    out = []
+    for n, line in enumerate(lines):                       # a word still too wide: cut it
+        lead = "" if n == 0 else indent
+        while display_width(lead + line) > width:
+            room, cut = width - display_width(lead), 0
+            while cut < len(line) and display_width(line[:cut + 1]) <= room:
+                cut += 1
+            cut = max(cut, 1)
+            out.append(lead + line[:cut])
+            line, lead = line[cut:].lstrip(" "), indent
+        out.append(lead + line)
+    return out
+
+
+def kv_layout(rows, width, frame=4):
+    """Lay out the ``[label, value]`` rows of a key/value block in *width* columns,
+    of which *frame* go to the block's margins and the gap between its two columns.
+
+    Returns ``(label_width, value_width, [(label_lines, value_lines), ...])``: a value
+    too long for its column continues on lines indented two columns under it; a label
+    wraps only when the values would otherwise be left less than half the width
+    (and 30 columns)."""
+    if not rows:
+        return 0, 0, []
+    lmax = max(display_width(r[0]) for r in rows)
+    vmax = max(display_width(r[1]) for r in rows)
+    avail = max(width - frame, 20)
+    if lmax + vmax <= avail:
+        lw, vw = lmax, vmax
+    else:
+        need = min(vmax, max(30, avail // 2))
+        vw = avail - lmax if avail - lmax >= need else min(vmax, max(need, avail // 2))
+        lw = min(lmax, avail - vw)
+        vw = avail - lw
+    cells = [(wrap(r[0], lw, "  "), wrap(r[1], vw, "  ")) for r in rows]
+    lw = max(display_width(ln) for lab, _ in cells for ln in lab)
+    vw = max(display_width(ln) for _, val in cells for ln in val)
+    return lw, vw, cells
+
+
 def render_text(report: Report, width=REPORT_WIDTH) -> str:
-    """Plain-text report as written to ``report.txt``: tables split to *width*."""
-    out = [report.title, "=" * max(20, display_width(report.title)), ""]
+    """Plain-text report as written to ``report.txt``: every line no wider than
+    *width* -- tables split into blocks, titles, headings, notes and long key/value
+    rows wrapped."""
+    title = wrap(report.title, width)
+    out = title + ["=" * min(width, max(20, *map(display_width, title))), ""]
     for block in (b for whole in report.blocks for b in split_block(whole, width)):
         if block.heading:
-            out.append(block.heading)
+            out.extend(wrap(block.heading, width, "  "))
         if block.headers:
             widths = [max(display_width(h), *(display_width(r[i]) for r in block.rows))
                       if block.rows else display_width(h) for i, h in enumerate(block.headers)]
@@ -238,12 +338,15 @@ def render_text(report: Report, width=REPORT_WIDTH) -> str:
             for row in block.rows:
                 out.append("  ".join(_pad(c, w) for c, w in zip(row, widths)))
         else:
-            lw = max((display_width(r[0]) for r in block.rows), default=0)
-            for row in block.rows:
-                out.append(f"  {_pad(row[0], lw, left=True)}  {row[1]}")
+            lw, _, cells = kv_layout(block.rows, width)
+            for label, value in cells:
+                for k in range(max(len(label), len(value))):
+                    lab = label[k] if k < len(label) else ""
+                    val = value[k] if k < len(value) else ""
+                    out.append(f"  {_pad(lab, lw, left=True)}  {val}".rstrip())
         out.append("")
     for note in report.notes:
-        out.append(note)
+        out.extend(wrap(note, width, "  "))
     return "\n".join(out).rstrip() + "\n"
 
 
@@ -258,7 +361,7 @@ def print_rich(report: Report, file=None, width=None):
     blocks = [b for whole in report.blocks for b in split_block(whole, width, gap=3, edge=4)]
     # never squeeze numbers: widen past the terminal rather than truncate cells (only a
     # table whose first two columns are already wider than the terminal needs it); a
-    # key/value block wraps its labels instead, a long title or note wraps as text
+    # key/value block wraps its own rows (kv_layout), a long title or note wraps as text
     need = max([sum(max([display_width(h)] + [display_width(r[i]) for r in b.rows]) + 3
                     for i, h in enumerate(b.headers)) + 1 for b in blocks if b.headers],
                default=0)
@@ -276,12 +379,14 @@ def print_rich(report: Report, file=None, width=None):
             for row in block.rows:
                 table.add_row(*map(escape, row))
         else:
+            # the frame: "│ " label " │ " value " │"
+            lw, vw, cells = kv_layout(block.rows, width, frame=7)
             table = Table(title=escape(block.heading) or None, title_justify="left",
-                          show_header=False, min_width=wide)
-            table.add_column(justify="left")
-            table.add_column(justify="right", no_wrap=True)
-            for row in block.rows:
-                table.add_row(*map(escape, row))
+                          show_header=False, min_width=min(wide or 0, lw + vw + 7) or None)
+            table.add_column(justify="left", width=lw, no_wrap=True)
+            table.add_column(justify="left", width=vw, no_wrap=True)
+            for label, value in cells:
+                table.add_row(escape("\n".join(label)), escape("\n".join(value)))
         console.print(table)
     for note in report.notes:
         console.print(note, markup=False)

@@ -144,3 +144,26 @@ def test_text_without_a_font_uses_the_runs_stem(no_cjk_font):
     assert plotting.text("load '重物W' acts") == "load 'W' acts"   # a label keeps its shape
     assert plotting.text("crank angle θ1 / °") == "crank angle θ1 / °"
     run.begin(None)
+
+
+@pytest.mark.parametrize("command, spec", [("kin", EX1_1), ("force", CONFIGS / "ch2" / "ex2-4.toml")])
+def test_chinese_beside_a_math_symbol_is_drawn_from_the_cjk_font(tmp_path, cjk_font, caplog,
+                                                                 command, spec):
+    """``曲柄转角 $\\theta_1$ / °``: mathtext draws a string holding a ``$…$`` whole, from
+    fonts without CJK glyphs, and logs (not warns) "Font 'default' does not have a glyph"
+    for each Chinese character; such texts are drawn in plain Unicode (曲柄转角 θ₁ / °)."""
+    import logging
+
+    caplog.set_level(logging.WARNING, logger="matplotlib")
+    proc = run_inprocess(command, spec, "--lang", "zh", "-q", "--animate", "-o", tmp_path)
+    assert proc.returncode == 0, proc.stderr
+    assert [r.getMessage() for r in caplog.records if "glyph" in r.getMessage()] == []
+
+
+def test_plain_math_writes_the_books_symbols_in_unicode():
+    from mechcli.report import plotting
+    cases = {"theta1": "θ₁", "omega3": "ω₃", "FR16": "FR₁₆", "alpha2": "α₂", "Je": "Jₑ"}
+    for name, plain in cases.items():
+        assert plotting.plain_math(f"曲柄 {plotting.symbol(name)} / °") == f"曲柄 {plain} / °"
+    assert plotting.plain_math(r"$dJ_e/d\varphi$ / (kg·m²/rad)") == "dJₑ/dφ / (kg·m²/rad)"
+    assert plotting.plain_math("no math, 50$") == "no math, 50$"

@@ -274,3 +274,15 @@ def test_readme_installs_in_a_venv_lists_every_command_and_completion():
         assert re.search(rf"^mechcli {name}\b", synopsis, re.M), name
     assert '_MECHCLI_COMPLETE=bash_source mechcli' in text
     assert "--version" in synopsis
+
+
+@pytest.mark.parametrize("command, spec, label", [
+    ("synth", CONFIGS / "ch3" / "ex3-4.toml", "【例 3-4】 "),
+    ("flywheel", CONFIGS / "ch6" / "ex6-1.toml", "【例 6-1】 "),
+    ("optimize", CONFIGS / "ch7" / "ex7-2-golden.toml", "【例 7-2】 "),
+])
+def test_every_command_titles_a_worked_example_in_the_books_brackets(tmp_path, command,
+                                                                     spec, label):
+    """Titles ``例 3-4 …`` of synth, flywheel and optimize as kin's: ``【例 3-4】 …``."""
+    lines = _report(tmp_path, command, spec)
+    assert lines[0].startswith(label)

@@ -62,6 +62,34 @@ def test_gear_involute_table_fits_80_columns_in_the_books_notation(tmp_path, mon
     assert "deg " not in report and "度 " not in report
 
 
+GEAR_SPECS = sorted(CH5.glob("*.toml"))
+
+
+@pytest.mark.parametrize("lang", ["en", "zh"])
+@pytest.mark.parametrize("spec", GEAR_SPECS, ids=[p.stem for p in GEAR_SPECS])
+def test_every_gear_report_fits_80_columns_and_report_txt_100(tmp_path, monkeypatch, spec,
+                                                              lang):
+    """Measurement rows (W (k) = … (k = 4, touching on d = …)), the pair's long rows and
+    long titles wrap, their continuation indented under the value (before: up to 182
+    columns on screen, 229 in report.txt)."""
+    from mechcli.report.table import display_width
+
+    monkeypatch.setenv("COLUMNS", "80")
+    proc = run_inprocess("gear", spec, "--no-plot", "--lang", lang, "-o", tmp_path)
+    assert proc.returncode == 0, proc.stderr
+    screen = [ln for ln in proc.stdout.splitlines() if not ln.startswith("written:")]
+    assert max(map(display_width, screen)) <= 80
+    report = (tmp_path / "report.txt").read_text(encoding="utf-8").splitlines()
+    assert max(map(display_width, report)) <= 100
+    if spec.stem == "ex5-3":
+        # 【例 5-3】's span W over k = 4 teeth (W = 54.113 mm, printed in the book): the
+        # value goes on under its value column, two columns further in
+        i = next(i for i, ln in enumerate(screen) if "W (k) = 54.113 mm" in ln)
+        col = display_width(screen[i][:screen[i].index("W (k)")])
+        on = "touching on" if lang == "en" else "切点在"
+        assert screen[i + 1] == " " * (col + 2) + f"{on} d = 173.121 mm)"
+
+
 def test_gear_units_with_a_space_and_greek_symbols(tmp_path):
     run_inprocess("gear", CH5 / "ex5-3.toml", "--no-plot", "-q", "-o", tmp_path)
     text = (tmp_path / "report.txt").read_text(encoding="utf-8")
@@ -265,3 +293,22 @@ def test_grashof_help_does_not_offer_animate():
     assert proc.returncode == 0
     assert "--animate" not in proc.stdout and "--dpi" in proc.stdout
     assert "SPEC.toml form only" in " ".join(proc.stdout.split())
+
+
+def test_grashof_csv_lengths_keep_the_batch_inputs_names(tmp_path):
+    """grashof.csv's l1…l4 stay unsuffixed (docs/grashof.md): its first six columns are the
+    --batch input's, so the output cut to them is a valid batch again, and report.txt says
+    the unit.  习题 3-1's four-bar 28, 52, 50, 72 (configs/ch3/exercise3-1.toml): a crank-rocker."""
+    sets = write_spec(tmp_path, "l1,l2,l3,l4,frame,input\n2.8,5.2,5.0,7.2,4,1\n", "sets.csv")
+    proc = run_inprocess("grashof", "--batch", sets, "--units", "cm", "-q", "-o", tmp_path / "a")
+    assert proc.returncode == 0, proc.stderr
+    rows = (tmp_path / "a" / "grashof.csv").read_text().splitlines()
+    assert rows[0].split(",")[:6] == ["l1", "l2", "l3", "l4", "frame", "input"]
+    assert rows[1].startswith("2.8,5.2,5,7.2,4,1,crank_rocker,")
+    report = (tmp_path / "a" / "report.txt").read_text(encoding="utf-8")
+    assert "grashof.csv: lengths l1…l4 in cm, as given" in report
+    again = write_spec(tmp_path, "\n".join(",".join(r.split(",")[:6]) for r in rows) + "\n",
+                       "again.csv")
+    proc = run_inprocess("grashof", "--batch", again, "--units", "cm", "-q", "-o", tmp_path / "b")
+    assert proc.returncode == 0, proc.stderr
+    assert (tmp_path / "b" / "grashof.csv").read_text().splitlines() == rows

@@ -1,12 +1,16 @@
 """Tables fit the terminal and the page (issue 18, item 2): wide tables split into blocks
 that repeat the input angle and keep groups of columns whole; ``--columns`` chooses."""
 
+import copy
+import io
 import json
+import tomllib
 
 import pytest
 
-from mechcli.report.table import (REPORT_WIDTH, Block, Report, display_width, render_text,
-                                  split_block)
+import mechcli.report.run as run_module
+from mechcli.report.table import (REPORT_WIDTH, Block, Report, display_width, kv_layout,
+                                  print_rich, render_text, split_block, wrap)
 from tests.conftest import CONFIGS, one_line_error, run_inprocess
 
 EX1_2 = CONFIGS / "ch1" / "exercise1-2.toml"   # kin with a traced point: 14 columns
@@ -94,3 +98,77 @@ def test_unknown_column_is_a_usage_error(tmp_path):
     proc = run_inprocess("kin", EX1_2, "--json", "--no-plot", "-o", tmp_path,
                          "--columns", "omga3")
     assert proc.returncode == 2 and json.loads(proc.stdout)["exit_code"] == 2
+
+
+# -- every config's report, on an 80-column terminal and in report.txt ---------------------
+
+#: configs whose run takes seconds (a differential evolution, an atlas search): their
+#: reports are built by the same Report/Block code as the fast configs of their command
+#: (optimize: ch7/ex7-1, ex7-2-golden, exercise7-2; synth's atlas: atlas/page-seed-example)
+SLOW = {"ch7/exercise7-1.toml", "ch7/exercise7-3.toml", "ch7/exercise7-4.toml",
+        "ch7/ex2-1-min-Mb.toml", "atlas/exercise7-3-atlas.toml", "atlas/exercise7-4-atlas.toml"}
+EVERY = sorted(p for p in CONFIGS.rglob("*.toml")
+               if p.relative_to(CONFIGS).as_posix() not in SLOW)
+
+
+def _widest(text):
+    return max(map(display_width, text.splitlines()), default=0)
+
+
+@pytest.mark.parametrize("path", EVERY, ids=[p.relative_to(CONFIGS).as_posix() for p in EVERY])
+def test_every_report_fits_80_columns_and_100_in_report_txt(path, tmp_path, monkeypatch):
+    """One run per config: report.txt within 100 columns, and the same report (with its
+    warnings) within 80 columns both as the plain text a pipe gets and as rich tables."""
+    seen = []
+
+    def recording(report, width=REPORT_WIDTH):
+        seen.append(copy.deepcopy(report))
+        return render_text(report, width)
+
+    monkeypatch.setattr(run_module, "render_text", recording)
+    command = tomllib.loads(path.read_text(encoding="utf-8"))["command"]
+    proc = run_inprocess(command, path, "-q", "--no-plot", "--no-animate", "-o", tmp_path)
+    assert proc.returncode == 0, proc.stderr
+    assert _widest((tmp_path / "report.txt").read_text(encoding="utf-8")) <= REPORT_WIDTH
+    report = seen[0]
+    assert _widest(render_text(report, width=80)) <= 80
+    screen = io.StringIO()
+    print_rich(report, file=screen, width=80)
+    assert _widest(screen.getvalue()) <= 80
+    # nothing is lost on the way: the wrapped lines of a key/value row hold all its text
+    for block in report.blocks:
+        if block.rows and not block.headers:
+            for row, cell in zip(block.rows, kv_layout(block.rows, 80)[2]):
+                assert ["".join("".join(part).split()) for part in cell] \
+                    == ["".join(text.split()) for text in row]
+
+
+def test_wrap_breaks_prose_where_a_reader_would():
+    value = "W (k) = 54.113 mm (k = 4, touching on d = 173.121 mm)"   # 【例 5-3】's span
+    assert wrap(value, 60) == [value]
+    lines = wrap(value, 30, "  ")
+    assert lines == ["W (k) = 54.113 mm (k = 4,", "  touching on d = 173.121 mm)"]
+    # never between a symbol and its value, nor a number and its unit
+    for width in range(20, 40):
+        for line in wrap(value, width, "  "):
+            assert not line.rstrip().endswith(("=", "54.113", "173.121"))
+            assert display_width(line) <= width
+        assert " ".join(ln.strip() for ln in wrap(value, width, "  ")) == value
+    # CJK text has no spaces: it is cut by display columns (two per character)
+    assert wrap("渐开线起始圆半径" * 2, 10, "  ") == ["渐开线起始", "  圆半径渐", "  开线起始",
+                                                      "  圆半径"]
+
+
+def test_key_value_rows_wrap_their_values_under_the_value_column():
+    rows = [["base tangent length over k teeth", "W (k) = 54.113 mm (k = 4, touching on "
+             "d = 173.121 mm)"], ["number of teeth", "z = 35"]]
+    text = render_text(Report("t", [Block("Spur gear geometry", [], rows)]), width=70)
+    lines = text.splitlines()
+    i = lines.index("Spur gear geometry")
+    assert lines[i + 1] == "  base tangent length over k teeth  W (k) = 54.113 mm (k = 4,"
+    # the continuation starts two columns inside the value column
+    assert lines[i + 2] == " " * 36 + "  touching on d = 173.121 mm)"
+    assert lines[i + 3] == "  number of teeth                   z = 35"
+    # a label wraps only when the values would get less than half the width
+    lw, vw, cells = kv_layout([["a very long label " * 3, "x = 1"]], 40)
+    assert lw + vw + 4 <= 40 and len(cells[0][0]) > 1 and cells[0][1] == ["x = 1"]
