@@ -4,7 +4,7 @@
 cannot assemble (or is at a dead point) and refines those boundaries by
 bisection, restricts the analysis to the regular positions when asked, and
 refines the extremes of every requested quantity by a bracketed search on the
-exact solution (to 1e-15 ... 1e-11 rad of input angle, each with its tolerance); gives
+exact solution (to 1e-15 ... 1e-10 rad of input angle, each with its tolerance); gives
 every dead point as one input with its uncertainty (:func:`dead_points`) and the ends of
 every gap as the roots of a dyad's discriminant (:func:`assembly_limits`).
 
@@ -616,12 +616,42 @@ def _transmission_measure(joint):
     return measure
 
 
-def _slope_getters(qt):
+def _transmission_measure_rate(linkage, joint):
+    """The exact time rate of :func:`_transmission_measure` for the RRR dyad whose joint
+    is ``joint`` (None for any other dyad).
+
+    With ``ra = J - A`` and ``rb = J - B`` the dyad's two link vectors (A, B its known
+    points, J its joint), the joint angle's cosine is ``c = ra.rb / (|ra| |rb|)``; the
+    lengths are constant, so ``dc/dt = (dra.rb + ra.drb) / (|ra| |rb|)`` with
+    ``dra = vJ - vA``, ``drb = vJ - vB`` (the engine's point velocities, exact), and the
+    measure ``-c**2`` has the rate ``-2 c dc/dt``: its extremes are located on an exact
+    derivative instead of a central difference (whose O(h**2) bias is 1e-11 rad of input
+    on 例 1-1's γC)."""
+    el = next((e for e in linkage.elements if e.transmission_joint() == joint), None)
+    if el is None or getattr(el, "kind", None) != "RRR":
+        return None
+
+    def rate(m):
+        c = m.condition(joint).cos_joint
+        pj, pa, pb = m.points[el.joint], m.points[el.point_a], m.points[el.point_b]
+        rax, ray = pj.x - pa.x, pj.y - pa.y
+        rbx, rby = pj.x - pb.x, pj.y - pb.y
+        dax, day = pj.vx - pa.vx, pj.vy - pa.vy
+        dbx, dby = pj.vx - pb.vx, pj.vy - pb.vy
+        dc = (dax * rbx + day * rby + rax * dbx + ray * dby) / (
+            np.hypot(rax, ray) * np.hypot(rbx, rby))
+        return -2.0 * c * dc
+    return rate
+
+
+def _slope_getters(qt, linkage=None):
     """``(get, rate, is_angle, order)`` whose slope :class:`_SlopeProbe` takes for the
     extremes of ``qt``: its own, but a transmission angle's smooth measure
-    (:func:`_transmission_measure`, same extrema)."""
+    (:func:`_transmission_measure`, same extrema) with its exact rate where the dyad
+    gives one (:func:`_transmission_measure_rate`)."""
     if qt.rate is None and qt.source and qt.source[0] == "joint" and qt.is_angle:
-        return (_transmission_measure(qt.source[1]), None, False, qt.order)
+        rate = None if linkage is None else _transmission_measure_rate(linkage, qt.source[1])
+        return (_transmission_measure(qt.source[1]), rate, False, 0)
     return (qt.get, qt.rate, qt.is_angle, qt.order)
 
 
@@ -637,9 +667,11 @@ def refine_extremes(linkage, sweep, order, quantities, values, domain, iteration
     bracket (:func:`~mechcli.core.refine.bracketed_root`, a few solves), by
     bisection on its sign otherwise; the best refined value wins, reported with the
     input where it was evaluated.  A central difference's bracket closes no further
-    than its rounding error (:func:`_difference_tol`, the tolerance reported for it); a
+    than its rounding error (:func:`_difference_tol`); its tolerance adds the bias of the
+    difference, measured at the located input (:func:`_truncation_shift`).  A
     transmission angle is refined on a smooth measure with the same extrema
-    (:func:`_transmission_measure`: it folds at 90°).  All targets share each solve.
+    (:func:`_transmission_measure`: it folds at 90°), on its exact rate for an RRR dyad
+    (:func:`_transmission_measure_rate`).  All targets share each solve.
     """
     q = domain.q
     span = float(q[-1] - q[0]) if q.size > 1 else 1.0
@@ -674,7 +706,11 @@ def refine_extremes(linkage, sweep, order, quantities, values, domain, iteration
     for j, (qi, sign, r, k) in enumerate(targets):
         lo[j], hi[j] = domain.bracket(r, k, wraps[quantities[qi].symbol])
     width0 = np.abs(hi - lo)   # the search brackets, before refinement
-    getters = [_slope_getters(quantities[qi]) for qi, *_ in targets]
+    by_quantity = {}   # one getter per quantity: a solve evaluates each once
+    for qi, *_ in targets:
+        if qi not in by_quantity:
+            by_quantity[qi] = _slope_getters(quantities[qi], linkage)
+    getters = [by_quantity[qi] for qi, *_ in targets]
     signs = np.array([t[1] for t in targets])
 
     def slope(idx):
@@ -719,8 +755,15 @@ def refine_extremes(linkage, sweep, order, quantities, values, domain, iteration
         lo[idx], hi[idx] = bracketed_root(lo[idx], hi[idx], slope(idx), rtol, iterations,
                                           d_lo[idx], d_hi[idx])
     at = 0.5 * (lo + hi)
-    m = solve(linkage, sweep.inputs(at), order=order)
     spd = np.broadcast_to(sweep.speed(at), at.shape)
+    by_diff = np.array([not _rate_is_slope(sweep, getters[j], spd[j]) for j in range(n_t)],
+                       dtype=bool)
+    diff = np.flatnonzero(by_diff)
+    # the targets located on a central difference are solved at +-h and +-2h as well (in
+    # the same solve): the bias of the difference (:func:`_truncation_shift`)
+    m = solve(linkage, sweep.inputs(np.concatenate(
+        [at] + [at[diff] + s * h for s in (-1.0, 1.0, -2.0, 2.0)])), order=order)
+    shift = _truncation_shift(m, getters, diff, n_t, h)
     best = {}
     for j, (qi, sign, r, k) in enumerate(targets):
         qt = quantities[qi]
@@ -732,8 +775,9 @@ def refine_extremes(linkage, sweep, order, quantities, values, domain, iteration
                 val = vgrid + float(_wrap(val - vgrid))
             if sign * val >= sign * vgrid:
                 tol = max(0.5 * abs(float(hi[j] - lo[j])), float(np.spacing(abs(at[j]))))
-                if not _rate_is_slope(sweep, getters[j], spd[j]):
-                    tol = max(tol, _difference_tol(values[qt.symbol], q, domain.runs[r], k, h))
+                if by_diff[j]:
+                    dtol = _difference_tol(values[qt.symbol], q, domain.runs[r], k, h)
+                    tol = max(tol, dtol + TRUNCATION_MARGIN * shift.get(j, 0.0))
                 cand = (val, float(at[j]), tol)
         key = (qt.symbol, sign)
         if key not in best or sign * cand[0] > sign * best[key][0]:
@@ -809,6 +853,51 @@ def _slide_zeros(linkage, sweep, order, quantities, values, q, runs, periodic, q
             roots = [r for i, r in enumerate(roots)
                      if i == 0 or abs(r[0] - roots[i - 1][0]) > max(r[1], roots[i - 1][1])]
         out[qt.symbol] = roots
+    return out
+
+
+#: the estimate of a central difference's bias (:func:`_truncation_shift`) is taken with
+#: this margin in a tolerance: its own error is O(h**2) relative (the next term of the
+#: series) plus the rounding of its f'' (4 EPS |f| / h**2), well under 25 %
+TRUNCATION_MARGIN = 1.25
+
+
+def _truncation_shift(m, getters, diff, n, h):
+    """``{target: |x - x*|}``: how far from the true extreme ``x*`` each target ``j`` of
+    ``diff`` (located at ``x``, a root of the central difference of step ``h`` of its
+    ``getters[j][0]``) lies, from the motion ``m`` solved at the ``n`` targets' ``x``
+    followed by ``x - h``, ``x + h``, ``x - 2h``, ``x + 2h`` of the targets ``diff``.
+
+    The central difference ``D_h = f' + h**2 f'''/6 + O(h**4)`` is biased: its root lies
+    ``h**2 f''' / (6 f'')`` from that of ``f'`` (1e-11 rad of input at h = 1e-5 for the
+    accelerations of 例 1-1, more than its rounding).  Richardson's combination
+    ``(4 D_h - D_2h) / 3 = f' + O(h**4)`` gives ``f'(x)`` itself, and one Newton step
+    ``|f'(x) / f''(x)|`` (``f''`` from the same samples) the distance to the extreme.
+    It includes the rounding of the differences (``_difference_tol`` bounds it) and the
+    bracket's own offset.  A target with a probe that is not regular is left out.
+    """
+    out = {}
+    if diff.size == 0:
+        return out
+    nd = diff.size
+    reg = m.regular
+    with np.errstate(invalid="ignore", over="ignore", divide="ignore"):
+        for i, j in enumerate(diff):
+            at = [j] + [n + s * nd + i for s in range(4)]
+            if not np.all(reg[at]):
+                continue
+            get, _rate, is_angle, _order = getters[j]
+            f = np.asarray(get(m), dtype=float)
+            f0, fm1, fp1, fm2, fp2 = (float(f[a]) for a in at)
+
+            def dif(a, b, is_angle=is_angle):
+                return float(_wrap(a - b)) if is_angle else a - b
+            d1 = dif(fp1, fm1) / (2.0 * h)
+            d2 = dif(fp2, fm2) / (4.0 * h)
+            f2 = (dif(fp1, f0) - dif(f0, fm1)) / (h * h)
+            est = abs((4.0 * d1 - d2) / 3.0 / f2) if f2 != 0.0 else np.inf
+            if np.isfinite(est):
+                out[int(j)] = est
     return out
 
 
