@@ -74,7 +74,7 @@ def write(spec, sol, outputs, lang):
     axs[1, 1].set_title(t["w"])
     axs[1, 1].set_xlabel(t["t"])
     axs[1, 1].set_ylabel("ω / (rad/s)")
-    fig.suptitle(plotting.text(spec.header.title))
+    fig.suptitle(plotting.text(spec.header.title), wrap=True)
     plotting.save_png(fig, outputs, "flywheel.png")
     if sol.steady is not None and sol.steady.history:
         _convergence(spec, sol, outputs, t)
@@ -126,7 +126,7 @@ def animate(spec, sol, outputs, lang, frames=72):
         moving += drawing.artists
     label = plotting.readout(axs[0] if has_link else ax_w)
     moving.append(label)
-    fig.suptitle(plotting.text(spec.header.title))
+    fig.suptitle(plotting.text(spec.header.title), wrap=True)
     plotting.tight(fig)
     frames = plotting.Frames(fig, moving)
     for j, i in enumerate(idx):

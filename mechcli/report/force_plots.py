@@ -118,7 +118,7 @@ def plot_reactions(spec, result, outputs, t):
         ax.set_ylabel(f"{msym} / " + ("N·m" if key == "Mb" else "N"))
         ax.set_xlabel(xlabel)
         plotting.legend_above(ax, fontsize=7)
-    fig.suptitle(plotting.text(spec.header.title))
+    fig.suptitle(plotting.text(spec.header.title), wrap=True)
     plotting.save_png(fig, outputs, "force.png")
 
 
@@ -175,7 +175,7 @@ def plot_hodographs(spec, result, outputs, t):
         ax.set_xlabel(f"{plotting.symbol(f'FR{lab}x')} / N")
         ax.set_ylabel(f"{plotting.symbol(f'FR{lab}y')} / N")
         plotting.legend_above(ax, fontsize=7)
-    fig.suptitle(plotting.text(spec.header.title))
+    fig.suptitle(plotting.text(spec.header.title), wrap=True)
     plotting.save_png(fig, outputs, "hodograph.png")
 
 
@@ -208,7 +208,7 @@ def plot_frame(spec, result, outputs, t):
     ax.set_xlabel(_input_label(spec, t))
     for ax in axs:
         ax.axhline(0, color="0.5", lw=0.6)
-    fig.suptitle(plotting.text(spec.header.title))
+    fig.suptitle(plotting.text(spec.header.title), wrap=True)
     plotting.save_png(fig, outputs, "frame.png")
 
 
@@ -243,7 +243,7 @@ def plot_engine(spec, result, engine, outputs, t):
     ax.set_xlabel(_input_label(spec, t))
     for ax in axs:
         ax.axhline(0, color="0.5", lw=0.6)
-    fig.suptitle(plotting.text(spec.header.title))
+    fig.suptitle(plotting.text(spec.header.title), wrap=True)
     plotting.save_png(fig, outputs, "engine.png")
 
 

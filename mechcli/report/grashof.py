@@ -92,8 +92,10 @@ def fourbar_results(prob, an, inversions, ranges, scale):
         r["gamma_at_0_deg"] = _deg(m.gamma0)
     if m.has_gamma180:
         r["gamma_at_180_deg"] = _deg(m.gamma180)
-    r["dead_points_output_driving"] = [
+    r["dead_points_output_driving_deg"] = [
         _deg(m.dead_theta3[j]) for j in (0, 1) if m.dead_output[j]]
+    # the name without its unit, kept as an alias for one release (issue 18 item 8)
+    r["dead_points_output_driving"] = r["dead_points_output_driving_deg"]
     for k, inv in enumerate(inversions, start=1):
         r[f"inversion_frame{k}"] = inv.type
         r[f"inversion_frame{k}_cranks"] = list(inv.cranks)

@@ -598,7 +598,7 @@ def _grid_error_note(spec, quantities, result, zh):
             continue
         for e, best in ((hi, np.max(v)), (lo, np.min(v))):
             if e.bounded and abs(e.value - best) / peak > worst:
-                worst, sym = abs(e.value - best) / peak, q.symbol
+                worst, sym = abs(e.value - best) / peak, greek(q.symbol, q.kind)
     if sym is None:
         return None
     step = (result.q[1] - result.q[0]) * input_factor(spec) if result.q.size > 1 else 0.0

@@ -331,7 +331,7 @@ def write(spec, quantities, result, sweep, outputs, lang, plots=True, animate=Fa
                      else t["mech"], pad=22, y=1.0)
         ax.set_xlabel(f"x / {unit}")
         ax.set_ylabel(f"y / {unit}")
-        fig.suptitle(plotting.text(spec.header.title))
+        fig.suptitle(plotting.text(spec.header.title), wrap=True)
         # a fixed layout with room for twin axes' labels (tight_layout would lay out
         # every text once more before the drawing); save_png crops the margins
         fig.subplots_adjust(left=0.08, right=0.92, bottom=0.07, top=0.885, wspace=0.5,

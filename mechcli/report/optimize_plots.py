@@ -108,7 +108,7 @@ def _convergence_png(spec, problem, result, outputs, t, title):
                  color="0.3")
     ax2.set_ylabel(t["viol"])
     ax2.set_xlabel(t[xlabel])
-    ax1.set_title(plotting.text(title) + "\n" + t["conv"] + f" ({result.method})")
+    ax1.set_title(plotting.text(title) + "\n" + t["conv"] + f" ({result.method})", wrap=True)
     plotting.save_png(fig, outputs, "convergence.png")
 
 
@@ -155,7 +155,7 @@ def _surface_png(spec, problem, result, surface, outputs, t, title):
     ax.set_xlabel(_var_label(spec, 0))
     ax.set_ylabel(_var_label(spec, 1))
     ax.legend(fontsize=7, loc="best", framealpha=0.85)
-    ax.set_title(plotting.text(title) + "\n" + t["surf"])
+    ax.set_title(plotting.text(title) + "\n" + t["surf"], wrap=True)
     plotting.save_png(fig, outputs, "surface.png")
 
 
@@ -198,7 +198,7 @@ def _function_png(spec, details, goal, rotary, outputs, t, title):
     ax2.axhline(0.0, color="0.3", lw=0.8)
     ax2.set_ylabel(elab)
     ax2.set_xlabel(t["input"] if rotary else plotting.axis_label(t["input_s"], unit))
-    ax1.set_title(plotting.text(title) + "\n" + t["target"])
+    ax1.set_title(plotting.text(title) + "\n" + t["target"], wrap=True)
     plotting.save_png(fig, outputs, "target.png")
 
 
@@ -238,7 +238,7 @@ def _path_png(spec, details, poses, outputs, t, title):
     ax.set_xlabel(spec.header.unit)
     ax.set_ylabel(spec.header.unit)
     ax.legend(fontsize=7, loc="best")
-    ax.set_title(plotting.text(title) + "\n" + t["target"] + f" ({name})")
+    ax.set_title(plotting.text(title) + "\n" + t["target"] + f" ({name})", wrap=True)
     plotting.save_png(fig, outputs, "target.png")
 
 
@@ -316,7 +316,7 @@ def _animate(spec, details, poses, outputs, t, title, frames=72):
                           f"{spec.header.unit}")
         axs[1].legend(fontsize=7, loc="best")
         cursor, = axs[1].plot([], [], "o", color="C3", ms=7)
-    fig.suptitle(plotting.text(title))
+    fig.suptitle(plotting.text(title), wrap=True)
     label = plotting.readout(ax)
     plotting.tight(fig)
     frames = plotting.Frames(fig, d.artists + [tail, cursor, label])

@@ -239,8 +239,12 @@ def _breakable(words, i):
     if a in ("=", "≈", "<", ">", "≤", "≥", "−", "-", "+", "·", "×") or \
             b in ("=", "≈", "<", ">", "≤", "≥", "·", "×"):
         return False
-    return not (re.search(r"\d[)\]]?$", a) and re.fullmatch(r"(mm|cm|m|in|N|N·m|rad|s|%|°)"
-                                                             r"[/\w²³·]*[,;)\]]*", b))
+    return not (re.search(r"\d[)\]]?$", a) and _UNIT_WORD.fullmatch(b))
+
+
+#: a unit that follows a number (``54.113 mm``, ``4.5 kW,``, ``3 kg·m²)``): no line ends between
+_UNIT_WORD = re.compile(r"(mm|cm|m|in|ft|lbf|lb|N|kN|N·m|J|kJ|W|kW|rpm|Pa|kPa|MPa|bar|psi|kg|g|"
+                        r"rad|s|%|°)[/\w²³·]*[,;)\]]*")
 
 
 def wrap(text, width, indent=""):
@@ -367,7 +371,8 @@ def print_rich(report: Report, file=None, width=None):
                default=0)
     console = Console(file=file, highlight=False, width=max(width, need))
     # every text is the user's or ours, never rich markup: a title "door [/bold]" is text
-    console.print(f"[bold]{escape(report.title)}[/bold]")
+    # titles, headings and notes wrap by our rule (never inside ``x = 1.5 mm``), not rich's
+    console.print("\n".join(f"[bold]{escape(line)}[/bold]" for line in wrap(report.title, width)))
     for block in blocks:
         # a table at least as wide as its heading: rich wraps a title to the table's width
         wide = min(display_width(block.heading) + 2, width) if block.heading else None
@@ -389,4 +394,4 @@ def print_rich(report: Report, file=None, width=None):
                 table.add_row(escape("\n".join(label)), escape("\n".join(value)))
         console.print(table)
     for note in report.notes:
-        console.print(note, markup=False)
+        console.print("\n".join(wrap(note, width, "  ")), markup=False)
