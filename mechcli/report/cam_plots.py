@@ -52,6 +52,10 @@ def _title(cs, lang):
     return kept or "cam"
 
 
+#: the phases of the allowed pressure angles' legend, en and zh
+_PHASE = {False: ("rise", "return"), True: ("推程", "回程")}
+
+
 def _boundaries(ax, design, label=None):
     for k, seg in enumerate(design.program.segments):
         ax.axvline(math.degrees(seg.start), color="0.6", lw=0.6, ls=":",
@@ -77,13 +81,15 @@ def plot_motion(cs, design, out, lang):
         ax.plot(d, y, lw=1.2)
         ax.set_ylabel(_t(lang, key, unit))
         _boundaries(ax, design)
-    _boundaries(axes[0], design, "segment boundary")
+    _boundaries(axes[0], design, "运动段分界" if lang == "zh" else "segment boundary")
     seen = set()
     for imp in design.impacts:
         ax = axes[1] if imp.kind == "rigid" else axes[2]
         ax.axvline(math.degrees(imp.delta), color="r" if imp.kind == "rigid" else "orange",
                    lw=1.0, alpha=0.7,
-                   label=None if imp.kind in seen else f"{imp.kind} impact")
+                   label=None if imp.kind in seen else (
+                       ("刚性冲击" if imp.kind == "rigid" else "柔性冲击") if lang == "zh"
+                       else f"{imp.kind} impact"))
         seen.add(imp.kind)
     for ax in axes:
         if ax.get_legend_handles_labels()[0]:
@@ -175,14 +181,14 @@ def plot_checks(cs, design, out, lang):
     for j, lim in enumerate((cs.limits.alpha_rise, cs.limits.alpha_return)):
         for sgn in (1, -1):
             a1.axhline(sgn * math.degrees(lim), color="r" if j == 0 else "m", lw=0.6, ls="--",
-                       label=(f"[α] {'rise' if j == 0 else 'return'} = "
+                       label=(f"[α] {_PHASE[lang == 'zh'][j]} = "
                               f"{math.degrees(lim):g}°") if sgn == 1 else None)
     for ext in (design.checks.alpha_rise, design.checks.alpha_return):
         if ext is not None:
             a1.plot([math.degrees(ext.delta)], [math.degrees(ext.value) * np.sign(
                 np.interp(ext.delta, p.delta, p.alpha) or 1.0)], "ro", ms=4)
     a1.set_ylabel(_t(lang, "alpha", unit))
-    _boundaries(a1, design, "segment boundary")
+    _boundaries(a1, design, "运动段分界" if lang == "zh" else "segment boundary")
     plotting.legend_outside(a1, fontsize=7)
     lim = 4 * fol.r0 / u
     clipped = False

@@ -26,7 +26,8 @@ _TEXT = {
            "at": "θ{n} = {v:.0f}°", "at_s": "s{n} = {v:.4g} {u}",
            "piston": "Forces on the piston (toward the crank +)",
            "rod": "Rod force, wall thrust and crank effort",
-           "torque": "Turning moment diagram T (mean {m:.4g} N·m)"},
+           "torque": "Turning moment diagram T (mean {m:.4g} N·m)",
+           "start": "start", "origin": "origin"},
     "zh": {"pair": "运动副反力 F_R{lab} 曲线图", "Mb": "平衡力矩 {sym} 曲线图",
            "Fb": "平衡力 {sym} 曲线图", "hodo": "F_R{lab} 矢端曲线",
            "crank": "曲柄转角 θ{n} / °", "slide": "滑块位移 s{n} / {u}",
@@ -34,7 +35,8 @@ _TEXT = {
            "power": "输入功率 P 曲线图", "active": "载荷 {name} 作用区间",
            "anim": "运动副反力", "at": "θ{n} = {v:.0f}°", "at_s": "s{n} = {v:.4g} {u}",
            "piston": "活塞上的力 (指向曲柄为正)", "rod": "连杆力、侧压力与曲柄切向力",
-           "torque": "曲轴转矩图 T (平均 {m:.4g} N·m)"},
+           "torque": "曲轴转矩图 T (平均 {m:.4g} N·m)",
+           "start": "起点", "origin": "原点"},
 }
 
 
@@ -165,8 +167,8 @@ def plot_hodographs(spec, result, outputs, t):
         lab = pf.pair.label
         ax.plot(broken_at_jumps(result, pf.fx), broken_at_jumps(result, pf.fy), "-",
                 color=f"C{k % 10}", lw=1.2, label=plotting.symbol(f"FR{lab}"))
-        ax.plot([pf.fx[0]], [pf.fy[0]], "o", color=f"C{k % 10}", ms=4, label="start")
-        ax.plot([0], [0], "+", color="k", ms=10, mew=1.5, label="origin")
+        ax.plot([pf.fx[0]], [pf.fy[0]], "o", color=f"C{k % 10}", ms=4, label=t["start"])
+        ax.plot([0], [0], "+", color="k", ms=10, mew=1.5, label=t["origin"])
         ax.axhline(0, color="0.6", lw=0.5)
         ax.axvline(0, color="0.6", lw=0.5)
         ax.set_aspect("equal", adjustable="datalim")
