@@ -29,7 +29,8 @@ def _packaged_font():
 @pytest.fixture
 def cjk_font():
     """A CJK font known to matplotlib for this test (the system's, else the test
-    extra's, registered and then forgotten again); skip when there is none."""
+    extra's, registered and then forgotten again).  The font package is a declared test
+    dependency: without it the test fails (an incomplete test install), never skips."""
     from matplotlib import font_manager
 
     from mechcli.report import plotting
@@ -39,7 +40,7 @@ def cjk_font():
     if plotting.cjk_font() is None:
         path = _packaged_font()
         if path is None:
-            pytest.skip("no CJK font: neither installed on this machine nor from the test "
+            pytest.fail("no CJK font: neither installed on this machine nor from the test "
                         f"extra's package {FONT_PACKAGE} (pip install -e '.[test]')")
         font_manager.fontManager.addfont(str(path))
         font_manager.fontManager._findfont_cached.cache_clear()
