@@ -25,9 +25,9 @@ def force(spec_path, accuracy_warn=None, **opts):
 
     spec = load_force_spec(spec_path, run.sets)
     sweep = spec.input.sweep()
-    result, extra, (bodies, loads, approx) = solve(spec, sweep)
+    result, extra, (pipe, approx) = solve(spec, sweep)
     outputs = Outputs(run.out_dir, digits=run.digits)
-    switches = _switch_rows(spec, sweep, result, bodies, loads, approx)
+    switches = _switch_rows(spec, sweep, result, pipe, approx)
     from mechcli.report.force_rows import csv_columns   # both sides of every load switch
     outputs.csv("force.csv", csv_columns(spec, result, extra, switches))
     warnings = report.warnings(spec, result, accuracy_warn)
@@ -48,7 +48,8 @@ def solve(spec, sweep):
     """The force pipeline of a read spec over *sweep*: the analysis (its extremes
     located no closer than round-off allows, its mean split at the loads' kinks) and
     the extra results (engine quantities, values at ``output.at``, the approximate
-    model's differences), with the bodies and loads it ran on.  ``optimize``'s
+    model's differences), with the kinetostatics at any input it built once (the loads'
+    stroke bands fixed) and the approximate model's terms.  ``optimize``'s
     ``result`` goals call it too, so they see what ``force`` reports."""
     from mechcli.core.errors import AssemblyError
     from mechcli.core.linkage.force_analysis import analyse_forces
@@ -67,12 +68,13 @@ def solve(spec, sweep):
     except AssemblyError as exc:   # worded in the spec's units
         raise AssemblyError(report.assembly_message(spec, exc), exc.intervals) from None
     result = _located(sweep, result)
-    split = split_mean(_evaluator(spec, sweep, result, bodies, loads), result)
+    pipe = _evaluator(spec, sweep, result, bodies, loads)
+    split = split_mean(pipe, result)
     if split is not None:   # the loads' kinks as split points of the mean
         import dataclasses
         result = dataclasses.replace(result, mean=split[0], rms=split[1])
-    extra = _extra_results(spec, sweep, result, bodies, loads, approx)
-    return result, extra, (bodies, loads, approx)
+    extra = _extra_results(spec, sweep, result, pipe, approx)
+    return result, extra, (pipe, approx)
 
 
 def _located(sweep, result):
@@ -95,22 +97,26 @@ def _located(sweep, result):
     return dataclasses.replace(result, extremes=ext)
 
 
-def _switch_rows(spec, sweep, result, bodies, loads, approx):
+def _piston_mass(spec):
+    """The mass of the piston's link [kg] (0 without a body)."""
+    body = spec.bodies.get(spec.piston.link)
+    return float(body.mass) if body is not None else 0.0
+
+
+def _switch_rows(spec, sweep, result, pipe, approx):
     """The forces on both sides of every load switch (core.linkage.load_switches), with
     the engine's named series when there is a piston; None without a switch."""
     from mechcli.core.linkage import piston as engine
     from mechcli.core.linkage.load_switches import switch_rows
 
     pst = spec.piston
-    more = None
-    if pst is not None:
-        body = spec.bodies.get(pst.link)
-        mass = float(body.mass) if body is not None else 0.0
+    mass = _piston_mass(spec) if pst is not None else 0.0
 
-        def more(pipe, x):
-            return engine.engine_at(pst, spec.topology, pipe, x, mass, approx)[1]
+    def engine_series(pipe, x):
+        return engine.engine_at(pst, spec.topology, pipe, x, mass, approx)[1]
+    more = engine_series if pst is not None else None
     periodic = bool(sweep.periodic and not result.kin.excluded)
-    return switch_rows(_evaluator(spec, sweep, result, bodies, loads), result, periodic, more)
+    return switch_rows(pipe, result, periodic, more)
 
 
 def _evaluator(spec, sweep, result, bodies, loads):
@@ -123,7 +129,7 @@ def _evaluator(spec, sweep, result, bodies, loads):
     return ForceEvaluator(spec.linkage, spec.topology, sweep, bodies, spec.gravity, progs)
 
 
-def _extra_results(spec, sweep, result, bodies, loads, approx):
+def _extra_results(spec, sweep, result, pipe, approx):
     """The engine's named results, the values at ``output.at`` and, for the
     approximate model, the exact model's values (see report.force.Extra)."""
     import numpy as np
@@ -132,10 +138,8 @@ def _extra_results(spec, sweep, result, bodies, loads, approx):
     from mechcli.core.linkage.force_analysis import series_of
     from mechcli.report.force import Extra
 
-    pipe = _evaluator(spec, sweep, result, bodies, loads)
     pst = spec.piston
-    body = spec.bodies.get(pst.link) if pst is not None else None
-    mass = float(body.mass) if body is not None else 0.0
+    mass = _piston_mass(spec) if pst is not None else 0.0
     periodic = bool(sweep.periodic and not result.kin.excluded)
     eng = None
     if pst is not None:
