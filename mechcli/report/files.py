@@ -122,29 +122,11 @@ def write_csv(path, columns, digits=DEFAULT_DIGITS):
     """Write named columns (``[(header, sequence), ...]``) as CSV, atomically.
 
     Every value must be finite: a NaN or inf is a bug upstream and raises
-    :class:`OutputError` before anything is written.
+    :class:`OutputError`, and nothing is written.  One chunk of
+    :func:`write_csv_stream`, so both write the same bytes.
     """
-    import numpy as np
-
-    headers = [h for h, _ in columns]
-    arrays = [np.asarray(col, dtype=float) for _, col in columns]
-    n = len(arrays[0]) if arrays else 0
-    for h, a in zip(headers, arrays):
-        if a.shape != (n,):
-            raise OutputError(f"column {h} has {a.shape} values, expected {n}")
-        if not np.all(np.isfinite(a)):
-            bad = int(np.argmax(~np.isfinite(a)))
-            raise OutputError(f"refusing to write non-finite {h} in row {bad + 1}")
-    head = io.StringIO()
-    csv.writer(head, lineterminator="\n").writerow(headers)
-    # number cells (``%g``: digits, sign, '.', 'e') never need quoting, so the rows are
-    # formatted whole, as fast as before
-    lines = [head.getvalue()[:-1]]
-    if n:
-        fmt = ",".join([f"%.{digits}g"] * len(arrays))
-        mat = np.column_stack(arrays)
-        lines.extend(fmt % tuple(row) for row in mat.tolist())
-    return write_text(path, "\n".join(lines) + "\n")
+    return write_csv_stream(path, [h for h, _ in columns], [[col for _, col in columns]],
+                            digits)
 
 
 def write_csv_stream(path, headers, chunks, digits=DEFAULT_DIGITS):
