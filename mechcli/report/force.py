@@ -383,12 +383,9 @@ def _engine_blocks(spec, res, extra, report, zh, digits):
 def _constant(res):
     """The symbols of the extremes whose quantity is constant to round-off (the shaking
     moment of a linkage without a moment on the frame, ~1e-12 N·m): no location."""
-    from mechcli.core.linkage.piston import EPS, NOISE
-    # as core.linkage.piston.is_constant with noise_level over the forces and moments
-    vals = [np.asarray(v, dtype=float) for k, v in res.series.items() if k != "P"]
-    noise = NOISE * EPS * max((float(np.max(np.abs(v))) for v in vals if v.size), default=0.0)
-    return {sym for sym in res.extremes if np.size(res.series[sym]) == 0 or
-            float(np.max(res.series[sym]) - np.min(res.series[sym])) <= 100.0 * noise}
+    from mechcli.core.linkage.piston import is_constant, noise_level
+    noise = noise_level({k: v for k, v in res.series.items() if k != "P"})
+    return {sym for sym in res.extremes if is_constant(res.series[sym], noise)}
 
 
 def _extreme_tol(res):

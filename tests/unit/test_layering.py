@@ -87,6 +87,8 @@ REPORT_CORE_FUNCTIONS = {
     "mechcli.report.synth_plots": {"solve"},  # the design in its positions and frames
     "mechcli.report.flywheel_plots": {"solve"},  # the mechanism in the animation frames
     "mechcli.report.force_plots": {"balancing_symbol"},
+    # which extremes are constant to round-off: the core's own rule, not a copy of it
+    "mechcli.report.force": {"is_constant", "noise_level"},
     "mechcli.report.cam_plots": {"working_outline"},
     "mechcli.report.gear": {"degrees_minutes_seconds", "format_dms"},
     "mechcli.report.gear_plot": {"gear_outline", "generated_tooth", "ring_outline",
