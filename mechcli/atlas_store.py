@@ -14,7 +14,6 @@ this module only reads and writes files, outside the core as the layering asks.
 
 from __future__ import annotations
 
-import dataclasses
 import hashlib
 import io
 import json
@@ -25,6 +24,7 @@ from typing import Tuple
 import numpy as np
 
 from mechcli.core.errors import DescribedError
+from mechcli.core.records import record
 from mechcli.core.synth import atlas as at
 
 
@@ -53,7 +53,7 @@ def _build_task(task):
             "sha256": hashlib.sha256(data).hexdigest()}
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class AtlasInfo:
     """An atlas on disk: its directory, build parameters and finished chunks.
 

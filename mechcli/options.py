@@ -2,11 +2,12 @@
 
 from __future__ import annotations
 
-import dataclasses
 import re
 from pathlib import Path
 
 import click
+
+from mechcli.core.records import record
 
 #: significant digits of CSV numbers unless ``--digits`` says otherwise
 DEFAULT_DIGITS = 10
@@ -16,7 +17,7 @@ EXACT_DIGITS = 17
 DEFAULT_DPI = 200
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class RunOptions:
     """What the user asked of one run, independent of the command.
 

@@ -8,6 +8,7 @@ from typing import Optional
 import numpy as np
 
 from mechcli.core.linkage.kinetostatics import COND_FLAG
+from mechcli.core.records import record
 from mechcli.report.kin import (dead_point_note, dead_point_results,  # noqa: F401
                                 accuracy_note, accuracy_results, accuracy_warnings,
                                 assembly_message, book_title, degrees_hint,
@@ -17,7 +18,7 @@ from mechcli.report.kin import (dead_point_note, dead_point_results,  # noqa: F4
 from mechcli.report.table import Block, Report
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class Extra:
     """What a ``force`` run adds to the sweep: ``engine`` the piston's named results
     (core.linkage.piston.EngineSweep or None); ``at`` input [rad or m] -> {symbol:

@@ -23,13 +23,15 @@ import re
 import sys
 import unicodedata
 
+from mechcli.core.records import record
+
 #: the widest line of a table in ``report.txt`` (a page, a projector, a diff)
 REPORT_WIDTH = 100
 #: the terminal width when stdout is not a terminal and ``COLUMNS`` is not set
 DEFAULT_WIDTH = 80
 
 
-@dataclasses.dataclass
+@record(frozen=False)
 class Block:
     """One section of a report.
 
@@ -48,7 +50,7 @@ class Block:
     rows: list = dataclasses.field(default_factory=list)
 
 
-@dataclasses.dataclass
+@record(frozen=False)
 class Report:
     title: str
     blocks: list = dataclasses.field(default_factory=list)

@@ -7,10 +7,10 @@ and radians in the returned :class:`CamSpec`.
 
 from __future__ import annotations
 
-import dataclasses
 import math
 
 from mechcli.core.cam.motion import PolynomialLaw
+from mechcli.core.records import record
 from mechcli.spec.common import read_expected, read_header
 from mechcli.spec.errors import SpecError
 
@@ -50,7 +50,7 @@ MIN_STEP_DEG = 360.0 / MAX_POINTS
 POINTS_WHY = "1 GiB budget at ~1.2 kB per point"
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class Limits:
     """Allowed pressure angles (rad) and the undercut policy."""
 
@@ -59,7 +59,7 @@ class Limits:
     forbid_undercut: bool
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class Sizing:
     """What to size (``[sizing]``); lengths in m.
 
@@ -82,7 +82,7 @@ class Sizing:
     round_up: float
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class CamSpec:
     """A validated cam problem (SI units, radians).
 

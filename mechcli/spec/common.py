@@ -7,8 +7,8 @@ spec readers.
 
 from __future__ import annotations
 
-import dataclasses
 
+from mechcli.core.records import record
 from mechcli.spec.errors import SpecError, closest
 from mechcli.spec.expected import Expected, read_expected  # noqa: F401 (re-exported)
 from mechcli.spec.reader import load_spec
@@ -56,7 +56,7 @@ def check_expected(path, overrides, results):
                             f"unknown key '{name}'", closest(name, names))
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class Header:
     """Top-level keys every spec may have.
 

@@ -22,10 +22,10 @@ the deviation in units of the tolerance.
 
 from __future__ import annotations
 
-import dataclasses
 import math
 import re
 
+from mechcli.core.records import record
 from mechcli.spec.errors import SpecError
 
 #: a TOML decimal number literal (no inf/nan/hex: those take the fallback)
@@ -214,7 +214,7 @@ def override_texts(sets):
     return out
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class Expected:
     """One expected value (from the book, or an independent hand calculation).
 
@@ -234,7 +234,7 @@ class Expected:
     tol: object
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class Check:
     """The comparison of one ``[expected]`` key with the run's result.
 

@@ -12,11 +12,11 @@ piecewise-linear segments).  ``[motion]`` says what to solve: a run from a start
 
 from __future__ import annotations
 
-import dataclasses
 import math
 from pathlib import Path
 from typing import Optional, Tuple
 
+from mechcli.core.records import record
 from mechcli.spec.common import Header, read_expected, read_header
 from mechcli.spec.errors import SpecError
 from mechcli.spec.force import MAX_FORCE, MAX_INERTIA, read_bodies, read_gravity, read_loads
@@ -33,7 +33,7 @@ MAX_POINTS = 100_001
 METHODS = ("auto", "DOP853", "RK45", "Radau", "book", "energy", "closed_form")
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class InertiaSpec:
     kind: str                    # "linkage", "constant", "table", "chain"
     J: float = 0.0               # constant [kg m^2]
@@ -47,7 +47,7 @@ class InertiaSpec:
     samples: int = 3600          # linkage: angles per turn of the Hermite table the motion uses
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class MomentSpec:
     constant: float = 0.0                  # [N m]
     drive: Optional[Tuple[float, float]] = None    # Md = a - b omega
@@ -60,7 +60,7 @@ class MomentSpec:
     loads: bool = False                    # the linkage's [[load]] tables and gravity
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class MotionSpec:
     kind: str                    # "start" | "steady" | "model" (no [motion]: Je, Me only)
     phi0: float
@@ -78,7 +78,7 @@ class MotionSpec:
     max_iter: int
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class FlywheelPart:
     J: float = 0.0               # a flywheel added [kg m^2]
     delta: Optional[float] = None    # allowed speed fluctuation [δ]: size J_F
@@ -90,7 +90,7 @@ class FlywheelPart:
     omega_mean: Optional[float] = None   # ... and the mean speed [rad/s]
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class FlywheelSpec:
     header: Header
     linkage: object

@@ -40,13 +40,13 @@ this module adds the inertia of the links, gravity and the external loads::
 
 from __future__ import annotations
 
-import dataclasses
 import math
 from typing import Optional, Tuple
 
 import numpy as np
 
 from mechcli.core.linkage.kinetostatics import Body, ForceModelError, LoadProgram, topology
+from mechcli.core.records import record
 from mechcli.spec.common import Header, read_expected, read_header
 from mechcli.spec.errors import SpecError, closest
 from mechcli.spec.kin import InputSpec, _empty, read_input, read_mechanism
@@ -80,7 +80,7 @@ def _bounded(sec, key, values, lim, what):
     return values
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class ForceOutput:
     table_step: float  # input units
     plots: bool
@@ -94,7 +94,7 @@ class ForceOutput:
     at: tuple = ()
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class ForceSpec:
     header: Header
     mechanism: str

@@ -10,9 +10,9 @@ solves them, ``mechcli.report.gear`` words what the spec forbids.
 
 from __future__ import annotations
 
-import dataclasses
 import math
 
+from mechcli.core.records import record
 from mechcli.spec.common import Header, read_expected, read_header
 from mechcli.spec.errors import SpecError, closest
 from mechcli.spec.reader import MAX_LENGTH, MIN_LENGTH, Section, load_spec
@@ -133,7 +133,7 @@ def _angles(sec: Section, name, bounds):
     return [math.radians(v) for v in values]
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class ToothSystem:
     """Module (m), pressure angle (rad), addendum and clearance coefficients."""
 
@@ -207,7 +207,7 @@ POWER_KW = (1e-9, 1e6)
 SPEED_RPM = (1e-6, 1e6)
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class Drive:
     """Power and speed on shaft 1 (gear 1, the pinion or the worm, drives)."""
 
@@ -235,7 +235,7 @@ def _drive(sec: Section):
 
 
 # -- the problem kinds ---------------------------------------------------------------
-@dataclasses.dataclass(frozen=True)
+@record
 class InvoluteProblem:
     """Involute curve of a base circle and the involute-function table (【例 5-1】)."""
 
@@ -249,7 +249,7 @@ class InvoluteProblem:
     digits: int
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class InverseInvoluteProblem:
     """alpha = inv^-1(theta) (【例 5-2】)."""
 
@@ -262,7 +262,7 @@ class InverseInvoluteProblem:
     dms_seconds_digits: int
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class SpurProblem:
     """One spur gear (【例 5-3】, 习题 5-1)."""
 
@@ -279,7 +279,7 @@ class SpurProblem:
     allowance: float = 0.0            # tooth-thickness allowance E (m)
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class PairProblem:
     """A pair of external spur gears (【例 5-4】, 习题 5-2 … 5-5)."""
 
@@ -319,7 +319,7 @@ class PairProblem:
         return self.ratio is not None
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class GenerationProblem:
     """Rack-cutter generation of a gear (``gear_cut``)."""
 
@@ -333,7 +333,7 @@ class GenerationProblem:
     points: int
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class HelicalProblem:
     """A pair of helical gears (习题 5-6, 5-7)."""
 
@@ -358,7 +358,7 @@ class HelicalProblem:
     x_split: str | None = None   # design xn1, xn2 for a_w at beta: "x1", "sliding", "strength"
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class WormProblem:
     """A worm and worm wheel (习题 5-8)."""
 
@@ -375,7 +375,7 @@ class WormProblem:
     mu: float | None = None      # flank friction coefficient (None: no friction given)
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class BevelProblem:
     """A pair of straight bevel gears (习题 5-9)."""
 
@@ -390,7 +390,7 @@ class BevelProblem:
     b: float | None = None       # face width (m): the loads act on the mean cone
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class GearSpec:
     header: Header
     kind: str

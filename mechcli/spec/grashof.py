@@ -8,9 +8,9 @@ file (:func:`quick_spec`).
 
 from __future__ import annotations
 
-import dataclasses
 from pathlib import Path
 
+from mechcli.core.records import record
 from mechcli.spec.common import Header, read_expected, read_header
 from mechcli.spec.errors import SpecError
 from mechcli.spec.reader import LENGTH_UNITS, MAX_LENGTH, MIN_LENGTH, load_spec
@@ -18,7 +18,7 @@ from mechcli.spec.reader import LENGTH_UNITS, MAX_LENGTH, MIN_LENGTH, load_spec
 PROBLEMS = ("fourbar", "slider_crank", "guide_bar", "fivebar", "rrrrp", "mobility")
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class FourBarProblem:
     lengths: tuple          # l1..l4 [m]
     frame: int
@@ -30,7 +30,7 @@ class FourBarProblem:
     draw: bool = False                # picture of the limit positions (limits.png)
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class SliderCrankProblem:
     crank: float            # [m]
     coupler: float
@@ -39,7 +39,7 @@ class SliderCrankProblem:
     curve_step: float | None = None
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class GuideBarProblem:
     crank: float            # [m]
     frame: float
@@ -48,7 +48,7 @@ class GuideBarProblem:
     curve_step: float | None = None
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class FiveBarProblem:
     lengths: tuple          # l1..l5 [m]
     frame: int
@@ -56,7 +56,7 @@ class FiveBarProblem:
     rtol: float
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class RRRRPProblem:
     l1: float
     l2: float
@@ -65,14 +65,14 @@ class RRRRPProblem:
     rtol: float
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class JointSpec:
     kind: str
     links: tuple
     name: str
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class MobilityProblem:
     joints: tuple           # of JointSpec
     frame: int
@@ -81,7 +81,7 @@ class MobilityProblem:
     source: str             # "joints" or the kin spec path
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class GrashofSpec:
     header: Header
     kind: str
@@ -344,7 +344,7 @@ def quick_spec(lengths_text, frame=None, input_link=None, offset=None, units="mm
                     "comma-separated lengths", f"{len(vals)}")
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class BatchSpec:
     """Length sets from a CSV file (``--batch``), lengths in metres."""
 

@@ -21,6 +21,7 @@ import numpy as np
 from mechcli.core.linkage import (PRP, RPR, RRP, RRR, Crank, Ground, Linkage,
                                   LinkageDefinitionError, PointOnLink, SliderDriver)
 from mechcli.core.linkage import presets
+from mechcli.core.records import record
 from mechcli.spec.common import Header, read_expected, read_header
 from mechcli.spec.errors import SpecError
 from mechcli.spec.reader import MAX_LENGTH, MIN_LENGTH, load_spec
@@ -40,7 +41,7 @@ MAX_STREAMED = 100_000_001
 STREAMED_WHY = f"rows past {MAX_POSITIONS:,} are streamed to the CSV"
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class Tracer:
     """A named point fixed on a link, reported and drawn (coupler curve)."""
 
@@ -48,7 +49,7 @@ class Tracer:
     link: int
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class InputSpec:
     """The primary driver's program.
 
@@ -85,7 +86,7 @@ class InputSpec:
         return whole and all(abs(r - round(r)) < 1e-12 for r, _ in self.followers.values())
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class OutputSpec:
     order: int
     table_step: float  # input units (rad or m)
@@ -98,7 +99,7 @@ class OutputSpec:
     accuracy_warn: float = 8.0
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class KinSpec:
     header: Header
     mechanism: str

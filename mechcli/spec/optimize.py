@@ -19,13 +19,13 @@ docs/optimize.md.
 from __future__ import annotations
 
 import copy
-import dataclasses
 import math
 from pathlib import Path
 from typing import Optional, Tuple
 
 import numpy as np
 
+from mechcli.core.records import record
 from mechcli.spec.common import Header, read_expected, read_header
 from mechcli.spec.errors import SpecError
 from mechcli.spec.reader import MAX_LENGTH, REQUIRED, Section, apply_override, load_spec
@@ -51,7 +51,7 @@ DISCRETE = ("branch", "link", "links", "frame", "block", "slider", "guide", "gui
 MAX_VARIABLES = 32
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class VariableSpec:
     key: str            # the dotted path
     lo: float
@@ -60,7 +60,7 @@ class VariableSpec:
     goal: bool          # a parameter of [objective] (phi0, psi0, theta0)
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class MethodSpec:
     name: str
     tol: float
@@ -76,7 +76,7 @@ class MethodSpec:
     surface_points: int
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class OptimizeSpec:
     header: Header
     problem: str                 # "kin" | "force"

@@ -8,11 +8,11 @@ one file).  Points are rows ``[x, y]`` in the spec's length unit, poses rows
 
 from __future__ import annotations
 
-import dataclasses
 import math
 from pathlib import Path
 from typing import Optional, Tuple
 
+from mechcli.core.records import record
 from mechcli.spec.common import Header, read_expected, read_header
 from mechcli.spec.errors import SpecError
 from mechcli.spec.reader import MAX_LENGTH, REQUIRED, load_spec
@@ -42,7 +42,7 @@ MAX_CASES = 64
 Point = Tuple[float, float]
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class Problem:
     """One design problem: its kind and its keys, converted (lengths in m,
     angles in rad); ``path`` is the table's dotted path, for messages."""
@@ -53,7 +53,7 @@ class Problem:
     keys: Tuple[str, ...] = ()     # the keys the spec's table has (for messages)
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class SynthSpec:
     header: Header
     cases: Tuple[Problem, ...]

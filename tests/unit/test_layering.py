@@ -53,6 +53,11 @@ SPEC_CORE_FUNCTIONS = {
     "stream_grid",         # the analysed rows of a streamed kin sweep (a grid, no solve)
 }
 
+#: what every layer may take from the core besides classes and constants: the decorator
+#: that makes the problem and result types (``mechcli.core.records``, a faster
+#: ``dataclasses.dataclass(frozen=True)``; it solves nothing)
+SHARED_CORE_FUNCTIONS = {("mechcli.core.records", "record")}
+
 #: report module -> the core package of its command (functions only from there)
 OWN_CORE = {
     "mechcli.report.kin": "mechcli.core.linkage",
@@ -205,6 +210,8 @@ def _violations():
             if not _within(module, "mechcli.core"):
                 continue
             kind, where = _core_object(module, imported)
+            if (where, imported) in SHARED_CORE_FUNCTIONS:
+                continue
             if kind == "module":
                 out.add(f"{name} -> {where} (module)")
             elif kind == "function":

@@ -9,11 +9,11 @@ of a motion program they share with :mod:`mechcli.core.cam.sizing`
 
 from __future__ import annotations
 
-import dataclasses
 import math
 
 from mechcli.core.cam.geometry import (CamGeometryError, curvature_and_rate, pitch_corners,
                                        pressure_angle_and_rate)
+from mechcli.core.records import record
 from mechcli.core.refine import maximize_piecewise
 
 
@@ -60,7 +60,7 @@ def phase_pieces(program, kind):
             if program.segments[i].kind == kind]
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class Extremum:
     """A refined extreme value: where (cam angle, rad) and how much."""
 
@@ -68,7 +68,7 @@ class Extremum:
     value: float
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class CamChecks:
     """Pressure angle, curvature and undercut checks over the cycle.
 

@@ -7,7 +7,6 @@ This is what ``mechcli cam`` calls; it only combines
 
 from __future__ import annotations
 
-import dataclasses
 import math
 
 import numpy as np
@@ -18,12 +17,13 @@ from mechcli.core.cam.geometry import (CamGeometryError, CamProfile, Follower, U
                                        cam_profile)
 from mechcli.core.cam.sizing import (size_flat_base_radius, size_oscillating_base_radius,
                                      translating_base_radius_min)
+from mechcli.core.records import record
 
 #: coarse search step of the refined extrema, rad
 SEARCH_STEP = math.radians(1.0)
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class CamSizing:
     """Sizing results (m).
 
@@ -43,7 +43,7 @@ class CamSizing:
     best_side: int | None = None
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class CamDesign:
     """A designed and checked cam.
 

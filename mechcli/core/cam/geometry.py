@@ -33,13 +33,13 @@ translating follower).
 
 from __future__ import annotations
 
-import dataclasses
 import math
 
 import numpy as np
 
 from mechcli.core.cam.motion import MotionProgram
 from mechcli.core.errors import DescribedError
+from mechcli.core.records import record
 from mechcli.core.refine import sign_changes
 
 FOLLOWER_MOTIONS = ("translating", "oscillating")
@@ -62,7 +62,7 @@ class CamGeometryError(CamError):
     """The follower cannot be placed as asked (e.g. swing past the geometric limit)."""
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class Follower:
     """Follower type and mechanism dimensions (SI units).
 
@@ -253,7 +253,7 @@ def _rho(kappa, cap):
     return np.where(big, np.where(kappa < 0, -cap, cap), 1.0 / safe)
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class CamProfile:
     """Sampled cam: motion, pitch and working curves, checks per sample.
 

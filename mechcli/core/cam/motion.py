@@ -24,11 +24,12 @@ which reproduces the return column of 表 4-1.
 
 from __future__ import annotations
 
-import dataclasses
 import functools
 import math
 
 import numpy as np
+
+from mechcli.core.records import record
 
 #: the law names accepted by :func:`law_pieces`
 LAWS = ("uniform", "parabolic", "cosine", "sine", "cubic", "poly345", "poly4567",
@@ -54,7 +55,7 @@ POLYNOMIAL_LAWS = {
 SEGMENT_KINDS = ("rise", "dwell", "return")
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class LawPiece:
     """One smooth piece of a normalized motion law.
 
@@ -108,7 +109,7 @@ def _poly(coeffs):
     return func
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class PolynomialLaw:
     """A motion law given by its coefficients: ``f(u) = Σ_k c_k u^k``, ``u = δ/δ0``.
 
@@ -302,7 +303,7 @@ def law_values(law, u):
     return tuple(out)
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class Segment:
     """One segment of a motion program.
 
@@ -342,7 +343,7 @@ class Segment:
                 for p in law_pieces(self.law)]
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class MotionState:
     """Follower displacement and its derivatives with respect to the cam angle.
 
@@ -375,7 +376,7 @@ def _piece_state(seg, piece, delta):
             seg.lift * f3 / b ** 3)
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class Impact:
     """A jump of follower velocity (rigid impact) or acceleration (soft impact).
 
@@ -396,7 +397,7 @@ class Impact:
     jump: float
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class MotionProgram:
     """Rise / dwell / return segments covering one cam revolution.
 

@@ -48,6 +48,7 @@ import math
 import numpy as np
 
 from mechcli.core.errors import ConvergenceError, DescribedError
+from mechcli.core.records import record
 from mechcli.core.refine import gauss_legendre
 
 TWO_PI = 2.0 * math.pi
@@ -416,7 +417,7 @@ def _all_breaks(inertia, moment, lo, hi):
 # --------------------------------------------------------------------------- results
 
 
-@dataclasses.dataclass(frozen=True, eq=False)
+@record(eq=False)
 class Motion:
     """The motion of the equivalent link on an output grid.
 
@@ -458,7 +459,7 @@ class Motion:
         return 0.5 * self.Je * self.omega ** 2
 
 
-@dataclasses.dataclass(frozen=True, eq=False)
+@record(eq=False)
 class SteadyState:
     """The periodic motion of the stable-running stage (第一节 二.2, 第四节).
 

@@ -8,7 +8,6 @@
 
 from __future__ import annotations
 
-import dataclasses
 from typing import Any, Optional
 
 import numpy as np
@@ -16,12 +15,13 @@ import numpy as np
 from mechcli.core.errors import DescribedError
 from mechcli.core.flywheel import equivalent as eq
 from mechcli.core.flywheel import motion as mo
+from mechcli.core.records import record
 
 #: the grid the loads of a linkage are sampled on for the moment table [points per turn]
 LOAD_SAMPLES = 3600
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class Model:
     """The equivalent model on a grid, without a motion (Me at ω = 0 when it depends on ω)."""
 
@@ -31,7 +31,7 @@ class Model:
     Me: np.ndarray
 
 
-@dataclasses.dataclass(frozen=True, eq=False)
+@record(eq=False)
 class FlywheelSolution:
     """Everything a flywheel problem gives.
 

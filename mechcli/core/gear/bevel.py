@@ -6,13 +6,13 @@ Dimensions at the large end (module m); tip and root cones of the
 
 from __future__ import annotations
 
-import dataclasses
 import math
 
 from mechcli.core.gear.spur import GearError
+from mechcli.core.records import record
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class BevelPair:
     """Two straight bevel gears with shaft angle sigma.
 

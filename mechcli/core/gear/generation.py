@@ -10,12 +10,12 @@ angles in radians.
 
 from __future__ import annotations
 
-import dataclasses
 import math
 
 import numpy as np
 
 from mechcli.core.gear.spur import SpurGear
+from mechcli.core.records import record
 
 
 def rack_outline(g: SpurGear, teeth=5):
@@ -120,7 +120,7 @@ def swept_half_space(g: SpurGear, rho, phi):
     return best.max(axis=0)
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class GenerationPlan:
     """Rolling angles of a generation simulation (the book: +-126 deg by 6 deg).
 

@@ -2,14 +2,14 @@
 
 from __future__ import annotations
 
-import dataclasses
 import math
 
 from mechcli.core.gear.involute import involute_function, inverse_involute_scalar
 from mechcli.core.gear.spur import GearError
+from mechcli.core.records import record
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class HelicalPair:
     """Two standard helical gears in mesh at the standard centre distance.
 

@@ -15,11 +15,11 @@ numpy is imported only by the array functions: a Python float goes through
 
 from __future__ import annotations
 
-import dataclasses
 import math
 from typing import TYPE_CHECKING
 
 from mechcli.core.errors import ConvergenceError
+from mechcli.core.records import record
 
 if TYPE_CHECKING:  # annotations only: numpy is imported lazily
     import numpy as np
@@ -121,7 +121,7 @@ def _start_scalar(theta):
     return math.atan(t)
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class InverseInvolute:
     """Result of :func:`inverse_involute`.
 

@@ -45,17 +45,17 @@ T2 = T1 i eta).
 
 from __future__ import annotations
 
-import dataclasses
 import math
 
 from mechcli.core.gear.spur import GearError
+from mechcli.core.records import record
 
 
 class LoadError(GearError):
     """Loads that cannot exist as asked (``reason``: ``"no_drive"``, ``"bevel_face"``)."""
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class ToothLoads:
     """Torques, speeds and tooth forces of a driven pair (gear 1 drives).
 

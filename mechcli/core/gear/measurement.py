@@ -35,13 +35,14 @@ import math
 
 from mechcli.core.gear.involute import involute_function, inverse_involute_scalar
 from mechcli.core.gear.spur import GearError
+from mechcli.core.records import record
 
 
 class MeasurementError(GearError):
     """A measurement or a shift design that cannot exist as asked (``reason``/``values``)."""
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class ToothForm:
     """One gear as its cutting rack sees it (spur: ``beta = 0``).
 
@@ -166,7 +167,7 @@ def span_teeth(g: ToothForm):
     return int(min(max(math.floor(k_th + 0.5), 1), max(g.z - 1, 1)))
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class Span:
     """Base tangent length W over k teeth (normal plane) and where it touches.
 
@@ -221,7 +222,7 @@ def ideal_pin_diameter(g: ToothForm):
     return nominal.z * nominal.mn * math.cos(nominal.alpha_n) * (math.tan(phi) - tan_c)
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class OverPins:
     """Measurement over two pins (balls) in opposite spaces.
 
@@ -406,7 +407,7 @@ def split_balanced_sliding(zeta, x_sum, lo=-1.5, hi=1.5, tol=1e-12):
 
 
 # -- everything measured on one gear ---------------------------------------------------
-@dataclasses.dataclass(frozen=True)
+@record
 class GearMeasures:
     """The measurements of one gear (with its allowance).
 
@@ -437,7 +438,7 @@ def measure(form: ToothForm, k=None, dp=None, radii=()):
                         tuple(chordal_at_radius(form, r) for r in radii))
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class ShiftDesign:
     """The profile shifts of a pair designed for a centre distance.
 

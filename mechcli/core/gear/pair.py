@@ -13,6 +13,7 @@ from typing import TYPE_CHECKING
 
 from mechcli.core.gear.spur import GearError, SpurGear
 from mechcli.core.gear.involute import involute_function, inverse_involute_scalar
+from mechcli.core.records import record
 
 if TYPE_CHECKING:  # annotations only: numpy is imported lazily
     import numpy as np
@@ -144,7 +145,7 @@ def design_teeth_from_ratio(ratio, a_w, m):
     return z1, total - z1
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class GearPair:
     """Two spur gears (external pair, or external pinion in a ring) at a centre distance.
 
@@ -339,7 +340,7 @@ def gear_pair(g1: SpurGear, g2: SpurGear, a_w=None, alpha_w=None):
     return pair
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class MeshPositions:
     """Both gears turned through a mesh cycle, and their points of contact.
 

@@ -19,13 +19,13 @@ angles in radians.
 
 from __future__ import annotations
 
-import dataclasses
 import math
 
 import numpy as np
 from scipy.optimize import brentq
 
 from mechcli.core.gear.spur import GearGeometryError, SpurGear
+from mechcli.core.records import record
 
 
 def rack_corner(g: SpurGear):
@@ -56,7 +56,7 @@ def involute_half_space(g: SpurGear, rho):
     return math.pi / g.z - g.half_tooth_angle(rho)
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class GeneratedTooth:
     """Where the generated flank changes from fillet to involute, and the undercut.
 
@@ -149,7 +149,7 @@ def generated_tooth(g: SpurGear):
     return tooth
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class GearOutline:
     """Closed outline of the whole gear (all z teeth), tooth 0 centred on +y.
 

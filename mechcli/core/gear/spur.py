@@ -10,11 +10,11 @@ path starts fast); arrays of radii go through numpy.
 
 from __future__ import annotations
 
-import dataclasses
 import math
 
 from mechcli.core.errors import DescribedError
 from mechcli.core.gear.involute import involute_function, inverse_involute_scalar
+from mechcli.core.records import record
 
 
 class GearError(DescribedError):
@@ -26,7 +26,7 @@ class GearGeometryError(GearError):
     """A gear that cannot exist as asked (pointed tip, root below the centre, ...)."""
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class SpurGear:
     """An involute spur gear and its circles (表 5-2, extended by the profile shift).
 

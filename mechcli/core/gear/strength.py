@@ -22,11 +22,11 @@ equal bending strength when Y_Fa1 Y_Sa1 = Y_Fa2 Y_Sa2.
 
 from __future__ import annotations
 
-import dataclasses
 import math
 
 from mechcli.core.gear.involute import involute_function
 from mechcli.core.gear.measurement import MeasurementError
+from mechcli.core.records import record
 
 
 def full_radius(c_star, alpha):
@@ -36,7 +36,7 @@ def full_radius(c_star, alpha):
     return c_star / (1 - math.sin(alpha))
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class RootFactors:
     """Tooth-root quantities of one gear (load at the tip).
 

@@ -2,11 +2,12 @@
 
 from __future__ import annotations
 
-import dataclasses
 import math
 
+from mechcli.core.records import record
 
-@dataclasses.dataclass(frozen=True)
+
+@record
 class WormDrive:
     """Worm (z1 starts, diameter factor q) and worm wheel (z2) in the mid-plane.
 

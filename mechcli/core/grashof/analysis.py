@@ -12,6 +12,7 @@ import dataclasses
 from typing import TYPE_CHECKING
 
 from mechcli.core.grashof import chain
+from mechcli.core.records import record
 
 if TYPE_CHECKING:   # numpy is imported only when a curve is made
     from mechcli.core.grashof.fourbar import TransmissionCurve
@@ -20,7 +21,7 @@ if TYPE_CHECKING:   # numpy is imported only when a curve is made
 KINDS = ("fourbar", "slider_crank", "guide_bar", "fivebar", "rrrrp", "mobility")
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class GrashofSolution:
     """Everything the report of one problem shows.
 

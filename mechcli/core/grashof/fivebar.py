@@ -8,13 +8,13 @@ inputs are the links joined to the frame (1 and 4).  Only numpy is used.
 
 from __future__ import annotations
 
-import dataclasses
 
 import numpy as np
 
 from mechcli.core.errors import UnsolvableError
 from mechcli.core.grashof.chain import CHANGE_POINT_RTOL, ClosureError
 from mechcli.core.grashof.fourbar import check_closure
+from mechcli.core.records import record
 
 FIVEBAR_TYPES = ("triple_crank", "double_crank", "single_crank", "no_crank")
 
@@ -62,7 +62,7 @@ def joint_revolvable(lengths, j, k, rtol=CHANGE_POINT_RTOL):
     return (lj + lk <= total + tol) & (np.abs(lj - lk) >= reach_min - tol)
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class FiveBarClass:
     """Classification of 5R five-bars (arrays over the batch).
 
@@ -186,7 +186,7 @@ def classify_fivebar(lengths, frame=5, rtol=CHANGE_POINT_RTOL):
                         inputs_independent=independent)
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class RRRRPCrank:
     """Crank condition of the RRRRP five-bar.
 

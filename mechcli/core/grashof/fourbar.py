@@ -18,7 +18,6 @@ assembly).  Angles are counter-clockwise from +x, in radians.
 
 from __future__ import annotations
 
-import dataclasses
 
 import numpy as np
 
@@ -26,6 +25,7 @@ from mechcli.core.errors import UnsolvableError
 from mechcli.core.grashof.chain import (_CODE, CHANGE_POINT_RTOL, TYPES, ClosureError,
                                         GuideBar, LengthRange, SliderCrank, analyse_guide_bar,
                                         analyse_slider_crank, driven_links, length_ranges)
+from mechcli.core.records import record
 
 
 def _lengths_array(lengths, n):
@@ -71,7 +71,7 @@ def closes(lengths):
     return longest < arr.sum(axis=1) - longest
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class FourBarClass:
     """Classification of a batch of four-bar chains with a chosen frame.
 
@@ -214,7 +214,7 @@ def _wrap(angle):
     return np.mod(angle, 2 * np.pi)
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class FourBarMerit:
     """Figures of merit of driven four-bars (arrays over the batch, radians).
 
@@ -389,7 +389,7 @@ def fourbar_merit(a, b, c, d, input_turns, output_turns):
                         dead_theta3=dead_th3)
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class FourBarAnalysis:
     """One or many four-bars: lengths, frame/input choice, class and merit.
 
@@ -465,7 +465,7 @@ def analyse_fourbar(lengths, frame=4, input_link=1, crossed=False, rtol=CHANGE_P
 
 
 # ------------------------------------------------------------ transmission curves
-@dataclasses.dataclass(frozen=True)
+@record
 class TransmissionCurve:
     """Transmission angle against the input angle (传动角的变化规律).
 

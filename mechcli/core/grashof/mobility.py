@@ -5,13 +5,13 @@ Pure Python (no numpy needed): a mechanism is a short list of joints.
 
 from __future__ import annotations
 
-import dataclasses
+from mechcli.core.records import record
 
 LOWER = ("R", "P")
 HIGHER = ("H",)
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class Joint:
     """One joint of a mechanism.
 
@@ -36,7 +36,7 @@ class Joint:
         return 1 if self.kind in HIGHER else len(self.links) - 1
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class Mobility:
     """Result of the Grübler count.
 

@@ -38,6 +38,8 @@ from typing import ClassVar, Optional, Tuple
 
 import numpy as np
 
+from mechcli.core.records import record
+
 #: relative size below which a dyad counts as singular (a dead point).  The
 #: closed-form positions carry a sqrt of a rounded discriminant, so sin(gamma)
 #: at an exact toggle comes out as large as ~sqrt(eps) ~ 1.5e-8: anything below
@@ -380,7 +382,7 @@ class Element:
 # ---------------------------------------------------------------------------
 # elements
 # ---------------------------------------------------------------------------
-@dataclasses.dataclass(frozen=True)
+@record
 class Ground(Element):
     """A point fixed on the frame at (x, y) [m]."""
 
@@ -412,7 +414,7 @@ class Ground(Element):
         return (Pivot(self.name),)
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class Crank(Element):
     """Rotary driver: link ``link`` turns about the known point ``pivot``.
 
@@ -469,7 +471,7 @@ class Crank(Element):
         return (Bar(self.pivot, self.point),)
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class SliderDriver(Element):
     """Linear driver: link ``link`` translates along a line fixed on the frame.
 
@@ -544,7 +546,7 @@ def _rrr_solve(rx, ry, rax, ray, rbx, rby, icross, a, b, bad):
     return a, b
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class RRR(Element):
     """RRR dyad: link ``link_a`` (from ``point_a``, length ``length_a``) and
     link ``link_b`` (from ``point_b``, length ``length_b``) meet at ``joint``.
@@ -702,7 +704,7 @@ class RRR(Element):
         return (Bar(self.point_a, self.joint), Bar(self.point_b, self.joint))
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class RRP(Element):
     """RRP dyad: link ``link`` of length ``length`` from the known ``point`` to a
     slider pin ``joint`` on block ``slider``, which slides on a guide line of
@@ -889,7 +891,7 @@ class RRP(Element):
                       self.slide_names(frame)[0]))
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class RPR(Element):
     """RPR dyad (guide-bar): guide link ``guide`` pivoted at known ``pivot``
     passes through block ``block`` pivoted at the known point ``point``.
@@ -1018,7 +1020,7 @@ class RPR(Element):
                       self.branch))
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class PointOnLink(Element):
     """A point fixed on link ``link``: ``origin + (along + i*normal) * exp(i*theta_link)``.
 
@@ -1067,7 +1069,7 @@ class PointOnLink(Element):
         return (Bar(self.origin, self.name),)
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class PRP(Element):
     """PRP dyad: two slider blocks pinned together at a new ``joint``.
 

@@ -24,6 +24,7 @@ from typing import Dict, Optional, Tuple, Union
 import numpy as np
 
 from mechcli.core.linkage.elements import SINGULAR_TOL, Element, LinkState, PointState
+from mechcli.core.records import record
 
 
 class LinkageDefinitionError(ValueError):
@@ -43,7 +44,7 @@ class LinkageDefinitionError(ValueError):
         self.field = field
 
 
-@dataclasses.dataclass(frozen=True, eq=False)
+@record(eq=False)
 class Linkage:
     """A planar linkage: the frame's link number and the elements.
 
@@ -230,7 +231,7 @@ def _fields(el):
 # The motion records hold arrays, which ``==`` cannot compare as a whole: they compare
 # (and hash) by identity, ``eq=False``, which also spares the generated ``__eq__`` and
 # ``__hash__`` at start-up (issue 17).
-@dataclasses.dataclass(frozen=True, eq=False)
+@record(eq=False)
 class PointMotion:
     """Motion of a point: coordinates x, y [m], velocity vx, vy [m/s] and
     acceleration ax, ay [m/s^2] (``None`` where not computed).
@@ -258,7 +259,7 @@ class PointMotion:
         return None if self.ax is None else self.ax + 1j * self.ay
 
 
-@dataclasses.dataclass(frozen=True, eq=False)
+@record(eq=False)
 class LinkMotion:
     """Angle ``theta`` [rad], ``omega`` [rad/s], ``alpha`` [rad/s^2]."""
 
@@ -267,7 +268,7 @@ class LinkMotion:
     alpha: Optional[np.ndarray] = None
 
 
-@dataclasses.dataclass(frozen=True, eq=False)
+@record(eq=False)
 class SlideMotion:
     """Relative slide of a prismatic pair: ``s`` [m], ``v`` [m/s], ``a`` [m/s^2].
 
@@ -283,7 +284,7 @@ class SlideMotion:
     a: Optional[np.ndarray] = None
 
 
-@dataclasses.dataclass(frozen=True, eq=False)
+@record(eq=False)
 class DyadCondition:
     """Conditioning of one dyad: ``sin_gamma`` is 0 at a toggle/dead point.
 
@@ -309,7 +310,7 @@ class DyadCondition:
         return np.arctan2(self.sin_gamma, np.abs(self.cos_joint))
 
 
-@dataclasses.dataclass(frozen=True, eq=False)
+@record(eq=False)
 class DriverMotion:
     """Input of one driver: angle [rad] (or slide [m]) with its first two derivatives."""
 
@@ -318,7 +319,7 @@ class DriverMotion:
     ddq: Union[np.ndarray, float] = 0.0
 
 
-@dataclasses.dataclass(frozen=True, eq=False)
+@record(eq=False)
 class LinkageMotion:
     """Result of :func:`solve` over all input positions.
 

@@ -17,11 +17,12 @@ from mechcli.core.linkage.kinematics import (EPS, SEARCH_STEP, Accuracy, Sweep, 
                                              amplification, analyse_sweep)
 from mechcli.core.linkage.kinetostatics import COND_FLAG, ForceResult, solve_forces
 from mechcli.core.linkage.engine import solve
+from mechcli.core.records import record
 from mechcli.core.refine import (bisect, gauss_legendre, golden_section_max, mean_rms,
                                  sorted_union, true_runs)
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class ForceExtreme:
     value: float
     at: float
@@ -38,7 +39,7 @@ class ForceExtreme:
 FORCE_C = 1.0
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class ForceSweep:
     """Result of :func:`analyse_forces`.
 

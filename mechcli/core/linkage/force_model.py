@@ -15,6 +15,7 @@ from typing import Dict, Optional, Tuple
 import numpy as np
 
 from mechcli.core.linkage.engine import Linkage
+from mechcli.core.records import record
 
 #: condition number of an element block above which a position is flagged
 #: (reactions then carry ~cond * 1e-16 relative error)
@@ -32,7 +33,7 @@ class ForceModelError(ValueError):
 # ---------------------------------------------------------------------------
 # model description
 # ---------------------------------------------------------------------------
-@dataclasses.dataclass(frozen=True)
+@record
 class Body:
     """Inertia of one moving link.
 
@@ -49,7 +50,7 @@ class Body:
     normal: float = 0.0
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class Load:
     """An external force (at a point of a link) or torque on a link.
 
@@ -71,7 +72,7 @@ class Load:
     relative: bool = False
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class Pair:
     """A kinematic pair between links ``i < j`` at point ``point``.
 
@@ -93,7 +94,7 @@ class Pair:
         return f"{self.i}{sep}{self.j}"
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class Topology:
     """Pairs, drivers and link reference points of a linkage.
 
@@ -190,7 +191,7 @@ def com_of(topo: Topology, body: Optional[Body], link):
 # ---------------------------------------------------------------------------
 # results
 # ---------------------------------------------------------------------------
-@dataclasses.dataclass(frozen=True)
+@record
 class PairForce:
     """Reaction of a pair over the positions: force of ``i`` on ``j`` (fx, fy) [N]
     and, for a prismatic pair, the couple of ``i`` on ``j`` [N m] about the
@@ -206,7 +207,7 @@ class PairForce:
         return np.hypot(self.fx, self.fy)
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class ForceResult:
     """Kinetostatics over the positions of a motion.
 

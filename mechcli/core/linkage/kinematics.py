@@ -21,6 +21,7 @@ import numpy as np
 
 from mechcli.core.errors import AssemblyError
 from mechcli.core.linkage.engine import DriverMotion, Linkage, LinkageMotion, solve
+from mechcli.core.records import record
 from mechcli.core.refine import bisect, bracketed_root, sorted_union, true_runs
 
 #: sin(gamma) below which an interior minimum is flagged as near a dead point
@@ -29,7 +30,7 @@ NEAR_TOGGLE_SIN = 0.05
 
 # Records holding arrays compare by identity (``eq=False``, as the engine's motion
 # records): ``==`` cannot compare arrays as a whole.
-@dataclasses.dataclass(frozen=True, eq=False)
+@record(eq=False)
 class Sweep:
     """The input program.
 
@@ -94,7 +95,7 @@ class Sweep:
         return out
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class Quantity:
     """One output quantity as a function of the solved motion.
 
@@ -119,7 +120,7 @@ class Quantity:
         return self.kind == "angle"
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class Extreme:
     """An extreme ``value`` at input ``at`` [rad or m]; ``bounded`` is False for a
     velocity or acceleration found at the edge of a gap (a dead point or an
@@ -133,7 +134,7 @@ class Extreme:
     tol: float = 0.0
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class Toggle:
     """A dead/toggle position: dyad ``joint`` with sin(gamma) = ``sin_gamma`` at ``at``."""
 
@@ -143,7 +144,7 @@ class Toggle:
     sin_gamma: float
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class DeadPoint:
     """An isolated dead point: the dyad ``joint``'s sin(gamma) reaches 0 at input ``at``
     [rad or m], located to ``at ± tol``.
@@ -166,7 +167,7 @@ class DeadPoint:
     shape: str = "touch"
 
 
-@dataclasses.dataclass(frozen=True, eq=False)
+@record(eq=False)
 class SweepResult:
     """Kinematics over the regular positions of a sweep.
 
@@ -996,7 +997,7 @@ _ORDER_OF_KIND = {"angle": 0, "length": 0, "angvel": 1, "velocity": 1, "angacc":
                   "acceleration": 2}
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class AccuracyRange:
     """A continuous range of inputs where a class keeps fewer digits than asked:
     ``digits`` the fewest there (by ``symbol``, at input ``at``), ``start``/``stop``
@@ -1010,7 +1011,7 @@ class AccuracyRange:
     at: float
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class Accuracy:
     """Estimated correct significant digits, per position and per quantity.
 

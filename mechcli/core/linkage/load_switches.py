@@ -20,9 +20,10 @@ from typing import Callable, Dict, Optional
 import numpy as np
 
 from mechcli.core.linkage.force_analysis import ForceEvaluator, series_of
+from mechcli.core.records import record
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class SwitchRows:
     """The rows a force table gets at the load switches of a sweep.
 

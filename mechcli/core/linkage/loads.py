@@ -15,8 +15,9 @@ from typing import Optional, Tuple
 import numpy as np
 
 from mechcli.core.linkage.force_model import Load
+from mechcli.core.records import record
 
-@dataclasses.dataclass(frozen=True)
+@record
 class LoadProgram:
     """A load with its program over the input.
 

@@ -29,11 +29,12 @@ T = F_T r.
 
 from __future__ import annotations
 
-import dataclasses
 import math
 from typing import Optional, Tuple
 
 import numpy as np
+
+from mechcli.core.records import record
 
 
 class PistonError(ValueError):
@@ -47,7 +48,7 @@ class PistonError(ValueError):
         self.lengths = lengths
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class Piston:
     """Geometry of a piston (see the module notes); lengths [m], angles [rad]."""
 
@@ -168,7 +169,7 @@ class Piston:
                    (ux, uy), (bx, by), slide, int(b), s_head, s_crank, th_head, th_crank)
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class PressureCurve:
     """A pressure [Pa] over the cycle.
 
@@ -247,7 +248,7 @@ class PressureCurve:
         return out
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class GasLoad:
     """Gas force on a piston: ``head · area − crank · (area − rod_area)`` [N] along
     the piston's ``d`` (toward the crank); ``crank`` may be None."""
@@ -414,7 +415,7 @@ def located_within(q, values, at, tol, noise, periodic=False):
     return float(min(max(tol, np.sqrt(2.0 * noise / curv)), max(cap, tol)))
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class EngineSweep:
     """The named engine results over a force sweep: ``series`` symbol -> array at
     the sweep's positions; ``extremes`` symbol -> ((max, at, tol), (min, at, tol))

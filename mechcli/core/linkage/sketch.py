@@ -11,11 +11,12 @@ May import: nothing of mechcli.
 
 from __future__ import annotations
 
-import dataclasses
 from typing import Optional
 
+from mechcli.core.records import record
 
-@dataclasses.dataclass(frozen=True)
+
+@record
 class Bar:
     """A bar drawn between two points."""
 
@@ -23,7 +24,7 @@ class Bar:
     b: str
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class Block:
     """A slider block at ``point``, turned with link ``link`` (``None``: not turned)."""
 
@@ -31,7 +32,7 @@ class Block:
     link: Optional[int] = None
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class Guide:
     """A guide line carried by link ``link``.
 
@@ -50,7 +51,7 @@ class Guide:
     branch: int = 1
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class Pivot:
     """A point fixed on the frame, drawn as a ground symbol."""
 

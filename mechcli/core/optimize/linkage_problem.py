@@ -11,7 +11,6 @@ on the engine once per term and returns an
 
 from __future__ import annotations
 
-import dataclasses
 import math
 from typing import Callable, Optional, Tuple
 
@@ -19,9 +18,10 @@ import numpy as np
 
 from mechcli.core.optimize import terms
 from mechcli.core.optimize.problem import Evaluation
+from mechcli.core.records import record
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class FunctionGoal:
     """Function generation: the output (a link number or a slide name) should
     move by ``dpsi`` when the input moves by ``dphi`` from ``phi0``.
@@ -41,7 +41,7 @@ class FunctionGoal:
     scale: float = 1.0
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class PathGoal:
     """Path generation: point ``point`` through ``targets`` (K, 2) [m], at the
     inputs ``theta0 + angles`` when ``angles`` is given."""
@@ -53,7 +53,7 @@ class PathGoal:
     measure: str = "sum_squares"
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class Transmission:
     """Joint angles (between the two links of each RRR dyad, 0…π) within
     [lo, hi] [rad] over the revolution or the goal's range."""
@@ -64,7 +64,7 @@ class Transmission:
     joints: Tuple[str, ...] = ()
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class Assembly:
     """The linkage assembles, with no dead point, over the revolution or the
     goal's range."""
@@ -72,7 +72,7 @@ class Assembly:
     over: str = "revolution"
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class CrankConditions:
     """The book's g1 … g6: the four-bar's link 1 is a crank (式 7-8 … 7-11)."""
 

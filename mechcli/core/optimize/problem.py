@@ -9,14 +9,15 @@ never NaN, it is simply infeasible).
 
 from __future__ import annotations
 
-import dataclasses
 import time
 from typing import Callable, List, Optional, Tuple
 
 import numpy as np
 
+from mechcli.core.records import record
 
-@dataclasses.dataclass(frozen=True)
+
+@record
 class Variable:
     """A design variable: a name (the caller's, e.g. a dotted spec path),
     bounds and a start value, in the caller's numbers."""
@@ -27,7 +28,7 @@ class Variable:
     start: float
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class Evaluation:
     """Values of a population: ``f`` (M,), ``g`` (M, k) with ``g <= 0``
     satisfied, ``ok`` (M,) evaluable.  Where not ``ok``, ``f`` is 0 and ``g``
@@ -44,7 +45,7 @@ class Evaluation:
                           np.concatenate([p.ok for p in parts]))
 
 
-@dataclasses.dataclass
+@record(frozen=False)
 class Record:
     """One row of the history: an iteration of the method (or a generation)."""
 
@@ -169,7 +170,7 @@ class Problem:
                                    bool(evaluable)))
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class Result:
     """The outcome of :func:`mechcli.core.optimize.methods.minimize`.
 

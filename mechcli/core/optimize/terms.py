@@ -16,6 +16,7 @@ import numpy as np
 
 from mechcli.core.errors import DescribedError
 from mechcli.core.linkage import RRR, Crank, DriverMotion, Ground, solve
+from mechcli.core.records import record
 
 #: measures of a deviation vector (function or path error)
 MEASURES = ("sum_squares", "rms", "mean_abs", "max_abs")
@@ -51,7 +52,7 @@ def output_of(motion, output):
     return ln.theta, ln.omega, ln.alpha
 
 
-@dataclasses.dataclass
+@record(frozen=False)
 class Population:
     """A batched linkage and its primary driver, with the full-revolution
     sweep computed once and shared by every term that needs it."""

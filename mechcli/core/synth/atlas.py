@@ -32,7 +32,6 @@ numpy only at module level; scipy (and :mod:`mechcli.core.optimize`, for
 
 from __future__ import annotations
 
-import dataclasses
 import functools
 import math
 from typing import Optional, Tuple
@@ -43,6 +42,7 @@ from mechcli.core.errors import DescribedError
 from mechcli.core.grashof.chain import TYPES, length_ranges
 from mechcli.core.grashof.fourbar import classify_fourbar
 from mechcli.core.linkage import RRR, Crank, DriverMotion, Ground, Linkage, PointOnLink, solve
+from mechcli.core.records import record
 
 #: the manifest's format name and version
 FORMAT = "mechcli-hrones-nelson-atlas"
@@ -119,7 +119,7 @@ def chain_kind(A, B, C):
     return _kind_of(float(A), float(B), float(C))
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class AtlasPage:
     """The curves of one atlas page.
 
@@ -195,7 +195,7 @@ def atlas_page(A, B, C, gx, gy, step=STEP) -> AtlasPage:
 # ---------------------------------------------------------------------------
 # type chart and ranges
 # ---------------------------------------------------------------------------
-@dataclasses.dataclass(frozen=True)
+@record
 class TypeChart:
     """The seed's 图 7: the chain's type over the (B, C) plane for given A.
 
@@ -504,7 +504,7 @@ def chunk_params(parameters, start, stop):
 # ---------------------------------------------------------------------------
 # search
 # ---------------------------------------------------------------------------
-@dataclasses.dataclass(frozen=True)
+@record
 class Match:
     """An atlas curve near the target: descriptor distance and its parameters.
 
@@ -574,7 +574,7 @@ def rank_chunk(desc, params, Q, k):
 # ---------------------------------------------------------------------------
 # refinement
 # ---------------------------------------------------------------------------
-@dataclasses.dataclass(frozen=True)
+@record
 class Refined:
     """A refined match.
 
@@ -891,7 +891,7 @@ def _polish(fit, x):
 # ---------------------------------------------------------------------------
 # path synthesis: the search's matches refined and checked
 # ---------------------------------------------------------------------------
-@dataclasses.dataclass(frozen=True)
+@record
 class PathCandidate:
     """One refined atlas match: the match, its refinement (None when not
     refined), the transmission angle's range over a revolution [rad] (the angle

@@ -18,11 +18,12 @@ import numpy as np
 from mechcli.core.linkage.elements import RRR, Crank, Ground, PointOnLink
 from mechcli.core.linkage.engine import Linkage
 from mechcli.core.linkage.presets import slider_crank
+from mechcli.core.records import record
 
 Point = Tuple[float, float]
 
 
-@dataclasses.dataclass(frozen=True, eq=False)
+@record(eq=False)
 class LinkageDesign:
     """A synthesized linkage.
 

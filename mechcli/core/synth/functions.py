@@ -18,6 +18,7 @@ from typing import Optional, Tuple
 import numpy as np
 
 from mechcli.core.errors import DescribedError
+from mechcli.core.records import record
 
 #: the names :func:`make_function` accepts
 NAMES = ("log10", "ln", "sqrt", "power", "sin", "cos", "tan", "exp", "reciprocal",
@@ -31,7 +32,7 @@ FORMULAS = {
 }
 
 
-@dataclasses.dataclass(frozen=True, eq=False)
+@record(eq=False)
 class Function:
     """A named function y = f(x), or a table of points.
 

@@ -52,13 +52,13 @@ An iterative solve that does not converge raises
 
 from __future__ import annotations
 
-import dataclasses
 import math
 from typing import List, Tuple
 
 import numpy as np
 
 from mechcli.core.errors import ConvergenceError, DescribedError
+from mechcli.core.records import record
 from mechcli.core.synth.design import LinkageDesign, four_bar_design
 
 Point = Tuple[float, float]
@@ -513,7 +513,7 @@ def _solve_moving_pivots(a, d, M, phi, tol, max_iter, guess):
 
 
 # --------------------------------------------------------------------- Burmester
-@dataclasses.dataclass(frozen=True, eq=False)
+@record(eq=False)
 class BurmesterCurves:
     """The centre-point and circle-point curves of four poses.
 
@@ -543,7 +543,7 @@ class BurmesterCurves:
         return list(self.circle)
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class BurmesterPair:
     """A dyad that reaches five poses: a Burmester point pair.
 

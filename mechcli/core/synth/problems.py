@@ -7,9 +7,9 @@ radians), the report layer words what it returns.
 
 from __future__ import annotations
 
-import dataclasses
 from typing import Any, Optional
 
+from mechcli.core.records import record
 from mechcli.core.synth.verify import Verification, verify
 
 #: the kinds whose four-bar only has to move a body: either side link may drive it
@@ -17,7 +17,7 @@ from mechcli.core.synth.verify import Verification, verify
 GUIDANCE = ("two_positions", "three_positions", "moving_pivots", "coupler_poses", "burmester")
 
 
-@dataclasses.dataclass(frozen=True, eq=False)
+@record(eq=False)
 class SynthSolution:
     """What one problem gives.
 
@@ -137,7 +137,7 @@ def _design(kind, d):
     raise ValueError(f"unknown synthesis kind {kind!r}")
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class AtlasChart:
     """The type chart and the marked point (B, C) with its type, whether link 1
     is its crank, and the admissible ranges of A, B, C (None unless a

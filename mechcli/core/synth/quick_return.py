@@ -39,6 +39,7 @@ from mechcli.core.errors import DescribedError
 from mechcli.core.grashof.fourbar import (CHANGE_POINT_RTOL, analyse_fourbar,
                                           analyse_guide_bar, analyse_slider_crank)
 from mechcli.core.linkage.presets import guide_bar as guide_bar_linkage
+from mechcli.core.records import record
 from mechcli.core.refine import golden_section_max
 from mechcli.core.synth.design import LinkageDesign, four_bar_design, slider_crank_design
 
@@ -103,7 +104,7 @@ def _gamma_ok(gamma_min, gamma_allowed):
 
 
 # ------------------------------------------------------------------ crank-rocker
-@dataclasses.dataclass(frozen=True)
+@record
 class PivotCircle:
     """The circle L of A (图 3-15, eqs. 3-40 … 3-42) and the valid part of it.
 

@@ -31,6 +31,7 @@ from typing import Optional, Tuple
 import numpy as np
 
 from mechcli.core.linkage.engine import DriverMotion, Linkage, solve
+from mechcli.core.records import record
 
 #: samples of the crank path per radian when looking for gaps and dead points
 #: (0.25° apart; a gap narrower than that between two positions can be missed,
@@ -43,7 +44,7 @@ TWO_PI = 2 * math.pi
 DEAD_POINT_SIN = 1e-9
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class Defect:
     """One defect of a design.
 
@@ -59,7 +60,7 @@ class Defect:
     at: Optional[float] = None
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class Verification:
     """What the engine says of a design.
 
