@@ -126,10 +126,10 @@ def write_csv(path, columns, digits=DEFAULT_DIGITS):
     :func:`write_csv_stream`, so both write the same bytes.
     """
     return write_csv_stream(path, [h for h, _ in columns], [[col for _, col in columns]],
-                            digits)
+                            digits, guard=False)
 
 
-def write_csv_stream(path, headers, chunks, digits=DEFAULT_DIGITS):
+def write_csv_stream(path, headers, chunks, digits=DEFAULT_DIGITS, guard=True):
     """Write a CSV whose rows arrive chunk by chunk, atomically, in bounded memory.
 
     *chunks* yields lists of column arrays (in the order of *headers*).  The rows go
@@ -137,17 +137,18 @@ def write_csv_stream(path, headers, chunks, digits=DEFAULT_DIGITS):
     refusal (a NaN or inf, :class:`OutputError`), an error or an interrupt midway
     leaves no half-written file.  The bytes are those :func:`write_csv` writes for
     the same rows; only one chunk is held at a time (issue 17: a 1e7-row sweep).
+    With *guard* (default) a SIGTERM meanwhile removes the temporary file too
+    (:func:`_terminate_as_exit`); :func:`write_csv`, whose rows are all in memory
+    already, writes as briefly as any other output and goes without it.
     """
-    import hashlib
-
     import numpy as np
 
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
-    digest, size, row = hashlib.sha256(), 0, 0
+    digest, size, row = _sha256(), 0, 0
     fmt = ",".join([f"%.{digits}g"] * len(headers))
-    restore = _terminate_as_exit()
+    restore = _terminate_as_exit() if guard else _nothing
     try:
         with os.fdopen(fd, "wb") as fh:
             head = io.StringIO()
@@ -188,6 +189,10 @@ def write_csv_stream(path, headers, chunks, digits=DEFAULT_DIGITS):
     finally:
         restore()
     return path
+
+
+def _nothing():
+    pass
 
 
 def _terminate_as_exit():
@@ -232,19 +237,29 @@ MANIFEST = "outputs.json"
 MANIFEST_FORMAT = 1
 
 
-def _sha256(data):
-    """The SHA-256 hash object of *data* (bytes).  Through :mod:`hashlib` (imported
-    here, when a file is written: CPython's private ``_sha2``/``_sha256`` would save
-    ~2.5 ms of start-up but are not a public interface)."""
-    from hashlib import sha256
-    return sha256(data)
+_SHA256 = None
+
+
+def _sha256(data=b""):
+    """A SHA-256 hash object (of *data*, bytes).  CPython's built-in implementation
+    (``_sha2`` from 3.12, ``_sha256`` before) where there is one: :mod:`hashlib` loads
+    OpenSSL first, 2.3 ms of a ~135 ms ``kin`` run (issue 17); :mod:`hashlib`'s
+    otherwise.  Both give the same digest (``tests/unit/test_files.py``)."""
+    global _SHA256
+    if _SHA256 is None:
+        try:
+            from _sha2 import sha256 as _SHA256
+        except ImportError:
+            try:
+                from _sha256 import sha256 as _SHA256
+            except ImportError:
+                from hashlib import sha256 as _SHA256
+    return _SHA256(data)
 
 
 def file_sha256(path):
     """SHA-256 (hex) of a file's bytes."""
-    import hashlib
-
-    h = hashlib.sha256()
+    h = _sha256()
     with open(path, "rb") as fh:
         for chunk in iter(lambda: fh.read(1 << 20), b""):
             h.update(chunk)

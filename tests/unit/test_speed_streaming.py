@@ -215,3 +215,21 @@ def test_sigterm_while_streaming_leaves_no_temporary_file(tmp_path):
     proc.communicate(timeout=60)
     assert proc.returncode == 128 + signal.SIGTERM
     assert [p.name for p in out.iterdir() if p.suffix in (".tmp", ".csv")] == []
+
+
+def test_manifest_checksums_are_sha256(tmp_path):
+    """outputs.json's checksums (files._sha256: CPython's built-in SHA-256 where there is
+    one, hashlib's otherwise) are hashlib.sha256's, for in-memory and streamed writes."""
+    import hashlib
+
+    from mechcli.report import files
+
+    text = tmp_path / "a.txt"
+    files.write_text(text, "θ1 = 30°\n" * 1000)
+    streamed = tmp_path / "b.csv"
+    write_csv_stream(streamed, ["x", "y"], ([np.arange(5.0) + k, np.ones(5)] for k in range(3)))
+    for path in (text, streamed):
+        data = path.read_bytes()
+        want = hashlib.sha256(data).hexdigest()
+        assert files._WRITTEN[str(path)] == (len(data), want)
+        assert files.file_sha256(path) == want
