@@ -139,9 +139,32 @@ def _bodies(linkage):
     return bodies
 
 
-def _glyph(text):
-    """*text* as a marker (matplotlib draws a mathtext marker as one path)."""
-    return "$\\mathrm{" + "".join(c if c.isalnum() else "\\" + c for c in text) + "}$"
+_GLYPHS = {}
+
+
+def _glyph(text, base=7):
+    """``{marker, ms}`` drawing *text* as a marker: the outline of its glyphs in the
+    figure's font, centred on their box, made once per text and drawn as one path in
+    every frame, about the height of an 8-pt label (:func:`_glyph_size`).
+
+    A plain text path, not a mathtext marker (``$\\mathrm{A}$`` gives the same DejaVu
+    Sans glyph, but its parser's grammar costs ~30 ms when first used and ~2 ms a name
+    after).  matplotlib scales a path marker by its farthest vertex, a mathtext one by
+    its box: the curves' control points lie outside the box, so the size is corrected
+    to draw the glyphs as large as before."""
+    got = _GLYPHS.get(text)
+    if got is None:
+        from matplotlib.path import Path
+        from matplotlib.textpath import TextPath
+
+        glyphs = TextPath((0, 0), text)
+        box = glyphs.get_extents()
+        v = glyphs.vertices - ((box.x0 + box.x1) / 2, (box.y0 + box.y1) / 2)
+        reach = float(abs(v).max()) if len(v) else 0.0
+        span = max(box.width, box.height)
+        got = _GLYPHS[text] = (Path(v, glyphs.codes), 2 * reach / span if span else 1.0)
+    path, grow = got
+    return {"marker": path, "ms": _glyph_size(text, base) * grow}
 
 
 def _glyph_size(text, base=7):
@@ -181,8 +204,8 @@ class Drawing:
         self.offset = 0.45 * self.size * (1 + 0.8j)
         if labels:
             # names as marker glyphs: a path made once, drawn fast in every frame
-            self.names = {n: ax.plot([], [], ls="none", marker=_glyph(n), ms=_glyph_size(n),
-                                     color="k", mew=0, zorder=6)[0] for n in motion.points}
+            self.names = {n: ax.plot([], [], ls="none", **_glyph(n), color="k", mew=0,
+                                     zorder=6)[0] for n in motion.points}
             links = sorted({ln for el in linkage.elements
                             for _, ln in _element_links(el, linkage.frame)
                             if ln is not None and ln != linkage.frame}
@@ -191,15 +214,14 @@ class Drawing:
             for ln in links:
                 self.link_rings[ln] = ax.plot([], [], ls="none", marker="o", ms=11, mfc="w",
                                               mec="0.45", mew=0.7, zorder=6)[0]
-                self.link_names[ln] = ax.plot([], [], ls="none", marker=_glyph(str(ln)),
-                                              ms=_glyph_size(str(ln), 6), color="0.15",
-                                              mew=0, zorder=7)[0]
+                self.link_names[ln] = ax.plot([], [], ls="none", **_glyph(str(ln), 6),
+                                              color="0.15", mew=0, zorder=7)[0]
             if self.grounds:
                 z = complex(gx[0], gy[0]) - 1.4 * self.size * (0.6 + 1j)
                 ax.plot([z.real], [z.imag], ls="none", marker="o", ms=11, mfc="w", mec="0.45",
                         mew=0.7, zorder=6)
-                ax.plot([z.real], [z.imag], ls="none", marker=_glyph(str(linkage.frame)),
-                        ms=_glyph_size(str(linkage.frame), 6), color="0.15", mew=0, zorder=7)
+                ax.plot([z.real], [z.imag], ls="none", **_glyph(str(linkage.frame), 6),
+                        color="0.15", mew=0, zorder=7)
         self._bar_link = [ln for el in linkage.elements
                           for _, ln in _element_links(el, linkage.frame)]
         # guide length for drawing: longest reach of the blocks on it, plus a margin

@@ -185,11 +185,37 @@ def test_paths_have_equal_aspect_and_drawings_name_every_joint_and_link(tmp_path
     assert run_inprocess("kin", EX12, "-q", "--out", tmp_path).returncode == 0
     assert seen["path_F.png"][0][0] == 1.0
     assert seen["kin.png"][3][0] == 1.0                      # the mechanism panel
-    markers = set(m for m in seen["kin.png:markers"] if isinstance(m, str))
+    markers = {id(m) for m in seen["kin.png:markers"]}
     for name in ("A", "B", "C", "D", "F"):                 # every joint named
-        assert f"$\\mathrm{{{name}}}$" in markers
+        assert id(kin_plots._glyph(name)["marker"]) in markers, name
     for link in ("1", "2", "3", "4"):                      # every link numbered
-        assert f"$\\mathrm{{{link}}}$" in markers
+        assert id(kin_plots._glyph(link)["marker"]) in markers, link
     # the coupler carries F: drawn as the rigid triangle BCF
     tri = [p for p in seen["kin.png:patches"] if len(p.get_xy()) in (3, 4)]
     assert tri, "coupler not drawn as a body"
+
+
+@pytest.mark.parametrize("text", ["A", "C", "12", "g"])
+def test_name_glyphs_draw_the_pixels_of_the_mathtext_marker(text):
+    """kin_plots._glyph draws a name as a text path (no mathtext parser) exactly as the
+    mathtext marker ``$\\mathrm{A}$`` drew it before: same glyph, same size (a wrong
+    size or another font changes hundreds of pixels)."""
+    from mechcli.report import kin_plots, plotting
+
+    def pixels(**marker):
+        fig, ax = plotting.subplots(figsize=(1, 1), dpi=200)
+        ax.set_axis_off()
+        ax.plot([0.5], [0.5], ls="none", color="k", mew=0, **marker)
+        ax.set_xlim(0, 1)
+        ax.set_ylim(0, 1)
+        fig.canvas.draw()
+        return np.asarray(fig.canvas.buffer_rgba()).copy()
+
+    new = kin_plots._glyph(text)
+    old = pixels(marker=f"$\\mathrm{{{text}}}$", ms=kin_plots._glyph_size(text))
+    assert (old[..., 0] < 128).sum() > 20                  # something was drawn
+    # single glyphs: the same pixels; two (a link 12): antialiasing may round a few
+    # pixels of their edges one level apart (measured: <= 20 pixels, 1/255)
+    diff = np.abs(pixels(**new).astype(int) - old)
+    assert diff.max() <= 1 and (diff > 0).sum() <= 40
+    assert diff.max() == 0 or len(text) > 1
