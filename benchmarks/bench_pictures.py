@@ -12,6 +12,11 @@ Prints ``name: value unit`` lines (``--json``: the same figures as JSON,
   default is 200 dpi);
 * ``kin_ex1-1_no_plot_process`` [ms]: the same run without pictures, so that
   ``kin_ex1-1_png_cost`` [ms] is what the pictures add;
+* ``import_matplotlib_process`` [ms] and ``_over_import_numpy`` [x]: ``python -c "import
+  numpy, matplotlib.figure, matplotlib.backends.backend_agg"``, the floor of any run that
+  writes a PNG (what ``report.plotting`` imports; no pyplot); ``kin_ex1-1_png_drawing``
+  [ms] and ``_over_import_numpy`` [x]: the PNG's cost beyond that import (the figure,
+  its drawing, the encoding);
 * ``import_numpy_cpu``, ``<case>_cpu`` [ms], ``<case>_cpu_over_import_numpy`` [x]:
   the same with the CPU time of the processes' main thread, which a shared, loaded
   machine disturbs less than the wall time (``benchmarks/_process.py``);
@@ -80,6 +85,9 @@ def main():
     with tempfile.TemporaryDirectory() as out, tempfile.TemporaryDirectory() as cache:
         env = bench_env(cache, not args.no_bytecode_cache)
         cmds = {"import_numpy": [sys.executable, "-c", "import numpy"],
+                # the floor of any PNG: what mechcli imports to draw one (report.plotting)
+                "import_matplotlib": [sys.executable, "-c", "import numpy, matplotlib.figure, "
+                                      "matplotlib.backends.backend_agg"],
                 "kin_ex1-1_no_plot": mech + ["kin", EX11, "--no-plot", "-q", "--out", out],
                 "kin_ex1-1_png": mech + ["kin", EX11, "-q", "--out", out],
                 "kin_ex1-1_png_dpi100": mech + ["kin", EX11, "-q", "--dpi", "100", "--out", out]}
@@ -87,12 +95,18 @@ def main():
     base = best["import_numpy"]
     print(f"import_numpy_process: {base * 1e3:.1f} ms")
     print(f"import_numpy_cpu: {cpu['import_numpy'] * 1e3:.1f} ms")
-    for name in ("kin_ex1-1_no_plot", "kin_ex1-1_png", "kin_ex1-1_png_dpi100"):
+    for name in ("import_matplotlib", "kin_ex1-1_no_plot", "kin_ex1-1_png",
+                 "kin_ex1-1_png_dpi100"):
         print(f"{name}_process: {best[name] * 1e3:.1f} ms")
         print(f"{name}_over_import_numpy: {best[name] / base:.2f} x")
         print(f"{name}_cpu: {cpu[name] * 1e3:.1f} ms")
         print(f"{name}_cpu_over_import_numpy: {cpu[name] / cpu['import_numpy']:.2f} x")
     print(f"kin_ex1-1_png_cost: {(best['kin_ex1-1_png'] - best['kin_ex1-1_no_plot']) * 1e3:.1f} ms")
+    # what the pictures cost beyond importing matplotlib: the figure, its drawing, the PNG
+    draw = best["kin_ex1-1_png"] - best["kin_ex1-1_no_plot"] \
+        - (best["import_matplotlib"] - best["import_numpy"])
+    print(f"kin_ex1-1_png_drawing: {draw * 1e3:.1f} ms")
+    print(f"kin_ex1-1_png_drawing_over_import_numpy: {draw / base:.2f} x")
     for name, path in GIF_CONFIGS.items():
         if not path.exists():
             continue
