@@ -18,10 +18,18 @@ What stays the same as ``@dataclasses.dataclass(frozen=True, eq=...)``:
   and equal field tuples), ``hash`` of a frozen class with ``eq`` (the tuple of the fields
   that take part), and ``FrozenInstanceError`` on assigning or deleting a field.
 
+* the class-creation errors: a field without a default after one with a default, a frozen
+  class with its own ``__setattr__``/``__delattr__``, a frozen class on a non-frozen base
+  and the reverse; a method the class defines itself (``__eq__``, ``__hash__``, ``__repr__``)
+  is kept, with ``__hash__`` decided as ``dataclasses`` decides it.
+
 What differs: ``inspect.signature`` of the class reads ``__signature__`` (built on first
-use), and ``__dataclass_params__`` records what ``dataclasses`` itself generated (nothing),
-so a class made with ``@dataclasses.dataclass(frozen=True)`` cannot subclass a record;
-subclass a record with ``@record``.  ``InitVar`` and ``kw_only`` fields are refused.
+use; ``help()`` shows ``__init__(self, *args, **kwargs)``), and ``__dataclass_params__``
+records what ``dataclasses`` itself generated (nothing), so a class made with
+``@dataclasses.dataclass(frozen=True)`` cannot subclass a record; subclass a record with
+``@record``.  ``InitVar``, ``kw_only`` and descriptor-typed fields are refused.  A record
+is constructed 1.0-1.8x as slowly as a dataclass (~0.4 µs more with defaults filled in):
+mechcli builds records per solve, never per position.
 """
 
 from __future__ import annotations
@@ -42,28 +50,57 @@ def record(cls=None, *, eq=True, frozen=True):
     return _make(cls, eq, frozen)
 
 
+def _is_frozen(base):
+    """Whether a dataclass *base* is frozen (a record says so itself)."""
+    own = base.__dict__.get("_record_frozen")
+    return own if own is not None else base.__dataclass_params__.frozen
+
+
 def _make(cls, eq, frozen):
-    if not cls.__dict__.get("__doc__"):
-        names = [n for n, t in cls.__dict__.get("__annotations__", {}).items()
+    name = cls.__qualname__
+    own = cls.__dict__
+    if not own.get("__doc__"):
+        names = [n for n, t in own.get("__annotations__", {}).items()
                  if "ClassVar" not in str(t)]
         cls.__doc__ = f"{cls.__name__}({', '.join(names)})"
+    bases = [b for b in cls.__mro__[1:] if "__dataclass_fields__" in b.__dict__]
+    if bases:
+        if any(_is_frozen(b) for b in bases) and not frozen:
+            raise TypeError("cannot inherit non-frozen dataclass from a frozen one")
+        if not any(_is_frozen(b) for b in bases) and frozen:
+            raise TypeError("cannot inherit frozen dataclass from a non-frozen one")
+    if frozen:
+        for method in ("__setattr__", "__delattr__"):
+            if method in own:
+                raise TypeError(f"Cannot overwrite attribute {method} in class {name}")
+    # has the class its own __hash__ (not the None Python sets beside an own __eq__)?
+    explicit_hash = "__hash__" in own and not (own["__hash__"] is None and "__eq__" in own)
     cls = dataclasses.dataclass(cls, init=False, repr=False, eq=False, frozen=False)
+    cls._record_frozen = frozen
     fields = dataclasses.fields(cls)
     for f in cls.__dataclass_fields__.values():
         if f._field_type is dataclasses._FIELD_INITVAR or getattr(f, "kw_only", False) is True:
-            raise TypeError(f"{cls.__qualname__}.{f.name}: @record has no InitVar or kw_only")
+            raise TypeError(f"{name}.{f.name}: @record has no InitVar or kw_only fields")
+        if hasattr(type(f.default), "__set__"):
+            raise TypeError(f"{name}.{f.name}: @record has no descriptor-typed fields")
     init_fields = [f for f in fields if f.init]
-    if "__init__" not in cls.__dict__:
-        cls.__init__ = _init(cls, init_fields, [f for f in fields if not f.init])
-        cls.__signature__ = _LazySignature(init_fields)
-    if "__repr__" not in cls.__dict__:
+    seen_default = None
+    for f in init_fields:
+        if f.default is not _MISSING or f.default_factory is not _MISSING:
+            seen_default = f.name
+        elif seen_default:
+            raise TypeError(f"non-default argument {f.name!r} follows default argument")
+    if "__init__" not in own:
+        cls.__init__ = _init(cls, init_fields, [f for f in fields if not f.init], frozen)
+        cls.__signature__ = _LazySignature(cls.__init__, init_fields)
+    if "__repr__" not in own:
         cls.__repr__ = _repr(tuple(f.name for f in fields if f.repr))
-    if eq and "__eq__" not in cls.__dict__:
-        compared = tuple(f.name for f in fields if f.compare)
-        cls.__eq__ = _eq(compared)
+    if eq and "__eq__" not in own:
+        cls.__eq__ = _eq(tuple(f.name for f in fields if f.compare))
+    if eq and not explicit_hash:   # dataclasses' rule (unsafe_hash=False)
         if frozen:
-            hashed = tuple(f.name for f in fields if (f.compare if f.hash is None else f.hash))
-            cls.__hash__ = _hash(hashed)
+            cls.__hash__ = _hash(tuple(f.name for f in fields
+                                       if (f.compare if f.hash is None else f.hash)))
         else:
             cls.__hash__ = None
     if frozen:
@@ -71,14 +108,11 @@ def _make(cls, eq, frozen):
     return cls
 
 
-def _init(cls, init_fields, other_fields):
+def _init(cls, init_fields, other_fields, frozen):
     names = tuple(f.name for f in init_fields)
     known = frozenset(names)
     count = len(names)
-    fill = tuple((f.name, f.default, f.default_factory) for f in init_fields
-                 if f.default is not _MISSING or f.default_factory is not _MISSING)
-    required = tuple(f.name for f in init_fields
-                     if f.default is _MISSING and f.default_factory is _MISSING)
+    defaults = tuple((f.default, f.default_factory) for f in init_fields)
     # a field outside __init__ with a plain default is read from the class, as in dataclasses
     later = tuple((f.name, f.default_factory) for f in other_fields
                   if f.default_factory is not _MISSING)
@@ -86,32 +120,44 @@ def _init(cls, init_fields, other_fields):
     qualname = cls.__qualname__
 
     def __init__(self, *args, **kwargs):
-        d = self.__dict__
-        if args:
-            if len(args) > count:
-                raise TypeError(f"{qualname}.__init__() takes {count + 1} positional "
-                                f"arguments but {len(args) + 1} were given")
-            d.update(zip(names, args))
-        if kwargs:
-            for name in kwargs:
+        if len(args) > count:
+            raise TypeError(f"{qualname}.__init__() takes {count + 1} positional "
+                            f"arguments but {len(args) + 1} were given")
+        if kwargs or len(args) < count:
+            given = dict(zip(names, args))
+            for name, value in kwargs.items():
                 if name not in known:
                     raise TypeError(f"{qualname}.__init__() got an unexpected keyword "
                                     f"argument {name!r}")
-                if name in d:
+                if name in given:
                     raise TypeError(f"{qualname}.__init__() got multiple values for "
                                     f"argument {name!r}")
-            d.update(kwargs)
-        if len(d) < count:
-            missing = [n for n in required if n not in d]
+                given[name] = value
+            values, missing = [], []
+            for name, (default, factory) in zip(names, defaults):
+                if name in given:
+                    values.append(given[name])
+                elif default is not _MISSING:
+                    values.append(default)
+                elif factory is not _MISSING:
+                    values.append(factory())
+                else:
+                    missing.append(name)
             if missing:
                 raise TypeError(f"{qualname}.__init__() missing {len(missing)} required "
                                 f"argument{'s' if len(missing) > 1 else ''}: "
                                 + ", ".join(repr(n) for n in missing))
-            for name, default, factory in fill:
-                if name not in d:
-                    d[name] = factory() if default is _MISSING else default
-        for name, factory in later:
-            d[name] = factory()
+        else:
+            values = args
+        if frozen:   # (no descriptor fields: refused above) straight into the instance
+            self.__dict__.update(zip(names, values))
+            for name, factory in later:
+                self.__dict__[name] = factory()
+        else:        # a mutable record honours a __setattr__ or property of its own
+            for name, value in zip(names, values):
+                setattr(self, name, value)
+            for name, factory in later:
+                setattr(self, name, factory())
         if post_init:
             self.__post_init__()
 
@@ -128,19 +174,26 @@ _FACTORY = _Factory()
 
 
 class _LazySignature:
-    """``cls.__signature__``: the constructor's signature, built when asked for."""
+    """``cls.__signature__``: the constructor's signature, built on first use; None (let
+    :func:`inspect.signature` look at ``__init__``) for a subclass with its own
+    ``__init__``."""
 
-    def __init__(self, init_fields):
-        self.fields = init_fields
+    def __init__(self, init, fields):
+        self.init, self.fields, self.signature = init, fields, None
 
     def __get__(self, obj, owner=None):
-        import inspect
-        P = inspect.Parameter
-        return inspect.Signature([
-            P(f.name, P.POSITIONAL_OR_KEYWORD, annotation=f.type,
-              default=(f.default if f.default is not _MISSING
-                       else P.empty if f.default_factory is _MISSING else _FACTORY))
-            for f in self.fields], return_annotation=None)
+        if (owner if owner is not None else type(obj)).__init__ is not self.init:
+            return None
+        if self.signature is None:
+            import inspect
+
+            P = inspect.Parameter
+            self.signature = inspect.Signature([
+                P(f.name, P.POSITIONAL_OR_KEYWORD, annotation=f.type,
+                  default=(f.default if f.default is not _MISSING
+                           else P.empty if f.default_factory is _MISSING else _FACTORY))
+                for f in self.fields], return_annotation=None)
+        return self.signature
 
 
 def _repr(names):

@@ -90,8 +90,8 @@ def test_replace_fields_and_is_dataclass_work():
     r2 = dataclasses.replace(r, b=9.0)
     assert (r2.a, r2.b, r2.c, r2.e) == (1, 9.0, [3], 7)
     assert rec.kind == "sample" and "kind" not in vars(r)
-    with pytest.raises(ValueError):
-        dataclasses.replace(r, e=1)                 # init=False, as for a dataclass
+    with pytest.raises((ValueError, TypeError)):    # init=False (TypeError from 3.13)
+        dataclasses.replace(r, e=1)
 
 
 def test_post_init_and_subclasses():
@@ -144,3 +144,114 @@ def test_refused_field_kinds():
         @record
         class WithInitVar:
             a: dataclasses.InitVar[int]
+
+
+def _both(body):
+    """(standard outcome, record outcome) of decorating *body*'s class both ways."""
+    return (_outcome(lambda: body(dataclasses.dataclass(frozen=True))),
+            _outcome(lambda: body(record)))
+
+
+def test_own_eq_and_hash_are_kept_or_decided_as_dataclasses_decide():
+    def own_hash(decorate):
+        @decorate
+        class H:
+            a: int
+
+            def __hash__(self):
+                return 42
+        return hash(H(1))
+
+    def own_eq(decorate):
+        @decorate
+        class E:
+            a: int
+
+            def __eq__(self, other):
+                return True
+        return hash(E(1)) == hash(E(1)), E(1) == E(2)
+
+    for body in (own_hash, own_eq):
+        std, rec = _both(body)
+        assert std == rec == ("ok", std[1]), body.__name__
+
+
+@pytest.mark.parametrize("case", ["order", "own_setattr", "frozen_on_mutable",
+                                  "mutable_on_frozen"])
+def test_class_creation_errors_are_those_of_dataclasses(case):
+    def body(decorate):
+        if case == "order":
+            @decorate
+            class A:
+                a: int = 1
+                b: int
+        elif case == "own_setattr":
+            @decorate
+            class A:
+                a: int
+
+                def __setattr__(self, name, value):
+                    pass
+        else:
+            base_frozen = case == "mutable_on_frozen"
+            base = (record(frozen=base_frozen) if decorate is record
+                    else dataclasses.dataclass(frozen=base_frozen))
+
+            @base
+            class B:
+                a: int
+            (record(frozen=not base_frozen) if decorate is record
+             else dataclasses.dataclass(frozen=not base_frozen))(type("C", (B,), {}))
+    std, rec = _both(body)
+    assert std[0] == rec[0] == "TypeError"
+
+
+def test_init_counts_what_the_caller_gave_and_keeps_field_order():
+    @record
+    class B:
+        a: int
+        tags: list = dataclasses.field(default_factory=list)
+
+    class C(B):                       # an __init__ that sets something first
+        def __init__(self, *args):
+            object.__setattr__(self, "extra", 1)
+            super().__init__(*args)
+
+    with pytest.raises(TypeError, match="missing 1 required argument: 'a'"):
+        C()
+    c = C(1)
+    assert (c.a, c.tags, c.extra) == (1, [], 1)
+    b = B(tags=[2], a=1)
+    assert list(vars(b)) == ["a", "tags"]           # field order, as dataclasses
+    B.__init__(b, a=3)                              # re-initialised with keywords
+    assert (b.a, b.tags) == (3, [])
+
+
+def test_descriptor_fields_are_refused_and_subclass_signatures_are_their_own():
+    class Positive:
+        def __set_name__(self, owner, name):
+            self.name = "_" + name
+
+        def __get__(self, obj, owner=None):
+            return self if obj is None else getattr(obj, self.name)
+
+        def __set__(self, obj, value):
+            object.__setattr__(obj, self.name, value)
+
+    with pytest.raises(TypeError, match="descriptor"):
+        @record
+        class L:
+            length: float = Positive()
+
+    @record
+    class P:
+        a: int
+        b: int = 2
+
+    class Q(P):
+        def __init__(self, z):
+            super().__init__(z, z)
+
+    assert list(inspect.signature(P).parameters) == ["a", "b"]
+    assert list(inspect.signature(Q).parameters) == ["z"]
+    assert inspect.signature(P) is inspect.signature(P)     # built once
