@@ -25,7 +25,12 @@ def _imported_top_level_modules():
                 names.update(a.name.split(".")[0] for a in node.names)
             elif isinstance(node, ast.ImportFrom) and node.level == 0 and node.module:
                 names.add(node.module.split(".")[0])
-    return names - set(sys.stdlib_module_names) - {"mechcli", "tomli"}
+    return names - set(sys.stdlib_module_names) - {"mechcli", "tomli"} - CPYTHON_BUILTINS
+
+
+#: CPython's built-in SHA-256 under its names before and from 3.12 (report/files.py tries
+#: both, then hashlib): stdlib, though sys.stdlib_module_names lists only the running one's
+CPYTHON_BUILTINS = {"_sha256", "_sha2"}
 
 
 #: import name -> the optional extra that provides it (imported only on that path)
