@@ -3,9 +3,11 @@
 Prints `name: value unit` lines.  Compare ratios within one run: machines are
 shared and noisy.  Target (issue #6): 36,001 positions of 例 2-4 (the shaper
 six-bar, 15 unknowns) solved in <= 50 ms of compute.  Issue 17: the forces given
-the motion <= 2x hand-written numpy for the same model (:func:`hand_written_shaper`,
-timed in the same run; also against the general elimination of every block, the
-closed-form dyad statics switched off); the fixed cost of one kinetostatics call (one position,
+the motion <= 2x hand-written numpy for the same model (:func:`hand_written_shaper`:
+Mb and the reactions on the way to it, timed in the same run; and
+:func:`hand_written_shaper_full`, which returns everything the engine call returns:
+every reaction, the frame's force and moment, the power, the balance check; also against
+the general elimination of every block, the closed-form dyad statics switched off); the fixed cost of one kinetostatics call (one position,
 given its motion) <= 0.5 ms, against one position solve.
 
 Usage: python benchmarks/bench_force.py [--quick] [--json]
@@ -56,7 +58,7 @@ def hand_written_shaper(motion, cutting_fx, m3=20.0, j3=0.12, m4=3.0, j4=0.00025
     q3x, q3y = -m3 * 0.5 * P["D"].ax, -m3 * (g + 0.5 * P["D"].ay)
     q4x = -m4 * 0.5 * (P["D"].ax + P["E"].ax)
     q4y = -m4 * (g + 0.5 * (P["D"].ay + P["E"].ay))
-    q5x, q5y = cutting_fx - m5 * P["E"].ax, -m5 * (g + P["E"].ay)
+    q5x = cutting_fx - m5 * P["E"].ax   # (the ram's weight only loads its guide)
     m3i, m4i = -j3 * L[3].alpha, -j4 * L[4].alpha
     # dyad 4-5
     f45x = -q5x
@@ -73,6 +75,53 @@ def hand_written_shaper(motion, cutting_fx, m3=20.0, j3=0.12, m4=3.0, j4=0.00025
     f12x, f12y = -n23 * uy, n23 * ux
     mb = (bx - ax_) * f12y - (by - ay_) * f12x
     return mb, (f34x, f34y), (f45x, f45y), n23
+
+
+def hand_written_shaper_full(motion, cutting_fx, omega1=1.0, m3=20.0, j3=0.12, m4=3.0,
+                             j4=0.00025, m5=62.0, x_s5=-0.15, g=9.8):
+    """:func:`hand_written_shaper` extended to what ``solve_forces`` returns: every pair
+    reaction (force of link i on link j, as the engine's ``PairForce``), the couple of the
+    ram's guide, the force and moment on the frame, the input power and the global
+    balance |Σ known forces − force on the frame|.  (The condition numbers and the virtual
+    power are left out, as in the timed engine call.)
+    Returns ``{pair label: (fx, fy, couple)}``, Mb, frame (fx, fy, moment), power,
+    residual."""
+    P, L = motion.points, motion.links
+    bx, by, ax_, ay_ = P["B"].x, P["B"].y, P["A"].x, P["A"].y
+    dx, dy, ex, ey = P["D"].x, P["D"].y, P["E"].x, P["E"].y
+    q3x, q3y = -m3 * 0.5 * P["D"].ax, -m3 * (g + 0.5 * P["D"].ay)
+    q4x = -m4 * 0.5 * (P["D"].ax + P["E"].ax)
+    q4y = -m4 * (g + 0.5 * (P["D"].ay + P["E"].ay))
+    q5x, q5y = cutting_fx - m5 * P["E"].ax, -m5 * (g + P["E"].ay)
+    m3i, m4i = -j3 * L[3].alpha, -j4 * L[4].alpha
+    f45x = -q5x
+    rex, rey = ex - dx, ey - dy
+    k4 = 0.5 * (rex * q4y - rey * q4x) + m4i
+    f45y = (rey * f45x + k4) / rex
+    f34x, f34y = f45x - q4x, f45y - q4y
+    l3 = np.hypot(dx, dy)
+    ux, uy = dx / l3, dy / l3
+    s23 = bx * ux + by * uy
+    k3 = -(dx * f34y - dy * f34x) + 0.5 * (dx * q3y - dy * q3x) + m3i
+    n23 = -k3 / s23
+    f12x, f12y = -n23 * uy, n23 * ux
+    mb = (bx - ax_) * f12y - (by - ay_) * f12x
+    # the rest of the engine's outputs: the frame's reactions from each link's ΣF = 0
+    f36x, f36y = f12x - f34x + q3x, f12y - f34y + q3y      # F23 + F43 + Q3 on the frame
+    f56y = f45y + q5y                                       # F45 + Q5 (F45x + Q5x = 0)
+    c56 = x_s5 * q5y                                        # Q5's moment about E
+    zero = np.zeros_like(mb)
+    pairs = {"16": (-f12x, -f12y, zero), "12": (f12x, f12y, zero), "23": (f12x, f12y, zero),
+             "36": (f36x, f36y, zero), "34": (f34x, f34y, zero), "45": (f45x, f45y, zero),
+             "56": (zero, f56y, c56)}
+    ffx = f36x - f12x
+    ffy = f36y - f12y + f56y
+    fm = (ax_ * -f12y - ay_ * -f12x) + (ex * f56y) + c56 - mb   # C = (0, 0); 56 at E
+    power = mb * omega1
+    rx = q3x + q4x + q5x - ffx
+    ry = q3y + q4y + q5y - ffy
+    residual = np.sqrt(rx * rx + ry * ry)
+    return pairs, mb, (ffx, ffy, fm), power, residual
 
 
 def main(quick=False):
@@ -124,6 +173,25 @@ def main(quick=False):
     print(f"ex2-4_forces_36001_hand_written_numpy: {t_hand * 1e3:.2f} ms")
     print(f"ex2-4_forces_36001_engine_over_hand_written: {t_engine / t_hand:.2f} x (goal <= 2)")
     print(f"ex2-4_forces_36001_max_rel_difference_to_hand_written: {diff:.1e} 1")
+    # the same against a hand-written version that returns what the engine returns (every
+    # reaction, the frame's force and moment, the power, the balance check)
+    t_full = float("inf")
+    for _ in range(8 * rep):
+        t_full = min(t_full, best_of(lambda: hand_written_shaper_full(motion, cut), 1))
+    hp, hmb, hframe, hpower, hres = hand_written_shaper_full(motion, cut, inp.omega)
+    big = max(np.max(np.hypot(pf_.fx, pf_.fy)) for pf_ in fr.pairs)
+    diff_full = max([np.max(np.abs(fr.balancing[1] - hmb)) / np.max(np.abs(hmb))]
+                    + [max(np.max(np.abs(pf[lb].fx - hp[lb][0])), np.max(np.abs(pf[lb].fy - hp[lb][1])),
+                           np.max(np.abs(pf[lb].couple - hp[lb][2]))) / big for lb in hp]
+                    + [np.max(np.abs(fr.frame_force[0] - hframe[0])) / big,
+                       np.max(np.abs(fr.frame_force[1] - hframe[1])) / big,
+                       np.max(np.abs(fr.frame_moment - hframe[2])) / np.max(np.abs(hmb)),
+                       np.max(np.abs(fr.input_power - hpower)) / np.max(np.abs(hpower)),
+                       np.max(np.abs(fr.force_residual - hres)) / big])
+    print(f"ex2-4_forces_36001_hand_written_every_output_numpy: {t_full * 1e3:.2f} ms")
+    print(f"ex2-4_forces_36001_engine_over_hand_written_every_output: {t_engine / t_full:.2f} x")
+    print(f"ex2-4_forces_36001_max_rel_difference_to_hand_written_every_output: "
+          f"{diff_full:.1e} 1")
     # the same call with every block through the general elimination (the closed-form
     # dyad statics off): what the closed form gains
     kinetostatics.CLOSED_FORM = False
