@@ -3,12 +3,12 @@
 Prints `name: value unit` lines.  Compare ratios within one run: machines are
 shared and noisy.  Target (issue #6): 36,001 positions of 例 2-4 (the shaper
 six-bar, 15 unknowns) solved in <= 50 ms of compute.  Issue 17: the forces given
-the motion <= 2x hand-written numpy for the same model (:func:`hand_written_shaper`:
-Mb and the reactions on the way to it, timed in the same run; and
-:func:`hand_written_shaper_full`, which returns everything the engine call returns:
-every reaction, the frame's force and moment, the power, the balance check; also against
-the general elimination of every block, the closed-form dyad statics switched off); the fixed cost of one kinetostatics call (one position,
-given its motion) <= 0.5 ms, against one position solve.
+the motion <= 2x hand-written numpy for the same model (:func:`hand_written_shaper`,
+timed in the same run: Mb and the reactions on the way to it; with ``every_output``,
+everything the engine call returns: every reaction, the frame's force and moment, the
+power, the balance check); also against the general elimination of every block (the
+closed-form dyad statics switched off); the fixed cost of one kinetostatics call (one
+position, given its motion) <= 0.5 ms, against one position solve.
 
 Usage: python benchmarks/bench_force.py [--quick] [--json]
 """
@@ -39,7 +39,7 @@ from mechcli.spec.force import load_force_spec  # noqa: E402
 
 
 def hand_written_shaper(motion, cutting_fx, m3=20.0, j3=0.12, m4=3.0, j4=0.00025, m5=62.0,
-                        x_s5=-0.15, g=9.8):
+                        x_s5=-0.15, g=9.8, every_output=False, omega1=1.0):
     """Kinetostatics of 例 2-4's shaper given its motion, written by hand in numpy
     (the baseline of issue 17): the book's order, dyad by dyad, in closed form.
 
@@ -50,6 +50,13 @@ def hand_written_shaper(motion, cutting_fx, m3=20.0, j3=0.12, m4=3.0, j4=0.00025
     give N23 (its arm is the slide CB).  Crank: F12 = N23 n, Mb = (B - A) x F12.
     S3, S4 are the midpoints of CD, DE and S5 = E + (x_s5, 0) (the spec's bodies).
     Returns Mb, F34 (x, y), F45 (x, y), N23 [N m, N].
+
+    With *every_output*, also what ``solve_forces`` returns: every pair reaction (force
+    of link i on link j, as the engine's ``PairForce``), the couple of the ram's guide,
+    the force and moment on the frame, the input power and the global balance
+    |Σ known forces − force on the frame| (the condition numbers and the virtual power
+    left out, as in the timed engine call); then returns ``{pair label: (fx, fy,
+    couple)}``, Mb, frame (fx, fy, moment), power, residual.
     """
     P, L = motion.points, motion.links
     bx, by, ax_, ay_ = P["B"].x, P["B"].y, P["A"].x, P["A"].y
@@ -74,39 +81,10 @@ def hand_written_shaper(motion, cutting_fx, m3=20.0, j3=0.12, m4=3.0, j4=0.00025
     n23 = -k3 / s23
     f12x, f12y = -n23 * uy, n23 * ux
     mb = (bx - ax_) * f12y - (by - ay_) * f12x
-    return mb, (f34x, f34y), (f45x, f45y), n23
-
-
-def hand_written_shaper_full(motion, cutting_fx, omega1=1.0, m3=20.0, j3=0.12, m4=3.0,
-                             j4=0.00025, m5=62.0, x_s5=-0.15, g=9.8):
-    """:func:`hand_written_shaper` extended to what ``solve_forces`` returns: every pair
-    reaction (force of link i on link j, as the engine's ``PairForce``), the couple of the
-    ram's guide, the force and moment on the frame, the input power and the global
-    balance |Σ known forces − force on the frame|.  (The condition numbers and the virtual
-    power are left out, as in the timed engine call.)
-    Returns ``{pair label: (fx, fy, couple)}``, Mb, frame (fx, fy, moment), power,
-    residual."""
-    P, L = motion.points, motion.links
-    bx, by, ax_, ay_ = P["B"].x, P["B"].y, P["A"].x, P["A"].y
-    dx, dy, ex, ey = P["D"].x, P["D"].y, P["E"].x, P["E"].y
-    q3x, q3y = -m3 * 0.5 * P["D"].ax, -m3 * (g + 0.5 * P["D"].ay)
-    q4x = -m4 * 0.5 * (P["D"].ax + P["E"].ax)
-    q4y = -m4 * (g + 0.5 * (P["D"].ay + P["E"].ay))
-    q5x, q5y = cutting_fx - m5 * P["E"].ax, -m5 * (g + P["E"].ay)
-    m3i, m4i = -j3 * L[3].alpha, -j4 * L[4].alpha
-    f45x = -q5x
-    rex, rey = ex - dx, ey - dy
-    k4 = 0.5 * (rex * q4y - rey * q4x) + m4i
-    f45y = (rey * f45x + k4) / rex
-    f34x, f34y = f45x - q4x, f45y - q4y
-    l3 = np.hypot(dx, dy)
-    ux, uy = dx / l3, dy / l3
-    s23 = bx * ux + by * uy
-    k3 = -(dx * f34y - dy * f34x) + 0.5 * (dx * q3y - dy * q3x) + m3i
-    n23 = -k3 / s23
-    f12x, f12y = -n23 * uy, n23 * ux
-    mb = (bx - ax_) * f12y - (by - ay_) * f12x
+    if not every_output:
+        return mb, (f34x, f34y), (f45x, f45y), n23
     # the rest of the engine's outputs: the frame's reactions from each link's ΣF = 0
+    q5y = -m5 * (g + P["E"].ay)
     f36x, f36y = f12x - f34x + q3x, f12y - f34y + q3y      # F23 + F43 + Q3 on the frame
     f56y = f45y + q5y                                       # F45 + Q5 (F45x + Q5x = 0)
     c56 = x_s5 * q5y                                        # Q5's moment about E
@@ -177,8 +155,9 @@ def main(quick=False):
     # reaction, the frame's force and moment, the power, the balance check)
     t_full = float("inf")
     for _ in range(8 * rep):
-        t_full = min(t_full, best_of(lambda: hand_written_shaper_full(motion, cut), 1))
-    hp, hmb, hframe, hpower, hres = hand_written_shaper_full(motion, cut, inp.omega)
+        t_full = min(t_full, best_of(lambda: hand_written_shaper(motion, cut, every_output=True), 1))
+    hp, hmb, hframe, hpower, hres = hand_written_shaper(motion, cut, every_output=True,
+                                                           omega1=inp.omega)
     big = max(np.max(np.hypot(pf_.fx, pf_.fy)) for pf_ in fr.pairs)
     diff_full = max([np.max(np.abs(fr.balancing[1] - hmb)) / np.max(np.abs(hmb))]
                     + [max(np.max(np.abs(pf[lb].fx - hp[lb][0])), np.max(np.abs(pf[lb].fy - hp[lb][1])),
