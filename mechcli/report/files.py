@@ -244,7 +244,7 @@ def _sha256(data=b""):
     """A SHA-256 hash object (of *data*, bytes).  CPython's built-in implementation
     (``_sha2`` from 3.12, ``_sha256`` before) where there is one: :mod:`hashlib` loads
     OpenSSL first, 2.3 ms of a ~135 ms ``kin`` run (issue 17); :mod:`hashlib`'s
-    otherwise.  Both give the same digest (``tests/unit/test_files.py``)."""
+    otherwise.  Both give the same digest (``tests/unit/test_speed_streaming.py``)."""
     global _SHA256
     if _SHA256 is None:
         try:

@@ -152,7 +152,12 @@ def _glyph(text, base=7):
     after).  matplotlib scales a path marker by its farthest vertex, a mathtext one by
     its box: the curves' control points lie outside the box, so the size is corrected
     to draw the glyphs as large as before."""
-    got = _GLYPHS.get(text)
+    import matplotlib
+
+    # the glyphs of the fonts set now (plotting.setup lists DejaVu Sans, then a CJK font)
+    key = (text, tuple(matplotlib.rcParams["font.family"]),
+           tuple(matplotlib.rcParams["font.sans-serif"]))
+    got = _GLYPHS.get(key)
     if got is None:
         from matplotlib.path import Path
         from matplotlib.textpath import TextPath
@@ -162,7 +167,7 @@ def _glyph(text, base=7):
         v = glyphs.vertices - ((box.x0 + box.x1) / 2, (box.y0 + box.y1) / 2)
         reach = float(abs(v).max()) if len(v) else 0.0
         span = max(box.width, box.height)
-        got = _GLYPHS[text] = (Path(v, glyphs.codes), 2 * reach / span if span else 1.0)
+        got = _GLYPHS[key] = (Path(v, glyphs.codes), 2 * reach / span if span else 1.0)
     path, grow = got
     return {"marker": path, "ms": _glyph_size(text, base) * grow}
 
