@@ -1,7 +1,8 @@
 """Atomic file output: a file is either complete or absent, never half-written.
 
-Every file is written into a temporary file that :func:`tempfile.mkstemp` creates
-in the target folder (a unique name, opened with ``O_EXCL``), then renamed over
+Every file is written into a temporary file that :func:`_temporary` creates in the
+target folder (a unique random name, opened with ``O_EXCL``, as
+:func:`tempfile.mkstemp` does), then renamed over
 the target with :func:`os.replace`.  Parallel runs therefore never share a
 temporary file, and when two runs write the same ``--out`` each file is
 replaced whole by one of them: a reader sees one run's complete file, never a
@@ -27,7 +28,7 @@ import csv
 import io
 import math
 import os
-import tempfile
+import sys
 from pathlib import Path
 
 
@@ -73,6 +74,31 @@ _SEPARATORS = {"/", "\\", os.sep} | ({os.altsep} if os.altsep else set())
 _WRITTEN = {}
 
 
+#: flags of a new private temporary file (those of tempfile.mkstemp)
+_TMP_FLAGS = (os.O_RDWR | os.O_CREAT | os.O_EXCL | getattr(os, "O_NOFOLLOW", 0)
+              | getattr(os, "O_BINARY", 0))
+
+
+def _temporary(path):
+    """``(fd, name)``: a new file ``.NAME.<random>.tmp`` beside *path*, created with
+    ``O_EXCL`` and mode 0600, under a name tried again on a clash -- what
+    :func:`tempfile.mkstemp` gives, without importing :mod:`tempfile` (with
+    :mod:`shutil` and :mod:`random`, ~2.5 ms of every start-up where nothing else
+    imported them, issue 17)."""
+    for _ in range(100):
+        name = os.path.join(path.parent, f".{path.name}.{os.urandom(6).hex()}.tmp")
+        try:
+            return os.open(name, _TMP_FLAGS, 0o600), name
+        except FileExistsError:
+            continue
+        except PermissionError:
+            # Windows: a folder of that name (as mkstemp); elsewhere a real refusal
+            if os.name == "nt" and os.path.isdir(name):
+                continue
+            raise
+    raise FileExistsError(f"no free temporary name beside {path}")
+
+
 def _atomic(path, data):
     """Write *data* (bytes, or a function that writes into the open binary file) to
     *path* atomically; remember its size and SHA-256 for the manifest."""
@@ -80,7 +106,7 @@ def _atomic(path, data):
     path.parent.mkdir(parents=True, exist_ok=True)
     # unique per call (mkstemp: random suffix, O_CREAT | O_EXCL) in the target folder, so
     # the rename below stays on one file system and is atomic
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+    fd, tmp = _temporary(path)
     try:
         with os.fdopen(fd, "wb") as fh:
             if callable(data):
@@ -145,7 +171,7 @@ def write_csv_stream(path, headers, chunks, digits=DEFAULT_DIGITS, guard=True):
 
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+    fd, tmp = _temporary(path)
     digest, size, row = _sha256(), 0, 0
     fmt = ",".join([f"%.{digits}g"] * len(headers))
     restore = _terminate_as_exit() if guard else _nothing
@@ -248,12 +274,12 @@ def _sha256(data=b""):
     global _SHA256
     if _SHA256 is None:
         try:
-            from _sha2 import sha256 as _SHA256
-        except ImportError:
-            try:
+            if sys.version_info >= (3, 12):
+                from _sha2 import sha256 as _SHA256
+            else:
                 from _sha256 import sha256 as _SHA256
-            except ImportError:
-                from hashlib import sha256 as _SHA256
+        except ImportError:
+            from hashlib import sha256 as _SHA256
     return _SHA256(data)
 
 

@@ -135,21 +135,37 @@ def test_two_processes_writing_one_out_never_corrupt_a_file(tmp_path):
 
 
 def test_parallel_writes_use_distinct_temporary_files(tmp_path, monkeypatch):
-    import tempfile
-
     from mechcli.report import files
     seen = []
-    real = tempfile.mkstemp
+    real = files._temporary
 
-    def spy(*a, **k):
-        fd, name = real(*a, **k)
+    def spy(path):
+        fd, name = real(path)
         seen.append(name)
         return fd, name
-    monkeypatch.setattr(files.tempfile, "mkstemp", spy)
+    monkeypatch.setattr(files, "_temporary", spy)
     for _ in range(5):
         files.write_text(tmp_path / "a.txt", "x")
     assert len(set(seen)) == 5 and all(Path(s).parent == tmp_path for s in seen)
+    assert all(re.fullmatch(r"\.a\.txt\.[0-9a-f]{12}\.tmp", Path(s).name) for s in seen)
     assert [p.name for p in tmp_path.iterdir()] == ["a.txt"]
+
+
+def test_temporary_files_are_new_private_and_retried_on_a_clash(tmp_path, monkeypatch):
+    """files._temporary does what tempfile.mkstemp did: O_EXCL (never an existing file),
+    mode 0600 until the rename gives the umask's mode, another name on a clash."""
+    from mechcli.report import files
+    target = tmp_path / "kin.csv"
+    draws = iter([b"\x01" * 6, b"\x01" * 6, b"\x02" * 6])
+    monkeypatch.setattr(files.os, "urandom", lambda n: next(draws))
+    fd1, name1 = files._temporary(target)
+    fd2, name2 = files._temporary(target)          # the first draw clashes: the next taken
+    os.close(fd1)
+    os.close(fd2)
+    assert Path(name1).name == ".kin.csv.010101010101.tmp"
+    assert Path(name2).name == ".kin.csv.020202020202.tmp"
+    if os.name == "posix":
+        assert Path(name1).stat().st_mode & 0o777 == 0o600
 
 
 # -- mechcli new -------------------------------------------------------------------------

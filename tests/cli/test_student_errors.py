@@ -43,9 +43,9 @@ def test_unwritable_out_is_a_usage_error(tmp_path, monkeypatch):
     from mechcli.report import files
     out = tmp_path / "locked"
 
-    def refuse(*args, dir=None, **kwargs):
-        raise PermissionError(errno.EACCES, os.strerror(errno.EACCES), str(dir))
-    monkeypatch.setattr(files.tempfile, "mkstemp", refuse)
+    def refuse(path):
+        raise PermissionError(errno.EACCES, os.strerror(errno.EACCES), str(path.parent))
+    monkeypatch.setattr(files, "_temporary", refuse)
     proc = run_inprocess("kin", EX1_1, "-q", "-o", out)
     assert proc.returncode == 2, proc.stderr
     line = one_line_error(proc)
