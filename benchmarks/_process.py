@@ -23,16 +23,36 @@ from __future__ import annotations
 
 import os
 import subprocess
+import sys
 import time
 
 
-def bench_env(cache_dir, bytecode_cache=True):
-    """The environment of the timed processes (a copy of ``os.environ``)."""
+def bench_env(cache_dir, bytecode_cache=True, site_hooks=True):
+    """The environment of the timed processes (a copy of ``os.environ``).
+
+    ``site_hooks=False`` is for processes run with ``python -S`` (:func:`interpreter`):
+    the site directories and mechcli's own go on ``PYTHONPATH`` instead, so that the
+    ``.pth`` files of the environment (which may import modules into every process:
+    some sandboxes import certifi, typing, tempfile, pathlib ... that way) run in
+    neither mechcli's processes nor the baseline's, as on a clean installation."""
     env = dict(os.environ)
     if bytecode_cache:
         env.pop("PYTHONDONTWRITEBYTECODE", None)
         env["PYTHONPYCACHEPREFIX"] = str(cache_dir)
+    if not site_hooks:
+        import site
+
+        import mechcli
+
+        paths = [os.path.dirname(os.path.dirname(os.path.abspath(mechcli.__file__)))]
+        paths += site.getsitepackages() + [site.getusersitepackages()]
+        env["PYTHONPATH"] = os.pathsep.join(paths)
     return env
+
+
+def interpreter(site_hooks=True):
+    """``[python]``, or ``[python, "-S"]`` without the site hooks (:func:`bench_env`)."""
+    return [sys.executable] if site_hooks else [sys.executable, "-S"]
 
 
 #: run first in the timed process: report the main thread's CPU time at exit
@@ -44,14 +64,18 @@ _HOOK = ("import atexit, sys, time\n"
 def _hooked(argv):
     """*argv* (``python -c CODE ...`` or ``python -m MODULE ...``) with :data:`_HOOK` run
     first, in the same process."""
-    py, flag, what, *rest = argv
+    py, *argv = argv
+    opts = []
+    while argv[0] not in ("-c", "-m"):   # interpreter options (-S)
+        opts.append(argv.pop(0))
+    flag, what, *rest = argv
     if flag == "-c":
         code = _HOOK + what
-        return [py, "-c", code, *rest]
+        return [py, *opts, "-c", code, *rest]
     if flag == "-m":
         code = (_HOOK + "import runpy\nsys.argv[0] = %r\n"
                 "runpy.run_module(%r, run_name='__main__', alter_sys=True)\n" % (what, what))
-        return [py, "-c", code, *rest]
+        return [py, *opts, "-c", code, *rest]
     raise ValueError(f"cannot time {argv!r}")
 
 

@@ -19,7 +19,14 @@ minimum over the runs.  Prints
 Goals (issue 17): grashof quick form <= 1.0x, kin --no-plot <= 1.5x, kin with
 PNGs <= 5x ``import numpy``.
 
-Usage: python benchmarks/bench_startup.py [--runs N] [--no-bytecode-cache] [--json]
+``--no-site-hooks`` runs every process (the baseline's too) with ``python -S`` and the site
+directories on ``PYTHONPATH``: the ``.pth`` files of the environment then import nothing
+into them.  Some sandboxes import certifi, typing, tempfile, pathlib ... into every process
+that way, which mechcli would otherwise pay for itself; on this machine the ratio of
+``kin --no-plot`` is ~0.1 higher without them.
+
+Usage: python benchmarks/bench_startup.py [--runs N] [--no-bytecode-cache] [--no-site-hooks]
+       [--json]
 """
 
 from __future__ import annotations
@@ -31,16 +38,17 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _figures import run  # noqa: E402
-from _process import bench_env, round_robin  # noqa: E402
+from _process import bench_env, interpreter, round_robin  # noqa: E402
 
 ROOT = Path(__file__).resolve().parent.parent
 EX11 = str(ROOT / "configs" / "ch1" / "ex1-1.toml")
 
 
-def cases(out):
-    mech = [sys.executable, "-m", "mechcli"]
+def cases(out, site_hooks=True):
+    py = interpreter(site_hooks)
+    mech = py + ["-m", "mechcli"]
     return {
-        "import_numpy": [sys.executable, "-c", "import numpy"],
+        "import_numpy": py + ["-c", "import numpy"],
         "version": mech + ["--version"],
         "grashof_quick": mech + ["grashof", "--lengths", "40,90,70,100", "--out", out],
         "kin_ex1-1_no_plot": mech + ["kin", EX11, "--no-plot", "--out", out],
@@ -53,10 +61,15 @@ def main():
     ap.add_argument("--runs", type=int, default=7, help="runs of each command (minimum taken)")
     ap.add_argument("--no-bytecode-cache", action="store_true",
                     help="keep the environment's PYTHONDONTWRITEBYTECODE (if set)")
+    ap.add_argument("--no-site-hooks", action="store_true",
+                    help="python -S with the site directories on PYTHONPATH: the "
+                         "environment's .pth files run in no process (a clean installation)")
     args = ap.parse_args()
+    hooks = not args.no_site_hooks
     with tempfile.TemporaryDirectory() as out, tempfile.TemporaryDirectory() as cache:
-        env = bench_env(cache, not args.no_bytecode_cache)
-        best, cpu = round_robin(cases(out), args.runs, ROOT, env)
+        env = bench_env(cache, not args.no_bytecode_cache, site_hooks=hooks)
+        best, cpu = round_robin(cases(out, hooks), args.runs, ROOT, env)
+    print(f"site_hooks: {int(hooks)} 1")
     base, cpu_base = best.pop("import_numpy"), cpu.pop("import_numpy")
     print(f"import_numpy_process: {base * 1e3:.1f} ms")
     print(f"import_numpy_cpu: {cpu_base * 1e3:.1f} ms")
