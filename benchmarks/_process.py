@@ -45,7 +45,11 @@ def bench_env(cache_dir, bytecode_cache=True, site_hooks=True):
         import mechcli
 
         paths = [os.path.dirname(os.path.dirname(os.path.abspath(mechcli.__file__)))]
-        paths += site.getsitepackages() + [site.getusersitepackages()]
+        paths += site.getsitepackages()
+        if site.ENABLE_USER_SITE:
+            paths.append(site.getusersitepackages())
+        if env.get("PYTHONPATH"):
+            paths.append(env["PYTHONPATH"])
         env["PYTHONPATH"] = os.pathsep.join(paths)
     return env
 

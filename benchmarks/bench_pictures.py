@@ -91,7 +91,7 @@ def main():
                 "kin_ex1-1_no_plot": mech + ["kin", EX11, "--no-plot", "-q", "--out", out],
                 "kin_ex1-1_png": mech + ["kin", EX11, "-q", "--out", out],
                 "kin_ex1-1_png_dpi100": mech + ["kin", EX11, "-q", "--dpi", "100", "--out", out]}
-        best, cpu = round_robin(cmds, args.runs, ROOT, env)
+        best, cpu = round_robin(cmds, args.runs, out, env)   # (as bench_startup.py)
     base = best["import_numpy"]
     print(f"import_numpy_process: {base * 1e3:.1f} ms")
     print(f"import_numpy_cpu: {cpu['import_numpy'] * 1e3:.1f} ms")

@@ -68,7 +68,9 @@ def main():
     hooks = not args.no_site_hooks
     with tempfile.TemporaryDirectory() as out, tempfile.TemporaryDirectory() as cache:
         env = bench_env(cache, not args.no_bytecode_cache, site_hooks=hooks)
-        best, cpu = round_robin(cases(out, hooks), args.runs, ROOT, env)
+        # run in the output folder: a checkout in the working directory would shadow an
+        # installed mechcli (`-c` and `-m` put the working directory first on sys.path)
+        best, cpu = round_robin(cases(out, hooks), args.runs, out, env)
     print(f"site_hooks: {int(hooks)} 1")
     base, cpu_base = best.pop("import_numpy"), cpu.pop("import_numpy")
     print(f"import_numpy_process: {base * 1e3:.1f} ms")

@@ -25,6 +25,7 @@ the OS's reason: the user's ``--out`` is wrong, it is not a bug.
 from __future__ import annotations
 
 import csv
+import errno
 import io
 import math
 import os
@@ -96,7 +97,7 @@ def _temporary(path):
             if os.name == "nt" and os.path.isdir(name):
                 continue
             raise
-    raise FileExistsError(f"no free temporary name beside {path}")
+    raise FileExistsError(errno.EEXIST, "no free temporary file name", str(path.parent))
 
 
 def _atomic(path, data):
@@ -108,17 +109,26 @@ def _atomic(path, data):
     # the rename below stays on one file system and is atomic
     fd, tmp = _temporary(path)
     try:
-        with os.fdopen(fd, "wb") as fh:
+        with os.fdopen(fd, "w+b") as fh:
             if callable(data):
                 data(fh)
             else:
                 fh.write(data)
-        os.chmod(tmp, 0o666 & ~_UMASK)   # mkstemp's 0600 -> what open() would give
-        # the manifest's checksum of what THIS run wrote (a parallel run may replace the
-        # file before outputs.json is written): of the bytes in memory, or else of the
-        # private temporary file
-        _WRITTEN[str(path)] = ((os.path.getsize(tmp), file_sha256(tmp)) if callable(data)
-                               else (len(data), _sha256(data).hexdigest()))
+            fh.flush()
+            _private_to_public(fh, tmp)
+            # the manifest's checksum of what THIS run wrote (a parallel run may replace
+            # the file before outputs.json is written): of the bytes in memory, or else
+            # read back through the open descriptor (never by name: the name could be
+            # swapped for a link meanwhile)
+            if callable(data):
+                size = fh.seek(0, os.SEEK_END)
+                fh.seek(0)
+                digest = _sha256(size=size)
+                for chunk in iter(lambda: fh.read(1 << 20), b""):
+                    digest.update(chunk)
+            else:
+                size, digest = len(data), _sha256(data)
+        _WRITTEN[str(path)] = (size, digest.hexdigest())
         os.replace(tmp, path)
     except BaseException:
         try:
@@ -127,6 +137,16 @@ def _atomic(path, data):
             pass
         raise
     return path
+
+
+def _private_to_public(fh, name):
+    """The temporary file's 0600 -> the mode ``open()`` would have given, through the
+    open descriptor where the OS allows it (by name elsewhere: Windows)."""
+    mode = 0o666 & ~_UMASK
+    if os.chmod in os.supports_fd:
+        os.chmod(fh.fileno(), mode)
+    else:
+        os.chmod(name, mode)
 
 
 def write_bytes(path, data: bytes):
@@ -151,11 +171,18 @@ def write_csv(path, columns, digits=DEFAULT_DIGITS):
     :class:`OutputError`, and nothing is written.  One chunk of
     :func:`write_csv_stream`, so both write the same bytes.
     """
+    cells = sum(len(col) for _, col in columns)
     return write_csv_stream(path, [h for h, _ in columns], [[col for _, col in columns]],
-                            digits, guard=False)
+                            digits, guard=cells > _GUARD_CELLS, size_hint=16 * cells)
 
 
-def write_csv_stream(path, headers, chunks, digits=DEFAULT_DIGITS, guard=True):
+#: a CSV of more cells than this takes long enough to write (~0.3 s and more) to be
+#: guarded against SIGTERM like a stream; a smaller one goes without (no signal import)
+_GUARD_CELLS = 500_000
+
+
+def write_csv_stream(path, headers, chunks, digits=DEFAULT_DIGITS, guard=True,
+                     size_hint=None):
     """Write a CSV whose rows arrive chunk by chunk, atomically, in bounded memory.
 
     *chunks* yields lists of column arrays (in the order of *headers*).  The rows go
@@ -164,17 +191,21 @@ def write_csv_stream(path, headers, chunks, digits=DEFAULT_DIGITS, guard=True):
     leaves no half-written file.  The bytes are those :func:`write_csv` writes for
     the same rows; only one chunk is held at a time (issue 17: a 1e7-row sweep).
     With *guard* (default) a SIGTERM meanwhile removes the temporary file too
-    (:func:`_terminate_as_exit`); :func:`write_csv`, whose rows are all in memory
-    already, writes as briefly as any other output and goes without it.
+    (:func:`_terminate_as_exit`); :func:`write_csv` leaves a small CSV without it.
+    *size_hint*: the expected bytes, if known (:func:`_sha256` picks its hash by it).
     """
     import numpy as np
 
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = _temporary(path)
-    digest, size, row = _sha256(), 0, 0
+    digest, size, row = _sha256(size=size_hint), 0, 0
     fmt = ",".join([f"%.{digits}g"] * len(headers))
     restore = _terminate_as_exit() if guard else _nothing
+    try:
+        fd, tmp = _temporary(path)
+    except BaseException:
+        restore()
+        raise
     try:
         with os.fdopen(fd, "wb") as fh:
             head = io.StringIO()
@@ -203,7 +234,8 @@ def write_csv_stream(path, headers, chunks, digits=DEFAULT_DIGITS, guard=True):
                     digest.update(data)
                     size += len(data)
                 row += n
-        os.chmod(tmp, 0o666 & ~_UMASK)   # mkstemp's 0600 -> what open() would give
+            fh.flush()
+            _private_to_public(fh, tmp)
         _WRITTEN[str(path)] = (size, digest.hexdigest())
         os.replace(tmp, path)
     except BaseException:
@@ -245,8 +277,6 @@ def _terminate_as_exit():
 def _os_reason(where, exc):
     """``PATH: reason`` for an OS error at *where*, naming the regular file that stands
     where a folder should be (``--out notes.txt/sub``)."""
-    import errno
-
     reason = exc.strerror or str(exc)
     if exc.errno == errno.ENOTDIR:
         for parent in [Path(where), *Path(where).parents]:
@@ -264,14 +294,23 @@ MANIFEST_FORMAT = 1
 
 
 _SHA256 = None
+#: data up to this size is hashed by CPython's built-in SHA-256 (~300 MB/s here), more by
+#: hashlib's OpenSSL one (~1,700 MB/s, but 2.3 ms to import): the crossover is ~1 MB
+_BUILTIN_HASH_MAX = 1 << 20
 
 
-def _sha256(data=b""):
-    """A SHA-256 hash object (of *data*, bytes).  CPython's built-in implementation
-    (``_sha2`` from 3.12, ``_sha256`` before) where there is one: :mod:`hashlib` loads
-    OpenSSL first, 2.3 ms of a ~135 ms ``kin`` run (issue 17); :mod:`hashlib`'s
-    otherwise.  Both give the same digest (``tests/unit/test_speed_streaming.py``)."""
+def _sha256(data=b"", size=None):
+    """A SHA-256 hash object (of *data*, bytes; *size*: the bytes it will be given in
+    all, None if unknown).  For small data CPython's built-in implementation (``_sha2``
+    from 3.12, ``_sha256`` before): :mod:`hashlib` loads OpenSSL first, 2.3 ms of a
+    ~130 ms ``kin`` run (issue 17).  For large or unknown sizes, and on other Pythons,
+    :mod:`hashlib`'s, several times faster per byte.  Both give the same digest
+    (``tests/unit/test_speed_streaming.py``)."""
     global _SHA256
+    n = len(data) if size is None and data else size
+    if n is None or n > _BUILTIN_HASH_MAX or sys.implementation.name != "cpython":
+        from hashlib import sha256
+        return sha256(data)
     if _SHA256 is None:
         try:
             if sys.version_info >= (3, 12):
@@ -285,7 +324,7 @@ def _sha256(data=b""):
 
 def file_sha256(path):
     """SHA-256 (hex) of a file's bytes."""
-    h = _sha256()
+    h = _sha256(size=os.path.getsize(path))
     with open(path, "rb") as fh:
         for chunk in iter(lambda: fh.read(1 << 20), b""):
             h.update(chunk)

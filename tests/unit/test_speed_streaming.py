@@ -218,18 +218,42 @@ def test_sigterm_while_streaming_leaves_no_temporary_file(tmp_path):
 
 
 def test_manifest_checksums_are_sha256(tmp_path):
-    """outputs.json's checksums (files._sha256: CPython's built-in SHA-256 where there is
-    one, hashlib's otherwise) are hashlib.sha256's, for in-memory and streamed writes."""
+    """outputs.json's checksums (files._sha256: CPython's built-in SHA-256 for up to 1 MB,
+    hashlib's beyond) are hashlib.sha256's: in-memory bytes small and large, a file written
+    by a function (hashed back through its descriptor), a CSV from memory, a stream."""
     import hashlib
 
     from mechcli.report import files
 
-    text = tmp_path / "a.txt"
-    files.write_text(text, "θ1 = 30°\n" * 1000)
-    streamed = tmp_path / "b.csv"
+    small, large = tmp_path / "a.txt", tmp_path / "big.bin"
+    files.write_text(small, "θ1 = 30°\n" * 1000)
+    files.write_bytes(large, bytes(range(256)) * 9000)                  # 2.3 MB
+    by_function = tmp_path / "f.bin"
+    files._atomic(by_function, lambda fh: [fh.write(b"%d," % i) for i in range(300_000)])
+    csv_path, streamed = tmp_path / "c.csv", tmp_path / "s.csv"
+    write_csv(csv_path, [("x", np.arange(100.0)), ("y", np.ones(100))])
     write_csv_stream(streamed, ["x", "y"], ([np.arange(5.0) + k, np.ones(5)] for k in range(3)))
-    for path in (text, streamed):
+    for path in (small, large, by_function, csv_path, streamed):
         data = path.read_bytes()
         want = hashlib.sha256(data).hexdigest()
-        assert files._WRITTEN[str(path)] == (len(data), want)
+        assert files._WRITTEN[str(path)] == (len(data), want), path.name
         assert files.file_sha256(path) == want
+        assert oct(path.stat().st_mode & 0o777) == oct(0o666 & ~files._UMASK)
+    assert large.stat().st_size > files._BUILTIN_HASH_MAX > small.stat().st_size
+
+
+def test_csv_guard_and_early_errors(tmp_path, monkeypatch):
+    """A CSV from memory of more than _GUARD_CELLS cells is guarded against SIGTERM like a
+    stream, a small one is not; a stream refused before its first row leaves no file."""
+    from mechcli.report import files
+
+    guarded = []
+    monkeypatch.setattr(files, "_terminate_as_exit", lambda: guarded.append(1) or files._nothing)
+    write_csv(tmp_path / "small.csv", [("x", np.arange(10.0))])
+    assert guarded == []
+    monkeypatch.setattr(files, "_GUARD_CELLS", 5)
+    write_csv(tmp_path / "big.csv", [("x", np.arange(10.0))])
+    assert guarded == [1]
+    with pytest.raises(TypeError):
+        write_csv_stream(tmp_path / "bad.csv", iter(["x"]), [[[1.0]]])   # no len()
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["big.csv", "small.csv"]
