@@ -423,7 +423,10 @@ def kinetostatics(prob, kin, active):
     moving = sorted(prob.links)
     row = {k: 3 * idx for idx, k in enumerate(moving)}
     n = 3 * len(moving)
-    assert 1 + 2 * len(prob.pairs) == n, "system not square"
+    unknowns = 1 + 2 * len(prob.pairs)      # Mb and two per lower pair
+    if unknowns != n:
+        raise ValueError(f"{prob.name}: {unknowns} unknowns for {n} equations "
+                         f"({len(moving)} moving links): not a square system")
     A = np.zeros((N, n, n))
     b = np.zeros((N, n))
     pos, vel, acc = kin["pos"], kin["vel"], kin["acc"]
