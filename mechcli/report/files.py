@@ -112,31 +112,40 @@ def _atomic(path, data):
         with os.fdopen(fd, "w+b") as fh:
             if callable(data):
                 data(fh)
-            else:
-                fh.write(data)
-            fh.flush()
-            _private_to_public(fh, tmp)
-            # the manifest's checksum of what THIS run wrote (a parallel run may replace
-            # the file before outputs.json is written): of the bytes in memory, or else
-            # read back through the open descriptor (never by name: the name could be
-            # swapped for a link meanwhile)
-            if callable(data):
+                # the manifest's checksum of what THIS run wrote (a parallel run may
+                # replace the file before outputs.json is written): read back through the
+                # open descriptor, never by name (the name could be swapped for a link)
+                fh.flush()
                 size = fh.seek(0, os.SEEK_END)
                 fh.seek(0)
-                digest = _sha256(size=size)
-                for chunk in iter(lambda: fh.read(1 << 20), b""):
-                    digest.update(chunk)
+                digest = _digest_of(fh, size)
             else:
+                fh.write(data)
                 size, digest = len(data), _sha256(data)
-        _WRITTEN[str(path)] = (size, digest.hexdigest())
-        os.replace(tmp, path)
+            _publish(fh, tmp, path, size, digest)
     except BaseException:
-        try:
-            os.unlink(tmp)
-        except OSError:
-            pass
+        _discard(tmp)
         raise
     return path
+
+
+def _publish(fh, tmp, path, size, digest):
+    """The finished temporary file *tmp* (open as *fh*) becomes *path*: made public,
+    closed (Windows renames only closed files), remembered for the manifest with its
+    *size* and SHA-256 *digest*, and renamed over *path* in one step."""
+    fh.flush()
+    _private_to_public(fh, tmp)
+    fh.close()
+    _WRITTEN[str(path)] = (size, digest.hexdigest())
+    os.replace(tmp, path)
+
+
+def _discard(tmp):
+    """Remove the temporary file of a write that failed or was interrupted."""
+    try:
+        os.unlink(tmp)
+    except OSError:
+        pass
 
 
 def _private_to_public(fh, name):
@@ -234,15 +243,9 @@ def write_csv_stream(path, headers, chunks, digits=DEFAULT_DIGITS, guard=True,
                     digest.update(data)
                     size += len(data)
                 row += n
-            fh.flush()
-            _private_to_public(fh, tmp)
-        _WRITTEN[str(path)] = (size, digest.hexdigest())
-        os.replace(tmp, path)
+            _publish(fh, tmp, path, size, digest)
     except BaseException:
-        try:
-            os.unlink(tmp)
-        except OSError:
-            pass
+        _discard(tmp)
         raise
     finally:
         restore()
@@ -322,13 +325,19 @@ def _sha256(data=b"", size=None):
     return _SHA256(data)
 
 
+def _digest_of(fh, size):
+    """The SHA-256 hash object of what binary file *fh* holds from its position on
+    (*size* bytes, which picks the hash: :func:`_sha256`), read 1 MiB at a time."""
+    digest = _sha256(size=size)
+    for chunk in iter(lambda: fh.read(1 << 20), b""):
+        digest.update(chunk)
+    return digest
+
+
 def file_sha256(path):
     """SHA-256 (hex) of a file's bytes."""
-    h = _sha256(size=os.path.getsize(path))
     with open(path, "rb") as fh:
-        for chunk in iter(lambda: fh.read(1 << 20), b""):
-            h.update(chunk)
-    return h.hexdigest()
+        return _digest_of(fh, os.fstat(fh.fileno()).st_size).hexdigest()
 
 
 def read_manifest(out_dir, same_as=None):
