@@ -17,6 +17,7 @@ import pytest
 from numpy.polynomial import Polynomial
 
 from tests.conftest import CONFIGS, one_line_error, run_inprocess, run_json
+from tests.unit.test_cam_polynomial import SPEC
 
 CH4 = CONFIGS / "ch4"
 
@@ -154,20 +155,9 @@ def test_cubic_jumps_reported_with_segments_and_sizes(tmp_path):
     assert col["a_mm_rad2"][at90 + 1] == pytest.approx(jump)
 
 
-BASE = """command = "cam"
-units = "mm"
-[follower]
-contact = "knife"
-r0 = 50
-[motion]
-h = 20
-segments = [
-  {{ kind = "rise", angle = 120, law = "polynomial", coefficients = {rise} }},
-  {{ kind = "dwell", angle = 60 }},
-  {{ kind = "return", angle = 120, law = "poly4567" }},
-  {{ kind = "dwell", angle = 60 }},
-]
-"""
+def _base(rise):
+    """A knife-edge cam: the polynomial rise, 4-5-6-7 return (the unit test's spec)."""
+    return SPEC.format(rise=rise, ret="poly4567")
 
 
 def test_velocity_jump_of_a_polynomial_is_a_rigid_impact(tmp_path):
@@ -175,7 +165,7 @@ def test_velocity_jump_of_a_polynomial_is_a_rigid_impact(tmp_path):
     # out of a dwell: a rigid impact at 0° (and its warning); f'(1) = 0: none at 120°, but
     # f''(1) = -2 -> a soft impact there of +2h/β² = 9.1189 mm/rad²
     spec = tmp_path / "spec.toml"
-    spec.write_text(BASE.format(rise="[0, 2, -1]"), encoding="utf-8")
+    spec.write_text(_base("[0, 2, -1]"), encoding="utf-8")
     doc = run_json("cam", spec, "--out", tmp_path / "o")
     res = doc["results"]
     beta = math.radians(120)
@@ -234,7 +224,7 @@ segments = [
 ])
 def test_bad_polynomial_exits_2_with_one_line(tmp_path, rise, key, words):
     spec = tmp_path / "bad.toml"
-    spec.write_text(BASE.format(rise=rise), encoding="utf-8")
+    spec.write_text(_base(rise), encoding="utf-8")
     out = tmp_path / "o"
     proc = run_inprocess("cam", spec, "--no-plot", "--quiet", "--out", out)
     assert proc.returncode == 2
@@ -245,7 +235,7 @@ def test_bad_polynomial_exits_2_with_one_line(tmp_path, rise, key, words):
 
 def test_bad_polynomial_error_json(tmp_path):
     spec = tmp_path / "bad.toml"
-    spec.write_text(BASE.format(rise="[0, 0, 3, -2.2]"), encoding="utf-8")
+    spec.write_text(_base("[0, 0, 3, -2.2]"), encoding="utf-8")
     proc = run_inprocess("cam", spec, "--json", "--no-plot", "--out", tmp_path / "o")
     assert proc.returncode == 2
     doc = json.loads(proc.stdout)
