@@ -78,8 +78,8 @@ def ex1_1():
     return spec, qs
 
 
-def test_extremes_are_stationary_points_in_few_solves(ex1_1, monkeypatch):
-    spec, qs = ex1_1
+def _count_solves(monkeypatch):
+    """A list that grows by one at every engine solve of ``kinematics`` from now on."""
     calls = []
     real = kinematics.solve
 
@@ -88,6 +88,12 @@ def test_extremes_are_stationary_points_in_few_solves(ex1_1, monkeypatch):
         return real(*a, **k)
 
     monkeypatch.setattr(kinematics, "solve", counting)
+    return calls
+
+
+def test_extremes_are_stationary_points_in_few_solves(ex1_1, monkeypatch):
+    spec, qs = ex1_1
+    calls = _count_solves(monkeypatch)
     res = kinematics.analyse_sweep(spec.linkage, spec.input.sweep(), qs, spec.output.order)
     # bisection took 40 solves for this sweep (38 on the extremes), the secant 16; with
     # its guard probes, central differences closed to their own rounding and the
@@ -118,14 +124,7 @@ def test_transmission_angle_max_at_its_fold_in_few_solves(ex1_1, monkeypatch):
     gamma = [q for q in qs if q.symbol == "gammaC"]
     sweep = spec.input.sweep()
     res = kinematics.analyse_sweep(spec.linkage, sweep, qs, spec.output.order)
-    calls = []
-    real = kinematics.solve
-
-    def counting(*a, **k):
-        calls.append(1)
-        return real(*a, **k)
-
-    monkeypatch.setattr(kinematics, "solve", counting)
+    calls = _count_solves(monkeypatch)
     only = kinematics.analyse_sweep(spec.linkage, sweep, gamma, 0)
     monkeypatch.undo()
     hi = only.extremes["gammaC"][0]
