@@ -257,3 +257,61 @@ def test_conditional_load_intervals_refined():
     assert a0 == 0.0 and b1 == pytest.approx(2 * math.pi, abs=1e-12)
     assert math.degrees(a1) == pytest.approx(180 + edge, abs=1e-9)
     assert math.degrees(b0) == pytest.approx(360 - edge, abs=1e-9)
+
+
+@pytest.mark.parametrize("e, branch, pivot", [(0.0, 1, (0.0, 0.0)), (0.03, 1, (0.0, 0.0)),
+                                              (-0.04, -1, (0.2, -0.1)), (0.0, -1, (0.2, -0.1))])
+def test_rpr_direction_is_the_cosine_and_sine_of_its_angle(e, branch, pivot):
+    """Element.direction of an RPR guide (formed from its points and slide, for the
+    kinetostatics instead of np.cos/np.sin) equals the cosine and sine of the engine's
+    guide angle to round-off, for both links it makes (guide and block)."""
+    cx, cy = pivot
+    lk = Linkage(4, (Ground("C", cx, cy), Ground("A", cx + 0.01, cy + 0.3),
+                     Crank(1, "A", "B", 0.1), RPR("B", 2, "C", 3, e, branch, "23")))
+    q = np.radians(np.arange(0.0, 360.0, 1.0))
+    m = solve(lk, Sweep(1, q, 2.0).inputs(q), order=2)
+    assert m.regular.all()
+    rpr = lk.elements[-1]
+    for link in (2, 3):
+        c, s = rpr.direction(m, link)
+        th = m.links[link].theta
+        assert np.max(np.abs(c - np.cos(th))) < 4e-16 and np.max(np.abs(s - np.sin(th))) < 4e-16
+
+
+def test_rpr_direction_of_a_batch_of_offsets():
+    """A batch of designs (offsets per design): each row as its own linkage's angle."""
+    es = np.array([[0.0], [0.02], [-0.03]])
+    lk = Linkage(4, (Ground("C", 0.0, 0.0), Ground("A", 0.0, 0.3), Crank(1, "A", "B", 0.1),
+                     RPR("B", 2, "C", 3, es, 1, "23")))
+    q = np.radians(np.arange(0.0, 360.0, 5.0))
+    m = solve(lk, Sweep(1, q, 1.0).inputs(q), order=1)
+    c, s = lk.elements[-1].direction(m, 3)
+    assert c.shape == s.shape == m.links[3].theta.shape == (3, q.size)
+    assert np.max(np.abs(c - np.cos(m.links[3].theta))) < 4e-16
+    assert np.max(np.abs(s - np.sin(m.links[3].theta))) < 4e-16
+
+
+def test_forces_from_the_guide_direction_equal_those_from_its_angle():
+    """The shaper's reactions with the RPR guide's direction from its points equal
+    those with cos/sin of its angle (the plan's direction map emptied) to round-off."""
+    from mechcli.core.linkage.kinetostatics import _plan
+
+    q = np.radians(np.arange(0.0, 360.0, 2.0))
+    bodies = {3: Body(3, 20, 0.12), 4: Body(4, 3, 0.00025), 5: Body(5, 62, 0.0, "E", -0.15, 0.0)}
+    loads = [Load("cut", 5, 5880.0, 300.0, 7.0, "E", 0.05, 0.02)]
+    topo, motion, fr = _run(SHAPER, q, 1.3, bodies, loads, alpha=0.4)
+    plan = _plan(topo)
+    assert set(plan.direction_of) == {2, 3}
+    saved = plan.direction_of
+    try:
+        plan.direction_of = {}
+        ref = solve_forces(topo, motion, bodies, loads, (0.0, -9.8))
+    finally:
+        plan.direction_of = saved
+    peak = max(np.max(np.abs(pf.magnitude)) for pf in ref.pairs)
+    for a, b in zip(fr.pairs, ref.pairs):
+        assert np.max(np.abs(a.fx - b.fx)) < 1e-12 * peak
+        assert np.max(np.abs(a.fy - b.fy)) < 1e-12 * peak
+        assert np.max(np.abs(a.couple - b.couple)) < 1e-12 * peak
+    assert np.max(np.abs(fr.balancing[1] - ref.balancing[1])) < 1e-12 * np.max(
+        np.abs(ref.balancing[1]))

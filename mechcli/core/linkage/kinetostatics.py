@@ -55,6 +55,7 @@ import numpy as np
 from mechcli.core.linkage import dyad_statics
 from mechcli.core.linkage.dyad_statics import _add, _div, _mul, _sub, const
 from mechcli.core.linkage.elimination import gauss
+from mechcli.core.linkage.elements import Element
 from mechcli.core.linkage.engine import LinkageMotion, _facts
 # the model and the load programs, re-exported: this module is the entry point
 from mechcli.core.linkage.force_model import (COND_FLAG, Body, ForceModelError,  # noqa: F401
@@ -65,6 +66,12 @@ from mechcli.core.linkage.loads import LoadProgram  # noqa: F401
 # ---------------------------------------------------------------------------
 # solve
 # ---------------------------------------------------------------------------
+def _mid(a, b):
+    """``(a + b) / 2``, a fixed point's values (a stride-0 array: its zero
+    acceleration, a point at the origin) folded as floats."""
+    return _mul(0.5, _add(const(a), const(b)))
+
+
 def _point(motion, topo, origin, link, along, normal, order=2, cos_sin=None):
     """Position (and velocity, acceleration) of a point fixed on ``link``
     (``cos_sin(link)``: the cosine and sine of its angle, when already known).
@@ -76,14 +83,14 @@ def _point(motion, topo, origin, link, along, normal, order=2, cos_sin=None):
         order = 2
     if along is None:  # the midpoint of the link's two points
         second = motion.points[topo.frames[link][1]]
-        x, y = 0.5 * (o.x + second.x), 0.5 * (o.y + second.y)
+        x, y = _mid(o.x, second.x), _mid(o.y, second.y)
         if order == 0:
             return x, y
         if acc_only:
-            return (x, y, None, None, 0.5 * (o.ax + second.ax), 0.5 * (o.ay + second.ay))
-        return (x, y, 0.5 * (o.vx + second.vx), 0.5 * (o.vy + second.vy),
-                0.5 * (o.ax + second.ax) if order > 1 else None,
-                0.5 * (o.ay + second.ay) if order > 1 else None)
+            return (x, y, None, None, _mid(o.ax, second.ax), _mid(o.ay, second.ay))
+        return (x, y, _mid(o.vx, second.vx), _mid(o.vy, second.vy),
+                _mid(o.ax, second.ax) if order > 1 else None,
+                _mid(o.ay, second.ay) if order > 1 else None)
     if np.ndim(along) == 0 and np.ndim(normal) == 0 and along == 0.0 and normal == 0.0:
         rx = ry = 0.0  # the origin itself: no angle needed
     else:
@@ -203,6 +210,10 @@ class _Plan:
             self.blocks.append((unk, rows, entries, known, lay))
             solved += unk
         self.all_closed = all(blk[-1] is not None for blk in self.blocks)
+        # the element that makes each link, where it can give the angle's cosine and
+        # sine from its points (Element.direction)
+        self.direction_of = {ln: el for el in linkage.elements for ln in el.makes()[1]
+                             if type(el).direction is not Element.direction}
 
 
 def _plan(topo):
@@ -408,13 +419,16 @@ def solve_forces(topo: Topology, motion: LinkageMotion, bodies: Dict[int, Body],
                 # one angle at every position (a block on a fixed guide): floats
                 t1 = th.reshape(-1)[:1]
                 cs = (float(np.cos(t1)[0]), float(np.sin(t1)[0]), th)
-            else:
-                cs = (np.cos(th), np.sin(th), th)
+            else:  # from the element's points if it can (cheaper than cos and sin)
+                el = plan.direction_of.get(link)
+                u = el.direction(motion, link) if el is not None else None
+                cs = (np.cos(th), np.sin(th), th) if u is None else (u[0], u[1], th)
             trig[id(th)] = cs
         return cs[0], cs[1]
 
-    # centre of mass, its acceleration, and the known force/moment on each link
-    com, known, com_off = {}, {}, {}
+    # centre of mass, its acceleration, and minus the known force/moment on each link
+    # (the right-hand side of its equations: no negation pass)
+    com, minus, com_off = {}, {}, {}
     for link in topo.links:
         b = bodies.get(link) or Body(link)
         origin, along, normal = com_of(topo, b, link)
@@ -435,20 +449,21 @@ def solve_forces(topo: Topology, motion: LinkageMotion, bodies: Dict[int, Body],
         # masses and inertias may be arrays of a batch of designs: arr() flattens
         # them with the positions
         # (an exact zero stays the float 0.0: skipped by the arithmetic below)
+        # minus the weight and the inertia force: m (a_S - g); minus the couple: J alpha
         if massless:
             fx = fy = 0.0
         else:
-            fx = arr(b.mass * (gx - arr(ax).reshape(n)))
-            fy = arr(b.mass * (gy - arr(ay).reshape(n)))
+            fx = arr(b.mass * _sub(arr(ax).reshape(n), gx))
+            fy = arr(b.mass * _sub(arr(ay).reshape(n), gy))
         al = const(kl.alpha)
-        m = (arr(-b.inertia * arr(kl.alpha).reshape(n))
+        m = (arr(b.inertia * arr(kl.alpha).reshape(n))
              if np.any(b.inertia) and not _exact_zero(al) else 0.0)
-        known[link] = [fx, fy, m]
+        minus[link] = [fx, fy, m]
     for ld in loads:
-        if ld.link not in known:
+        if ld.link not in minus:
             raise ForceModelError(f"load '{ld.name}' is on link {ld.link}, which does not move",
                                   ("link", ld.link))
-        f = known[ld.link]
+        f = minus[ld.link]
         tq, fx, fy = _zarr(ld.torque), _zarr(ld.fx), _zarr(ld.fy)
         if ld.relative:
             c, s = (arr(v) for v in cos_sin(ld.link))
@@ -464,10 +479,10 @@ def solve_forces(topo: Topology, motion: LinkageMotion, bodies: Dict[int, Body],
                 px, py = (arr(v) for v in _point(motion, topo, origin, ld.link, ld.along,
                                                  ld.normal, order=0, cos_sin=cos_sin))
             sx, sy = com[ld.link][0], com[ld.link][1]
-            f[0] = _add(f[0], fx)
-            f[1] = _add(f[1], fy)
+            f[0] = _sub(f[0], fx)
+            f[1] = _sub(f[1], fy)
             tq = _add(tq, _sub(_mul(px - sx, fy), _mul(py - sy, fx)))
-        f[2] = _add(f[2], tq)
+        f[2] = _sub(f[2], tq)
 
     # the coefficients of this call: moment arms about the centres of mass
     # (scaled by L) and the directions of the prismatic pairs and slider drivers
@@ -520,9 +535,8 @@ def solve_forces(topo: Topology, motion: LinkageMotion, bodies: Dict[int, Body],
     rhs = [None] * plan.nrows
     for link in topo.links:
         e = plan.eq_of[link]
-        f = known[link]
-        rhs[e], rhs[e + 1], rhs[e + 2] = (_mul(-1.0, f[0]), _mul(-1.0, f[1]),
-                                          _div(_mul(-1.0, f[2]), Ls))
+        f = minus[link]
+        rhs[e], rhs[e + 1], rhs[e + 2] = f[0], f[1], _div(f[2], Ls)
 
     # element blocks, from the last element back to the drivers (block
     # lower-triangular): each one's unknowns from its links' equations
@@ -532,7 +546,7 @@ def solve_forces(topo: Topology, motion: LinkageMotion, bodies: Dict[int, Body],
         k = len(rows)
         A = [[0.0] * k for _ in range(k)]
         for i, j, spec in entries:
-            A[i][j] = A[i][j] + coef(spec)
+            A[i][j] = _add(A[i][j], coef(spec))
         b = [rhs[r] for r in rows]
         for i, u, spec in solved:
             b[i] = _sub(b[i], _mul(coef(spec), xs[u]))
@@ -604,9 +618,10 @@ def solve_forces(topo: Topology, motion: LinkageMotion, bodies: Dict[int, Body],
             fm -= arr(p.x) * val * uy - arr(p.y) * val * ux
             power += val * arr(motion.slides[d.slide_names(frame)[0]].v)
     # global balance: Σ known forces (gravity, loads, inertia) = force on the frame
-    kfx = sum(known[ln][0] for ln in topo.links)
-    kfy = sum(known[ln][1] for ln in topo.links)
-    dx, dy = kfx - ffx, kfy - ffy  # |d| without hypot's cost (no overflow at forces)
+    # (minus the known forces, summed, plus the force on the frame: the same |d|)
+    kfx = sum(minus[ln][0] for ln in topo.links)
+    kfy = sum(minus[ln][1] for ln in topo.links)
+    dx, dy = kfx + ffx, kfy + ffy  # |d| without hypot's cost (no overflow at forces)
     dx *= dx
     dy *= dy
     dx += dy
@@ -621,7 +636,7 @@ def solve_forces(topo: Topology, motion: LinkageMotion, bodies: Dict[int, Body],
             else:
                 pres += val * arr(unit_motion.slides[d.slide_names(frame)[0]].v)
         for link in topo.links:
-            f = known[link]
+            f = minus[link]
             if all(type(v) is float and v == 0.0 for v in f):
                 continue  # no known load on this link (massless, unloaded)
             x0, y0, origin, along, normal = com[link]
@@ -633,8 +648,8 @@ def solve_forces(topo: Topology, motion: LinkageMotion, bodies: Dict[int, Body],
                                       motion.links[link].theta))
             _x, _y, vx, vy, _a, _b = _point(unit_motion, topo, origin, link, along, normal,
                                              order=1, cos_sin=cos_sin if same else None)
-            # the known moment is about the centre of mass: P = F·v_S + M·ω
-            pres += _add(_add(_mul(f[0], arr(vx)), _mul(f[1], arr(vy))),
+            # the known moment is about the centre of mass: P = F·v_S + M·ω (f = -F, -M)
+            pres -= _add(_add(_mul(f[0], arr(vx)), _mul(f[1], arr(vy))),
                          _mul(f[2], arr(unit_motion.links[link].omega)))
         power_residual = pres.reshape(n)
     else:
