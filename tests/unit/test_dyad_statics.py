@@ -226,3 +226,36 @@ def test_layout_refuses_what_it_cannot_express():
                                [{0: True}] * 6, 6) is None
     # a 9-row block (a triad)
     assert dyad_statics.layout([("R", (0,))] * 4, [{0: True}] * 9, 9) is None
+
+
+def test_folded_arithmetic_equals_plain_numpy():
+    """The folding helpers (exact zeros, +-1 and pending negations kept as Python
+    floats or ``_Neg`` instead of passes over memory) give exactly what plain numpy
+    gives, for every combination of a float (special or not), an array and a pending
+    negation of one, and nested negations."""
+    from mechcli.core.linkage.dyad_statics import _add, _div, _mul, _neg, _sub, value
+
+    rng = np.random.default_rng(3)
+    arr = rng.uniform(-2.0, 2.0, 7)   # (no exact zero: a divisor too)
+    arr2 = rng.uniform(0.5, 2.0, 7)
+    plain = [0.0, 1.0, -1.0, 2.5, -0.75, arr, arr2]
+    cases = []
+    for v in plain:
+        cases.append((v, v))
+        cases.append((_neg(v), -v))
+        cases.append((_neg(_neg(v)), v))
+    ops = {_add: np.add, _sub: np.subtract, _mul: np.multiply, _div: np.divide}
+    checked = 0
+    for f, ref in ops.items():
+        for a, ra in cases:
+            for b, rb in cases:
+                if f is _div and np.ndim(rb) == 0 and rb == 0.0:
+                    continue  # (no division by an exact zero)
+                got = value(f(a, b))
+                want = ref(ra, rb)
+                assert np.array_equal(np.broadcast_to(got, np.shape(want)), want), (f, ra, rb)
+                checked += 1
+    assert checked > 600
+    # floats stay floats (no array made), a negated array stays pending
+    assert type(_mul(_neg(2.0), 3.0)) is float and type(_sub(0.0, arr)).__name__ == "_Neg"
+    assert value(_sub(0.0, arr)) is not arr and np.array_equal(value(_sub(0.0, arr)), -arr)

@@ -23,7 +23,8 @@ equation for the column that only enters it.
 
 The coefficients are those of the general system (scaled as there), Python
 floats where constant (exact zeros skipped, +-1 folded), arrays over the
-positions otherwise.  :func:`factor` does the part that depends on the matrix
+positions otherwise; a negated array stays pending (``_Neg``) until a sum or a
+product takes the sign, so a -1 costs no pass over memory.  :func:`factor` does the part that depends on the matrix
 only, :func:`apply` the rest for one right-hand side (the condition number
 solves the identity's columns with the same factor: unit right-hand sides, all
 floats, a few passes over memory each).  Positions where the
@@ -39,8 +40,35 @@ import numpy as np
 _ZERO = 0.0
 
 
+class _Neg:
+    """``-v`` not yet computed: a coefficient of -1 (the force of link i on j is
+    minus that of j on i) folded into the next sum or product instead of a pass
+    over memory of its own.  :func:`value` computes it where it leaves the algebra."""
+
+    __slots__ = ("v",)
+
+    def __init__(self, v):
+        self.v = v
+
+    def __abs__(self):
+        return abs(self.v)
+
+
 def _isf(v):
     return type(v) is float
+
+
+def _neg(a):
+    if type(a) is _Neg:
+        return a.v
+    if _isf(a):
+        return -a
+    return _Neg(a)
+
+
+def value(a):
+    """``a`` as a float or an array (a pending negation computed)."""
+    return -a.v if type(a) is _Neg else a
 
 
 def const(a):
@@ -59,14 +87,22 @@ def _mul(a, b):
         if a == 1.0:
             return b
         if a == -1.0:
-            return -b
+            return _neg(b)
+        if type(b) is _Neg:
+            return _mul(-a, b.v)
     if _isf(b):
         if b == 0.0:
             return _ZERO
         if b == 1.0:
             return a
         if b == -1.0:
-            return -a
+            return _neg(a)
+        if type(a) is _Neg:
+            return _mul(a.v, -b)
+    if type(a) is _Neg:
+        return _mul(a.v, b.v) if type(b) is _Neg else _neg(_mul(a.v, b))
+    if type(b) is _Neg:
+        return _neg(_mul(a, b.v))
     return a * b
 
 
@@ -75,6 +111,10 @@ def _add(a, b):
         return b
     if _isf(b) and b == 0.0:
         return a
+    if type(b) is _Neg:
+        return _neg(_add(a.v, b.v)) if type(a) is _Neg else _sub(a, b.v)
+    if type(a) is _Neg:
+        return _sub(b, a.v)
     return a + b
 
 
@@ -82,7 +122,11 @@ def _sub(a, b):
     if _isf(b) and b == 0.0:
         return a
     if _isf(a) and a == 0.0:
-        return -b
+        return _neg(b)
+    if type(b) is _Neg:
+        return _sub(b.v, a.v) if type(a) is _Neg else _add(a, b.v)
+    if type(a) is _Neg:
+        return _neg(_add(a.v, b))
     return a - b
 
 
@@ -91,7 +135,13 @@ def _div(a, b):
         if b == 1.0:
             return a
         if b == -1.0:
-            return -a
+            return _neg(a)
+        if type(a) is _Neg:
+            return a.v / -b
+    if type(b) is _Neg:
+        return _div(a.v, b.v) if type(a) is _Neg else _neg(_div(a, b.v))
+    if type(a) is _Neg:
+        return _neg(_div(a.v, b))
     return a / b
 
 
@@ -163,6 +213,9 @@ def layout(kind_of, cols_of_rows, nrows):
 
 def _guard(det):
     """``(det, singular)``: exact zeros replaced by 1 (flagged)."""
+    if type(det) is _Neg:
+        det, sing = _guard(det.v)
+        return _neg(det), sing
     if _isf(det):
         if det == 0.0:
             return 1.0, True
@@ -232,6 +285,7 @@ def apply(fac, A, b, shape, arrays=True):
             r = [_sub(_sub(b[base + k], _mul(A[base + k][i0], y0)), _mul(A[base + k][i1], y1))
                  for k in ((0, 1) if kind == "R" else (0, 1, 2))]
             X[c[0]], X[c[1]] = _outer(kind, c, base, A, r)
+    X = [value(x) for x in X]
     if sing is not None:
         if sing is True:
             X = [np.zeros(shape) for _ in X]

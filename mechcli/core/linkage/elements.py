@@ -33,7 +33,6 @@ slider-crank of 例 1-2 is ``Crank`` + ``RRP``; the guide-bar of 例 1-3 is
 
 from __future__ import annotations
 
-import dataclasses
 from typing import ClassVar, Optional, Tuple
 
 import numpy as np

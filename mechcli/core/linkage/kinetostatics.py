@@ -48,12 +48,13 @@ k - 1 pairs with the defining link (the pin is part of that link).
 
 from __future__ import annotations
 
+import functools
 from typing import Dict, Optional
 
 import numpy as np
 
 from mechcli.core.linkage import dyad_statics
-from mechcli.core.linkage.dyad_statics import _add, _div, _mul, _sub, const
+from mechcli.core.linkage.dyad_statics import _add, _div, _mul, _neg, _sub, const, value
 from mechcli.core.linkage.elimination import gauss
 from mechcli.core.linkage.elements import Element
 from mechcli.core.linkage.engine import LinkageMotion, _facts
@@ -95,8 +96,8 @@ def _point(motion, topo, origin, link, along, normal, order=2, cos_sin=None):
         rx = ry = 0.0  # the origin itself: no angle needed
     else:
         c, s = cos_sin(link) if cos_sin is not None else (np.cos(k.theta), np.sin(k.theta))
-        rx = _sub(_mul(along, c), _mul(normal, s))
-        ry = _add(_mul(along, s), _mul(normal, c))
+        rx = value(_sub(_mul(along, c), _mul(normal, s)))
+        ry = value(_add(_mul(along, s), _mul(normal, c)))
     if order == 0:
         return o.x + rx, o.y + ry
     w = k.omega
@@ -104,11 +105,12 @@ def _point(motion, topo, origin, link, along, normal, order=2, cos_sin=None):
         al, w = const(k.alpha), const(w)
         w2 = _mul(w, w)
         return (o.x + rx, o.y + ry, None, None,
-                _sub(_sub(o.ax, _mul(al, ry)), _mul(w2, rx)),
-                _sub(_add(o.ay, _mul(al, rx)), _mul(w2, ry)))
+                value(_sub(_sub(o.ax, _mul(al, ry)), _mul(w2, rx))),
+                value(_sub(_add(o.ay, _mul(al, rx)), _mul(w2, ry))))
     if order == 1:
         wc = const(w)
-        return (o.x + rx, o.y + ry, _sub(o.vx, _mul(wc, ry)), _add(o.vy, _mul(wc, rx)),
+        return (o.x + rx, o.y + ry, value(_sub(o.vx, _mul(wc, ry))),
+                value(_add(o.vy, _mul(wc, rx))),
                 None, None)
     vx, vy = o.vx - w * ry, o.vy + w * rx
     w2 = w * w
@@ -507,7 +509,7 @@ def solve_forces(topo: Topology, motion: LinkageMotion, bodies: Dict[int, Body],
         if u is None:
             if key[0] == "n":  # the left normal of a prismatic pair's guide
                 c, s = cos_sin(topo.pairs[key[1]].block)
-                u = (-s if type(s) is float else -arr(s), c if type(c) is float else arr(c))
+                u = (_neg(s if type(s) is float else arr(s)), c if type(c) is float else arr(c))
             else:  # a slider driver's line
                 ang = linkage.driver(key[1]).angle
                 u = (np.cos(ang), np.sin(ang))
@@ -554,7 +556,8 @@ def solve_forces(topo: Topology, motion: LinkageMotion, bodies: Dict[int, Body],
                if lay is not None and CLOSED_FORM and (flat > DENSE_MAX or not condition)
                else None)
         if got is None:  # the general elimination (arrays on the right-hand side)
-            b = [np.full(flat, v) if type(v) is float else v for v in b]
+            A = [[value(v) for v in row] for row in A]
+            b = [np.full(flat, v) if type(v) is float else value(v) for v in b]
             got = _solve_block(A, b, flat, condition)
         X, c_blk = got
         if c_blk is not None:
@@ -576,7 +579,11 @@ def solve_forces(topo: Topology, motion: LinkageMotion, bodies: Dict[int, Body],
                                    np.zeros(n)))
         else:
             nval, nx, ny = x[pc[0]], pc[2], pc[3]
-            pairs.append(PairForce(pr, (nval * nx).reshape(n), (nval * ny).reshape(n),
+            # (a float direction multiplied as such: a fixed guide's -0.0 kept)
+            pairs.append(PairForce(pr, (nval * nx if type(nx) is float
+                                        else value(_mul(nval, nx))).reshape(n),
+                                   (nval * ny if type(ny) is float
+                                    else value(_mul(nval, ny))).reshape(n),
                                    x[pc[1]].reshape(n)))
     # force and moment transmitted to the frame (about the origin)
     ffx, ffy, fm = np.zeros(flat), np.zeros(flat), np.zeros(flat)
@@ -591,6 +598,7 @@ def solve_forces(topo: Topology, motion: LinkageMotion, bodies: Dict[int, Body],
                  _mul(py if type(py) is float else arr(py), fx))
         if pr.kind == "P":
             t = _add(t, pf.couple.reshape(flat))
+        t = value(t)
         if pr.j == frame:  # the force on the frame: + the pair's, or - when frame < link
             ffx += fx
             ffy += fy
@@ -607,7 +615,7 @@ def solve_forces(topo: Topology, motion: LinkageMotion, bodies: Dict[int, Body],
         if d.rotary:
             fm -= val
             w = const(motion.links[d.link].omega)
-            power += _mul(val, w if type(w) is float else arr(w))
+            power += value(_mul(val, w if type(w) is float else arr(w)))
         else:
             p = motion.points[d.point]
             ux, uy = np.cos(d.angle), np.sin(d.angle)
@@ -619,8 +627,8 @@ def solve_forces(topo: Topology, motion: LinkageMotion, bodies: Dict[int, Body],
             power += val * arr(motion.slides[d.slide_names(frame)[0]].v)
     # global balance: Σ known forces (gravity, loads, inertia) = force on the frame
     # (minus the known forces, summed, plus the force on the frame: the same |d|)
-    kfx = sum(minus[ln][0] for ln in topo.links)
-    kfy = sum(minus[ln][1] for ln in topo.links)
+    kfx = value(functools.reduce(_add, (minus[ln][0] for ln in topo.links), 0.0))
+    kfy = value(functools.reduce(_add, (minus[ln][1] for ln in topo.links), 0.0))
     dx, dy = kfx + ffx, kfy + ffy  # |d| without hypot's cost (no overflow at forces)
     dx *= dx
     dy *= dy
@@ -649,8 +657,8 @@ def solve_forces(topo: Topology, motion: LinkageMotion, bodies: Dict[int, Body],
             _x, _y, vx, vy, _a, _b = _point(unit_motion, topo, origin, link, along, normal,
                                              order=1, cos_sin=cos_sin if same else None)
             # the known moment is about the centre of mass: P = F·v_S + M·ω (f = -F, -M)
-            pres -= _add(_add(_mul(f[0], arr(vx)), _mul(f[1], arr(vy))),
-                         _mul(f[2], arr(unit_motion.links[link].omega)))
+            pres -= value(_add(_add(_mul(f[0], arr(vx)), _mul(f[1], arr(vy))),
+                               _mul(f[2], arr(unit_motion.links[link].omega))))
         power_residual = pres.reshape(n)
     else:
         power_residual = np.zeros(n)
