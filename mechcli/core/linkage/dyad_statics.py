@@ -226,11 +226,27 @@ def _guard(det):
     return det, None
 
 
+def _cramer(p, q, r, s, det):
+    """``(p q - r s) / det``; for a pending negation of ``det`` the products are
+    subtracted the other way round (no pass for the sign)."""
+    if type(det) is _Neg:
+        return _div(_sub(_mul(r, s), _mul(p, q)), det.v)
+    return _div(_sub(_mul(p, q), _mul(r, s)), det)
+
+
+def _residual(bk, a0, y0, a1, y1, over):
+    """``(bk - a0 y0 - a1 y1) / over``; for a negative float ``over`` (the force of
+    link i on j is minus that of j on i) the terms are summed the other way round
+    (no pass for the sign)."""
+    if _isf(over) and over < 0.0:
+        return _div(_sub(_add(_mul(a0, y0), _mul(a1, y1)), bk), -over)
+    return _div(_sub(_sub(bk, _mul(a0, y0)), _mul(a1, y1)), over)
+
+
 def _outer(kind, cols, base, A, r):
-    """The outer pair's two unknowns from its link's residual equations ``r``."""
+    """A prismatic outer pair's two unknowns from its link's residual equations
+    ``r`` (a revolute one's come from :func:`_residual` directly)."""
     c0, c1 = cols
-    if kind == "R":
-        return _div(r[0], A[base][c0]), _div(r[1], A[base + 1][c1])
     ux, uy, um = A[base][c0], A[base + 1][c0], A[base + 2][c0]
     n = _div(_add(_mul(ux, r[0]), _mul(uy, r[1])), _add(_mul(ux, ux), _mul(uy, uy)))
     return n, _div(_sub(r[2], _mul(um, n)), A[base + 2][c1])
@@ -267,9 +283,9 @@ def apply(fac, A, b, shape, arrays=True):
     if lay[0] == "driver":
         _, (f0, f1), m = lay
         a00, a01, a10, a11 = g
-        x0 = _div(_sub(_mul(a11, b[0]), _mul(a01, b[1])), det)
-        x1 = _div(_sub(_mul(a00, b[1]), _mul(a10, b[0])), det)
-        xm = _div(_sub(_sub(b[2], _mul(A[2][f0], x0)), _mul(A[2][f1], x1)), A[2][m])
+        x0 = _cramer(a11, b[0], a01, b[1], det)
+        x1 = _cramer(a00, b[1], a10, b[0], det)
+        xm = _residual(b[2], A[2][f0], x0, A[2][f1], x1, A[2][m])
         X = [None] * 3
         X[f0], X[f1], X[m] = x0, x1, xm
     else:
@@ -277,13 +293,18 @@ def apply(fac, A, b, shape, arrays=True):
         g00, g01, g10, g11 = g
         h0 = _dot3(ws[0], (b[ba], b[ba + 1], b[ba + 2]))
         h1 = _dot3(ws[1], (b[bb], b[bb + 1], b[bb + 2]))
-        y0 = _div(_sub(_mul(g11, h0), _mul(g01, h1)), det)
-        y1 = _div(_sub(_mul(g00, h1), _mul(g10, h0)), det)
+        y0 = _cramer(g11, h0, g01, h1, det)
+        y1 = _cramer(g00, h1, g10, h0, det)
         X = [None] * 6
         X[i0], X[i1] = y0, y1
         for kind, c, base in ((ka, ca, ba), (kb, cb, bb)):
+            if kind == "R":  # (s, 0, mx) and (0, s, my): each force row gives one component
+                X[c[0]], X[c[1]] = (
+                    _residual(b[base + k], A[base + k][i0], y0, A[base + k][i1], y1,
+                              A[base + k][c[k]]) for k in (0, 1))
+                continue
             r = [_sub(_sub(b[base + k], _mul(A[base + k][i0], y0)), _mul(A[base + k][i1], y1))
-                 for k in ((0, 1) if kind == "R" else (0, 1, 2))]
+                 for k in (0, 1, 2)]
             X[c[0]], X[c[1]] = _outer(kind, c, base, A, r)
     X = [value(x) for x in X]
     if sing is not None:

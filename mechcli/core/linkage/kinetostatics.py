@@ -443,7 +443,9 @@ def solve_forces(topo: Topology, motion: LinkageMotion, bodies: Dict[int, Body],
         b = bodies.get(link) or Body(link)
         origin, along, normal = com_of(topo, b, link)
         massless = type(b.mass) in (float, int) and b.mass == 0.0
-        if massless:  # no acceleration needed
+        # the midpoint's acceleration is (a1 + a2) / 2: the half goes with the mass below
+        half = along is None and not massless
+        if massless or half:  # no acceleration needed (or summed below)
             x, y = _point(motion, topo, origin, link, along, normal, 0, cos_sin=cos_sin)
         else:
             x, y, _vx, _vy, ax, ay = _point(motion, topo, origin, link, along, normal, "a",
@@ -462,6 +464,12 @@ def solve_forces(topo: Topology, motion: LinkageMotion, bodies: Dict[int, Body],
         # minus the weight and the inertia force: m (a_S - g); minus the couple: J alpha
         if massless:
             fx = fy = 0.0
+        elif half:  # (m / 2) (a1 + a2 - 2 g): the same numbers, one pass fewer
+            p1, p2 = motion.points[origin], motion.points[topo.frames[link][1]]
+            fx = arr(0.5 * b.mass * arr(_sub(_add(const(p1.ax), const(p2.ax)),
+                                             2.0 * gx)).reshape(n))
+            fy = arr(0.5 * b.mass * arr(_sub(_add(const(p1.ay), const(p2.ay)),
+                                             2.0 * gy)).reshape(n))
         else:
             fx = arr(b.mass * _sub(arr(ax).reshape(n), gx))
             fy = arr(b.mass * _sub(arr(ay).reshape(n), gy))
