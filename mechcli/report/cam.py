@@ -13,9 +13,8 @@ import numpy as np
 from mechcli.core.cam.geometry import RHO_CAP
 from mechcli.core.cam.motion import LAW_ALIASES, POLYNOMIAL_LAWS, PolynomialLaw
 from mechcli.report.files import Outputs
-from mechcli.report.kin import book_title
 from mechcli.report.run import finish
-from mechcli.report.table import Block, Report
+from mechcli.report.table import Block, Report, book_title
 
 LABELS = {
     "en": {

@@ -3,11 +3,10 @@
 from __future__ import annotations
 
 import math
-import re
 
 import numpy as np
 
-from mechcli.report.table import Block, Report
+from mechcli.report.table import Block, Report, book_title
 
 # kind -> (unit suffix template, factor template); {u} = spec length unit
 _UNITS = {
@@ -58,20 +57,6 @@ def input_factor(spec):
 def input_suffix(spec):
     """Unit text after an input value in a message: ``°`` or `` mm``."""
     return "°" if spec.input.rotary else f" {spec.header.unit}"
-
-
-#: the title of a worked example of the book: 例 1-1 ... -> 【例 1-1】 ...
-_EXAMPLE_TITLE = re.compile(r"^\s*例\s*(\d+)\s*[-‐–]\s*(\d+)\s*")
-
-
-def book_title(title):
-    """*title* with the book's label of a worked example in the book's brackets:
-    ``例 1-1 铰链四杆机构`` -> ``【例 1-1】 铰链四杆机构``; any other title unchanged."""
-    m = _EXAMPLE_TITLE.match(title or "")
-    if not m:
-        return title
-    rest = title[m.end():]
-    return f"【例 {m.group(1)}-{m.group(2)}】" + (f" {rest}" if rest else "")
 
 
 def header(symbol, unit, name=""):

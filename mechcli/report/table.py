@@ -64,9 +64,8 @@ _EXAMPLE_TITLE = re.compile(r"^\s*例\s*(\d+)\s*[-‐–]\s*(\d+)\s*")
 
 def book_title(title):
     """*title* with the book's label of a worked example in the book's brackets:
-    ``例 5-3 标准齿轮`` -> ``【例 5-3】 标准齿轮``; any other title unchanged (the same
-    rule as :func:`mechcli.report.kin.book_title`, here without numpy for the
-    commands that start fast: gear, grashof)."""
+    ``例 5-3 标准齿轮`` -> ``【例 5-3】 标准齿轮``; any other title unchanged (every
+    command's report)."""
     m = _EXAMPLE_TITLE.match(title or "")
     if not m:
         return title
