@@ -14,7 +14,7 @@ from mechcli.core.linkage.force_analysis import analyse_forces
 from mechcli.core.linkage.kinematics import Sweep
 from mechcli.core.linkage.kinetostatics import (Body, Load, LoadProgram, solve_forces,
                                         topology)
-from mechcli.core.linkage import (RPR, RRP, RRR, Crank, Ground, Linkage, PointOnLink,
+from mechcli.core.linkage import (RPR, RRP, RRR, Crank, Ground, Linkage, PointOnLink, stack,
                                   SliderDriver, solve)
 from mechcli.spec.force import load_force_spec
 from tests.conftest import CONFIGS, ROOT
@@ -315,3 +315,43 @@ def test_forces_from_the_guide_direction_equal_those_from_its_angle():
         assert np.max(np.abs(a.couple - b.couple)) < 1e-12 * peak
     assert np.max(np.abs(fr.balancing[1] - ref.balancing[1])) < 1e-12 * np.max(
         np.abs(ref.balancing[1]))
+
+
+def test_results_are_arrays_of_their_own():
+    """No returned array is the caller's load array, a read-only broadcast or another
+    result (the folded signs hand right-hand sides back as they are): a massless
+    coupler's F_R12 and F_R23 are equal but separate, a slider's couple is not the
+    torque the caller passed.  (Found by an independent review, 2026-11-25.)"""
+    lk = Linkage(4, (Ground("A", 0, 0), Crank(1, "A", "B", 0.1),
+                     RRP("C", "B", 2, 0.4, 3, 4, "A", 0.0, 0.0, 1, "3")))
+    q = np.linspace(0.0, 6.0, 10)
+    m = solve(lk, Sweep(1, q, 5.0).inputs(q), order=2)
+    for torque in (np.linspace(1.0, 2.0, 10), 5.0):
+        for condition in (False, True):
+            fr = solve_forces(topology(lk), m, {}, [Load("T", 3, torque=torque)],
+                              (0.0, -9.81), condition=condition)
+            arrays = ([fr.balancing[1], fr.frame_moment, fr.input_power]
+                      + [a for pf in fr.pairs for a in (pf.fx, pf.fy, pf.couple)])
+            assert all(a.flags.writeable for a in arrays)
+            for i, a in enumerate(arrays):
+                assert not np.shares_memory(a, torque)
+                assert not any(np.shares_memory(a, b) for b in arrays[i + 1:])
+            # the massless coupler passes the force on: F_R12 = F_R23 (equal, not shared)
+            p12, p23 = (pf for pf in fr.pairs if pf.pair.label in ("12", "23"))
+            assert np.array_equal(p12.fx, p23.fx) and np.array_equal(p12.fy, p23.fy)
+
+
+def test_masses_of_a_batch_given_as_a_list():
+    """Masses of a batch of designs as a nested list on a link with the default
+    (midpoint) centre of mass: each design as solved alone."""
+    lks = [Linkage(4, (Ground("A", 0, 0), Ground("D", 0.5, 0), Crank(1, "A", "B", 0.1),
+                       RRR("C", "B", 2, 0.5 + 0.01 * k, "D", 3, 0.4, 1))) for k in range(2)]
+    q = np.linspace(0.0, 6.0, 10)
+    m = solve(stack(lks), Sweep(1, q, 5.0).inputs(q), order=2)
+    fr = solve_forces(topology(stack(lks)), m, {2: Body(2, [[1.0], [2.0]], 0.01)}, [],
+                      (0.0, -9.81))
+    assert fr.balancing[1].shape == (2, 10)
+    for k, mass in enumerate((1.0, 2.0)):
+        mk = solve(lks[k], Sweep(1, q, 5.0).inputs(q), order=2)
+        one = solve_forces(topology(lks[k]), mk, {2: Body(2, mass, 0.01)}, [], (0.0, -9.81))
+        assert np.allclose(fr.balancing[1][k], one.balancing[1], rtol=1e-12, atol=1e-12)

@@ -308,6 +308,15 @@ def _solve_closed(lay, A, b, flat, condition):
         with np.errstate(over="raise", invalid="raise", divide="raise"):
             fac = dyad_statics.factor(lay, A)
             X = dyad_statics.apply(fac, A, b, (flat,))
+            # arrays of their own: a folded sign (-(-v)) or a coefficient of 1 gives
+            # back a right-hand side itself (a load's array, a read-only broadcast of a
+            # constant load, an earlier block's unknown) or another unknown of the block
+            seen = {id(v.v if type(v) is dyad_statics._Neg else v)
+                    for v in b + [a for row in A for a in row]}
+            for i, v in enumerate(X):
+                if id(v) in seen or not v.flags.writeable:
+                    X[i] = v = np.array(v)
+                seen.add(id(v))
             if not condition:  # (cond stays ones, as the general path leaves it)
                 return X, None
             # 1-norm of the block (largest column sum of |A|) and of its inverse
@@ -466,10 +475,9 @@ def solve_forces(topo: Topology, motion: LinkageMotion, bodies: Dict[int, Body],
             fx = fy = 0.0
         elif half:  # (m / 2) (a1 + a2 - 2 g): the same numbers, one pass fewer
             p1, p2 = motion.points[origin], motion.points[topo.frames[link][1]]
-            fx = arr(0.5 * b.mass * arr(_sub(_add(const(p1.ax), const(p2.ax)),
-                                             2.0 * gx)).reshape(n))
-            fy = arr(0.5 * b.mass * arr(_sub(_add(const(p1.ay), const(p2.ay)),
-                                             2.0 * gy)).reshape(n))
+            mh = np.multiply(0.5, b.mass)  # (a list of the designs' masses too)
+            fx = arr(mh * arr(_sub(_add(const(p1.ax), const(p2.ax)), 2.0 * gx)).reshape(n))
+            fy = arr(mh * arr(_sub(_add(const(p1.ay), const(p2.ay)), 2.0 * gy)).reshape(n))
         else:
             fx = arr(b.mass * _sub(arr(ax).reshape(n), gx))
             fy = arr(b.mass * _sub(arr(ay).reshape(n), gy))
