@@ -59,9 +59,10 @@ def _isf(v):
 
 
 def _neg(a):
-    if type(a) is _Neg:
+    ta = type(a)
+    if ta is _Neg:
         return a.v
-    if _isf(a):
+    if ta is float:
         return -a
     return _Neg(a)
 
@@ -80,67 +81,73 @@ def const(a):
     return a
 
 
+# (the type tests are written out, not calls of _isf: these run a few hundred times a
+# call, and the fixed cost of one kinetostatics call is a goal of its own)
 def _mul(a, b):
-    if _isf(a):
+    ta, tb = type(a), type(b)
+    if ta is float:
         if a == 0.0:
             return _ZERO
         if a == 1.0:
             return b
         if a == -1.0:
             return _neg(b)
-        if type(b) is _Neg:
+        if tb is _Neg:
             return _mul(-a, b.v)
-    if _isf(b):
+    if tb is float:
         if b == 0.0:
             return _ZERO
         if b == 1.0:
             return a
         if b == -1.0:
             return _neg(a)
-        if type(a) is _Neg:
+        if ta is _Neg:
             return _mul(a.v, -b)
-    if type(a) is _Neg:
-        return _mul(a.v, b.v) if type(b) is _Neg else _neg(_mul(a.v, b))
-    if type(b) is _Neg:
+    if ta is _Neg:
+        return _mul(a.v, b.v) if tb is _Neg else _neg(_mul(a.v, b))
+    if tb is _Neg:
         return _neg(_mul(a, b.v))
     return a * b
 
 
 def _add(a, b):
-    if _isf(a) and a == 0.0:
+    ta, tb = type(a), type(b)
+    if ta is float and a == 0.0:
         return b
-    if _isf(b) and b == 0.0:
+    if tb is float and b == 0.0:
         return a
-    if type(b) is _Neg:
-        return _neg(_add(a.v, b.v)) if type(a) is _Neg else _sub(a, b.v)
-    if type(a) is _Neg:
+    if tb is _Neg:
+        return _neg(_add(a.v, b.v)) if ta is _Neg else _sub(a, b.v)
+    if ta is _Neg:
         return _sub(b, a.v)
     return a + b
 
 
 def _sub(a, b):
-    if _isf(b) and b == 0.0:
+    ta, tb = type(a), type(b)
+    if tb is float and b == 0.0:
         return a
-    if _isf(a) and a == 0.0:
+    if ta is float and a == 0.0:
         return _neg(b)
-    if type(b) is _Neg:
-        return _sub(b.v, a.v) if type(a) is _Neg else _add(a, b.v)
-    if type(a) is _Neg:
+    if tb is _Neg:
+        return _sub(b.v, a.v) if ta is _Neg else _add(a, b.v)
+    if ta is _Neg:
         return _neg(_add(a.v, b))
     return a - b
 
 
 def _div(a, b):
-    if _isf(b):
+    ta, tb = type(a), type(b)
+    if tb is float:
         if b == 1.0:
             return a
         if b == -1.0:
             return _neg(a)
-        if type(a) is _Neg:
+        if ta is _Neg:
             return a.v / -b
-    if type(b) is _Neg:
-        return _div(a.v, b.v) if type(a) is _Neg else _neg(_div(a, b.v))
-    if type(a) is _Neg:
+    if tb is _Neg:
+        return _div(a.v, b.v) if ta is _Neg else _neg(_div(a, b.v))
+    if ta is _Neg:
         return _neg(_div(a.v, b))
     return a / b
 
