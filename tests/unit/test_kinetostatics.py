@@ -330,7 +330,7 @@ def test_results_are_arrays_of_their_own():
         for condition in (False, True):
             fr = solve_forces(topology(lk), m, {}, [Load("T", 3, torque=torque)],
                               (0.0, -9.81), condition=condition)
-            arrays = ([fr.balancing[1], fr.frame_moment, fr.input_power]
+            arrays = ([fr.balancing[1], *fr.frame_force, fr.frame_moment, fr.input_power]
                       + [a for pf in fr.pairs for a in (pf.fx, pf.fy, pf.couple)])
             assert all(a.flags.writeable for a in arrays)
             for i, a in enumerate(arrays):
@@ -339,6 +339,17 @@ def test_results_are_arrays_of_their_own():
             # the massless coupler passes the force on: F_R12 = F_R23 (equal, not shared)
             p12, p23 = (pf for pf in fr.pairs if pf.pair.label in ("12", "23"))
             assert np.array_equal(p12.fx, p23.fx) and np.array_equal(p12.fy, p23.fy)
+
+
+def test_frame_force_of_one_pair_is_its_own_array():
+    """A crank alone: the force on the frame is the one pair's force, equal, not shared."""
+    lk = Linkage(4, (Ground("A", 0.0, 0.0), Crank(1, "A", "B", 0.5)))
+    q = np.radians(np.arange(0.0, 360.0, 30.0))
+    topo, motion, fr = _run(lk, q, 3.0, {1: Body(1, 2.0, 0.1, "A", 0.5, 0.0)})
+    (pa,) = fr.pairs
+    assert np.array_equal(fr.frame_force[0], pa.fx) and np.array_equal(fr.frame_force[1], pa.fy)
+    assert not np.shares_memory(fr.frame_force[0], pa.fx)
+    assert not np.shares_memory(fr.frame_force[1], pa.fy)
 
 
 def test_masses_of_a_batch_given_as_a_list():

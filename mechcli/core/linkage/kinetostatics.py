@@ -609,8 +609,16 @@ def solve_forces(topo: Topology, motion: LinkageMotion, bodies: Dict[int, Body],
                                    (nval * ny if type(ny) is float
                                     else value(_mul(nval, ny))).reshape(n),
                                    x[pc[1]].reshape(n)))
-    # force and moment transmitted to the frame (about the origin)
-    ffx, ffy, fm = np.zeros(flat), np.zeros(flat), np.zeros(flat)
+    # force and moment transmitted to the frame (about the origin), input power: folded
+    # sums (no zeros to start from; a pending sign taken by the next term)
+    sums = {"fx": 0.0, "fy": 0.0, "m": 0.0, "p": 0.0}
+    terms = {k: [] for k in sums}
+
+    def put(key, v, sign=1.0):
+        sums[key] = _add(sums[key], v) if sign > 0 else _sub(sums[key], v)
+        if type(v) is not float:
+            terms[key].append(v)
+
     for pf in pairs:
         pr = pf.pair
         if frame not in (pr.i, pr.j):
@@ -622,33 +630,36 @@ def solve_forces(topo: Topology, motion: LinkageMotion, bodies: Dict[int, Body],
                  _mul(py if type(py) is float else arr(py), fx))
         if pr.kind == "P":
             t = _add(t, pf.couple.reshape(flat))
-        t = value(t)
-        if pr.j == frame:  # the force on the frame: + the pair's, or - when frame < link
-            ffx += fx
-            ffy += fy
-            if type(t) is not float:
-                fm += t
-        else:
-            ffx -= fx
-            ffy -= fy
-            if type(t) is not float:
-                fm -= t
-    power = np.zeros(flat)
+        # the force on the frame: + the pair's, or - when frame < link
+        sign = 1.0 if pr.j == frame else -1.0
+        put("fx", fx, sign)
+        put("fy", fy, sign)
+        put("m", t, sign)
     for d in linkage.drivers:
         val = balancing[d.link].reshape(flat)
         if d.rotary:
-            fm -= val
+            put("m", val, -1.0)
             w = const(motion.links[d.link].omega)
-            power += value(_mul(val, w if type(w) is float else arr(w)))
+            put("p", _mul(val, w if type(w) is float else arr(w)))
         else:
             p = motion.points[d.point]
             ux, uy = np.cos(d.angle), np.sin(d.angle)
             if np.ndim(d.angle):
                 ux, uy = arr(ux), arr(uy)
-            ffx -= val * ux
-            ffy -= val * uy
-            fm -= arr(p.x) * val * uy - arr(p.y) * val * ux
-            power += val * arr(motion.slides[d.slide_names(frame)[0]].v)
+            fx, fy = _mul(val, ux), _mul(val, uy)
+            put("fx", fx, -1.0)
+            put("fy", fy, -1.0)
+            put("m", _sub(_mul(arr(p.x), fy), _mul(arr(p.y), fx)), -1.0)
+            put("p", _mul(val, arr(motion.slides[d.slide_names(frame)[0]].v)))
+
+    def own(key):
+        # an array of its own: a sum of one term is that term (a pair's force) itself
+        v = value(sums[key])
+        if type(v) is float:
+            return np.full(flat, v)
+        return v.copy() if any(v is t for t in terms[key]) else v
+
+    ffx, ffy, fm, power = own("fx"), own("fy"), own("m"), own("p")
     # global balance: Σ known forces (gravity, loads, inertia) = force on the frame
     # (minus the known forces, summed, plus the force on the frame: the same |d|)
     kfx = value(functools.reduce(_add, (minus[ln][0] for ln in topo.links), 0.0))
