@@ -186,6 +186,7 @@ class _Plan:
         self.columns = columns
         self.nrows = 3 * len(topo.links)
         self.blocks = []
+        self.ref_point = {}
         solved = []
         for idx, new_links, pidx in reversed(topo.blocks):
             unk = [u for pi in pidx for u in self.pair_cols[pi]]
@@ -211,6 +212,14 @@ class _Plan:
             lay = dyad_statics.layout(kind_of, cols_of_rows, len(rows))
             self.blocks.append((unk, rows, entries, known, lay))
             solved += unk
+            # a closed-form block's links may take their moments about their outer pair's
+            # point instead of the centre of mass (the same solution): that pair then
+            # drops out of the moment equation with no pass over memory
+            if lay is not None and lay[0] == "dyad":
+                for ln, (_kind, cols, _base) in zip(new_links, (lay[1], lay[3])):
+                    self.ref_point[ln] = topo.pairs[pidx[cols[0] // 2]].point
+            elif lay is not None and len(pidx) == 1 and len(new_links) == 1:
+                self.ref_point[new_links[0]] = topo.pairs[pidx[0]].point
         self.all_closed = all(blk[-1] is not None for blk in self.blocks)
         # the element that makes each link, where it can give the angle's cosine and
         # sine from its points (Element.direction)
@@ -514,8 +523,26 @@ def solve_forces(topo: Topology, motion: LinkageMotion, bodies: Dict[int, Body],
     # (scaled by L) and the directions of the prismatic pairs and slider drivers
     levers, directions = {}, {}
 
+    # without the condition numbers, a closed-form block's link takes its moments about
+    # its outer pair's point (_Plan.ref_point): the same solution, fewer passes; the
+    # condition numbers are those of the system about the centres of mass
+    ref = plan.ref_point if not condition and CLOSED_FORM else {}
+
+    def coord(v):  # a coordinate: a float where fixed, else the flat array
+        c = const(v)
+        return c if type(c) is float else arr(c)
+
     def lever(link, point):
         lv = levers.get((link, point))
+        r = ref.get(link) if lv is None else None
+        if r is not None:  # about the outer pair's point
+            if point == r:
+                lv = (0.0, 0.0)
+            else:
+                p, o = motion.points[point], motion.points[r]
+                lv = (_div(_sub(coord(p.x), coord(o.x)), Ls),
+                      _div(_sub(coord(p.y), coord(o.y)), Ls))
+            levers[(link, point)] = lv
         if lv is None and point == com[link][2]:
             if _exact_zero(com[link][3]) and _exact_zero(com[link][4]):
                 lv = levers[(link, point)] = (0.0, 0.0)  # the centre of mass itself
@@ -562,7 +589,22 @@ def solve_forces(topo: Topology, motion: LinkageMotion, bodies: Dict[int, Body],
     for link in topo.links:
         e = plan.eq_of[link]
         f = minus[link]
-        rhs[e], rhs[e + 1], rhs[e + 2] = f[0], f[1], _div(f[2], Ls)
+        m = f[2]
+        r = ref.get(link)
+        if r is not None and not all(type(v) is float and v == 0.0 for v in f[:2]):
+            # the known force moved from the centre of mass S to R: + (S - R) x f
+            x, y, origin, along, normal = com[link]
+            if origin == r and along is not None and _exact_zero(along) and \
+                    _exact_zero(normal):
+                off = None  # S is R
+            elif origin == r and link in com_off:
+                off = com_off[link]
+            else:
+                o = motion.points[r]
+                off = (_sub(x, coord(o.x)), _sub(y, coord(o.y)))
+            if off is not None:
+                m = _add(m, _sub(_mul(off[0], f[1]), _mul(off[1], f[0])))
+        rhs[e], rhs[e + 1], rhs[e + 2] = f[0], f[1], _div(m, Ls)
 
     # element blocks, from the last element back to the drivers (block
     # lower-triangular): each one's unknowns from its links' equations
