@@ -227,10 +227,10 @@ def _guard(det):
         if det == 0.0:
             return 1.0, True
         return det, None
+    if det.all():  # (one pass, no mask: the mask only where a zero is)
+        return det, None
     zero = det == 0.0
-    if zero.any():
-        return np.where(zero, 1.0, det), zero
-    return det, None
+    return np.where(zero, 1.0, det), zero
 
 
 def _cramer(p, q, r, s, det):
