@@ -11,7 +11,10 @@ The unknowns are
   line of a slider driver),
 
 and there are three equations (ΣFx, ΣFy, ΣM about S) per moving link: a
-square linear system per position.  It is assembled from the engine's topology
+square linear system per position.  (Without the condition numbers, a link of a
+closed-form block takes its moments about its outer pair's point instead, as by
+hand: the same solution, and that pair drops out of the moment equation for free;
+the condition numbers are those of the system about the centres of mass.)  It is assembled from the engine's topology
 and, because every driver and every dyad of the engine is a statically
 determinate group (an Assur group), it is block lower-triangular in the
 reverse solving order: each element's 3 or 6 unknowns are solved for all
