@@ -238,6 +238,7 @@ def write_csv_stream(path, headers, chunks, digits=DEFAULT_DIGITS, guard=True,
                                           f"{row + bad + 1}")
                 for a in range(0, n, 8192):   # formatted a slice at a time: little text held
                     mat = np.column_stack([col[a:a + 8192] for col in arrays])
+                    mat += 0.0   # (a negative zero written as 0, not -0)
                     data = ("\n".join(fmt % tuple(r) for r in mat.tolist()) + "\n").encode()
                     fh.write(data)
                     digest.update(data)

@@ -63,8 +63,9 @@ def columns(spec, res, extra=None):
         cols.append((f"{sym}_{_unit(sym)}", v))
         if sym.startswith("FR") and not sym.endswith(("x", "y")):
             lab = sym
-            cols.append((f"{lab}_dir_deg", np.degrees(np.arctan2(res.series[lab + "y"],
-                                                                 res.series[lab + "x"]))))
+            # (+ 0.0: a zero force points at 0°, not at ±180° by the sign of its zeros)
+            cols.append((f"{lab}_dir_deg", np.degrees(np.arctan2(res.series[lab + "y"] + 0.0,
+                                                                 res.series[lab + "x"] + 0.0))))
     if extra is not None and extra.engine is not None:
         for sym, v in extra.engine.series.items():
             cols.append((f"{sym}_{_unit(sym)}", v))

@@ -79,3 +79,24 @@ def test_json_error_object_names_the_key(tmp_path):
     proc = run_inprocess("force", spec, "--out", tmp_path / "o", "--json")
     assert proc.returncode == 2
     assert "pressure_unit" in proc.stdout
+
+
+def test_zero_forces_and_extremes_on_the_grid(tmp_path):
+    """At θ1 = 0 the steam engine's FR34 is exactly zero: written 0 with direction 0° (not
+    -0 and ±180° by the sign of its zeros; no cell of the CSV is -0).  FN's maximum lies
+    on the grid (θ1 = 90°, by symmetry of the double-acting engine's normal force): the
+    grid sample ties the refined value by round-off, and its location keeps the refined
+    tolerance (~1.5e-5°; it was half the grid step, 1°, when the grid sample won)."""
+    proc = run_inprocess("force", CH2 / "engine-steam-double-acting.toml", "--out", tmp_path,
+                         "--no-plot", "--json")
+    assert proc.returncode == 0, proc.stderr
+    res = json.loads(proc.stdout)["results"]
+    assert abs(res["FN_max_at_deg"] - 90.0) < 1e-4
+    assert res["FN_max_at_deg_tol"] < 1e-4
+    assert abs(res["FN_max_at_deg"] - 90.0) <= res["FN_max_at_deg_tol"]
+    lines = (tmp_path / "force.csv").read_text(encoding="utf-8").splitlines()
+    header = lines[0].split(",")
+    row0 = dict(zip(header, lines[1].split(",")))
+    assert row0["theta1_deg"] == "0" and float(row0["FR34_N"]) == 0.0
+    assert row0["FR34_dir_deg"] == "0" and row0["FR34x_N"] == "0"
+    assert not any(cell == "-0" for line in lines[1:] for cell in line.split(","))

@@ -218,7 +218,11 @@ def analyse_forces(linkage, topo, sweep: Sweep, bodies, gravity, programs, parti
         for i, (sym, which, k) in enumerate(targets):
             cand = [(s_series[sym][k] * which, qs[k]), (f_best[i], x_best[i])]
             val, at = max(cand)
-            tol = tols[i] if at == x_best[i] else 0.5 * float(hi_b[i] - lo_b[i])
+            # a grid point that ties or beats the refined value (by round-off, at a
+            # maximum on the grid): the extreme is within the refined tolerance of
+            # x_best, so within |at - x_best| + that of the grid point
+            tol = tols[i] if at == x_best[i] else min(0.5 * float(hi_b[i] - lo_b[i]),
+                                                      abs(at - x_best[i]) + tols[i])
             best[(sym, which)] = ForceExtreme(float(val * which), float(at), float(tol))
     for sym, signed in syms:
         hi = best[(sym, 1.0)]

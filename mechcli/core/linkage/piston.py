@@ -473,11 +473,13 @@ def analyse_engine(piston, topo, evaluator, q, fr, motion, mass, approx=None,
         if is_constant(series[sym], noise):
             best[(sym, sign)] = (val * sign + 0.0, None, None)
             continue
-        # the grid's sample is good to half the bracket; the refined input to what the
-        # round-off of the compared values allows at the curvature there
-        tol = (0.5 * float(hi[i] - lo[i]) if at == float(q[k]) else
-               located_within(q, series[sym], at, 1.5e-8 * max(1.0, abs(at)), noise,
-                              periodic))
+        # the refined input is good to what the round-off of the compared values allows
+        # at the curvature there; a grid sample that ties or beats it (by round-off, at
+        # an extreme on the grid) to that plus its distance, at most half the bracket
+        xr = float(xb[i])
+        tol = located_within(q, series[sym], xr, 1.5e-8 * max(1.0, abs(xr)), noise, periodic)
+        if at != xr:
+            tol = min(0.5 * float(hi[i] - lo[i]), abs(at - xr) + tol)
         best[(sym, sign)] = (val * sign + 0.0, at, tol)
     for sym in series:
         extremes[sym] = (best[(sym, 1.0)], best[(sym, -1.0)])
