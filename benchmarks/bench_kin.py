@@ -13,7 +13,8 @@ Issue 17: the same 36,001 positions in a fresh process with no allocator
 setting <= 0.6x the numpy closed form timed in that process; peak memory of
 1e6 positions at order 2 <= 200 B/position (tracemalloc); a 1e7-row `kin` sweep
 streamed to its CSV in bounded memory (peak RSS against the in-memory run at
-600,001 rows).
+600,001 rows); the extreme refinement of 例 1-1's sweep (``refine_extremes``, warm)
+<= 3 ms.
 
 Usage: python benchmarks/bench_kin.py [--quick] [--json]
 """
@@ -162,6 +163,44 @@ def accuracy_vs_step():
     print(f"analyse_sweep_with_refined_extremes_step_5deg: {(time.perf_counter() - t) * 1e3:.2f} ms")
 
 
+def refinement(repeat):
+    """Issue 17: the extreme refinement of one sweep (``refine_extremes`` inside
+    ``analyse_sweep``, 例 1-1 as ``mechcli kin`` runs it, 7 quantities, warm) <= 3 ms, with
+    the engine solves it makes (the bisection it replaced took 13 ms and ~40 solves)."""
+    from mechcli.core.linkage import engine, kinematics
+    from mechcli.spec.kin import load_kin_spec
+
+    spec = load_kin_spec(ROOT / "configs" / "ch1" / "ex1-1.toml")
+    qs = default_quantities(spec.linkage, spec.output.order, [t.name for t in spec.tracers])
+    spent, solves = [], []
+    inner, count = kinematics.refine_extremes, engine.solve
+
+    def timed(*a, **k):
+        t = time.perf_counter()
+        out = inner(*a, **k)
+        spent.append(time.perf_counter() - t)
+        return out
+
+    def counted(*a, **k):
+        solves[-1] += 1
+        return count(*a, **k)
+
+    kinematics.refine_extremes, kinematics.solve = timed, counted
+    try:
+        t_all = float("inf")
+        for _ in range(repeat):
+            solves.append(0)
+            t = time.perf_counter()
+            analyse_sweep(spec.linkage, spec.input.sweep(), qs, spec.output.order,
+                          partial=spec.input.partial)
+            t_all = min(t_all, time.perf_counter() - t)
+    finally:
+        kinematics.refine_extremes, kinematics.solve = inner, count
+    print(f"refine_extremes_ex1-1: {min(spent) * 1e3:.2f} ms (goal <= 3)")
+    print(f"analyse_sweep_ex1-1_solves: {solves[-1]} 1")
+    print(f"analyse_sweep_ex1-1: {t_all * 1e3:.2f} ms")
+
+
 def plain_process(repeat):
     """Issue 17: the engine in a fresh process with no allocator setting, against
     the numpy closed form timed in the same (child) process."""
@@ -226,6 +265,7 @@ def main():
     print(f"engine_fourbar_1000001_peak_memory: {peak_memory(1000001) / 2**20:.0f} MB")
     batched(10_000, 361, 2 if quick else 5)
     accuracy_vs_step()
+    refinement(20 if quick else 60)
     py = sys.executable
     cfg = str(ROOT / "configs" / "ch1" / "ex1-1.toml")
     with tempfile.TemporaryDirectory() as out:
