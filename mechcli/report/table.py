@@ -318,7 +318,8 @@ def kv_layout(rows, width, frame=4):
     else:
         need = min(vmax, max(30, avail // 2))
         vw = avail - lmax if avail - lmax >= need else min(vmax, max(need, avail // 2))
-        lw = min(lmax, avail - vw)
+        # (a wrapped label is never narrower than wrap() makes it: its indent + 8)
+        lw = max(min(lmax, avail - vw), min(lmax, 10))
         vw = avail - lw
     cells = [(wrap(r[0], lw, "  "), wrap(r[1], vw, "  ")) for r in rows]
     lw = max(display_width(ln) for lab, _ in cells for ln in lab)
@@ -368,7 +369,10 @@ def print_rich(report: Report, file=None, width=None):
     # table whose first two columns are already wider than the terminal needs it); a
     # key/value block wraps its own rows (kv_layout), a long title or note wraps as text
     need = max([sum(max([display_width(h)] + [display_width(r[i]) for r in b.rows]) + 3
-                    for i, h in enumerate(b.headers)) + 1 for b in blocks if b.headers],
+                    for i, h in enumerate(b.headers)) + 1 for b in blocks if b.headers]
+               # a key/value block as laid out (a word wider than its column stays whole)
+               + [sum(kv_layout(b.rows, width, frame=7)[:2]) + 7 for b in blocks
+                  if not b.headers and b.rows],
                default=0)
     console = Console(file=file, highlight=False, width=max(width, need))
     # every text is the user's or ours, never rich markup: a title "door [/bold]" is text
