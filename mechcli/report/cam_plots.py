@@ -41,15 +41,8 @@ def _t(lang, key, unit):
 
 
 def _title(cs, lang):
-    """The spec title, without CJK characters when no CJK font is installed."""
-    from mechcli.report.plotting import cjk_font
-
-    title = cs.header.title
-    if lang == "zh" or cjk_font() is not None:
-        return title
-    kept = "".join(c for c in title if ord(c) < 0x2E80 and c not in "【】")
-    kept = " ".join(kept.split())
-    return kept or "cam"
+    """The spec title as the other figures show it (:func:`plotting.title`)."""
+    return plotting.title(cs.header.title)
 
 
 #: the phases of the allowed pressure angles' legend, en and zh

@@ -27,7 +27,7 @@ def write(spec, sol, outputs, lang):
     if not hasattr(m, "omega"):      # the equivalent model only: 图 6-4
         fig, ax = plt.subplots(figsize=(7, 4.5))
         ax.plot(deg, m.Je, "-", color="C0", label="$J_e$")
-        ax.set_title(plotting.text(spec.header.title) + "\n" + t["je"])
+        ax.set_title(plotting.title(spec.header.title) + "\n" + t["je"])
         ax.set_xlabel(t["phi"])
         ax.set_ylabel("$J_e$ / kg·m²  (—)")
         if not plotting.is_constant(m.dJe):
@@ -74,7 +74,7 @@ def write(spec, sol, outputs, lang):
     axs[1, 1].set_title(t["w"])
     axs[1, 1].set_xlabel(t["t"])
     axs[1, 1].set_ylabel("ω / (rad/s)")
-    fig.suptitle(plotting.text(spec.header.title), wrap=True)
+    fig.suptitle(plotting.title(spec.header.title), wrap=True)
     plotting.save_png(fig, outputs, "flywheel.png")
     if sol.steady is not None and sol.steady.history:
         _convergence(spec, sol, outputs, t)
@@ -91,7 +91,7 @@ def _convergence(spec, sol, outputs, t):
     ax.semilogy(range(1, len(res) + 1), [max(r, floor) for r in res], "o-", color="C0")
     ax.set_xlabel(t["iter"])
     ax.set_ylabel("|ω(φ0 + T) − ω0| / (rad/s)")
-    ax.set_title(plotting.text(spec.header.title) + "\n" + t["conv"]
+    ax.set_title(plotting.title(spec.header.title) + "\n" + t["conv"]
                  + f" ({sol.steady.root})")
     plotting.save_png(fig, outputs, "convergence.png")
 
@@ -126,7 +126,7 @@ def animate(spec, sol, outputs, lang, frames=72):
         moving += drawing.artists
     label = plotting.readout(axs[0] if has_link else ax_w)
     moving.append(label)
-    fig.suptitle(plotting.text(spec.header.title), wrap=True)
+    fig.suptitle(plotting.title(spec.header.title), wrap=True)
     plotting.tight(fig)
     frames = plotting.Frames(fig, moving)
     for j, i in enumerate(idx):

@@ -120,7 +120,7 @@ def plot_reactions(spec, result, outputs, t):
         ax.set_ylabel(f"{msym} / " + ("N·m" if key == "Mb" else "N"))
         ax.set_xlabel(xlabel)
         plotting.legend_above(ax, fontsize=7)
-    fig.suptitle(plotting.text(spec.header.title), wrap=True)
+    fig.suptitle(plotting.title(spec.header.title), wrap=True)
     plotting.save_png(fig, outputs, "force.png")
 
 
@@ -177,7 +177,7 @@ def plot_hodographs(spec, result, outputs, t):
         ax.set_xlabel(f"{plotting.symbol(f'FR{lab}x')} / N")
         ax.set_ylabel(f"{plotting.symbol(f'FR{lab}y')} / N")
         plotting.legend_above(ax, fontsize=7)
-    fig.suptitle(plotting.text(spec.header.title), wrap=True)
+    fig.suptitle(plotting.title(spec.header.title), wrap=True)
     plotting.save_png(fig, outputs, "hodograph.png")
 
 
@@ -210,7 +210,7 @@ def plot_frame(spec, result, outputs, t):
     ax.set_xlabel(_input_label(spec, t))
     for ax in axs:
         ax.axhline(0, color="0.5", lw=0.6)
-    fig.suptitle(plotting.text(spec.header.title), wrap=True)
+    fig.suptitle(plotting.title(spec.header.title), wrap=True)
     plotting.save_png(fig, outputs, "frame.png")
 
 
@@ -245,7 +245,7 @@ def plot_engine(spec, result, engine, outputs, t):
     ax.set_xlabel(_input_label(spec, t))
     for ax in axs:
         ax.axhline(0, color="0.5", lw=0.6)
-    fig.suptitle(plotting.text(spec.header.title), wrap=True)
+    fig.suptitle(plotting.title(spec.header.title), wrap=True)
     plotting.save_png(fig, outputs, "engine.png")
 
 
@@ -289,7 +289,7 @@ def animate_reactions(spec, result, sweep, outputs, t):
         p = broken(result.kin, motion.points[tr.name].p * k)
         ax.plot(p.real, p.imag, ":", lw=1, color="C3")
     limits(ax, motion, k, pad=0.3)
-    ax.set_title(_t(t, "anim") + "\n" + plotting.text(spec.header.title), fontsize=10)
+    ax.set_title(_t(t, "anim") + "\n" + plotting.title(spec.header.title), fontsize=10)
     ax.set_xlabel(f"x / {spec.header.unit}")
     ax.set_ylabel(f"y / {spec.header.unit}")
     colors = [f"C{(j + 1) % 10}" for j in range(len(pairs))]

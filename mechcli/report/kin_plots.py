@@ -361,7 +361,7 @@ def write(spec, quantities, result, sweep, outputs, lang, plots=True, animate=Fa
                      else t["mech"], pad=22, y=1.0)
         ax.set_xlabel(f"x / {unit}")
         ax.set_ylabel(f"y / {unit}")
-        fig.suptitle(plotting.text(spec.header.title), wrap=True)
+        fig.suptitle(plotting.title(spec.header.title), wrap=True)
         # a fixed layout with room for twin axes' labels (tight_layout would lay out
         # every text once more before the drawing); save_png crops the margins
         fig.subplots_adjust(left=0.08, right=0.92, bottom=0.07, top=0.885, wspace=0.5,
@@ -410,7 +410,7 @@ def _animate(spec, result, sweep, outputs, t, k):
         ax.plot(p.real, p.imag, ":", lw=1.2, color=f"C{(3 + j) % 10}",
                 label=t["path"].format(name=tr.name))
     limits(ax, result.motion, k)
-    ax.set_title(plotting.text(spec.header.title), fontsize=10)
+    ax.set_title(plotting.title(spec.header.title), fontsize=10)
     ax.set_xlabel(f"x / {spec.header.unit}")
     ax.set_ylabel(f"y / {spec.header.unit}")
     if spec.tracers:

@@ -15,6 +15,8 @@ import math
 
 import numpy as np
 
+from mechcli.report.table import book_title
+
 _T = {"en": {"conv": "Convergence", "iter": "iteration", "record": "record",
              "f": "objective f", "viol": "constraint violation",
              "all_feasible": "every iterate is feasible", "tol": "feasibility tolerance",
@@ -356,7 +358,7 @@ def write(spec, problem, result, details, outputs, lang, plots=True, animate=Fal
     if used != lang:
         warnings.append("no CJK font installed: plot labels are in English")
     t = _T[used]
-    title = spec.header.title
+    title = book_title(spec.header.title)   # drawn through plotting.text below
     kind = spec.objective["kind"]
     if plots:
         if result.history:

@@ -193,6 +193,14 @@ def text(s):
     return re.sub(r"'([^']*)'", lambda m: repr(without_cjk(m.group(1)) or "?"), s)
 
 
+def title(s):
+    """The spec's title as a figure shows it: the book's label in the book's brackets, as
+    in the reports (``例 1-1 …`` -> ``【例 1-1】 …``, :func:`~mechcli.report.table.book_title`),
+    and drawable (:func:`text`: without its Chinese where no CJK font is installed)."""
+    from mechcli.report.table import book_title
+    return text(book_title(s))
+
+
 def setup(lang="en"):
     """Configure matplotlib for *lang*; return the language actually usable.
 

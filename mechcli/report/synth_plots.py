@@ -11,6 +11,7 @@ import numpy as np
 from mechcli.core.linkage import DriverMotion, solve
 from mechcli.report import plotting
 from mechcli.report.kin_plots import Drawing, limits
+from mechcli.report.table import book_title
 
 _T = {"en": {"pos": "Design in its prescribed positions", "err": "Structural error",
              "x": "x", "ey": "error in y", "ephi": "error of the output angle / °",
@@ -173,7 +174,7 @@ def write(spec, solutions, outputs, lang, plots=True, animate=False):
     unit, k = spec.header.unit, 1 / spec.header.scale
     for i, (prob, sol) in enumerate(zip(spec.cases, solutions)):
         tag = f"-{i + 1}" if spec.multi else ""
-        title = spec.header.title + (f" [{i + 1}]" if spec.multi else "")
+        title = book_title(spec.header.title) + (f" [{i + 1}]" if spec.multi else "")
         des = sol.design
         if plots:
             if des is not None and sol.check.inputs is not None and len(sol.check.inputs):

@@ -168,3 +168,51 @@ def test_plain_math_writes_the_books_symbols_in_unicode():
         assert plotting.plain_math(f"曲柄 {plotting.symbol(name)} / °") == f"曲柄 {plain} / °"
     assert plotting.plain_math(r"$dJ_e/d\varphi$ / (kg·m²/rad)") == "dJₑ/dφ / (kg·m²/rad)"
     assert plotting.plain_math("no math, 50$") == "no math, 50$"
+
+
+#: a spec of every command that titles its figures with the spec's title (例 N-M …)
+TITLED = [("kin", "ch1/ex1-1"), ("force", "ch2/ex2-4"), ("cam", "ch4/ex4-2"),
+          ("synth", "ch3/ex3-4"), ("flywheel", "ch6/ex6-2"), ("optimize", "ch7/ex7-1")]
+
+
+def _titles(monkeypatch, tmp_path, command, spec):
+    import matplotlib.axes
+    import matplotlib.figure
+
+    seen = []
+    for cls, name in ((matplotlib.axes.Axes, "set_title"),
+                      (matplotlib.figure.FigureBase, "suptitle")):
+        original = getattr(cls, name)
+
+        def record(self, label, *args, _original=original, **kw):
+            seen.append(str(label))
+            return _original(self, label, *args, **kw)
+
+        monkeypatch.setattr(cls, name, record)
+    proc = run_inprocess(command, CONFIGS / f"{spec}.toml", "-q", "--no-animate",
+                         "-o", tmp_path)
+    assert proc.returncode == 0, proc.stderr
+    return seen
+
+
+@pytest.mark.parametrize("command, spec", TITLED, ids=[s for _, s in TITLED])
+def test_figure_titles_label_the_example_as_the_reports_do(tmp_path, monkeypatch, cjk_font,
+                                                           command, spec):
+    """With a CJK font a figure titled by its spec shows the book's label in the book's
+    brackets, 【例 N-M】, as report.txt and the terminal do (before: a bare 例 N-M)."""
+    titles = _titles(monkeypatch, tmp_path, command, spec)
+    chapter, number = spec.split("/")[1][2:].split("-")[:2]
+    label = f"【例 {chapter}-{number}】"
+    assert any(label in t for t in titles), titles
+    assert not any("例" in t and label not in t for t in titles), titles
+
+
+def test_figure_titles_without_a_cjk_font_keep_the_stem(tmp_path, monkeypatch):
+    """Without a CJK font the label (and the Chinese) is left out and the spec's stem
+    names the example: ``ex1-1: four-bar linkage``."""
+    from mechcli.report import plotting
+
+    monkeypatch.setattr(plotting, "cjk_font", lambda: None)
+    titles = _titles(monkeypatch, tmp_path, "kin", "ch1/ex1-1")
+    assert titles and all("例" not in t and "【" not in t for t in titles), titles
+    assert any(t.startswith("ex1-1: four-bar linkage") for t in titles), titles
