@@ -95,6 +95,30 @@ def _minus(a, b):
     return np.subtract(a, b)
 
 
+def _guide_unit(dx, dy, s, e, inv, ux, uy, t1, t2):
+    """An RPR guide's unit vector into ``ux``, ``uy``: ``d = (s + i e) u`` with ``d``
+    = point - pivot, so ``u = d (s - i e) / |d|^2`` (``inv`` = 1 / |d|^2; ``t1``,
+    ``t2`` scratch of the full shape).  Returns where the offset is zero (there
+    ``u = d s / |d|^2``, a unit vector even where d -> 0, the foot of the pivot)."""
+    centred = np.equal(e, 0.0)
+    if not np.all(centred):
+        np.multiply(dx, s, out=ux)
+        ux += np.multiply(dy, e, out=t1)
+        ux *= inv
+        np.multiply(dy, s, out=uy)
+        uy -= np.multiply(dx, e, out=t1)
+        uy *= inv
+    if np.any(centred):
+        t = np.multiply(inv, s, out=t1)
+        if np.ndim(e):
+            np.copyto(ux, np.multiply(dx, t, out=t2), where=centred)
+            np.copyto(uy, np.multiply(dy, t, out=t2), where=centred)
+        else:
+            np.multiply(dx, t, out=ux)
+            np.multiply(dy, t, out=uy)
+    return centred
+
+
 class LinkState:
     """A solved link: angle, its cosine and sine, omega, alpha."""
 
@@ -962,23 +986,7 @@ class RPR(Element):
         keep = self.guide in st.needed_links or self.block in st.needed_links
         ux = np.empty(st.shape) if keep else tmp(6)
         uy = np.empty(st.shape) if keep else tmp(7)
-        centred = np.equal(e, 0.0)
-        if not np.all(centred):
-            np.multiply(dx, s, out=ux)
-            ux += np.multiply(dy, e, out=tmp(4))
-            ux *= inv
-            np.multiply(dy, s, out=uy)
-            uy -= np.multiply(dx, e, out=tmp(4))
-            uy *= inv
-        if np.any(centred):
-            # exact unit vector even where d -> 0 (the foot of the pivot)
-            t = np.multiply(inv, s, out=tmp(4))
-            if np.ndim(e):
-                np.copyto(ux, np.multiply(dx, t, out=tmp(5)), where=centred)
-                np.copyto(uy, np.multiply(dy, t, out=tmp(5)), where=centred)
-            else:
-                np.multiply(dx, t, out=ux)
-                np.multiply(dy, t, out=uy)
+        centred = _guide_unit(dx, dy, s, e, inv, ux, uy, tmp(4), tmp(5))
         # det of the velocity system is s: singular when the block passes the
         # foot of the pivot (the guide's direction is then undefined)
         dist = np.sqrt(d2, out=d2)
@@ -1022,20 +1030,13 @@ class RPR(Element):
         pp, pc = motion.points[self.point], motion.points[self.pivot]
         s = motion.slides[self.slide_names(None)[0]].s
         dx, dy = _minus(pp.x, pc.x), _minus(pp.y, pc.y)
-        d2 = np.multiply(dx, dx)
-        d2 += np.multiply(dy, dy)
-        np.maximum(d2, 1e-300, out=d2)
-        e = self.offset
-        if np.ndim(e) == 0 and e == 0.0:
-            t = np.divide(s, d2, out=d2)
-            return np.multiply(dx, t), np.multiply(dy, t)
-        inv = np.divide(1.0, d2, out=d2)
-        ux = np.multiply(dx, s)
-        ux += np.multiply(dy, e)
-        ux *= inv
-        uy = np.multiply(dy, s)
-        uy -= np.multiply(dx, e)
-        uy *= inv
+        inv = np.multiply(dx, dx)
+        inv += np.multiply(dy, dy)
+        np.maximum(inv, 1e-300, out=inv)
+        np.divide(1.0, inv, out=inv)
+        shape = np.broadcast_shapes(np.shape(dx), np.shape(s))
+        ux, uy = np.empty(shape), np.empty(shape)
+        _guide_unit(dx, dy, s, self.offset, inv, ux, uy, np.empty(shape), np.empty(shape))
         return ux, uy
 
     def _out_rows(self, vel, acc, frame=None):
