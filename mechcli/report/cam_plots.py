@@ -40,11 +40,6 @@ def _t(lang, key, unit):
     return TEXT[lang][key].format(u=unit)
 
 
-def _title(cs, lang):
-    """The spec title as the other figures show it (:func:`plotting.title`)."""
-    return plotting.title(cs.header.title)
-
-
 #: the phases of the allowed pressure angles' legend, en and zh
 _PHASE = {False: ("rise", "return"), True: ("推程", "回程")}
 
@@ -89,7 +84,7 @@ def plot_motion(cs, design, out, lang):
             plotting.legend_outside(ax, fontsize=7)
     axes[-1].set_xlabel(_t(lang, "delta", unit))
     axes[-1].set_xlim(0, 360)
-    axes[0].set_title(_title(cs, lang))
+    axes[0].set_title(plotting.title(cs.header.title))
     return save_png(fig, out, "motion.png")
 
 
@@ -160,7 +155,7 @@ def plot_profile(cs, design, out, lang):
     ax.set_aspect("equal")
     ax.set_xlabel(_t(lang, "x", unit))
     ax.set_ylabel(_t(lang, "y", unit))
-    ax.set_title(_title(cs, lang))
+    ax.set_title(plotting.title(cs.header.title))
     plotting.legend_outside(ax, fontsize=8)
     return save_png(fig, out, "profile.png")
 
@@ -233,7 +228,7 @@ def animate(cs, design, out, lang, fps=12, progress=False):
     ax.set_xlim(x0 - pad, x1 + pad)
     ax.set_ylim(y0 - pad, y1 + pad)
     ax.set_aspect("equal")
-    ax.set_title(_title(cs, lang), fontsize=10)
+    ax.set_title(plotting.title(cs.header.title), fontsize=10)
     ax.set_xlabel(_t(lang, "x", unit))
     ax.set_ylabel(_t(lang, "y", unit))
     cam_line, = ax.plot([], [], "b", lw=1.5)

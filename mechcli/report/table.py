@@ -365,14 +365,15 @@ def print_rich(report: Report, file=None, width=None):
 
     width = width or terminal_width(file)
     blocks = [b for whole in report.blocks for b in split_block(whole, width, gap=3, edge=4)]
+    # the key/value blocks laid out once: "│ " label " │ " value " │" (a frame of 7)
+    kv = {id(b): kv_layout(b.rows, width, frame=7) for b in blocks if not b.headers and b.rows}
     # never squeeze numbers: widen past the terminal rather than truncate cells (only a
     # table whose first two columns are already wider than the terminal needs it); a
     # key/value block wraps its own rows (kv_layout), a long title or note wraps as text
     need = max([sum(max([display_width(h)] + [display_width(r[i]) for r in b.rows]) + 3
                     for i, h in enumerate(b.headers)) + 1 for b in blocks if b.headers]
                # a key/value block as laid out (a word wider than its column stays whole)
-               + [sum(kv_layout(b.rows, width, frame=7)[:2]) + 7 for b in blocks
-                  if not b.headers and b.rows],
+               + [lw + vw + 7 for lw, vw, _ in kv.values()],
                default=0)
     console = Console(file=file, highlight=False, width=max(width, need))
     # every text is the user's or ours, never rich markup: a title "door [/bold]" is text
@@ -389,8 +390,7 @@ def print_rich(report: Report, file=None, width=None):
             for row in block.rows:
                 table.add_row(*map(escape, row))
         else:
-            # the frame: "│ " label " │ " value " │"
-            lw, vw, cells = kv_layout(block.rows, width, frame=7)
+            lw, vw, cells = kv.get(id(block)) or kv_layout(block.rows, width, frame=7)
             table = Table(title=escape(block.heading) or None, title_justify="left",
                           show_header=False, min_width=min(wide or 0, lw + vw + 7) or None)
             table.add_column(justify="left", width=lw, no_wrap=True)
