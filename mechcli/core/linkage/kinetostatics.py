@@ -407,11 +407,11 @@ def solve_forces(topo: Topology, motion: LinkageMotion, bodies: Dict[int, Body],
             return x.reshape(flat)
         return np.broadcast_to(np.asarray(x, dtype=float), n).reshape(flat)
 
-    def _zarr(x):
-        # an exact zero as the float 0.0 (skipped), anything else as arr()
-        if (type(x) is float or type(x) is int) and x == 0:
-            return 0.0
-        return arr(x)
+    def coord(v):
+        # a number that is the same at every position (a Python number, a fixed point's
+        # stride-0 array) as a float, folded by the arithmetic; else the flat array
+        c = const(v)
+        return float(c) if type(c) is float or type(c) is int else arr(c)
 
     for what, obj, fields in ([(f"body of link {k}", b, ("mass", "inertia", "along", "normal"))
                                for k, b in bodies.items()]
@@ -502,7 +502,7 @@ def solve_forces(topo: Topology, motion: LinkageMotion, bodies: Dict[int, Body],
             raise ForceModelError(f"load '{ld.name}' is on link {ld.link}, which does not move",
                                   ("link", ld.link))
         f = minus[ld.link]
-        tq, fx, fy = _zarr(ld.torque), _zarr(ld.fx), _zarr(ld.fy)
+        tq, fx, fy = coord(ld.torque), coord(ld.fx), coord(ld.fy)
         if ld.relative:
             c, s = (arr(v) for v in cos_sin(ld.link))
             fx, fy = fx * c - fy * s, fx * s + fy * c
@@ -530,10 +530,6 @@ def solve_forces(topo: Topology, motion: LinkageMotion, bodies: Dict[int, Body],
     # its outer pair's point (_Plan.ref_point): the same solution, fewer passes; the
     # condition numbers are those of the system about the centres of mass
     ref = plan.ref_point if not condition and CLOSED_FORM else {}
-
-    def coord(v):  # a coordinate: a float where fixed, else the flat array
-        c = const(v)
-        return c if type(c) is float else arr(c)
 
     def lever(link, point):
         lv = levers.get((link, point))
