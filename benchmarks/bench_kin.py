@@ -167,13 +167,13 @@ def refinement(repeat):
     """Issue 17: the extreme refinement of one sweep (``refine_extremes`` inside
     ``analyse_sweep``, 例 1-1 as ``mechcli kin`` runs it, 7 quantities, warm) <= 3 ms, with
     the engine solves it makes (the bisection it replaced took 13 ms and ~40 solves)."""
-    from mechcli.core.linkage import engine, kinematics
+    from mechcli.core.linkage import kinematics
     from mechcli.spec.kin import load_kin_spec
 
     spec = load_kin_spec(ROOT / "configs" / "ch1" / "ex1-1.toml")
     qs = default_quantities(spec.linkage, spec.output.order, [t.name for t in spec.tracers])
     spent, solves = [], []
-    inner, count = kinematics.refine_extremes, engine.solve
+    inner, count = kinematics.refine_extremes, kinematics.solve
 
     def timed(*a, **k):
         t = time.perf_counter()
