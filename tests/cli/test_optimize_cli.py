@@ -4,7 +4,10 @@ kind of bad input as one line with exit 2 or 3."""
 
 import json
 import math
-import tomllib
+try:
+    import tomllib
+except ImportError:      # Python < 3.11
+    import tomli as tomllib
 from pathlib import Path
 
 import pytest
@@ -62,7 +65,7 @@ def test_optimum_toml_runs_through_kin_and_keeps_the_design(tmp_path):
 
 
 @pytest.mark.parametrize("sets,tol", [
-    (["method.name=trust-constr"], 2e-4),
+    (["method.name=trust-constr"], 5e-5),
     (["method.name=differential_evolution"], 1e-4),
     (["method.starts=3"], 5e-5),
     # Nelder-Mead needs a feasible start: l2 = 4.5, l3 = 2.5 meets g1 ... g8

@@ -179,18 +179,14 @@ def _local(problem, method, x0, tol, maxiter, central=True):
     elif method == "trust-constr":
         cons = ([optimize.NonlinearConstraint(G, -np.inf, 0.0, jac=DG,
                                               hess=optimize.BFGS())] if k else [])
-        import warnings
-        with warnings.catch_warnings():
-            # BFGS's note on a linear constraint (its update is skipped: harmless)
-            warnings.filterwarnings("ignore", message="delta_grad == 0.0")
-            res = optimize.minimize(F, u0, jac=DF, hess=optimize.BFGS(),
-                                    method="trust-constr", bounds=bounds, constraints=cons,
-                                    callback=lambda xk, state=None: cb(xk),
-                                    options={"gtol": tol, "xtol": tol, "barrier_tol": tol,
-                                             "maxiter": maxiter})
-        nit = res.nit
-        converged = res.status in (1, 2)
+        res, nit = _trust_constr(F, DF, u0, bounds, cons, tol, maxiter, cb)
+        # status 2: the trust region fell below xtol (scipy's success: no step
+        # is left to take at this precision); status 1 also needs the duality
+        converged = res.status == 2 or (res.status == 1 and res.duality <= tol)
         capped = res.status == 0
+        if res.status == 1 and res.duality > tol:
+            res.message = (f"stopped with the duality measure {res.duality:.1e} above tol "
+                           f"(the design may lie inside an active constraint)")
     else:   # nelder-mead with an extreme barrier
         def barrier(u):
             f, g, ok = problem.one(u * size)
@@ -207,6 +203,80 @@ def _local(problem, method, x0, tol, maxiter, central=True):
         capped = res.status in (1, 2)
     message = str(res.message) + (" (maxiter reached)" if capped else "")
     return np.clip(res.x * size, problem.lo, problem.hi), converged, nit, message
+
+
+#: trust-constr: the factor by which each restart lowers the barrier parameter
+#: (scipy's own BARRIER_DECAY_RATIO between its barrier subproblems)
+_BARRIER_DECAY = 0.2
+#: ... and how many restarts it makes at most (the barrier parameter falls from
+#: scipy's 0.1 by 0.2**12 = 4e-9 on the way: each restart's own subproblems lower it too)
+_RESTARTS = 12
+
+
+def _trust_constr(F, DF, u0, bounds, cons, tol, maxiter, cb):
+    """scipy's trust-constr, continued until its design's duality measure is
+    at most ``tol``; returns scipy's last result (``duality`` added) and the
+    iterations of all its runs.
+
+    scipy documents ``barrier_tol`` as a bound on the barrier parameter at the
+    end, but its ``gtol`` exit asks only that the Lagrangian's gradient, with
+    whatever multipliers the current barrier subproblem estimates, and the
+    constraints' violation be below ``gtol``.  That holds all along a curve
+    through the optimum, so the design may stop well inside an active
+    constraint, wherever one release's iterates happen to meet ``gtol``
+    (scipy 1.17.1 stopped a test quadratic with ``tol`` = 1e-10 at
+    f - f* = 2.6e-4).  So the duality measure at the design,
+    sum |multiplier x distance to its bound| / m over the m inequalities
+    (bounds included; :func:`_duality`) -- what the barrier parameter is on
+    the central path -- is checked, and a run that ends above ``tol`` is
+    restarted from its design with the barrier parameter lowered by
+    :data:`_BARRIER_DECAY`, at most :data:`_RESTARTS` times and as ``maxiter``
+    allows; the run with the least measure is returned.  For a convex problem the measure bounds the objective:
+    f - f* <= |f(start)| (m duality + gtol |u - u*|) in the scaled variables u.
+    """
+    import warnings
+
+    from scipy import optimize
+
+    mu, nit, u, best = 0.1, 0, u0, None
+    for _ in range(1 + _RESTARTS):
+        with warnings.catch_warnings():
+            # BFGS's note on a linear constraint (its update is skipped: harmless)
+            warnings.filterwarnings("ignore", message="delta_grad == 0.0")
+            res = optimize.minimize(F, u, jac=DF, hess=optimize.BFGS(),
+                                    method="trust-constr", bounds=bounds, constraints=cons,
+                                    callback=lambda xk, state=None: cb(xk),
+                                    options={"gtol": tol, "xtol": tol, "barrier_tol": tol,
+                                             "maxiter": maxiter - nit,
+                                             "initial_barrier_parameter": mu,
+                                             "initial_barrier_tolerance": mu})
+        nit += res.nit
+        res.duality = _duality(res, bounds, cons)
+        if best is None or (res.status in (1, 2) and res.duality < best.duality):
+            best = res
+        if res.status != 1 or res.duality <= tol or nit >= maxiter:
+            break
+        mu = _BARRIER_DECAY * min(mu, getattr(res, "barrier_parameter", mu))
+        u = res.x
+    return best, nit
+
+
+def _duality(res, bounds, cons):
+    """The duality measure of a trust-constr result: the mean over its
+    inequalities of |multiplier x distance to the nearer bound| (scipy lists
+    the constraints' values and multipliers in the order given, the bounds
+    last); 0 at a KKT point, where each constraint is either active or
+    without force, and the barrier parameter on the central path."""
+    limits = [(c.lb, c.ub) for c in cons] + [(bounds.lb, bounds.ub)]
+    total, m = 0.0, 0
+    for v, c, (lb, ub) in zip(getattr(res, "v", ()), getattr(res, "constr", ()), limits):
+        c = np.atleast_1d(c)
+        d = np.minimum(np.abs(c - lb), np.abs(ub - c))
+        finite = np.isfinite(d)
+        # a constraint without a finite bound has no force at a KKT point
+        total += float(np.sum(np.abs(v) * np.where(finite, d, 1.0)))
+        m += int(np.count_nonzero(finite))
+    return total / max(m, 1)
 
 
 def _check_start(problem, x0, method):
