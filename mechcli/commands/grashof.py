@@ -131,9 +131,16 @@ def build(spec, lang, digits=10):
     from mechcli.core.grashof.chain import ClosureError
     from mechcli.report import grashof as report
 
+    from mechcli.core.grashof.mobility import MobilityError
+    from mechcli.spec.errors import SpecError
+
     try:
         solution = solve_grashof(spec.kind, spec.problem, spec.header.scale)
     except ClosureError as exc:   # its numbers are in the spec's unit: say which
         exc.args = (report.closure_message(exc, spec.header.unit),)
         raise
+    except MobilityError as exc:  # drivers that do not leave Assur groups: the spec's
+        key = "mobility.kin" if spec.problem.source != "joints" else "mobility.drivers"
+        raise SpecError(spec.path, key,
+                        "one driver per freedom, the rest Assur groups", str(exc)) from None
     return (*report.present(spec, solution, lang, digits), solution)

@@ -79,6 +79,7 @@ class MobilityProblem:
     local_dof: int
     redundant: int
     source: str             # "joints" or the kin spec path
+    drivers: tuple = ()     # the driving links: the structural analysis (groups) when given
 
 
 @record
@@ -202,9 +203,9 @@ def _read_mobility(sec, spec_dir):
         if why is not None:   # name this spec and key, not the folder or file it points to
             raise sec.error("kin", "the path of a `mechcli kin` spec (relative to this file)",
                             f"'{kin}'{why}")
-        joints, frame = _joints_from_kin(path)
+        joints, frame, drivers = _joints_from_kin(path)
         sec.finish()
-        return MobilityProblem(joints, frame, local, redundant, str(kin))
+        return MobilityProblem(joints, frame, local, redundant, str(kin), drivers)
     frame = sec.integer("frame", lo=0)
     joints = []
     for js in sec.tables("joint"):
@@ -225,8 +226,31 @@ def _read_mobility(sec, spec_dir):
     used = sorted({ln for j in joints for ln in j.links})
     if frame not in used:
         raise sec.error("frame", f"a link named by a joint: {used}", repr(frame))
+    drivers = _drivers(sec, joints, frame, used)
     sec.finish()
-    return MobilityProblem(tuple(joints), frame, local, redundant, "joints")
+    return MobilityProblem(tuple(joints), frame, local, redundant, "joints", drivers)
+
+
+def _drivers(sec, joints, frame, used):
+    """``drivers = [1, ...]``: the driving links, each joined to the frame by one lower
+    pair (optional: without it only the mobility is counted)."""
+    raw = sec.raw("drivers", None)
+    if raw is None:
+        return ()
+    if not isinstance(raw, list) or not raw or not all(
+            isinstance(v, int) and not isinstance(v, bool) for v in raw) \
+            or len(set(raw)) != len(raw):
+        raise sec.error("drivers", "an array of different link numbers", repr(raw))
+    for d in raw:
+        if d == frame or d not in used or not any(
+                j.kind in ("R", "P") and frame in j.links and d in j.links for j in joints):
+            raise sec.error("drivers", f"moving links each joined to the frame {frame} by a "
+                            f"lower pair", f"{raw} (link {d} is not)")
+    if any(j.kind == "H" for j in joints):
+        raise sec.error("drivers", "a mechanism of lower pairs for the structural analysis "
+                        "(replace each higher pair by a link and two lower pairs first)",
+                        repr(raw))
+    return tuple(raw)
 
 
 def _joints_from_kin(path):
@@ -254,7 +278,8 @@ def _joints_from_kin(path):
             name = getattr(lk.elements[pr.element], "name", None) or pr.point
             others.append(JointSpec("P", (pr.block, pr.guide), name))
     joints = [JointSpec("R", topo.links_at[p], p) for p in hinges]
-    return tuple(joints + others), lk.frame
+    drivers = tuple(el.link for el in lk.drivers)
+    return tuple(joints + others), lk.frame, drivers
 
 
 def read_grashof_spec(path, overrides=()):

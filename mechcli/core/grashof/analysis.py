@@ -141,9 +141,19 @@ def _solve(kind, p, scale):
         return GrashofSolution(kind, rrrrp_crank(p.l1 / scale, p.l2 / scale, p.l3 / scale,
                                                  p.offset / scale, p.rtol))
     if kind == "mobility":
-        from mechcli.core.grashof.mobility import Joint, count_mobility
-        mob = count_mobility([Joint(j.kind, j.links, j.name) for j in p.joints], p.frame,
-                             p.local_dof, p.redundant)
+        from mechcli.core.grashof.mobility import Joint, MobilityError, count_mobility
+        joints = [Joint(j.kind, j.links, j.name) for j in p.joints]
+        mob = count_mobility(joints, p.frame, p.local_dof, p.redundant)
+        drivers = getattr(p, "drivers", ())
+        if drivers:
+            import dataclasses
+
+            from mechcli.core.grashof.structure import decompose
+            if mob.F != len(drivers):
+                raise MobilityError(f"F = {mob.F} with {len(drivers)} "
+                                    f"driver{'s' if len(drivers) != 1 else ''} "
+                                    f"{list(drivers)}")
+            mob = dataclasses.replace(mob, structure=decompose(joints, p.frame, drivers))
         return GrashofSolution(kind, mob)
     raise ValueError(f"unknown kind {kind!r}: one of {', '.join(KINDS)}")
 

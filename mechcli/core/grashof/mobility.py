@@ -57,6 +57,9 @@ class Mobility:
     redundant : int
         p' redundant (passive) constraints, added back.
     joints : tuple of Joint
+    structure : Structure or None
+        The drivers and Assur groups (:func:`.structure.decompose`), when the
+        drivers are known.
     """
 
     F: int
@@ -68,6 +71,7 @@ class Mobility:
     local_dof: int
     redundant: int
     joints: tuple
+    structure: object = None
 
 
 class MobilityError(ValueError):
