@@ -163,6 +163,9 @@ def scalar_results(spec, res, accuracy_warn=None, extra=None):
         _extra_results(spec, extra, out)
         if extra.exact is not None:
             _approx_results(spec, res, extra, out)
+    if spec.linkage.structure is not None:   # a linkage given by its joints
+        from mechcli.report.structure import structure_results
+        out.update(structure_results(spec.linkage.structure))
     return out
 
 
@@ -243,6 +246,9 @@ def build_report(spec, res, lang="en", extra=None):
         rows.append([fixed(res.q[i] * fin, 2)] + [fixed(res.series[s][i], digits)
                                                    for s in shown])
     report = Report(title=book_title(spec.header.title))
+    if spec.linkage.structure is not None:   # given by its joints: the book's 杆组分解 first
+        from mechcli.report.structure import structure_block
+        report.blocks.append(structure_block(lang, spec.linkage.structure, spec.linkage.frame))
     step_txt = f"{spec.output.table_step * fin:g}"
     report.blocks.append(Block(
         heading=(f"运动副反力与平衡力矩 (每 {step_txt}{at_u} 一行; F_Rij 为构件 i 对构件 j "

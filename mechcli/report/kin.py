@@ -459,6 +459,9 @@ def scalar_results(spec, quantities, result, accuracy_warn=None, approx=None):
                        "gamma_deg": math.degrees(math.asin(min(1.0, t.sin_gamma)))}
                       for t in result.toggles]
     out["accuracy"] = accuracy_results(result.accuracy, _threshold(spec, accuracy_warn))
+    if spec.linkage.structure is not None:   # a linkage given by its joints
+        from mechcli.report.structure import structure_results
+        out.update(structure_results(spec.linkage.structure))
     return out
 
 
@@ -607,6 +610,9 @@ def build_report(spec, quantities, result, lang="en", approx=None):
     for i in table_rows(spec, result, spec.output.table_step):
         rows.append([fixed(cols[0][1][i], 2)] + [fixed(c[1][i], digits) for c in cols[1:]])
     report = Report(title=book_title(spec.header.title))
+    if spec.linkage.structure is not None:   # given by its joints: the book's 杆组分解 first
+        from mechcli.report.structure import structure_block
+        report.blocks.append(structure_block(lang, spec.linkage.structure, spec.linkage.frame))
     step_txt = f"{spec.output.table_step * fin:g}"
     report.blocks.append(Block(
         heading=(f"计算结果 (每 {step_txt}° 一行，长度单位 {unit})" if zh else

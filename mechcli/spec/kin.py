@@ -8,6 +8,8 @@ there is one engine and one code path:
 * ``guide_bar``    l1 crank, l4 = AC frame; C=(0,0), A=(0,l4); optional guide offset e (图 1-6)
 * ``shaper``       l1, l3, l4, l6, l6p (= l6'); C=(0,0), A=(0,l6), ram guide y = l6p (图 1-8)
 * ``general``      ground points, drivers, dyads (RRR, RRP, RPR, PRP) and points on links
+* ``joints``       the drawing: joints, links, sliders, drivers; the Assur groups are found
+                   (:mod:`mechcli.spec.joints`, :mod:`mechcli.core.linkage.drawing`)
 """
 
 from __future__ import annotations
@@ -26,7 +28,7 @@ from mechcli.spec.common import Header, read_expected, read_header
 from mechcli.spec.errors import SpecError
 from mechcli.spec.reader import MAX_LENGTH, MIN_LENGTH, load_spec
 
-MECHANISMS = ("four_bar", "slider_crank", "guide_bar", "shaper", "general")
+MECHANISMS = ("four_bar", "slider_crank", "guide_bar", "shaper", "general", "joints")
 QUANTITIES = ("position", "velocity", "acceleration")
 #: the 1 GiB memory budget of every command: peak RSS measured 2026-11-23 with plots at
 #: 400,001 positions is 0.59 GB for the shaper of 例 1-4 and 0.62 GB for the two-driver
@@ -440,17 +442,40 @@ def read_mechanism(root):
     kind = mech.string("type", choices=list(MECHANISMS))
     followers = {}
     guide_length = None
+    drawn = None
     if kind == "general":
         frame, elements, followers, paths = _general(mech)
+    elif kind == "joints":
+        from mechcli.spec.joints import read_joints
+        frame, elements, followers, paths, drawn = read_joints(mech)
     else:
         frame, elements, guide_length = _preset(mech, kind)
         paths = ["mechanism"] * len(elements)
+    n_before = len(elements)
     tracers = _points(mech, elements, paths)
     mech.finish()
-    linkage = _build_linkage(mech, frame, elements, paths)
+    if drawn is not None:
+        # a point's `along`/`normal` are measured from its link's first joint to its
+        # second as drawn: turned into the engine's direction of that link
+        offsets = dict(drawn.linkage.angle_offsets)
+        elements[n_before:] = [_turned(el, offsets.get(el.link, 0.0))
+                               for el in elements[n_before:]]
+        linkage = dataclasses.replace(drawn.linkage, elements=tuple(elements))
+    else:
+        linkage = _build_linkage(mech, frame, elements, paths)
     if not linkage.drivers:
         raise SpecError(root.file, "mechanism.driver", "at least one driver", "none")
     return kind, linkage, tuple(tracers), followers, guide_length
+
+
+def _turned(point, offset):
+    """A :class:`PointOnLink` whose ``along``/``normal`` are given from its link's
+    drawn direction, re-measured from the engine's (``offset`` = drawn − engine)."""
+    if offset == 0.0:
+        return point
+    c, s = math.cos(offset), math.sin(offset)
+    return dataclasses.replace(point, along=point.along * c - point.normal * s,
+                               normal=point.along * s + point.normal * c)
 
 
 def read_input(root, linkage, followers, max_positions=MAX_POSITIONS, why=POSITIONS_WHY,

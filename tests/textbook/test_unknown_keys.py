@@ -30,6 +30,7 @@ KEY = "zz_unknown_key"
 #: design (table pattern, array indices written ``[]``) -> why
 FREE_FORM = {
     "mechanism.ground": "every key is the name of a ground point (A = [0, 0])",
+    "mechanism.joints": "every key is the name of a joint of the drawing (B = [50, 88])",
 }
 
 

@@ -51,6 +51,9 @@ SPEC_CORE_FUNCTIONS = {
     "default_quantities",  # the names of the quantities a linkage has
     "stack",               # one batched linkage of a population (optimize's candidates)
     "stream_grid",         # the analysed rows of a streamed kin sweep (a grid, no solve)
+    # the elements a drawing describes (type = "joints", issue 30): its Assur groups and
+    # each group's branch as drawn, checked on the engine at the drawing's one position
+    "from_drawing",
 }
 
 #: what every layer may take from the core besides classes and constants: the decorator
@@ -70,6 +73,8 @@ OWN_CORE = {
     "mechcli.report.gear": "mechcli.core.gear",
     "mechcli.report.gear_plot": "mechcli.core.gear",
     "mechcli.report.grashof": "mechcli.core.grashof",
+    # the structural analysis of grashof's mobility kind and of a linkage by its joints
+    "mechcli.report.structure": "mechcli.core.grashof",
     "mechcli.report.synth": "mechcli.core.synth",
     "mechcli.report.flywheel": "mechcli.core.flywheel",
     "mechcli.report.optimize": "mechcli.core.optimize",

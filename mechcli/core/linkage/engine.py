@@ -56,6 +56,16 @@ class Linkage:
     frame: int
     elements: Tuple[Element, ...]
     order: Tuple[int, ...] = dataclasses.field(default=(), compare=False)
+    #: ``((link, offset), ...)``: a linkage given by its joints (:mod:`.drawing`) measures
+    #: a link's angle from its first joint to its second as drawn; where the engine
+    #: measures it from other points, ``offset`` = that angle − the engine's [rad],
+    #: constant on a rigid link, is what the reports add (the engine's own results,
+    #: ``LinkageMotion.links``, are its angles); empty otherwise
+    angle_offsets: Tuple[Tuple[int, float], ...] = dataclasses.field(default=(),
+                                                                     compare=False)
+    #: the drivers and Assur groups (:class:`mechcli.core.grashof.structure.Structure`)
+    #: where the linkage was given by its joints; None otherwise
+    structure: object = dataclasses.field(default=None, compare=False)
 
     def __post_init__(self):
         object.__setattr__(self, "elements", tuple(self.elements))
@@ -110,7 +120,8 @@ class Linkage:
 
     def with_elements(self, *extra) -> "Linkage":
         """The same linkage with more elements (e.g. coupler points) added."""
-        return Linkage(self.frame, self.elements + tuple(extra))
+        return Linkage(self.frame, self.elements + tuple(extra),
+                       angle_offsets=self.angle_offsets, structure=self.structure)
 
     @property
     def drivers(self):
@@ -218,7 +229,8 @@ def stack(linkages) -> "Linkage":
                 raise ValueError(f"element {i} ({el.kind}) {f} is already an array")
             values[f] = np.asarray(column, dtype=float)[:, None]
         elements.append(dataclasses.replace(el, **values))
-    return Linkage(first.frame, tuple(elements))
+    return Linkage(first.frame, tuple(elements), angle_offsets=first.angle_offsets,
+                   structure=first.structure)
 
 
 def _fields(el):

@@ -241,11 +241,22 @@ def default_quantities(linkage: Linkage, order: int, tracers=()):
     def getter(group, key, attr):
         return lambda m: getattr(getattr(m, group)[key], attr)
 
+    # a linkage given by its joints measures a link's angle from its first joint to its
+    # second as drawn: the engine's angle plus a constant (Linkage.angle_offsets)
+    offsets = dict(linkage.angle_offsets)
+
+    def angle(n):
+        off = offsets.get(n, 0.0)
+        if not off:
+            return getter("links", n, "theta")
+        return lambda m: m.links[n].theta + off
+
     for k in range(order + 1):
         (lp, lkind, lattr), (sp, skind, sattr), pts = table[k]
         nxt = table[k + 1] if k < 2 else None
         for n in rotating:
-            out.append(Quantity(f"{lp}{n}", lkind, k, getter("links", n, lattr),
+            get = angle(n) if lattr == "theta" else getter("links", n, lattr)
+            out.append(Quantity(f"{lp}{n}", lkind, k, get,
                                 getter("links", n, nxt[0][2]) if nxt else None, ("link", n)))
         for name in slides:
             out.append(Quantity(f"{sp}{name}", skind, k, getter("slides", name, sattr),

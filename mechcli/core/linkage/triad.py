@@ -1,0 +1,305 @@
+"""The class-III triad: a ternary link held by three binary links (Newton).
+
+A triad (三级杆组) is the simplest Assur group that is no dyad: the ternary link
+``link`` carries the joints J1, J2, J3; each is pinned to a binary link ``links[k]``
+of length ``l_k`` whose other end is a known point K_k.  Four links, six revolute
+pairs, no closed form in general.
+
+The ternary link's pose is ``u = (x, y, phi)``: J1 = (x, y), and the link's body
+vectors ``d_1 = 0``, ``d_2 = (c, 0)``, ``d_3 = (p, q)`` (measured from J1 along the
+direction J1 -> J2 and to its left) turned by phi:  J_k = (x, y) + R(phi) d_k.  The
+three closure equations and their derivatives are
+
+    g_k(u)  = (|r_k|^2 - l_k^2) / 2 = 0,                r_k = J_k - K_k
+    dg_k    = r_k . (dx, dy) + (r_k . t_k) dphi,         t_k = R(phi + 90°) d_k
+    g_k'    = r_k . (J_k' - K_k') = 0                    (velocities)
+    g_k''   = |r_k'|^2 + r_k . (J_k'' - K_k'') = 0       (accelerations)
+
+so the positions are Newton's iterates u <- u - A^-1 g with the 3x3 matrix A of
+rows ``(r_kx, r_ky, r_k . t_k)``, solved by Cramer's rule on whole arrays of
+positions (and designs), and the velocities and accelerations are two more solves
+with the same A:
+
+    A (x', y', phi')   = (r_k . K_k')
+    A (x'', y'', phi'') = (r_k . K_k'' + phi'^2 r_k . R(phi) d_k - |r_k'|^2)
+
+A vanishing determinant is the triad's dead point (its sine-like measure
+``|det A| / (l_1 l_2 l_3 L)``, L the linkage's size, is reported as the condition).
+
+Newton needs a start on the right assembly branch.  The element carries a table of
+the ternary link's pose against the primary driver's angle, made by continuation
+from the drawing (:func:`continuation_table`, in steps small enough that each
+Newton solve starts next to its answer): every position starts from the table
+interpolated at its input angle, wherever the sweep or a refinement asks.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import ClassVar, Tuple
+
+import numpy as np
+
+from mechcli.core.linkage.elements import SINGULAR_TOL, Element, LinkState, PointState
+from mechcli.core.records import record
+
+#: Newton iterations at most per solve, and the residual it must reach (relative to
+#: the linkage's size) for a position to count as assembled
+MAX_NEWTON = 30
+CLOSURE_TOL = 1e-12
+#: the continuation table's step [rad of the driver]
+TABLE_STEP = math.radians(0.5)
+
+
+@record
+class Triad(Element):
+    """Class-III triad: ternary ``link`` (joints ``joint_1, joint_2, joint_3``), each
+    joint pinned to binary link ``link_k`` of length ``length_k`` from known point
+    ``point_k``.  ``body_c`` = |J1 J2|; ``body_p``, ``body_q``: J3 from J1 along
+    J1 -> J2 and to its left [m].  ``driver``: the link whose input angle indexes the
+    continuation table ``table = (q, x, y, phi)`` (tuples of floats, q increasing;
+    ``period``: 2π when it covers a whole turn, else 0)."""
+
+    link: int
+    joint_1: str
+    joint_2: str
+    joint_3: str
+    link_1: int
+    link_2: int
+    link_3: int
+    point_1: str
+    point_2: str
+    point_3: str
+    length_1: float
+    length_2: float
+    length_3: float
+    body_c: float
+    body_p: float
+    body_q: float
+    driver: int
+    table: tuple = ()
+    period: float = 0.0
+
+    kind: ClassVar[str] = "triad"
+    lengths_: ClassVar[Tuple[str, ...]] = ("length_1", "length_2", "length_3", "body_c",
+                                          "body_p", "body_q")
+
+    @property
+    def joints(self):
+        return (self.joint_1, self.joint_2, self.joint_3)
+
+    @property
+    def binaries(self):
+        return (self.link_1, self.link_2, self.link_3)
+
+    @property
+    def points(self):
+        return (self.point_1, self.point_2, self.point_3)
+
+    @property
+    def lengths(self):
+        return (self.length_1, self.length_2, self.length_3)
+
+    def body(self):
+        return ((0.0, 0.0), (self.body_c, 0.0), (self.body_p, self.body_q))
+
+    def needs(self):
+        return self.points, ()
+
+    def makes(self):
+        return self.joints, (self.link,) + self.binaries
+
+    def reported_links(self, frame):
+        return (self.link,) + self.binaries
+
+    # -- the solve ---------------------------------------------------------------
+    def start(self, q):
+        """The table's pose at the driver's angles ``q`` (the Newton start)."""
+        tq, tx, ty, tp = (np.asarray(t, dtype=float) for t in self.table)
+        q = np.asarray(q, dtype=float)
+        if self.period:
+            q = tq[0] + np.mod(q - tq[0], self.period)
+            tq = np.append(tq, tq[0] + self.period)
+            tx, ty = np.append(tx, tx[0]), np.append(ty, ty[0])
+            tp = np.append(tp, tp[0] + (tp[-1] - tp[0] + _wrap(tp[0] - tp[-1])))
+        return np.interp(q, tq, tx), np.interp(q, tq, ty), np.interp(q, tq, tp)
+
+    def step(self, st):
+        K = [st.P[p] for p in self.points]
+        q = st.inputs[self.driver].q
+        x, y, phi = (st.full(v).copy() for v in self.start(q))
+        scale = st.scale
+        ok, A, r, t, Rd = _newton(self, K, x, y, phi, scale)
+        det = _det(A)
+        sing = np.abs(det) / (abs(self.length_1 * self.length_2 * self.length_3) * scale)
+        sing = np.where(ok, np.minimum(sing, 1.0), 0.0)
+        st.condition(self, self.joint_1, sing)
+        bad = st.mark(ok, sing)
+        c, s = np.cos(phi), np.sin(phi)
+        J = [(x + dx * c - dy * s, y + dx * s + dy * c) for dx, dy in self.body()]
+        w = al = None
+        wk = [None] * 3
+        alk = [None] * 3
+        pts = [PointState(jx, jy) for jx, jy in J]
+        if st.vel:
+            safe = np.where(bad, 1.0, det) if bad is not None else det
+            rhs = [r[k][0] * K[k].vx + r[k][1] * K[k].vy for k in range(3)]
+            vx, vy, w = _cramer(A, rhs, safe)
+            for k, (dx, dy) in enumerate(self.body()):
+                p = pts[k]
+                p.vx, p.vy = vx + w * t[k][0], vy + w * t[k][1]
+                rv = (p.vx - K[k].vx, p.vy - K[k].vy)
+                wk[k] = (r[k][0] * rv[1] - r[k][1] * rv[0]) / self.lengths[k] ** 2
+            if st.acc:
+                rhs = []
+                for k in range(3):
+                    rv = (pts[k].vx - K[k].vx, pts[k].vy - K[k].vy)
+                    rhs.append(r[k][0] * K[k].ax + r[k][1] * K[k].ay
+                               + w * w * (r[k][0] * Rd[k][0] + r[k][1] * Rd[k][1])
+                               - (rv[0] * rv[0] + rv[1] * rv[1]))
+                ax, ay, al = _cramer(A, rhs, safe)
+                for k in range(3):
+                    p = pts[k]
+                    p.ax = ax + al * t[k][0] - w * w * Rd[k][0]
+                    p.ay = ay + al * t[k][1] - w * w * Rd[k][1]
+                    ra = (p.ax - K[k].ax, p.ay - K[k].ay)
+                    alk[k] = (r[k][0] * ra[1] - r[k][1] * ra[0]) / self.lengths[k] ** 2
+        for name, p in zip(self.joints, pts):
+            st.P[name] = p
+        st.L[self.link] = LinkState(phi, c, s, w, al)
+        for k, ln in enumerate(self.binaries):
+            rx, ry = r[k]
+            st.L[ln] = LinkState(np.arctan2(ry, rx), rx / self.lengths[k],
+                                 ry / self.lengths[k], wk[k], alk[k])
+
+    def pairs(self, tb):
+        for j in self.joints:
+            tb.new_point(j, self.link)
+        for j, ln, p in zip(self.joints, self.binaries, self.points):
+            tb.revolute(p, ln)
+            tb.joint(j, self.link, ln)
+            tb.frames[ln] = [p, j]
+        tb.frames[self.link] = [self.joint_1, self.joint_2]
+        return (self.link,) + self.binaries
+
+    def sketch(self, frame):
+        from mechcli.core.linkage.sketch import Bar
+        j1, j2, j3 = self.joints
+        return tuple(Bar(p, j) for p, j in zip(self.points, self.joints)) + (
+            Bar(j1, j2), Bar(j2, j3), Bar(j3, j1))
+
+
+def _wrap(a):
+    return (a + np.pi) % (2 * np.pi) - np.pi
+
+
+def _geometry(tri, K, x, y, phi):
+    """r_k = J_k - K_k, t_k = dJ_k/dphi and R(phi) d_k at the pose."""
+    c, s = np.cos(phi), np.sin(phi)
+    r, t, Rd = [], [], []
+    for (dx, dy), k in zip(tri.body(), K):
+        rdx, rdy = dx * c - dy * s, dx * s + dy * c
+        Rd.append((rdx, rdy))
+        t.append((-rdy, rdx))
+        r.append((x + rdx - k.x, y + rdy - k.y))
+    return r, t, Rd
+
+
+def _matrix(r, t):
+    return [(rk[0], rk[1], rk[0] * tk[0] + rk[1] * tk[1]) for rk, tk in zip(r, t)]
+
+
+def _det(A):
+    (a, b, c), (d, e, f), (g, h, i) = A
+    return a * (e * i - f * h) - b * (d * i - f * g) + c * (d * h - e * g)
+
+
+def _cramer(A, rhs, det):
+    """Solve the 3x3 systems A u = rhs (arrays of positions) by Cramer's rule."""
+    (a, b, c), (d, e, f), (g, h, i) = A
+    r1, r2, r3 = rhs
+    u1 = (r1 * (e * i - f * h) - b * (r2 * i - f * r3) + c * (r2 * h - e * r3)) / det
+    u2 = (a * (r2 * i - f * r3) - r1 * (d * i - f * g) + c * (d * r3 - r2 * g)) / det
+    u3 = (a * (e * r3 - r2 * h) - b * (d * r3 - r2 * g) + r1 * (d * h - e * g)) / det
+    return u1, u2, u3
+
+
+def _newton(tri, K, x, y, phi, scale):
+    """Newton on the closure equations from the pose (x, y, phi), in place; returns
+    (converged mask, A, r, t, Rd) at the final pose."""
+    lengths = tri.lengths
+    tol = CLOSURE_TOL * scale
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        for _ in range(MAX_NEWTON):
+            r, t, Rd = _geometry(tri, K, x, y, phi)
+            g = [0.5 * (rk[0] * rk[0] + rk[1] * rk[1] - lk * lk) for rk, lk in zip(r, lengths)]
+            A = _matrix(r, t)
+            det = _det(A)
+            dx, dy, dp = _cramer(A, g, det)
+            ok = np.isfinite(dx) & np.isfinite(dy) & np.isfinite(dp)
+            dx, dy, dp = (np.where(ok, v, 0.0) for v in (dx, dy, dp))
+            x -= dx
+            y -= dy
+            phi -= dp
+            step = np.maximum(np.maximum(np.abs(dx), np.abs(dy)), np.abs(dp) * scale)
+            if np.all(step <= tol):
+                break
+        r, t, Rd = _geometry(tri, K, x, y, phi)
+        A = _matrix(r, t)
+        err = np.maximum.reduce([np.abs(np.hypot(rk[0], rk[1]) - lk)
+                                 for rk, lk in zip(r, lengths)])
+        ok = np.isfinite(err) & (err <= tol * 10) & np.isfinite(phi)
+    return ok, A, r, t, Rd
+
+
+def continuation_table(tri, known, q0, pose0, step=TABLE_STEP):
+    """The ternary link's pose against the driver's angle, by continuation from the
+    drawing: ``known(q)`` gives the known points K_1..K_3 (PointState with x, y) at
+    driver angles ``q`` (an array); ``pose0 = (x, y, phi)`` at ``q0``.  Forward over
+    a turn, and backward as far as the forward pass could not reach; each step's
+    Newton starts from the previous pose.  Returns ``(table, period)``."""
+    n = int(round(2 * math.pi / step))
+    grid_f = q0 + step * np.arange(n + 1)
+    Kf = known(grid_f)
+    poses = {0: pose0}
+    scale = max([abs(v) for v in pose0[:2]] + [abs(tri.length_1), abs(tri.length_2),
+                                                abs(tri.length_3), 1e-300])
+
+    def advance(Kall, i, prev):
+        K = [_Pt(p.x[i], p.y[i]) for p in Kall]
+        x, y, phi = (np.array(v, dtype=float) for v in prev)
+        ok, _A, _r, _t, _Rd = _newton(tri, K, x, y, phi, scale)
+        if not bool(ok):
+            return None
+        return float(x), float(y), float(phi)
+
+    fwd = [pose0]
+    for i in range(1, n + 1):
+        nxt = advance(Kf, i, fwd[-1])
+        if nxt is None or abs(nxt[2] - fwd[-1][2]) > 0.5:
+            break
+        fwd.append(nxt)
+    if len(fwd) == n + 1:           # a whole turn: the table is periodic
+        qs = grid_f[:n]
+        rows = fwd[:n]
+        return (tuple(map(float, qs)),) + tuple(tuple(r[k] for r in rows)
+                                                 for k in range(3)), 2 * math.pi
+    m = n - (len(fwd) - 1)
+    grid_b = q0 - step * np.arange(m + 1)
+    Kb = known(grid_b)
+    bwd = [pose0]
+    for i in range(1, m + 1):
+        nxt = advance(Kb, i, bwd[-1])
+        if nxt is None or abs(nxt[2] - bwd[-1][2]) > 0.5:
+            break
+        bwd.append(nxt)
+    qs = list(grid_b[1:len(bwd)][::-1]) + list(grid_f[:len(fwd)])
+    rows = bwd[1:][::-1] + fwd
+    return (tuple(map(float, qs)),) + tuple(tuple(r[k] for r in rows) for k in range(3)), 0.0
+
+
+class _Pt:
+    __slots__ = ("x", "y")
+
+    def __init__(self, x, y):
+        self.x, self.y = x, y
