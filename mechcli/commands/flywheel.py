@@ -33,8 +33,16 @@ def flywheel(spec_path, **opts):
     bad = report.non_finite(sol)
     if bad:     # an extreme spec: the motion overflows; nothing is written
         raise UnsolvableError(bad)
+    if sol.swing is not None and not sol.swing[0] < 2.0:
+        from mechcli.spec.errors import SpecError
+        key = "flywheel.dW" if spec.flywheel.dW is not None else "moment"
+        raise SpecError(spec_path, key, "an energy swing below 2 J ωm² (δ = "
+                        "ΔWmax/(J ωm²) < 2: the least speed stays positive)",
+                        f"δ = {sol.swing[0]:.6g}")
     outputs = Outputs(run.out_dir, digits=run.digits)
     outputs.csv("flywheel.csv", report.columns(sol))
+    if sol.loops is not None:
+        outputs.csv("loops.csv", report.loop_rows(sol))
     warnings = report.warnings(spec, sol)
     if run.animate and not hasattr(sol.motion, "omega"):
         warnings.append("no animation: the spec asks for no motion (no [motion] table)")

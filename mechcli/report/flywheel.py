@@ -24,6 +24,43 @@ def _f(x, nd=4):
     return f"{x:.{nd}f}"
 
 
+#: r/min per rad/s
+_RPM = 30.0 / math.pi
+
+
+def _cycle_results(spec, sol):
+    """The numbers of a cycle: its length, the loop table's ΔWmax and where the speed
+    peaks, the work per cycle, the mean moment and power, the balancing mean term."""
+    r = {"cycle_deg": math.degrees(sol.period)}
+    if sol.mean_term is not None:
+        name, value = sol.mean_term
+        r["Mr_mean_N_m" if name == "resisting" else "Md_mean_N_m"] = float(value)
+    lp = sol.loops
+    if lp is not None:
+        r.update(dE_max_J=float(lp.dW_max), phi_E_max_deg=math.degrees(lp.phi_max),
+                 phi_E_min_deg=math.degrees(lp.phi_min), loops=int(lp.areas.size))
+    if sol.dW_trapezoid is not None:
+        r["dE_max_trapezoid_J"] = float(sol.dW_trapezoid)
+    if sol.work_per_cycle is not None:
+        r["work_per_cycle_J"] = float(sol.work_per_cycle)
+        r["M_mean_N_m"] = float(sol.work_per_cycle / sol.period)
+        if sol.omega_m is not None:
+            r["power_mean_W"] = float(sol.work_per_cycle / sol.period * sol.omega_m)
+    if sol.equation is not None:
+        r["J_F_equation"] = sol.equation
+    if sol.motion_with_J_F:
+        r["motion_with_J_F"] = True
+    return r
+
+
+def loop_rows(sol):
+    """``loops.csv``: each loop's ends, energy and the cumulative energy at its end."""
+    import numpy as np
+    lp = sol.loops
+    return [("phi_from_deg", np.degrees(lp.bounds[:-1])), ("phi_to_deg", np.degrees(lp.bounds[1:])),
+            ("dE_J", lp.areas), ("E_J", lp.cumulative[1:])]
+
+
 def results(spec, sol):
     """The scalar results (names from the issue: stable for scripts and CI)."""
     import numpy as np
@@ -39,9 +76,15 @@ def results(spec, sol):
     if sol.swing is not None:
         r["delta_from_dW"], r["omega_max_from_dW_rad_s"], r["omega_min_from_dW_rad_s"] = \
             (float(x) for x in sol.swing)
+        if spec.flywheel.rpm:
+            r["n_max_from_dW_rpm"] = float(sol.swing[1]) * _RPM
+            r["n_min_from_dW_rpm"] = float(sol.swing[2]) * _RPM
+    r.update(_cycle_results(spec, sol))
     if not hasattr(m, "omega"):       # the equivalent model only
-        if sol.J_F is not None:
-            r["J_F_kg_m2"] = float(sol.J_F)
+        for key, val in (("J_F_kg_m2", sol.J_F), ("flywheel_mass_kg", sol.mass),
+                         ("flywheel_width_m", sol.width)):
+            if val is not None:
+                r[key] = float(val)
         return r
     w = np.asarray(m.omega, dtype=float)
     r["omega_max_rad_s"], r["omega_min_rad_s"] = float(w.max()), float(w.min())
@@ -64,9 +107,14 @@ def results(spec, sol):
                  delta=float(st.delta), delta_avg=float(st.delta_avg),
                  dW_max_J=float(st.dW_max), iterations=int(st.iterations),
                  periodicity_residual_rad_s=float(st.residual), root=st.root)
+        if spec.flywheel.rpm:
+            r.update(n_mean_rpm=float(st.omega_mean) * _RPM,
+                     n_max_rpm=float(st.omega_max) * _RPM,
+                     n_min_rpm=float(st.omega_min) * _RPM)
     for key, val in (("J_F_kg_m2", sol.J_F), ("J_F_approx_kg_m2", sol.J_F_approx),
                      ("J_F_delta", sol.J_F_delta), ("omega_inf_rad_s", sol.omega_inf),
-                     ("flywheel_mass_kg", sol.mass), ("flywheel_width_m", sol.width)):
+                     ("flywheel_mass_kg", sol.mass), ("flywheel_width_m", sol.width),
+                     ("flywheel_mass_approx_kg", sol.mass_approx)):
         if val is not None:
             r[key] = float(val)
     return r
@@ -97,9 +145,17 @@ def warnings(spec, sol):
                        f"{st.omega_mean:.9g} rad/s misses the {sol.omega_balance:.9g} rad/s "
                        "the energy balance requires (the motor's damping changes ω too little "
                        "per period for the integrator's tolerance): tighten rtol/atol")
-    if st is not None and spec.flywheel.delta is not None:
+    if st is not None and spec.flywheel.delta is not None and sol.motion_with_J_F:
+        out.append("the machine cannot run at that mean speed without a flywheel: delta, the "
+                   f"speeds and the CSV describe it with the sized J_F = {sol.J_F:.6g} kg m²")
+    elif st is not None and spec.flywheel.delta is not None:
         out.append("delta, the speeds and the CSV describe the machine without the sized "
                    f"flywheel; with J_F = {sol.J_F:.6g} kg m², δ = {sol.J_F_delta:.6g}")
+    if sol.dW_trapezoid is not None and sol.loops is not None:
+        d = sol.loops.dW_max - sol.dW_trapezoid
+        out.append(f"integration = \"simpson\": ΔWmax = {sol.loops.dW_max:.6g} J; the same "
+                   f"tables read linearly (the trapezoid rule) give {sol.dW_trapezoid:.6g} J "
+                   f"({d:+.4g} J, {d / sol.dW_trapezoid:+.3%})")
     return out
 
 
@@ -138,6 +194,18 @@ def build_report(spec, sol, lang):
                  _f(m.Me[i], 2), _f(m.omega[i], 5), _f(m.alpha[i], 3)] for i in idx]
     rep.blocks.append(Block(_label(lang, "Motion of the equivalent link", "等效构件的运动"),
                             heads, rows))
+    if sol.loops is not None:
+        lp = sol.loops
+        rows = [[str(i + 1), _f(math.degrees(lp.bounds[i]), 3),
+                 _f(math.degrees(lp.bounds[i + 1]), 3),
+                 ("+" if lp.areas[i] >= 0 else "") + _f(lp.areas[i], 3),
+                 _f(lp.cumulative[i + 1], 3)] for i in range(lp.areas.size)]
+        rep.blocks.append(Block(
+            _label(lang, "Loops of the diagram about its mean (+ excess, − deficit energy)",
+                   "等效力矩曲线与平均值间的盈亏功"),
+            [_label(lang, "loop", "区段"), _label(lang, "from [deg]", "起 φ/°"),
+             _label(lang, "to [deg]", "止 φ/°"), "ΔE [J]", _label(lang, "E [J]", "累计 E/J")],
+            rows))
     r = results(spec, sol)
     kv = []
     for key, en, zh, nd in (
@@ -150,13 +218,32 @@ def build_report(spec, sol, lang):
             ("delta", "δ (with eq. 6-26)", "速度不均匀系数 δ", 6),
             ("delta_avg", "δ (with eq. 6-27)", "δ (式 6-27)", 6),
             ("dW_max_J", "ΔWmax [J]", "最大盈亏功 ΔWmax/J", 4),
+            ("cycle_deg", "cycle [deg]", "周期 φT/°", 2),
+            ("Mr_mean_N_m", "resisting moment = the mean [N m]", "阻抗力矩 (平均值)", 4),
+            ("Md_mean_N_m", "driving moment = the mean [N m]", "驱动力矩 (平均值)", 4),
+            ("work_per_cycle_J", "work per cycle [J]", "每周期功/J", 4),
+            ("M_mean_N_m", "mean moment [N m]", "平均力矩", 4),
+            ("power_mean_W", "mean power [W]", "平均功率/W", 3),
+            ("dE_max_J", "ΔWmax of the loops [J]", "盈亏功 ΔWmax (区段)", 4),
+            ("dE_max_trapezoid_J", "ΔWmax, tables read linearly (trapezoid) [J]",
+             "ΔWmax (梯形法)", 4),
+            ("phi_E_max_deg", "ω max at (loops) [deg]", "ωmax 位置/°", 3),
+            ("phi_E_min_deg", "ω min at (loops) [deg]", "ωmin 位置/°", 3),
+            ("n_mean_rpm", "n mean [r/min]", "平均转速 n/(r/min)", 4),
+            ("n_max_rpm", "n max [r/min]", "nmax", 4),
+            ("n_min_rpm", "n min [r/min]", "nmin", 4),
             ("J_F_kg_m2", "flywheel J_F [kg m2]", "飞轮转动惯量 J_F", 4),
+            ("J_F_equation", "J_F by eq.", "J_F 公式", None),
             ("delta_from_dW", "δ from ΔWmax (eq. 6-29)", "由 ΔWmax 得 δ", 6),
             ("omega_max_from_dW_rad_s", "ω max (eq. 6-28) [rad/s]", "ωmax (式 6-28)", 6),
             ("omega_min_from_dW_rad_s", "ω min (eq. 6-28) [rad/s]", "ωmin (式 6-28)", 6),
+            ("n_max_from_dW_rpm", "n max (eq. 6-28) [r/min]", "nmax (式 6-28)", 4),
+            ("n_min_from_dW_rpm", "n min (eq. 6-28) [r/min]", "nmin (式 6-28)", 4),
             ("J_F_approx_kg_m2", "J_F by eq. 6-29 [kg m2]", "J_F (式 6-29)", 4),
             ("J_F_delta", "δ with J_F", "加飞轮后 δ", 6),
             ("flywheel_mass_kg", "flywheel mass [kg]", "飞轮质量/kg", 3),
+            ("flywheel_mass_approx_kg", "mass of J_F by eq. 6-29 [kg]", "飞轮质量 (式 6-29)", 3),
+            ("flywheel_width_m", "flywheel width [m]", "飞轮宽度/m", 5),
             ("omega_inf_rad_s", "asymptotic ω [rad/s]", "稳定角速度 ω∞", 6),
             ("t_final_s", "t at the end [s]", "终止时间 t/s", 6),
             ("omega_final_rad_s", "ω at the end [rad/s]", "终止角速度", 6),
@@ -181,13 +268,17 @@ def error_message(exc, spec):
              "not_positive": "[inertia] J", "end": "[motion]", "method": "[motion] method",
              "no_flywheel_needed": "[flywheel] delta", "cannot_assemble": "[mechanism]",
              "dead_point": "[mechanism]", "stiff": "[motion] method",
-             "moment_not_periodic": "[moment]", "inertia_vanishes": "[[link]]"}.get(reason, "")
+             "moment_not_periodic": "[moment]", "inertia_vanishes": "[[link]]",
+             "no_loops": "[moment]"}.get(reason, "")
     text = str(exc)
     if reason == "stall" and "phi" in v:
         text += f" (at phi = {math.degrees(v['phi']):.6g} deg)"
     if reason == "unreachable" and "omega_inf" in v:
         text += (f" (the speed tends to {v['omega_inf']:.6g} rad/s and never reaches "
                  f"{v['omega_end']:.6g})")
+    if reason in ("no_loops", "no_steady_state") and "net_work" in v:
+        text += (f" (the net work per cycle is {v['net_work']:.6g} J: make a term the mean, "
+                 'e.g. resisting = "mean")')
     if reason in ("cannot_assemble", "dead_point", "inertia_vanishes") and "angle" in v:
         text += f" (at phi = {math.degrees(v['angle']):.6g} deg)"
     return f"{where}: {text}" if where else text

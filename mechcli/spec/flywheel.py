@@ -5,13 +5,17 @@ a linkage (``[mechanism]`` and ``[[link]]`` tables, read as ``force`` reads them
 chain of constant ratios, a table against φ or a constant (``[inertia]``); its
 moment from the linkage's ``[[load]]`` tables and/or ``[moment]`` terms (a table
 against φ, a motor line a − bω, a constant resisting moment, a harmonic series,
-piecewise-linear segments).  ``[motion]`` says what to solve: a run from a start
+piecewise-linear segments), each over one period (``period_deg``: 360 by default,
+720 for a four-stroke engine).  ``[motion]`` says what to solve: a run from a start
 (``kind = "start"``) or the periodic steady state (``kind = "steady"``);
-``[flywheel]`` adds a flywheel or sizes one for an allowed δ.  See docs/flywheel.md.
+``[flywheel]`` adds a flywheel (J, or mass and radius of gyration) or sizes one for an
+allowed δ, in a steady state or from an energy swing.  Every key a form does not use is
+an error naming it.  See docs/flywheel.md.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from pathlib import Path
 from typing import Optional, Tuple
@@ -20,7 +24,7 @@ from mechcli.core.records import record
 from mechcli.spec.common import Header, read_expected, read_header
 from mechcli.spec.errors import SpecError
 from mechcli.spec.force import MAX_FORCE, MAX_INERTIA, read_bodies, read_gravity, read_loads
-from mechcli.spec.reader import load_spec
+from mechcli.spec.reader import REQUIRED, load_spec
 
 #: the largest |ω| [rad/s] and angle [deg] a spec may give (a 1e6 rad/s shaft is
 #: already beyond any machine; angles within a hundred turns)
@@ -31,11 +35,17 @@ MIN_INERTIA = 1e-12
 #: output grid: points over the solved interval (the CSV rows and the plots)
 MAX_POINTS = 100_001
 METHODS = ("auto", "DOP853", "RK45", "Radau", "book", "energy", "closed_form")
+#: rad/s per r/min
+RPM = math.pi / 30.0
+#: the longest period a table or series may have [deg]: a cycle of 100 turns
+MAX_PERIOD_DEG = 36000.0
+#: how a moment table's work is integrated (the interpolation that integrates exactly so)
+INTEGRATIONS = ("exact", "trapezoid", "simpson")
 
 
 @record
 class InertiaSpec:
-    kind: str                    # "linkage", "constant", "table", "chain"
+    kind: str                    # "linkage", "constant", "table", "chain", "none" (Je = 0)
     J: float = 0.0               # constant [kg m^2]
     phi: tuple = ()              # table [rad]
     values: tuple = ()           # table [kg m^2]
@@ -45,6 +55,7 @@ class InertiaSpec:
     derivative: str = "exact"    # linkage: dJe/dphi exact or by central differences
     step: float = 1e-5           # linkage: difference step [rad]
     samples: int = 3600          # linkage: angles per turn of the Hermite table the motion uses
+    period: float = 2 * math.pi  # table: its period [rad]
 
 
 @record
@@ -52,12 +63,14 @@ class MomentSpec:
     constant: float = 0.0                  # [N m]
     drive: Optional[Tuple[float, float]] = None    # Md = a - b omega
     resisting: float = 0.0                 # constant Mr, subtracted
-    table: Optional[tuple] = None          # (phi [rad], M [N m], method), added
-    resisting_table: Optional[tuple] = None    # (phi, Mr, method), subtracted
-    harmonic: Optional[tuple] = None       # (a0, (a_k), (b_k))
+    table: Optional[tuple] = None          # (phi [rad], M [N m], method, period, integration)
+    resisting_table: Optional[tuple] = None    # (phi, Mr, method, period, integration)
+    harmonic: Optional[tuple] = None       # (a0, (a_k), (b_k), period [rad])
     segments: tuple = ()                   # (phi_from, phi_to, M_from, M_to) [rad, N m]
     torques: tuple = ()                    # chain: (M, ratio)
     loads: bool = False                    # the linkage's [[load]] tables and gravity
+    period: float = 2 * math.pi            # [moment] period_deg: the segments' (and default)
+    mean: Optional[str] = None             # "constant" | "resisting": the term = "mean"
 
 
 @record
@@ -80,7 +93,7 @@ class MotionSpec:
 
 @record
 class FlywheelPart:
-    J: float = 0.0               # a flywheel added [kg m^2]
+    J: float = 0.0               # a flywheel added [kg m^2] (J, or mass k²)
     delta: Optional[float] = None    # allowed speed fluctuation [δ]: size J_F
     shape: Optional[str] = None  # "rim" | "disc"
     radius: Optional[float] = None     # a rim's mean radius, a disc's radius [m]
@@ -88,6 +101,8 @@ class FlywheelPart:
     thickness: Optional[float] = None  # a rim's radial thickness [m]
     dW: Optional[float] = None         # a given largest energy swing ΔWmax [J] (eq. 6-28)
     omega_mean: Optional[float] = None   # ... and the mean speed [rad/s]
+    k: Optional[float] = None          # a radius of gyration [m]: the mass J/k² of a sized J_F
+    rpm: bool = False                  # the speeds were given in r/min (also report them so)
 
 
 @record
@@ -117,9 +132,18 @@ def _deg_array(sec, name, size=None):
     return tuple(math.radians(v) for v in vals)
 
 
-def _table(sec, value_key, lo, hi, what, methods=("cubic", "linear", "fourier")):
-    """``phi_deg = [...]`` and ``<value_key> = [...]`` of one period, increasing φ; the
-    interpolation ``method``, the first of *methods* by default."""
+def _period(sec, default=2 * math.pi):
+    """``period_deg`` [deg] -> [rad]: the angle after which the table or series repeats
+    (360 by default; 720 for a four-stroke engine's cycle)."""
+    deg = sec.number("period_deg", None, lo=1e-3, hi=MAX_PERIOD_DEG)
+    return default if deg is None else math.radians(deg)
+
+
+def _table(sec, value_key, lo, hi, what, methods=("cubic", "linear", "fourier"),
+           default_period=2 * math.pi):
+    """``phi_deg = [...]`` and ``<value_key> = [...]`` of one period (``period_deg``),
+    increasing φ; the interpolation ``method``, the first of *methods* by default.
+    Returns ``(phi, values, method, period)``."""
     phi = _deg_array(sec, "phi_deg")
     vals = sec.numbers(value_key, size=len(phi))
     if len(phi) < 3 or any(b <= a for a, b in zip(phi, phi[1:])):
@@ -130,21 +154,34 @@ def _table(sec, value_key, lo, hi, what, methods=("cubic", "linear", "fourier"))
             raise SpecError(sec.file, sec.key(f"{value_key}[{i}]"),
                             f"{what} in [{lo:g}, {hi:g}]", f"{v:g}")
     method = sec.string("method", methods[0], choices=list(methods))
-    return phi, tuple(vals), method
+    period = _period(sec, default_period)
+    span = phi[-1] - phi[0]
+    if span > period * (1 + 1e-9):
+        raise sec.error("phi_deg", f"angles within one period ({math.degrees(period):g}°; "
+                        "a longer cycle needs period_deg, e.g. 720 for a four-stroke engine)",
+                        f"a span of {math.degrees(span):g}°")
+    return phi, tuple(vals), method, period
 
 
-def _inertia(root, has_linkage):
+def _inertia(root, has_linkage, optional=False):
+    """The inertia forms; *optional*: the spec sizes or gives a flywheel, so without an
+    [inertia] the machine's own is neglected (Je = 0, eq. 6-30)."""
     sec = root.table("inertia", None)
     if sec is None:
-        if not has_linkage:
-            raise root.error("inertia", "an [inertia] table or a [mechanism] with [[link]] "
-                             "tables (the equivalent inertia comes from one of them)",
-                             "neither")
-        return InertiaSpec("linkage")
+        if has_linkage:
+            return InertiaSpec("linkage")
+        if optional:
+            return InertiaSpec("none")
+        raise root.error("inertia", "an [inertia] table or a [mechanism] with [[link]] "
+                         "tables (the equivalent inertia comes from one of them), or a "
+                         "[flywheel] that carries it", "neither")
     if has_linkage:
         # the linkage's own inertia, dJe by the exact coefficients or differences
         derivative = sec.string("derivative", "exact", choices=["exact", "difference"])
         # difference step [deg]: 1e-6 .. 1 (the benchmark measures its error)
+        if derivative != "difference" and sec.has("step_deg"):
+            raise sec.error("step_deg", 'no step with derivative = "exact" (the step of '
+                            'derivative = "difference")', repr(sec.raw("step_deg")))
         step = math.radians(sec.number("step_deg", 1e-3, lo=1e-6, hi=1.0))
         # the motion interpolates Je, dJe between exact samples (error ~h^4; the
         # benchmark measures it): 360 .. 360,000 per turn
@@ -152,11 +189,17 @@ def _inertia(root, has_linkage):
         sec.finish()
         return InertiaSpec("linkage", derivative=derivative, step=step, samples=samples)
     if sec.has("phi_deg"):
-        phi, vals, method = _table(sec, "J", MIN_INERTIA, MAX_INERTIA,
-                                   "a positive inertia [kg m²]")
+        phi, vals, method, period = _table(sec, "J", MIN_INERTIA, MAX_INERTIA,
+                                           "a positive inertia [kg m²]")
+        if abs(phi[-1] - phi[0] - period) > 1e-9 * period:
+            raise sec.error("phi_deg", f"a table over exactly one period "
+                            f"({math.degrees(period):g}°, period_deg): the last angle one "
+                            "period after the first", f"a span of "
+                            f"{math.degrees(phi[-1] - phi[0]):g}°")
         sec.finish()
-        return InertiaSpec("table", phi=phi, values=vals, method=method)
-    if sec.has("member") or sec.has("mass"):
+        return InertiaSpec("table", phi=phi, values=vals, method=method, period=period)
+    # [[inertia.mass]] tables: the chain's sliding members (a number: J = mass k²)
+    if sec.has("member") or isinstance(sec.data.get("mass"), (list, dict)):
         members = []
         for t in sec.tables("member", []):
             members.append((t.number("J", lo=MIN_INERTIA, hi=MAX_INERTIA),
@@ -169,9 +212,39 @@ def _inertia(root, has_linkage):
             t.finish()
         sec.finish()
         return InertiaSpec("chain", members=tuple(members), masses=tuple(masses))
-    J = sec.number("J", lo=MIN_INERTIA, hi=MAX_INERTIA)
+    J = _mass_k(sec, "J", MIN_INERTIA)
     sec.finish()
     return InertiaSpec("constant", J=J)
+
+
+def _mass_k(sec, key, lo, default=REQUIRED, k_alone=False):
+    """``J`` [kg m²], or ``mass`` [kg] with ``k``, the radius of gyration [units]: J = m k²
+    (problems give a flywheel or a rotor so).  Not both.  *k_alone*: ``k`` without
+    ``mass`` is another key's business (a sized flywheel's radius of gyration)."""
+    if sec.has("mass") or (sec.has("k") and not k_alone):
+        if sec.has(key):
+            raise sec.error("mass" if sec.has("mass") else "k", f"either {key} or mass and "
+                            "k (J = m k²), not both", "both")
+        if not (sec.has("mass") and sec.has("k")):
+            raise sec.error("k" if sec.has("mass") else "mass", "mass and k together "
+                            "(J = m k², k the radius of gyration)", "one of them")
+        # a mass up to 1e9 kg (a million tonnes: far beyond any rotor)
+        m = sec.number("mass", positive=True, hi=1e9)
+        k = sec.length("k")
+        J = m * k * k
+        if not lo <= J <= MAX_INERTIA:
+            raise sec.error("mass", f"m k² in [{lo:g}, {MAX_INERTIA:g}] kg m²", f"{J:g}")
+        return J
+    return sec.number(key, default, lo=lo, hi=MAX_INERTIA)
+
+
+def _mean_or_number(sec, name):
+    """A constant moment [N m], or ``"mean"``: the value that makes the work over a cycle
+    vanish (the textbook's "the resisting moment is the mean"), computed by the core."""
+    if isinstance(sec.data.get(name), str):
+        sec.string(name, choices=["mean"])
+        return "mean"
+    return sec.number(name, 0.0, lo=-MAX_FORCE, hi=MAX_FORCE)
 
 
 def _moment(root, has_loads):
@@ -182,37 +255,61 @@ def _moment(root, has_loads):
                              "(the equivalent moment comes from them)", "neither")
         return MomentSpec(loads=True)
     kw = {"loads": has_loads}
-    kw["constant"] = sec.number("constant", 0.0, lo=-MAX_FORCE, hi=MAX_FORCE)
+    period = _period(sec)
+    kw["period"] = period
+    constant = _mean_or_number(sec, "constant")
     if sec.has("drive"):
         a, b = sec.numbers("drive", size=2)       # Md = a - b omega [N m, N m s]
         if abs(a) > MAX_FORCE or abs(b) > MAX_FORCE:
             raise sec.error("drive", f"[a, b] within ±{MAX_FORCE:g}", repr([a, b]))
         kw["drive"] = (a, b)
-    kw["resisting"] = sec.number("resisting", 0.0, lo=-MAX_FORCE, hi=MAX_FORCE)
+    resisting = _mean_or_number(sec, "resisting")
+    means = [n for n, v in (("constant", constant), ("resisting", resisting)) if v == "mean"]
+    if len(means) > 1:
+        raise sec.error("resisting", 'one term = "mean" (the other balances it)',
+                        'constant and resisting both "mean"')
+    if means and "drive" in kw and kw["drive"][1] != 0:
+        raise sec.error(means[0], 'a number with a motor line drive = [a, b] (the mean of a '
+                        "moment of ω depends on the motion)", '"mean"')
+    kw["mean"] = means[0] if means else None
+    kw["constant"] = 0.0 if constant == "mean" else constant
+    kw["resisting"] = 0.0 if resisting == "mean" else resisting
     for name in ("table", "resisting_table"):
         t = sec.table(name, None)
         if t is not None:
             # linear by default: the work is then exact, and a jump of the moment between
             # two nodes (表 6-2: 727 -> 85 N m) does not overshoot as a spline would
-            kw[name] = _table(t, "M", -MAX_FORCE, MAX_FORCE, "a moment [N m]",
-                              ("linear", "cubic"))
-            t.finish()
-    for name in ("table", "resisting_table"):
-        if name in kw:
-            phi_t, M_t, _m = kw[name]
-            if abs(phi_t[-1] - phi_t[0] - 2 * math.pi) <= 1e-9 and M_t[-1] != M_t[0]:
+            phi_t, M_t, method, per = _table(t, "M", -MAX_FORCE, MAX_FORCE, "a moment [N m]",
+                                             ("linear", "cubic"), period)
+            integration = t.string("integration", "exact", choices=list(INTEGRATIONS))
+            if integration != "exact" and t.has("method"):
+                raise t.error("method", f'no method with integration = "{integration}" '
+                              "(the rule fixes the interpolation: trapezoid = linear, "
+                              "simpson = a parabola over each pair of intervals)",
+                              repr(t.raw("method")))
+            if integration == "trapezoid":
+                method = "linear"
+            elif integration == "simpson":
+                method = "quadratic"
+                closed = abs(phi_t[-1] - phi_t[0] - per) <= 1e-9 * per
+                n = len(phi_t) - 1 if closed else len(phi_t)
+                if n % 2:
+                    raise t.error("integration", "an even number of intervals per period "
+                                  "for Simpson's rule", f"{n} intervals")
+            kw[name] = (phi_t, M_t, method, per, integration)
+            if abs(phi_t[-1] - phi_t[0] - per) <= 1e-9 * per and M_t[-1] != M_t[0]:
                 raise SpecError(sec.file, sec.key(f"{name}.M"), "a last moment equal to the "
-                                "first (phi_deg spans a whole turn: the table is periodic)",
+                                "first (phi_deg spans a whole period: the table is periodic)",
                                 f"{M_t[0]:g} and {M_t[-1]:g}")
-            if phi_t[-1] - phi_t[0] > 2 * math.pi + 1e-9:
-                raise SpecError(sec.file, sec.key(f"{name}.phi_deg"),
-                                "angles within one turn", f"a span of "
-                                f"{math.degrees(phi_t[-1] - phi_t[0]):g}°")
-    if "table" in kw and "resisting_table" in kw and kw["table"][0] != kw[
-            "resisting_table"][0] and "cubic" in (kw["table"][2], kw["resisting_table"][2]):
-        raise sec.error("resisting_table", "the same phi_deg as [moment.table] when either "
-                        "is cubic (linear tables on different angles are summed exactly)",
-                        "other angles")
+            t.finish()
+    if "table" in kw and "resisting_table" in kw and kw["table"][1:] != kw[
+            "resisting_table"][1:] and ("linear", "linear") != (kw["table"][2],
+                                                               kw["resisting_table"][2]) and (
+            kw["table"][0] != kw["resisting_table"][0] or kw["table"][2:4]
+            != kw["resisting_table"][2:4]):
+        raise sec.error("resisting_table", "the same phi_deg and period as [moment.table] "
+                        "unless both are linear (linear tables on different angles are "
+                        "summed exactly)", "other angles")
     h = sec.table("harmonic", None)
     if h is not None:
         a0 = h.number("a0", 0.0, lo=-MAX_FORCE, hi=MAX_FORCE)
@@ -221,7 +318,7 @@ def _moment(root, has_loads):
         if len(a) > 100 or len(b) > 100 or any(abs(x) > MAX_FORCE for x in a + b):
             raise h.error("a", f"at most 100 coefficients within ±{MAX_FORCE:g}",
                           f"{len(a)} and {len(b)}")
-        kw["harmonic"] = (a0, a, b)
+        kw["harmonic"] = (a0, a, b, _period(h, period))
         h.finish()
     segs = []
     for s in sec.tables("segment", []):
@@ -239,6 +336,9 @@ def _moment(root, has_loads):
             raise sec.error("segment", "segments that do not overlap",
                             f"[{math.degrees(a[0]):g}, {math.degrees(a[1]):g}]° and "
                             f"[{math.degrees(b[0]):g}, {math.degrees(b[1]):g}]°")
+    if segs and max(x[1] for x in segs) - min(x[0] for x in segs) > period * (1 + 1e-9):
+        raise sec.error("segment", f"segments within one period ({math.degrees(period):g}°; "
+                        "a longer cycle needs [moment] period_deg)", "a longer span")
     kw["segments"] = tuple(segs)
     torques = []
     for t in sec.tables("torque", []):
@@ -246,28 +346,67 @@ def _moment(root, has_loads):
                         t.number("ratio", lo=-1e6, hi=1e6)))
         t.finish()
     kw["torques"] = tuple(torques)
+    for name in ("table", "resisting_table"):
+        if has_loads and name in kw and kw[name][2] != "linear":
+            raise sec.error(f"{name}.method", "a linear table (the loads of the linkage are "
+                            "summed with it as a linear table every 0.1°)", kw[name][2])
+    if not (segs or "table" in kw or "resisting_table" in kw or "harmonic" in kw) \
+            and sec.has("period_deg"):
+        raise sec.error("period_deg", "a period only with a table, a harmonic series or "
+                        "segments (the terms that vary with φ)", repr(sec.raw("period_deg")))
+    if kw["mean"] and not (segs or "table" in kw or "resisting_table" in kw
+                           or "harmonic" in kw or has_loads):
+        raise sec.error(kw["mean"], '"mean" with a moment that varies with φ (a table, a '
+                        "harmonic series, segments or loads)", '"mean"')
     sec.finish()
     return MomentSpec(**kw)
 
 
-def _motion(root):
+def _speed(sec, name, rpm_name, default=REQUIRED, lo=0.0):
+    """A speed [rad/s] given as ``name`` [rad/s] or ``rpm_name`` [r/min] (not both).
+    Returns ``(value, given in r/min)``."""
+    if sec.has(rpm_name):
+        if sec.has(name):
+            raise sec.error(rpm_name, f"either {name} [rad/s] or {rpm_name} [r/min], not "
+                            "both", "both")
+        if lo > 0:
+            return sec.number(rpm_name, positive=True, hi=MAX_OMEGA / RPM) * RPM, True
+        return sec.number(rpm_name, lo=0.0, hi=MAX_OMEGA / RPM) * RPM, True
+    sec.declare(rpm_name)
+    if lo > 0:
+        return sec.number(name, default, positive=True, hi=MAX_OMEGA), False
+    return sec.number(name, default, lo=0.0, hi=MAX_OMEGA), False
+
+
+def _unused(sec, keys, why):
+    """Exit 2 on the first of *keys* the section has: the form does not use it."""
+    for k in keys:
+        if sec.has(k):
+            raise sec.error(k, f"no {k} {why}", repr(sec.raw(k)))
+
+
+def _motion(root, omega_dependent):
+    """[motion]; *omega_dependent*: the moment has a motor line −bω (else Me(φ) only)."""
     sec = root.table("motion", None)
     if sec is None:
-        # no motion asked: the equivalent model only, over one turn (例 6-1)
+        # no motion asked: the equivalent model only, over one cycle (例 6-1)
         out = root.table("output", None)
         points = 361 if out is None else out.integer("points", 361, lo=2, hi=MAX_POINTS)
         return MotionSpec("model", 0.0, 0.0, 2 * math.pi, None, None, "none", 1e-10, 1e-12,
-                          None, points, "shooting", 1e-10, 200)
+                          None, points, "shooting", 1e-10, 200), False
+    out = root.table("output", None)
+    if out is not None:
+        _unused(out, ["points"], "here with [motion] (its own points key sets the grid)")
     kind = sec.string("kind", "start", choices=["start", "steady"])
     phi0 = math.radians(sec.number("phi0_deg", 0.0, lo=-MAX_ANGLE_DEG, hi=MAX_ANGLE_DEG))
     # the equivalent link turns forward: ω0 = 0 (a start from rest) up to 1e6 rad/s
-    omega0 = sec.number("omega0", lo=0.0, hi=MAX_OMEGA)
+    omega0, rpm = _speed(sec, "omega0", "n0_rpm")
     phi_end = omega_end = t_end = None
     if kind == "start":
-        ends = [k for k in ("phi_end_deg", "omega_end", "t_end") if sec.has(k)]
+        ends = [k for k in ("phi_end_deg", "omega_end", "n_end_rpm", "t_end") if sec.has(k)]
         if len(ends) != 1:
             raise sec.error(ends[1] if ends else "phi_end_deg",
-                            "exactly one end: phi_end_deg, omega_end or t_end",
+                            "exactly one end: phi_end_deg, omega_end (n_end_rpm) or t_end",
                             ", ".join(ends) or "none")
         if ends[0] == "phi_end_deg":
             phi_end = math.radians(sec.number("phi_end_deg", lo=-MAX_ANGLE_DEG,
@@ -275,14 +414,33 @@ def _motion(root):
             if not phi_end > phi0:
                 raise sec.error("phi_end_deg", f"an angle above phi0_deg = "
                                 f"{math.degrees(phi0):g}", f"{math.degrees(phi_end):g}")
-        elif ends[0] == "omega_end":
-            omega_end = sec.number("omega_end", lo=0.0, hi=MAX_OMEGA)
+        elif ends[0] in ("omega_end", "n_end_rpm"):
+            omega_end, _ = _speed(sec, "omega_end", "n_end_rpm")
         else:
             t_end = sec.number("t_end", positive=True, hi=1e9)
+        _unused(sec, ["root", "tol", "max_iter"], 'with kind = "start" (the steady state\'s '
+                "search)")
     elif omega0 <= 0:
-        raise sec.error("omega0", "a positive speed (the guess of the steady state)",
-                        f"{omega0:g}")
+        raise sec.error("n0_rpm" if rpm else "omega0",
+                        "a positive speed (the guess of the steady state)", f"{omega0:g}")
     method = sec.string("method", "auto", choices=list(METHODS))
+    # what "auto" resolves to, as solve_flywheel resolves it (the keys of the others unused)
+    resolved = method
+    if kind == "start" and phi_end is None:
+        resolved = "closed_form" if method == "auto" else method
+    elif not omega_dependent and method == "auto":
+        resolved = "energy"
+    if kind == "steady" and not omega_dependent:
+        if method not in ("auto", "energy"):
+            raise sec.error("method", 'auto or "energy": the steady state of a moment of φ '
+                            "only is the exact energy integral", f"'{method}'")
+        _unused(sec, ["rtol", "atol", "root"], "for a moment of φ only (the steady state is "
+                "the exact energy integral at the mean speed omega0)")
+    if resolved in ("energy", "closed_form", "book"):
+        _unused(sec, ["rtol", "atol"], f'with method "{resolved}" (the tolerances of '
+                "DOP853, RK45 and Radau)")
+    if method != "book":
+        _unused(sec, ["step_deg"], 'without method = "book" (its fixed step)')
     # tolerances of the adaptive methods (relative to omega): 1e-14 is round-off
     rtol = sec.number("rtol", 1e-10, lo=1e-14, hi=1e-2)
     atol = sec.number("atol", 1e-12, lo=1e-300, hi=1.0)
@@ -301,18 +459,91 @@ def _motion(root):
     sec.finish()
     return MotionSpec(kind, phi0, omega0, phi_end, omega_end, t_end, method, rtol, atol,
                       None if step is None else math.radians(step), points, root_method, tol,
-                      max_iter)
+                      max_iter), rpm
 
 
-def _flywheel(root):
+#: the keys of [flywheel] that describe its shape (they need a J_F to size)
+SHAPE_KEYS = ("shape", "radius", "thickness", "density", "k")
+#: the keys of the energy-swing forms (no [motion])
+SWING_KEYS = ("dW", "energy_coefficient", "work_per_cycle", "omega_mean", "n_mean_rpm")
+
+
+def _flywheel(root, motion, has_moment):
+    """[flywheel] in the form *motion* allows (see docs/flywheel.md):
+
+    * with [motion]: ``J`` (or ``mass`` and ``k``) added, or ``delta`` sized in the steady
+      state; the energy-swing keys are refused (the motion gives ΔW and ωm);
+    * without: the energy swing (``dW``, or ``energy_coefficient`` × ``work_per_cycle``, or
+      the moment's diagram) at ``omega_mean`` (``n_mean_rpm``) gives δ for a given J, or J_F
+      for ``delta``.
+    """
     sec = root.table("flywheel", None)
     if sec is None:
         return FlywheelPart()
-    J = sec.number("J", 0.0, nonneg=True, hi=MAX_INERTIA)
-    delta = sec.number("delta", None, lo=1e-9, hi=2.0)
+    J = _mass_k(sec, "J", 0.0, 0.0, k_alone=True)
+    given = J > 0 or sec.has("mass")
+    if sec.has("delta") and sec.has("Cs"):
+        raise sec.error("Cs", "either delta or Cs (the same coefficient of speed "
+                        "fluctuation), not both", "both")
+    # δ = (ωmax − ωmin)/ωm lies in (0, 2): at 2 the least speed is 0
+    dkey = "Cs" if sec.has("Cs") else "delta"
+    delta = sec.number(dkey, None, lo=1e-9, hi=2.0)
+    if delta is not None and delta >= 2.0:
+        raise sec.error(dkey, "a coefficient in (0, 2) (at 2 the least speed is 0)",
+                        f"{delta:g}")
+    sec.declare("delta")
+    if given and delta is not None:
+        raise sec.error(dkey, "either J (mass and k: a given flywheel) or delta (size one), "
+                        "not both", "both")
+    if motion.kind != "model":
+        _unused(sec, SWING_KEYS, "with [motion] (the motion gives the energy swing and the "
+                "mean speed)")
+        if motion.kind == "start":
+            _unused(sec, ["delta", "Cs"], 'with kind = "start" (a flywheel is sized in the '
+                    'steady state: kind = "steady")')
+    dW = omega_mean = None
+    rpm = False
+    if motion.kind == "model":
+        if sec.has("dW") and (sec.has("energy_coefficient") or sec.has("work_per_cycle")):
+            raise sec.error("energy_coefficient", "either dW or energy_coefficient with "
+                            "work_per_cycle (ΔW = Ce W), not both", "both")
+        if sec.has("energy_coefficient") != sec.has("work_per_cycle"):
+            raise sec.error("work_per_cycle" if sec.has("energy_coefficient")
+                            else "energy_coefficient", "energy_coefficient and work_per_cycle "
+                            "together (ΔWmax = Ce × W per cycle)", "one of them")
+        if sec.has("energy_coefficient"):
+            # the coefficient of fluctuation of energy: ΔWmax/W, at most a few (0.1 .. 1.3)
+            ce = sec.number("energy_coefficient", positive=True, hi=100.0)
+            dW = ce * sec.number("work_per_cycle", positive=True, hi=1e15)
+        else:
+            dW = sec.number("dW", None, positive=True, hi=1e15)
+        omega_mean, rpm = _speed(sec, "omega_mean", "n_mean_rpm", None, lo=1.0)
+        if dW is not None and omega_mean is None:
+            raise sec.error("omega_mean", "the mean speed with the energy swing (eq. 6-28): "
+                            "omega_mean [rad/s] or n_mean_rpm", "nothing")
+        if omega_mean is not None and dW is None and not has_moment:
+            raise sec.error("dW", "the energy swing with the mean speed: dW [J], or "
+                            "energy_coefficient and work_per_cycle, or a [moment] diagram",
+                            "nothing")
+        if delta is not None and omega_mean is None:
+            raise sec.error(dkey, "delta with the mean speed and the energy swing (eq. "
+                            "6-29: J_F = ΔWmax/(ωm² δ) − Je): omega_mean or n_mean_rpm",
+                            "no mean speed")
+    sized = delta is not None
+    if not (sized or J > 0):
+        _unused(sec, SHAPE_KEYS, "without a flywheel to shape (J, or delta to size one)")
+    if sec.has("mass"):
+        _unused(sec, SHAPE_KEYS[:-1], "with mass and k (the flywheel's mass is given)")
     shape = sec.string("shape", None, choices=["rim", "disc"])
     radius = sec.length("radius", None)
     density = sec.number("density", None, positive=True, hi=1e6)
+    k = None if sec.has("mass") else sec.length("k", None)
+    if k is not None and shape is not None:
+        raise sec.error("k", "either k (the radius of gyration: m = J/k²) or shape with "
+                        "radius, not both", "both")
+    if density is not None and shape is None:
+        raise sec.error("density", "a density with shape = \"rim\" or \"disc\" (it gives the "
+                        "width)", f"{density:g} without a shape")
     # a rim's radial thickness (its width then follows from the mass and the density)
     thickness = sec.length("thickness", None)
     if thickness is not None and (shape != "rim" or radius is None
@@ -321,17 +552,39 @@ def _flywheel(root):
                         "(shape = \"rim\")", f"{thickness:g} m")
     if shape is not None and radius is None:
         raise sec.error("radius", f"the {shape}'s radius (with shape)", "nothing")
-    # eq. 6-28 from numbers: the speeds a given energy swing leaves (J_e + J)
-    dW = sec.number("dW", None, positive=True, hi=1e15)
-    omega_mean = sec.number("omega_mean", None, positive=True, hi=MAX_OMEGA)
-    if (dW is None) != (omega_mean is None):
-        raise sec.error("omega_mean" if dW is not None else "dW",
-                        "dW and omega_mean together (eq. 6-28)", "one of them")
-    if J > 0 and delta is not None:
-        raise sec.error("delta", "either J (a given flywheel) or delta (size one), not both",
-                        "both")
+    if radius is not None and shape is None:
+        raise sec.error("shape", "shape = \"rim\" or \"disc\" with radius", "nothing")
+    if shape == "disc" and thickness is not None:
+        raise sec.error("thickness", "no thickness for a disc (a rim's)", f"{thickness:g}")
     sec.finish()
-    return FlywheelPart(J, delta, shape, radius, density, thickness, dW, omega_mean)
+    return FlywheelPart(J, delta, shape, radius, density, thickness, dW, omega_mean, k, rpm)
+
+
+def _check_periods(root, inertia, moment, has_linkage):
+    """The periods of the inertia and the moment's terms must divide the longest one (the
+    cycle): 360° and 720° make a 720° cycle; 360° and 500° make none."""
+    periods = []            # (period [rad], the key that set it)
+    if has_linkage:
+        periods.append((2 * math.pi, "mechanism"))
+    if inertia.kind == "table":
+        periods.append((inertia.period, "inertia.period_deg"))
+    if moment is not None:
+        for name in ("table", "resisting_table"):
+            t = getattr(moment, name)
+            if t is not None:
+                periods.append((t[3], f"moment.{name}.period_deg"))
+        if moment.harmonic is not None:
+            periods.append((moment.harmonic[3], "moment.harmonic.period_deg"))
+        if moment.segments:
+            periods.append((moment.period, "moment.period_deg"))
+    if not periods:
+        return
+    T = max(p for p, _ in periods)
+    for p, key in periods:
+        r = T / p
+        if abs(r - round(r)) > 1e-9 * r:
+            raise SpecError(root.file, key, f"a period that divides the longest one "
+                            f"({math.degrees(T):g}°: the cycle)", f"{math.degrees(p):g}°")
 
 
 def read_flywheel_spec(path, overrides=()) -> FlywheelSpec:
@@ -362,17 +615,34 @@ def read_flywheel_spec(path, overrides=()) -> FlywheelSpec:
         gravity = read_gravity(root)
         quantities = default_quantities(linkage, 2, list(linkage.point_names))
         loads = tuple(read_loads(root, topo, linkage.frame, True, quantities))
-    inertia = _inertia(root, linkage is not None)
-    motion = _motion(root)
+    fly_sec = root.table("flywheel", None)
+    carries = fly_sec is not None and any(fly_sec.has(k) for k in (
+        "J", "mass", "delta", "Cs"))
+    inertia = _inertia(root, linkage is not None, optional=carries)
+    mom = root.table("moment", None)
+    drive = None if mom is None else mom.data.get("drive")
+    omega_dependent = isinstance(drive, list) and len(drive) == 2 and drive[1] != 0
+    motion, rpm = _motion(root, omega_dependent)
     has_loads = bool(loads) or (linkage is not None and any(gravity))
     moment = _moment(root, has_loads) if motion.kind != "model" or root.has("moment") \
         or has_loads else None
-    fly = _flywheel(root)
+    fly = _flywheel(root, motion, moment is not None)
+    if rpm:         # [motion] n0_rpm: the speeds are reported in r/min too
+        fly = dataclasses.replace(fly, rpm=True)
+    if inertia.kind == "none" and motion.kind == "model" and not fly.J and (
+            fly.delta is None) and fly.dW is None:
+        raise root.error("inertia", "an [inertia] (the model has no inertia without it)",
+                         "nothing")
+    if inertia.kind == "none" and fly.J == 0 and fly.delta is None:
+        raise root.error("inertia", "an [inertia], or a [flywheel] J or delta (the machine "
+                         "needs an inertia to move)", "nothing")
+    _check_periods(root, inertia, moment, linkage is not None)
     out = root.table("output", None)
     plots = True
     if out is not None:
         plots = out.boolean("plots", True)
-        out.integer("points", 361, lo=2, hi=MAX_POINTS)     # read by _motion (no [motion])
+        if motion.kind == "model":
+            out.integer("points", 361, lo=2, hi=MAX_POINTS)     # read by _motion
         out.finish()
     expected = read_expected(root, overrides)
     root.finish()

@@ -130,6 +130,18 @@ class ConstantInertia(InertiaModel):
         return Je, np.zeros_like(Je)
 
 
+class ZeroInertia(InertiaModel):
+    """No inertia of the machine's own (Je = 0): the textbook's machine whose flywheel
+    carries all of it (eq 6-30).  Only useful with a flywheel added (``plus``)."""
+
+    period = None
+    constant = True
+
+    def _evaluate(self, phi):
+        Je = np.zeros_like(phi)
+        return Je, np.zeros_like(Je)
+
+
 class ChainInertia(ConstantInertia):
     """Je of members turning (or sliding) at constant ratios to the input: a gear train
     (eq 6-4 with constant ratios; the book's note (2) after eq 6-4: Je is then constant).
@@ -186,14 +198,14 @@ def chain_moment(torques, forces=()):
 # a table over one turn
 # ---------------------------------------------------------------------------
 class TableInertia(InertiaModel):
-    """Je tabulated over exactly one turn of the input (表 6-2, 例 6-4), interpolated
-    periodically.
+    """Je tabulated over exactly one period of the input (表 6-2, 例 6-4: one turn),
+    interpolated periodically.
 
     Parameters
     ----------
     phi : array
-        Input angles [rad], strictly increasing, ``phi[-1] - phi[0]`` = 2π (the last node
-        closes the turn, as 表 6-2's 0° ... 360°).
+        Input angles [rad], strictly increasing, ``phi[-1] - phi[0]`` = ``period`` (the
+        last node closes the period, as 表 6-2's 0° ... 360°).
     J : array
         Je at ``phi`` [kg m²], positive; ``J[-1]`` equals ``J[0]`` to ``PERIODIC_RTOL``.
     method : {"cubic", "linear", "fourier"}
@@ -206,6 +218,8 @@ class TableInertia(InertiaModel):
         * ``"fourier"``: trigonometric interpolation through the N = len(phi) - 1 nodes
           (needs equal steps); Je and dJe smooth (analytic), but it may overshoot between
           nodes where the table has a kink.  Costs N/2 terms per evaluated angle.
+    period : float
+        The period [rad]: 2π (one turn, the default), 4π for a four-stroke cycle.
 
     Raises
     ------
@@ -216,11 +230,11 @@ class TableInertia(InertiaModel):
         ``expected`` [rad], for ``"fourier"``), ``"not_positive"`` (``value``).
     """
 
-    period = TWO_PI
     constant = False
     METHODS = ("cubic", "linear", "fourier")
 
-    def __init__(self, phi, J, *, method="cubic"):
+    def __init__(self, phi, J, *, method="cubic", period=TWO_PI):
+        self.period = T = float(period)
         phi = np.asarray(phi, dtype=float).ravel()
         J = np.asarray(J, dtype=float).ravel()
         if method not in self.METHODS:
@@ -236,8 +250,8 @@ class TableInertia(InertiaModel):
             raise DescribedError("the table's angles must increase", reason="not_increasing",
                                  angle=float(phi[k]))
         span = float(phi[-1] - phi[0])
-        if abs(span - TWO_PI) > SPAN_RTOL * TWO_PI:
-            raise DescribedError("the table must span exactly one turn of the input",
+        if abs(span - T) > SPAN_RTOL * T:
+            raise DescribedError("the table must span exactly one period of the input",
                                  reason="not_one_period", span=span)
         _positive(J, "equivalent moment of inertia")
         if abs(J[-1] - J[0]) > PERIODIC_RTOL * float(np.max(np.abs(J))):
@@ -255,22 +269,22 @@ class TableInertia(InertiaModel):
             self._slopes = np.diff(J) / steps
         else:
             n = phi.size - 1
-            if np.max(np.abs(steps - TWO_PI / n)) > SPAN_RTOL * TWO_PI:
-                k = int(np.argmax(np.abs(steps - TWO_PI / n)))
+            if np.max(np.abs(steps - T / n)) > SPAN_RTOL * T:
+                k = int(np.argmax(np.abs(steps - T / n)))
                 raise DescribedError("Fourier interpolation needs equal steps",
                                      reason="not_uniform", step=float(steps[k]),
-                                     expected=TWO_PI / n)
+                                     expected=T / n)
             c = np.fft.rfft(J[:-1]) / n
             weight = np.full(c.size, 2.0)
             weight[0] = 1.0
             if n % 2 == 0:
                 weight[-1] = 1.0  # the Nyquist term cos(n/2 (φ - φ0)) taken once
             self._coef = weight * c
-            self._k = np.arange(c.size, dtype=float)
+            self._k = np.arange(c.size, dtype=float) * (TWO_PI / T)
 
     def _evaluate(self, phi):
         x0 = self.phi[0]
-        t = np.mod(phi - x0, TWO_PI)
+        t = np.mod(phi - x0, self.period)
         if self.method == "cubic":
             x = x0 + t
             return self._spline(x), self._slope(x)

@@ -95,7 +95,8 @@ def _as_inertia(inertia):
 
 
 def _breaks_of(model):
-    """``(periodic_knots, period_base, aperiodic_knots)`` where a model may have a kink.
+    """``(periodic_knots, period_base, aperiodic_knots[, period])`` where a model may have
+    a kink (the period 2π when the tuple has no fourth item).
 
     A :class:`MomentModel` declares them; a table inertia (``.phi`` nodes over one turn,
     spline or linear) has them at its nodes; other models have none.
@@ -107,18 +108,20 @@ def _breaks_of(model):
     if getattr(model, "period", None) and nodes is not None \
             and getattr(model, "method", "") in ("cubic", "linear"):
         nodes = np.asarray(nodes, dtype=float)
-        return nodes, float(nodes[0]), np.empty(0)
+        return nodes, float(nodes[0]), np.empty(0), float(model.period)
     return None
 
 
 class _Piecewise:
-    """Piecewise-linear ``M(φ)`` on segments (jumps allowed), optionally 2π-periodic.
+    """Piecewise-linear ``M(φ)`` on segments (jumps allowed), optionally periodic.
 
     ``starts``, ``ends``, ``m0``, ``m1``: the segments, sorted and not overlapping; zero
-    outside them.  Periodic: the segments cover ``[starts[0], starts[0] + 2π]``.
+    outside them.  Periodic: the segments cover ``[starts[0], starts[0] + period]``
+    (``period`` [rad], 2π by default: 4π for a four-stroke engine's cycle).
     """
 
-    def __init__(self, starts, ends, m0, m1, periodic):
+    def __init__(self, starts, ends, m0, m1, periodic, period=TWO_PI):
+        self.period = float(period)
         self.starts, self.ends = np.asarray(starts, float), np.asarray(ends, float)
         self.m0, self.m1 = np.asarray(m0, float), np.asarray(m1, float)
         self.periodic = periodic
@@ -133,7 +136,7 @@ class _Piecewise:
 
     def scalar(self, p):
         """``M(p)`` for one float angle (the integrators' fast path)."""
-        x = self.base + (p - self.base) % TWO_PI if self.periodic else p
+        x = self.base + (p - self.base) % self.period if self.periodic else p
         starts = self._starts
         i = bisect.bisect_right(starts, x) - 1
         if i < 0:
@@ -146,11 +149,12 @@ class _Piecewise:
         phi = np.asarray(phi, dtype=float)
         if not self.periodic:
             return phi, np.zeros_like(phi)
-        turns = np.floor((phi - self.base) / TWO_PI)
-        x = phi - TWO_PI * turns
+        T = self.period
+        turns = np.floor((phi - self.base) / T)
+        x = phi - T * turns
         # rounding may put x a hair beyond the period end: it belongs to the next turn
-        over = x >= self.base + TWO_PI
-        return np.where(over, x - TWO_PI, x), turns + over
+        over = x >= self.base + T
+        return np.where(over, x - T, x), turns + over
 
     def _index(self, x):
         return np.clip(np.searchsorted(self.starts, x, side="right") - 1, 0, len(self.starts) - 1)
@@ -177,24 +181,25 @@ class _Piecewise:
 class _PeriodicCubic:
     """A periodic cubic spline through a closed table, with its exact primitive."""
 
-    def __init__(self, xp, fp):
+    def __init__(self, xp, fp, period=TWO_PI):
         from scipy.interpolate import CubicSpline
 
+        self.period = float(period)
         self.base = float(xp[0])
         self.spline = CubicSpline(xp, fp, bc_type="periodic")
         self.anti = self.spline.antiderivative()
-        self.per_turn = float(self.anti(self.base + TWO_PI) - self.anti(self.base))
+        self.per_turn = float(self.anti(self.base + self.period) - self.anti(self.base))
         self.knots = np.asarray(xp, dtype=float)
         self.periodic = True
 
     def scalar(self, p):
         """``M(p)`` for one float angle."""
-        return float(self.spline(self.base + (p - self.base) % TWO_PI))
+        return float(self.spline(self.base + (p - self.base) % self.period))
 
     def _reduce(self, phi):
         phi = np.asarray(phi, dtype=float)
-        turns = np.floor((phi - self.base) / TWO_PI)
-        return phi - TWO_PI * turns, turns
+        turns = np.floor((phi - self.base) / self.period)
+        return phi - self.period * turns, turns
 
     def __call__(self, phi):
         x, _ = self._reduce(phi)
@@ -205,8 +210,60 @@ class _PeriodicCubic:
         return turns * self.per_turn + self.anti(x) - self.anti(self.base)
 
 
-def _closed_table(phi, M):
-    """The nodes of a periodic table closed at ``phi[0] + 2π`` (the wrap node appended)."""
+class _PeriodicQuadratic(_PeriodicCubic):
+    """Simpson's rule as a model: over each pair of intervals of a closed table the
+    parabola through its three nodes (eq. of the composite Simpson rule: the primitive at
+    every even node is the Simpson sum, on equal or unequal steps).  The number of
+    intervals must be even."""
+
+    def __init__(self, xp, fp, period=TWO_PI):
+        xp, fp = np.asarray(xp, dtype=float), np.asarray(fp, dtype=float)
+        n = xp.size - 1
+        if n % 2:
+            raise ValueError("Simpson's rule needs an even number of intervals per period")
+        self.period, self.base, self.periodic = float(period), float(xp[0]), True
+        x0, x1, x2 = xp[0:-1:2], xp[1::2], xp[2::2]
+        f0, f1, f2 = fp[0:-1:2], fp[1::2], fp[2::2]
+        h1, h2 = x1 - x0, x2 - x0
+        # M = f0 + c1 d + c2 d² in d = φ − x0 through (x1, f1) and (x2, f2)
+        s1, s2 = (f1 - f0) / h1, (f2 - f0) / h2
+        self.c2 = (s2 - s1) / (h2 - h1)
+        self.c1 = s1 - self.c2 * h1
+        self.c0, self.starts, self.width = f0, x0, h2
+        whole = h2 * (f0 + h2 * (0.5 * self.c1 + self.c2 * h2 / 3.0))
+        self.before = np.concatenate(([0.0], np.cumsum(whole)))
+        self.per_turn = float(self.before[-1])
+        self.knots = np.append(x0, xp[-1])
+        self._lists = (x0.tolist(), self.c0.tolist(), self.c1.tolist(), self.c2.tolist())
+
+    def _index(self, x):
+        return np.clip(np.searchsorted(self.starts, x, side="right") - 1, 0,
+                       self.starts.size - 1)
+
+    def scalar(self, p):
+        x = self.base + (p - self.base) % self.period
+        starts, c0, c1, c2 = self._lists
+        i = min(max(bisect.bisect_right(starts, x) - 1, 0), len(starts) - 1)
+        d = x - starts[i]
+        return c0[i] + d * (c1[i] + c2[i] * d)
+
+    def __call__(self, phi):
+        x, _ = self._reduce(phi)
+        i = self._index(x)
+        d = x - self.starts[i]
+        return self.c0[i] + d * (self.c1[i] + self.c2[i] * d)
+
+    def primitive(self, phi):
+        x, turns = self._reduce(phi)
+        i = self._index(x)
+        d = np.clip(x - self.starts[i], 0.0, self.width[i])
+        part = d * (self.c0[i] + d * (0.5 * self.c1[i] + self.c2[i] * d / 3.0))
+        return turns * self.per_turn + self.before[i] + part
+
+
+def _closed_table(phi, M, period=TWO_PI):
+    """The nodes of a periodic table closed at ``phi[0] + period`` (the wrap node
+    appended)."""
     phi = np.asarray(phi, dtype=float).ravel()
     M = np.asarray(M, dtype=float).ravel()
     if phi.size != M.size or phi.size < 2:
@@ -216,53 +273,65 @@ def _closed_table(phi, M):
     if np.any(np.diff(phi) <= 0):
         raise ValueError("the angles of a moment table must increase")
     span = phi[-1] - phi[0]
-    close = abs(span - TWO_PI) <= _ANGLE_RTOL * TWO_PI
-    if span > TWO_PI and not close:
-        raise ValueError("a periodic moment table spans at most one turn (2π)")
+    T = float(period)
+    close = abs(span - T) <= _ANGLE_RTOL * T
+    if span > T and not close:
+        raise ValueError("a periodic moment table spans at most one period")
     if close:
         if abs(M[-1] - M[0]) > _ANGLE_RTOL * max(1.0, np.max(np.abs(M))):
             raise ValueError("a periodic moment table must end with the moment it starts with")
         phi = phi.copy()
-        phi[-1] = phi[0] + TWO_PI
+        phi[-1] = phi[0] + T
         return phi, M
-    return np.append(phi, phi[0] + TWO_PI), np.append(M, M[0])
+    return np.append(phi, phi[0] + T), np.append(M, M[0])
 
 
 class MomentModel:
     """The equivalent moment ``Me(φ, ω)`` on the input link (eq 6-2), a sum of terms.
 
-    ``Me(φ, ω) = constant + table(φ) + (a − b ω) + a0 + Σ_k (a_k sin kφ + b_k cos kφ)
-    + segments(φ)``.
+    ``Me(φ, ω) = constant + table(φ) + (a − b ω) + a0 + Σ_k (a_k sin kνφ + b_k cos kνφ)
+    + segments(φ)`` with ν = 2π/``period`` (1 for one turn).
 
     Parameters
     ----------
     table : tuple, optional
         ``(phi, M)`` or ``(phi, M, method)``: a periodic table [rad, N·m] over at most one
-        turn (a closing node at ``phi[0] + 2π`` may repeat the first moment; otherwise it is
-        added), interpolated by ``method`` ``"linear"`` (default; exact piecewise-linear
-        work) or ``"cubic"`` (periodic cubic spline).
+        period (a closing node at ``phi[0] + period`` may repeat the first moment; otherwise
+        it is added), interpolated by ``method`` ``"linear"`` (default; exact
+        piecewise-linear work: the trapezoid rule), ``"cubic"`` (periodic cubic spline) or
+        ``"quadratic"`` (a parabola over each pair of intervals: Simpson's rule; an even
+        number of intervals).
     linear : (float, float), optional
         ``(a, b)``: the motor characteristic ``a − b ω`` [N·m, N·m·s] (例 6-3, 例 6-4).
     harmonic : tuple, optional
-        ``(a0, (a1, a2, ...), (b1, b2, ...))``: ``a0 + Σ a_k sin kφ + b_k cos kφ`` [N·m].
+        ``(a0, (a1, a2, ...), (b1, b2, ...))``: ``a0 + Σ a_k sin kνφ + b_k cos kνφ`` [N·m].
     segments : sequence of (float, float, float, float), optional
         ``(phi_from, phi_to, M_from, M_to)``: linear pieces [rad, N·m], zero outside; they
-        may not overlap.  Periodic only when they join end to end over exactly one turn.
+        may not overlap.  Periodic only when they join end to end over exactly one period.
     constant : float, optional
         A constant moment [N·m] (a constant drive, or minus a constant resistance).
+    period : float, optional
+        The period of every periodic term [rad]: 2π (one turn, the default), 4π for the
+        cycle of a four-stroke engine.
 
     Attributes
     ----------
     depends_on_omega, depends_on_phi : bool
     period : float or None
-        2π when a periodic term varies with φ and no aperiodic segment spoils it, else None.
-    breaks : (ndarray, float, ndarray)
-        ``(periodic knots, their base angle, aperiodic knots)``: the angles where ``Me`` or
-        its slope may jump (table nodes, segment ends), for the integrators to stop at.
+        ``period`` when a periodic term varies with φ and no aperiodic segment spoils it,
+        else None.
+    breaks : (ndarray, float, ndarray, float)
+        ``(periodic knots, their base angle, aperiodic knots, period)``: the angles where
+        ``Me`` or its slope may jump (table nodes, segment ends), for the integrators to
+        stop at.
     """
 
     def __init__(self, *, table=None, linear=None, harmonic=None, segments=None,
-                 constant=0.0):
+                 constant=0.0, period=TWO_PI):
+        T = float(period)
+        if not (math.isfinite(T) and T > 0):
+            raise ValueError("the period must be positive")
+        nu = TWO_PI / T
         self.constant = float(constant)
         if not math.isfinite(self.constant):
             raise ValueError("the constant moment must be finite")
@@ -272,11 +341,14 @@ class MomentModel:
         self._table = None
         if table is not None:
             method = table[2] if len(table) > 2 else "linear"
-            xp, fp = _closed_table(table[0], table[1])
+            xp, fp = _closed_table(table[0], table[1], T)
             if method == "linear":
-                self._table = _Piecewise(xp[:-1], xp[1:], fp[:-1], fp[1:], periodic=True)
+                self._table = _Piecewise(xp[:-1], xp[1:], fp[:-1], fp[1:], periodic=True,
+                                         period=T)
             elif method == "cubic":
-                self._table = _PeriodicCubic(xp, fp)
+                self._table = _PeriodicCubic(xp, fp, T)
+            elif method == "quadratic":
+                self._table = _PeriodicQuadratic(xp, fp, T)
             else:
                 raise ValueError(f"unknown table interpolation {method!r}")
         self._harm = None
@@ -289,8 +361,9 @@ class MomentModel:
             if not (math.isfinite(float(a0)) and np.all(np.isfinite(ak))
                     and np.all(np.isfinite(bk))):
                 raise ValueError("the harmonic coefficients must be finite")
-            self._harm = (float(a0), ak, bk, np.arange(1, n + 1, dtype=float))
-            self._harm_lists = (ak.tolist(), bk.tolist(), list(range(1, n + 1)))
+            # the angular "frequencies" k ν of the harmonics [1/rad]
+            self._harm = (float(a0), ak, bk, nu * np.arange(1, n + 1, dtype=float))
+            self._harm_lists = (ak.tolist(), bk.tolist(), self._harm[3].tolist())
         self._seg = None
         if segments:
             seg = np.asarray(segments, dtype=float).reshape(-1, 4)
@@ -300,15 +373,16 @@ class MomentModel:
             if np.any(seg[:, 1] <= seg[:, 0]):
                 raise ValueError("every moment segment must end after it starts")
             gaps = seg[1:, 0] - seg[:-1, 1]
-            tol = _ANGLE_RTOL * TWO_PI
+            tol = _ANGLE_RTOL * T
             if np.any(gaps < -tol):
                 raise ValueError("moment segments may not overlap")
             periodic = bool(np.all(np.abs(gaps) <= tol)
-                            and abs(seg[-1, 1] - seg[0, 0] - TWO_PI) <= tol)
+                            and abs(seg[-1, 1] - seg[0, 0] - T) <= tol)
             if periodic:
                 seg[1:, 0] = seg[:-1, 1]
-                seg[-1, 1] = seg[0, 0] + TWO_PI
-            self._seg = _Piecewise(seg[:, 0], seg[:, 1], seg[:, 2], seg[:, 3], periodic)
+                seg[-1, 1] = seg[0, 0] + T
+            self._seg = _Piecewise(seg[:, 0], seg[:, 1], seg[:, 2], seg[:, 3], periodic,
+                                   period=T)
         harm_varies = self._harm is not None and bool(np.any(self._harm[1]) or
                                                       np.any(self._harm[2]))
         periodic_varies = self._table is not None or harm_varies or (
@@ -316,7 +390,7 @@ class MomentModel:
         aperiodic = self._seg is not None and not self._seg.periodic
         self.depends_on_omega = self.b != 0.0
         self.depends_on_phi = periodic_varies or aperiodic
-        self.period = TWO_PI if periodic_varies and not aperiodic else None
+        self.period = T if periodic_varies and not aperiodic else None
         knots, base = [], 0.0
         for part in (self._table, self._seg):
             if part is not None and part.periodic:
@@ -324,12 +398,12 @@ class MomentModel:
                 knots.append(part.knots)
         if knots:
             k = np.concatenate(knots)
-            k = base + np.mod(k - base, TWO_PI)
+            k = base + np.mod(k - base, T)
             knots = np.unique(k)
         else:
             knots = np.empty(0)
         aper = self._seg.knots if aperiodic else np.empty(0)
-        self.breaks = (knots, base, aper)
+        self.breaks = (knots, base, aper, T)
 
     def scalar(self, p, w):
         """``Me(p, w)`` for one float angle and speed (the integrators' fast path)."""
@@ -396,14 +470,15 @@ class MomentModel:
 def _breaks_in(breaks, lo, hi):
     if breaks is None:
         return np.empty(0)
-    knots, base, aper = breaks
+    knots, base, aper = breaks[:3]
+    T = float(breaks[3]) if len(breaks) > 3 else TWO_PI
     out = [np.asarray(aper, dtype=float)]
     knots = np.asarray(knots, dtype=float)
     if knots.size:
-        n0 = math.floor((lo - base) / TWO_PI)
-        n1 = math.floor((hi - base) / TWO_PI)
+        n0 = math.floor((lo - base) / T)
+        n1 = math.floor((hi - base) / T)
         turns = np.arange(n0, n1 + 1)
-        out.append((base + TWO_PI * turns[:, None] + knots[None, :]).ravel())
+        out.append((base + T * turns[:, None] + knots[None, :]).ravel())
     allk = np.unique(np.concatenate(out))
     tol = _ANGLE_RTOL * max(1.0, abs(lo), abs(hi))
     return allk[(allk > lo + tol) & (allk < hi - tol)]
@@ -959,15 +1034,33 @@ def integrate(inertia, moment, phi0, omega0, phi_end, *, method="DOP853", rtol=1
 # --------------------------------------------------------------------------- steady state
 
 
+def cycle(*periods):
+    """The cycle of models of these periods [rad] (None: constant): the longest, which
+    every other must divide (2π and 4π: 4π, a four-stroke engine); 2π when none varies.
+
+    Raises
+    ------
+    ValueError
+        A period that does not divide the longest.
+    """
+    ps = [float(p) for p in periods if p is not None]
+    if not ps:
+        return TWO_PI
+    T = max(ps)
+    for p in ps:
+        r = T / p
+        if abs(r - round(r)) > 1e-9 * r:
+            raise ValueError("the periods of the inertia and the moment must divide the "
+                             "longest one")
+    return T
+
+
 def _period(inertia, moment):
     if getattr(inertia, "period", None) is None and not getattr(inertia, "constant", False):
         raise ValueError("the steady state needs a periodic or constant inertia")
-    for p in (getattr(inertia, "period", None), moment.period):
-        if p is not None and abs(p - TWO_PI) > _ANGLE_RTOL * TWO_PI:
-            raise ValueError("the steady state needs models of period 2π")
     if moment.depends_on_phi and moment.period is None:
         raise ValueError("the steady state needs a periodic moment (or one of ω alone)")
-    return TWO_PI
+    return cycle(getattr(inertia, "period", None), moment.period)
 
 
 def _extreme(f, phi, i, sign):
@@ -1275,7 +1368,7 @@ def flywheel_approx(dW_max, omega_m, delta, Je=0.0):
 
 def flywheel_exact(inertia, moment, delta, *, omega_guess, method="DOP853", rtol=1e-10,
                    atol=1e-12, step=None, mean="integral", tol=1e-9, max_iter=100,
-                   points=361):
+                   points=361, swing=None):
     """The flywheel ``J_F`` whose steady state with the variable Je meets [δ].
 
     Solves ``δ(J_F) = [δ]`` where ``δ(J_F)`` is the coefficient of fluctuation (eq 6-25) of
@@ -1300,6 +1393,11 @@ def flywheel_exact(inertia, moment, delta, *, omega_guess, method="DOP853", rtol
         Most brentq iterations (and bracket doublings).
     points : int
         Grid of each steady state.
+    swing : (float, float, float), optional
+        ``(ΔWmax [J], ωm [rad/s], mean Je [kg·m²])`` of the diagram at the mean speed: the
+        first estimate (eq 6-29) when the machine has no steady state of its own (Je = 0,
+        or too small to carry the swing at that mean speed: it cannot run without its
+        flywheel).  Without it such a machine raises as :func:`steady_state` does.
 
     Returns
     -------
@@ -1333,21 +1431,40 @@ def flywheel_exact(inertia, moment, delta, *, omega_guess, method="DOP853", rtol
     def d_of(s):
         return s.delta if mean == "integral" else s.delta_avg
 
-    s0 = ss(0.0)
-    d0 = d_of(s0)
-    if d0 <= target:
-        raise DescribedError("the machine needs no flywheel", reason="no_flywheel_needed",
-                             delta=d0)
-    Jm = float(np.mean(s0.motion.Je))
-    wm = s0.omega_mean if mean == "integral" else s0.omega_avg
-    J1 = max(s0.dW_max / (wm ** 2 * target) - Jm, 1e-6 * Jm)
+    cannot = (DescribedError,) if swing is not None else ()
+    grid = np.linspace(0.0, TWO_PI, 361)
+    s0 = None
+    if float(np.max(inertia(grid)[0])) > 0.0:
+        try:
+            s0 = ss(0.0)
+        except cannot as e:     # the machine cannot run without its flywheel
+            if e.reason not in ("no_steady_state", "stall"):
+                raise
+    if s0 is not None:
+        d0 = d_of(s0)
+        if d0 <= target:
+            raise DescribedError("the machine needs no flywheel", reason="no_flywheel_needed",
+                                 delta=d0)
+        Jm = float(np.mean(s0.motion.Je))
+        wm = s0.omega_mean if mean == "integral" else s0.omega_avg
+        J1 = max(s0.dW_max / (wm ** 2 * target) - Jm, 1e-6 * Jm)
+        h0 = 1.0 / target - 1.0 / d0
+    else:
+        dW, wm, Jm = (float(v) for v in swing)
+        J1 = max(dW / (wm ** 2 * target) - Jm, 1e-9 * dW / (wm ** 2 * target))
+        h0 = 1.0 / target       # δ(0) unbounded
 
     def h(JF):  # δ ≈ ΔW/(ωm²(J_F + Je)) makes 1/δ nearly linear in J_F
-        return 1.0 / target - 1.0 / d_of(ss(JF))
+        try:
+            return 1.0 / target - 1.0 / d_of(ss(JF))
+        except cannot as e:     # still too light to run at that mean: more J_F
+            if e.reason not in ("no_steady_state", "stall"):
+                raise
+            return 1.0 / target
 
     # safeguarded secant on h (nearly linear): a root bracket [lo, hi] once h changes sign,
     # bisection whenever the secant leaves it
-    lo, h_lo = 0.0, 1.0 / target - 1.0 / d0
+    lo, h_lo = 0.0, h0
     hi = None
     a, h_a, b = 0.0, h_lo, J1
     for _ in range(max_iter):

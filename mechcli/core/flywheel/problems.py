@@ -13,6 +13,7 @@ from typing import Any, Optional
 import numpy as np
 
 from mechcli.core.errors import DescribedError
+from mechcli.core.flywheel import diagram as dg
 from mechcli.core.flywheel import equivalent as eq
 from mechcli.core.flywheel import motion as mo
 from mechcli.core.records import record
@@ -66,6 +67,15 @@ class FlywheelSolution:
     width: Optional[float] = None       # its width along the shaft [m]
     swing: Optional[tuple] = None       # (δ, ωmax, ωmin) from a given ΔWmax (eq. 6-28)
     omega_balance: Optional[float] = None   # ωm by the energy balance (Me linear in ω)
+    period: float = 2 * np.pi           # the cycle [rad]
+    loops: Optional[Any] = None         # diagram.EnergyLoops at the mean speed
+    dW_trapezoid: Optional[float] = None    # ΔWmax with the Simpson tables read linearly
+    mean_term: Optional[tuple] = None   # ("constant" | "resisting", its value [N m])
+    work_per_cycle: Optional[float] = None  # the driving work over a cycle [J]
+    omega_m: Optional[float] = None     # the mean speed the figures of a cycle use [rad/s]
+    equation: Optional[str] = None      # "6-29" | "6-30": J_F from ΔWmax (no [motion])
+    mass_approx: Optional[float] = None     # the mass of J_F_approx [kg]
+    motion_with_J_F: bool = False       # the motion reported carries the sized J_F
 
 
 def build_inertia(part, linkage=None, bodies=None, followers=None):
@@ -74,22 +84,40 @@ def build_inertia(part, linkage=None, bodies=None, followers=None):
         return eq.LinkageInertia(linkage, bodies, followers=followers or None,
                                  derivative=part.derivative, step=part.step)
     if part.kind == "table":
-        return eq.TableInertia(np.asarray(part.phi), np.asarray(part.values), method=part.method)
+        return eq.TableInertia(np.asarray(part.phi), np.asarray(part.values), method=part.method,
+                               period=part.period)
+    if part.kind == "none":
+        return eq.ZeroInertia()
     if part.kind == "chain":
         return eq.ChainInertia(part.members, masses=part.masses)
     return eq.ConstantInertia(part.J)
 
 
-def _tables(part, linkage_moment):
-    """The φ-tables of the moment summed into one (phi, M, method)."""
+def _repeat_table(phi, M, period, cycle):
+    """A table of ``period`` repeated over ``cycle`` (a whole multiple): the same periodic
+    interpolant (linear, cubic spline, Simpson parabolas) on the longer cycle."""
+    xp, fp = mo._closed_table(phi, M, period)
+    m = int(round(cycle / period))
+    if m == 1:
+        return xp, fp
+    shift = period * np.arange(m)[:, None]
+    return (np.append((xp[:-1] + shift).ravel(), xp[0] + cycle),
+            np.append(np.tile(fp[:-1], m), fp[0]))
+
+
+def _tables(part, linkage_moment, cycle, only=None):
+    """The φ-tables of the moment summed into one (phi, M, method) over ``cycle``.
+    ``only``: "table" or "resisting_table" alone (no loads), for the work of one term."""
     tabs = []
-    if part.table is not None:
-        tabs.append((np.asarray(part.table[0]), np.asarray(part.table[1]), part.table[2]))
-    if part.resisting_table is not None:
-        r = part.resisting_table
-        tabs.append((np.asarray(r[0]), -np.asarray(r[1]), r[2]))
-    if linkage_moment is not None:
-        tabs.append(linkage_moment)
+    names = ("table", "resisting_table") if only is None else (only,)
+    for name, sign in (("table", 1.0), ("resisting_table", -1.0)):
+        t = getattr(part, name)
+        if t is not None and name in names:
+            phi, M = _repeat_table(np.asarray(t[0]), sign * np.asarray(t[1]), t[3], cycle)
+            tabs.append((phi, M, t[2]))
+    if linkage_moment is not None and only is None:
+        phi, M = _repeat_table(linkage_moment[0], linkage_moment[1], 2 * np.pi, cycle)
+        tabs.append((phi, M, "linear"))
     if not tabs:
         return None
     if len(tabs) == 1:
@@ -98,26 +126,61 @@ def _tables(part, linkage_moment):
             and len({t[2] for t in tabs}) == 1:
         return tabs[0][0], sum(t[1] for t in tabs), tabs[0][2]
     # linear tables on other angles: their sum is linear on the union of the angles
-    two_pi = 2 * np.pi
-
-    def open_table(phi, M):         # without a closing node one turn after the first
-        if np.isclose(phi[-1] - phi[0], two_pi, rtol=0, atol=1e-12):
-            return phi[:-1], M[:-1]
-        return phi, M
-
     base = tabs[0][0][0]
-    grid = np.unique(np.concatenate([np.mod(open_table(t[0], t[1])[0] - base, two_pi)
-                                     for t in tabs])) + base
+    grid = np.unique(np.concatenate([np.mod(t[0][:-1] - base, cycle) for t in tabs])) + base
     total = np.zeros_like(grid)
     for phi, M, _m in tabs:
-        xp, fp = open_table(phi, M)
-        total += np.interp(grid, xp, fp, period=two_pi)
+        total += np.interp(grid, phi[:-1], M[:-1], period=cycle)
     return grid, total, "linear"
 
 
+def _harmonic(h, cycle):
+    """``(a0, a, b)`` of a series of period ``h[3]`` as harmonics of the cycle."""
+    a0, a, b, period = h
+    m = int(round(cycle / period))
+    if m == 1:
+        return a0, a, b
+    out = []
+    for c in (a, b):
+        full = np.zeros(m * len(c))
+        full[m - 1::m] = c
+        out.append(tuple(full))
+    return (a0,) + tuple(out)
+
+
+def _segments(part, cycle):
+    """The segments over the cycle: repeated when they cover their period end to end."""
+    segs = list(part.segments)
+    if not segs:
+        return None
+    T = part.period
+    m = int(round(cycle / T))
+    lo, hi = min(x[0] for x in segs), max(x[1] for x in segs)
+    covers = abs(hi - lo - T) <= 1e-9 * T
+    if m == 1 or not covers:
+        return segs
+    return [(a + k * T, b + k * T, c, d) for k in range(m) for a, b, c, d in segs]
+
+
+def moment_cycle(part):
+    """The period [rad] of the moment's φ-terms: the longest of theirs (the spec checks
+    that the others divide it); 2π for the loads of a linkage."""
+    periods = [2 * np.pi] if part.loads else []
+    for t in (part.table, part.resisting_table):
+        if t is not None:
+            periods.append(t[3])
+    if part.harmonic is not None:
+        periods.append(part.harmonic[3])
+    if part.segments:
+        periods.append(part.period)
+    return mo.cycle(*periods)
+
+
 def build_moment(part, linkage=None, topo=None, bodies=None, gravity=None, loads=(),
-                 followers=None):
-    """The moment model of the spec's ``moment`` part (and the linkage's loads)."""
+                 followers=None, shift=0.0):
+    """The moment model of the spec's ``moment`` part (and the linkage's loads), over its
+    cycle; ``shift`` [N m] is added to the constant (the balancing mean)."""
+    cycle = moment_cycle(part)
     lm = None
     if part.loads and linkage is not None:
         loads = _with_band_limits(linkage, loads, followers)
@@ -125,20 +188,51 @@ def build_moment(part, linkage=None, topo=None, bodies=None, gravity=None, loads
         M = eq.linkage_moment(linkage, topo, bodies, gravity, list(loads), phi,
                               followers=followers or None)
         lm = (phi, np.asarray(M, dtype=float), "linear")
-    constant = part.constant - part.resisting
+    constant = part.constant - part.resisting + shift
     if part.torques:
         constant += eq.chain_moment(part.torques)
-    terms = dict(linear=part.drive, harmonic=part.harmonic,
-                 segments=list(part.segments) or None, constant=constant)
-    model = mo.MomentModel(table=_tables(part, lm), **terms)
+    harmonic = None if part.harmonic is None else _harmonic(part.harmonic, cycle)
+    terms = dict(linear=part.drive, harmonic=harmonic, segments=_segments(part, cycle),
+                 constant=constant, period=cycle)
+    model = mo.MomentModel(table=_tables(part, lm, cycle), **terms)
     if lm is not None:
         # the loads' Me is smooth between the angles where a load switches on or off: the
         # integrators stop there (and at the user's own knots), not at every sample
-        own = mo.MomentModel(table=_tables(part, None), **terms).breaks
-        knots = np.concatenate([own[0], _switches(linkage, _with_band_limits(
-            linkage, loads, followers), lm[0], followers)])
-        model.breaks = (np.unique(knots), own[1] if len(own[0]) else 0.0, own[2])
-    return model
+        own = mo.MomentModel(table=_tables(part, None, cycle), **terms).breaks
+        switches = _switches(linkage, _with_band_limits(linkage, loads, followers), lm[0],
+                             followers)
+        switches = (switches[:, None] + 2 * np.pi * np.arange(
+            int(round(cycle / (2 * np.pi))))[None, :]).ravel()
+        knots = np.concatenate([own[0], switches])
+        model.breaks = (np.unique(knots), own[1] if len(own[0]) else 0.0, own[2], cycle)
+    return model, lm
+
+
+def _term_works(part, lm, cycle, omega_m):
+    """The work over a cycle of each term of the moment [J] (None for a motor line without
+    a mean speed): the driving ones positive, the resisting ones negative."""
+    T = cycle
+    works = [part.constant * T, -part.resisting * T]
+    if part.torques:
+        works.append(eq.chain_moment(part.torques) * T)
+    if part.drive is not None:
+        if omega_m is None and part.drive[1] != 0:
+            return None
+        a, b = part.drive
+        works.append((a - b * (omega_m or 0.0)) * T)
+    for name in ("table", "resisting_table"):
+        t = _tables(part, None, cycle, only=name)
+        if t is not None:
+            works.append(float(mo.MomentModel(table=t, period=cycle).energy(t[0][0],
+                                                                           t[0][0] + T)))
+    if part.harmonic is not None:
+        works.append(part.harmonic[0] * T)
+    for a, b, c, d in _segments(part, cycle) or ():
+        works.append(0.5 * (c + d) * (b - a))
+    if lm is not None:
+        phi, M = _repeat_table(lm[0], lm[1], 2 * np.pi, cycle)
+        works.append(float(np.sum(0.5 * (M[1:] + M[:-1]) * np.diff(phi))))
+    return works
 
 
 def _with_band_limits(linkage, loads, followers):
@@ -188,7 +282,7 @@ def _auto(kind, inertia, moment, end, omega0):
         return "energy"
     if moment.depends_on_omega and moment.b > 0:
         Je_min = float(np.min(inertia(np.linspace(0, 2 * np.pi, 361))[0]))
-        if moment.b / (Je_min * max(abs(omega0), 1e-300)) > STIFF:
+        if Je_min * max(abs(omega0), 1e-300) * STIFF < moment.b:
             return "Radau"
     return "DOP853"
 
@@ -197,24 +291,29 @@ def _auto(kind, inertia, moment, end, omega0):
 STIFF = 50.0
 
 
-def _swing_at_mean(moment, phi0, omega_m, n=7201):
+def _swing_at_mean(moment, phi0, omega_m, period, n=7201):
     """ΔWmax of eq. 6-29 as taught: the swing of the work of Me(φ, ωm) at the mean speed
-    over a period (the φ-part exactly, minus b ωm φ)."""
-    phi = np.linspace(phi0, phi0 + 2 * np.pi, n)
+    over a cycle (the φ-part exactly, minus b ωm φ)."""
+    phi = np.linspace(phi0, phi0 + period, n)
     W = moment.energy(phi0, phi) - moment.b * omega_m * (phi - phi0)
     return float(np.max(W) - np.min(W))
 
 
-def balance_mean(moment, phi0):
+def balance_mean(moment, phi0, period=2 * np.pi):
     """The integral mean speed a steady state must have when Me is linear in ω with b > 0:
-    the work over a period vanishes, so ωm = (1/2π)∫(Me + bω) dφ / b; None otherwise."""
+    the work over a cycle vanishes, so ωm = (1/T)∫(Me + bω) dφ / b; None otherwise."""
     if not (moment.depends_on_omega and moment.b > 0):
         return None
-    return float(moment.energy(phi0, phi0 + 2 * np.pi)) / (2 * np.pi * moment.b)
+    return float(moment.energy(phi0, phi0 + period)) / (period * moment.b)
 
 
 def _shape(fly, J_F):
-    """The mass and width of a rim (mean radius, radial thickness) or a solid disc."""
+    """The mass and width of a rim (mean radius, radial thickness) or a solid disc, or
+    the mass J/k² for a radius of gyration k; {} without a shape."""
+    if fly.k:
+        return {"mass": J_F / fly.k ** 2}
+    if not fly.shape:
+        return {}
     mass = (mo.rim if fly.shape == "rim" else mo.disc)(J_F, fly.radius)
     width = None
     if fly.density and fly.shape == "disc":
@@ -225,11 +324,56 @@ def _shape(fly, J_F):
     return {"mass": mass, "width": width}
 
 
-def speeds_from_swing(J, dW, omega_mean):
-    """Eqs. 6-28, 6-29 from numbers: δ = ΔWmax/(J ωm²) for the whole inertia J, and
-    ωmax, ωmin = ωm (1 ± δ/2)."""
-    delta = dW / (J * omega_mean ** 2)
-    return delta, omega_mean * (1 + delta / 2), omega_mean * (1 - delta / 2)
+speeds_from_swing = dg.speeds_from_swing
+
+
+def _balanced(spec, cycle):
+    """The moment part with its "mean" term resolved: (part, shift [N m], mean term)."""
+    part = spec.moment
+    if part is None or part.mean is None:
+        return 0.0, None
+    trial, _lm = build_moment(part, spec.linkage, spec.topo, spec.bodies, spec.gravity,
+                              spec.loads, spec.followers)
+    mean = dg.mean_moment(trial, 0.0, cycle)
+    value = mean if part.mean == "resisting" else -mean
+    return -mean, (part.mean, value)
+
+
+def _figures(spec, moment, lm, cycle, phi0, omega_m, sol):
+    """The numbers of a cycle textbooks print: the loop table, the work per cycle (the mean
+    moment follows), and with Simpson tables ΔWmax with them read linearly."""
+    if moment is None or moment.period is None or omega_m is None:
+        return
+    try:
+        sol["loops"] = dg.energy_loops(moment, phi0, cycle, omega_m)
+    except DescribedError:      # the diagram does not balance: no loops to tabulate
+        return
+    sol["omega_m"] = omega_m
+    works = _term_works(spec.moment, lm, cycle, omega_m)
+    if works is not None and sol.get("mean_term") is not None:
+        name, value = sol["mean_term"]      # the balancing term: a drive or a resistance
+        works.append((value if name == "constant" else -value) * cycle)
+    if works is not None:
+        w = float(sum(x for x in works if x > 0))
+        if w > 0:
+            sol["work_per_cycle"] = w
+    tabs = [t for t in (spec.moment.table, spec.moment.resisting_table) if t is not None]
+    if any(t[4] == "simpson" for t in tabs):
+        import dataclasses
+
+        def linear(t):
+            return None if t is None else (t[0], t[1], "linear", t[3], "trapezoid")
+        alt = dataclasses.replace(spec.moment, table=linear(spec.moment.table),
+                                  resisting_table=linear(spec.moment.resisting_table))
+        shift = sol.get("mean_term")
+        cut = 0.0
+        if shift is not None:
+            trial, _ = build_moment(alt, spec.linkage, spec.topo, spec.bodies, spec.gravity,
+                                    spec.loads, spec.followers)
+            cut = -dg.mean_moment(trial, 0.0, cycle)
+        m2, _ = build_moment(alt, spec.linkage, spec.topo, spec.bodies, spec.gravity,
+                             spec.loads, spec.followers, shift=cut)
+        sol["dW_trapezoid"] = dg.energy_loops(m2, phi0, cycle, omega_m).dW_max
 
 
 def solve_flywheel(spec):
@@ -244,6 +388,7 @@ def solve_flywheel(spec):
     """
     ms, fly = spec.motion, spec.flywheel
     inertia = build_inertia(spec.inertia, spec.linkage, spec.bodies, spec.followers)
+    zero = isinstance(inertia, eq.ZeroInertia)
     if fly.J:
         inertia = inertia.plus(fly.J)
     if not inertia.constant and inertia.period is not None:
@@ -253,20 +398,19 @@ def solve_flywheel(spec):
             raise DescribedError("the equivalent inertia vanishes: no link with mass moves "
                                  "there (ω would be unbounded)", reason="inertia_vanishes",
                                  angle=float(grid[int(np.argmin(Je))]))
-    moment = None if spec.moment is None else build_moment(
-        spec.moment, spec.linkage, spec.topo, spec.bodies, spec.gravity, spec.loads,
-        spec.followers)
-    if ms.kind == "model":      # the equivalent model only, over one turn (例 6-1)
-        phi = np.linspace(ms.phi0, ms.phi0 + 2 * np.pi, ms.points)
-        Je, dJe = inertia(phi)
-        Me = np.zeros_like(phi) if moment is None else moment(phi, np.zeros_like(phi))
-        swing = None
-        if fly.dW is not None:  # Je's mean (with the flywheel J) carries the swing
-            swing = speeds_from_swing(float(np.mean(Je)), fly.dW, fly.omega_mean)
-        return FlywheelSolution(inertia, moment, Model(phi, np.asarray(Je, dtype=float),
-                                                       np.asarray(dJe, dtype=float),
-                                                       np.asarray(Me, dtype=float)),
-                                None, "none", J_F=fly.J or None, swing=swing)
+    moment = lm = None
+    sol = {}
+    if spec.moment is not None:
+        mcycle = moment_cycle(spec.moment)
+        shift, mean_term = _balanced(spec, mcycle)
+        moment, lm = build_moment(spec.moment, spec.linkage, spec.topo, spec.bodies,
+                                  spec.gravity, spec.loads, spec.followers, shift=shift)
+        if mean_term is not None:
+            sol["mean_term"] = mean_term
+    cycle = mo.cycle(inertia.period, None if moment is None else moment.period)
+    sol["period"] = cycle
+    if ms.kind == "model":      # the equivalent model only, over one cycle (例 6-1)
+        return _model(spec, inertia, zero, moment, lm, cycle, sol)
     end = "phi" if ms.phi_end is not None else "omega" if ms.omega_end is not None else "t"
     method = _auto(ms.kind, inertia, moment, end, ms.omega0) if ms.method == "auto" \
         else ms.method
@@ -278,32 +422,7 @@ def solve_flywheel(spec):
         inertia = eq.SampledInertia(inertia, spec.inertia.samples)
     kw = dict(rtol=ms.rtol, atol=ms.atol, step=ms.step)
     if ms.kind == "steady":
-        if moment.depends_on_phi and moment.period is None:
-            raise DescribedError("the moment is not periodic (segments that do not join end "
-                                 "to end over a turn): there is no steady state",
-                                 reason="moment_not_periodic")
-        if inertia.period is None and moment.period is None:
-            raise DescribedError("neither the inertia nor the moment varies with the angle: "
-                                 "the steady state is a constant speed", reason="not_periodic")
-        st = mo.steady_state(inertia, moment, omega_guess=ms.omega0, method=method,
-                             root=ms.root, tol=ms.tol, max_iter=ms.max_iter, points=ms.points,
-                             phi0=ms.phi0, **kw)
-        sol = dict(inertia=inertia, moment=moment, motion=st.motion, steady=st, method=method,
-                   J_F=fly.J or None, omega_balance=balance_mean(moment, ms.phi0))
-        if fly.delta is not None:
-            Je_mean = float(np.mean(inertia(st.motion.phi)[0]))
-            sol["J_F_approx"] = mo.flywheel_approx(
-                _swing_at_mean(moment, ms.phi0, st.omega_mean), st.omega_mean, fly.delta,
-                Je=Je_mean)
-            J_F = mo.flywheel_exact(inertia, moment, fly.delta, omega_guess=ms.omega0,
-                                    method=method, points=ms.points, **kw)
-            st2 = mo.steady_state(inertia.plus(J_F), moment, omega_guess=ms.omega0,
-                                  method=method, root=ms.root, tol=ms.tol,
-                                  max_iter=ms.max_iter, points=ms.points, phi0=ms.phi0, **kw)
-            sol.update(J_F=J_F, J_F_delta=st2.delta)
-        if fly.shape and sol["J_F"]:
-            sol.update(_shape(fly, sol["J_F"]))
-        return FlywheelSolution(**sol)
+        return _steady(spec, inertia, zero, moment, lm, cycle, method, kw, sol)
     if method == "closed_form":
         if not (inertia.constant and not moment.depends_on_phi):
             raise DescribedError("the closed form needs a constant inertia and a moment "
@@ -312,13 +431,16 @@ def solve_flywheel(spec):
         # Me = a − bω with a every term but −bω (constant here: no φ dependence)
         a, b = float(moment.phi_part(0.0)), moment.b
         times = None if ms.t_end is None else np.linspace(0.0, ms.t_end, ms.points)
-        mot = mo.linear_closed_form(J, a, b, 0.0, ms.omega0, omega_end=ms.omega_end,
-                                    t=times, points=ms.points)
         if end == "phi":
             raise DescribedError("the closed form runs to a speed or a time, not an angle: "
                                  "give omega_end or t_end", reason="end")
+        mot = mo.linear_closed_form(J, a, b, 0.0, ms.omega0, omega_end=ms.omega_end,
+                                    t=times, points=ms.points)
+        if ms.phi0:             # the closed form counts φ from 0: start at phi0_deg
+            import dataclasses
+            mot = dataclasses.replace(mot, phi=mot.phi + ms.phi0)
         return FlywheelSolution(inertia, moment, mot, None, method,
-                                omega_inf=(a / b) if b else None)
+                                omega_inf=(a / b) if b else None, **sol)
     if end != "phi":
         raise DescribedError(f"method {method} runs to an angle: give phi_end_deg (omega_end "
                              "and t_end need the closed form: a constant inertia and a "
@@ -332,5 +454,100 @@ def solve_flywheel(spec):
     else:
         mot = mo.integrate(inertia, moment, ms.phi0, ms.omega0, ms.phi_end, method=method,
                            points=ms.points, **kw)
-    extra = _shape(fly, fly.J) if fly.shape and fly.J else {}
-    return FlywheelSolution(inertia, moment, mot, None, method, J_F=fly.J or None, **extra)
+    extra = _shape(fly, fly.J) if fly.J else {}
+    return FlywheelSolution(inertia, moment, mot, None, method, J_F=fly.J or None, **extra,
+                            **sol)
+
+
+def _model(spec, inertia, zero, moment, lm, cycle, sol):
+    """No [motion]: Je (and Me) over one cycle; the energy-swing forms (eqs 6-28 … 6-30)."""
+    ms, fly = spec.motion, spec.flywheel
+    phi = np.linspace(ms.phi0, ms.phi0 + cycle, ms.points)
+    if zero and not fly.J:      # the flywheel is still to size: the machine's Je is 0
+        Je, dJe = np.zeros_like(phi), np.zeros_like(phi)
+    else:
+        Je, dJe = inertia(phi)
+    Je = np.asarray(Je, dtype=float) + np.zeros_like(phi)
+    Me = np.zeros_like(phi) if moment is None else moment(phi, np.zeros_like(phi))
+    _figures(spec, moment, lm, cycle, ms.phi0, fly.omega_mean, sol)
+    dW = fly.dW
+    if dW is None and fly.omega_mean is not None:
+        if sol.get("loops") is None:
+            net = 0.0 if moment is None else float(moment.energy(ms.phi0, ms.phi0 + cycle))
+            raise DescribedError("the diagram's work over a cycle does not vanish: it has no "
+                                 "energy swing about its mean", reason="no_loops",
+                                 net_work=net)
+        dW = sol["loops"].dW_max
+    Je_mean = float(np.mean(Je[:-1])) if Je.size > 1 else float(Je[0])
+    J_F = fly.J or None
+    if fly.delta is not None:
+        own = Je_mean - (fly.J or 0.0)
+        J_F = mo.flywheel_approx(dW, fly.omega_mean, fly.delta, Je=max(own, 0.0))
+        sol["equation"] = "6-29" if own > 0 else "6-30"
+        Je = Je + J_F
+        Je_mean += J_F
+    swing = None
+    if dW is not None and fly.omega_mean is not None and fly.delta is None:
+        swing = speeds_from_swing(Je_mean, dW, fly.omega_mean)
+    if J_F:
+        sol.update(_shape(fly, J_F))
+    return FlywheelSolution(inertia, moment, Model(phi, Je, np.asarray(dJe, dtype=float)
+                                                   + np.zeros_like(phi),
+                                                   np.asarray(Me, dtype=float)),
+                            None, "none", J_F=J_F, swing=swing, **sol)
+
+
+def _steady(spec, inertia, zero, moment, lm, cycle, method, kw, sol):
+    """The periodic steady state; with ``delta`` the flywheel sized for it exactly (and by
+    eq 6-29).  A machine that cannot run at its mean speed without the flywheel (Je = 0,
+    or too light for the swing) reports the motion with the sized flywheel."""
+    ms, fly = spec.motion, spec.flywheel
+    if moment.depends_on_phi and moment.period is None:
+        raise DescribedError("the moment is not periodic (segments that do not join end "
+                             "to end over a cycle): there is no steady state",
+                             reason="moment_not_periodic")
+    if inertia.period is None and moment.period is None:
+        raise DescribedError("neither the inertia nor the moment varies with the angle: "
+                             "the steady state is a constant speed", reason="not_periodic")
+    steady = dict(omega_guess=ms.omega0, method=method, root=ms.root, tol=ms.tol,
+                  max_iter=ms.max_iter, points=ms.points, phi0=ms.phi0, **kw)
+    st = None
+    if not zero:
+        try:
+            st = mo.steady_state(inertia, moment, **steady)
+        except DescribedError as e:
+            if fly.delta is None or e.reason not in ("no_steady_state", "stall"):
+                raise
+    sol["omega_balance"] = balance_mean(moment, ms.phi0, cycle)
+    if st is not None:
+        omega_m = st.omega_mean
+    elif moment.depends_on_omega:
+        omega_m = sol["omega_balance"]
+    else:
+        omega_m = ms.omega0
+    _figures(spec, moment, lm, cycle, ms.phi0, omega_m, sol)
+    if fly.delta is None:
+        sol.update(_shape(fly, fly.J) if fly.J else {})
+        return FlywheelSolution(inertia, moment, st.motion, st, method, J_F=fly.J or None,
+                                **sol)
+    grid = np.linspace(ms.phi0, ms.phi0 + cycle, 3601)[:-1]
+    Je_mean = 0.0 if zero else float(np.mean(inertia(grid)[0]))
+    loops = sol.get("loops")
+    dW = loops.dW_max if loops is not None else _swing_at_mean(moment, ms.phi0, omega_m,
+                                                                 cycle)
+    try:
+        sol["J_F_approx"] = mo.flywheel_approx(dW, omega_m, fly.delta, Je=Je_mean)
+    except DescribedError:
+        if st is None:
+            raise
+    J_F = mo.flywheel_exact(inertia, moment, fly.delta, omega_guess=ms.omega0, method=method,
+                            points=ms.points, swing=(dW, omega_m, Je_mean), **kw)
+    st2 = mo.steady_state(inertia.plus(J_F), moment, **steady)
+    if st is None:
+        st, sol["motion_with_J_F"] = st2, True
+        inertia = inertia.plus(J_F)
+    sol.update(J_F=J_F, J_F_delta=st2.delta)
+    sol.update(_shape(fly, J_F))
+    if "J_F_approx" in sol and sol.get("mass") is not None:
+        sol["mass_approx"] = _shape(fly, sol["J_F_approx"])["mass"]
+    return FlywheelSolution(inertia, moment, st.motion, st, method, **sol)
