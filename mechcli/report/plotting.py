@@ -348,7 +348,11 @@ def _rgb(rgba, box):
     crop = np.asarray(rgba[r0:r1, c0:c1], dtype=np.uint8)
     if crop.strides[1:] != (4, 1):   # each pixel's 4 bytes together, as on the canvas
         crop = np.ascontiguousarray(crop)
-    rgb = np.ascontiguousarray(crop.view(px)[..., 0]["rgb"])
+    try:
+        items = crop.view(px)
+    except ValueError:   # numpy < 1.23 views only C-contiguous arrays as a wider dtype
+        items = np.ascontiguousarray(crop).view(px)
+    rgb = np.ascontiguousarray(items[..., 0]["rgb"])
     return rgb.view(np.uint8).reshape(r1 - r0, c1 - c0, 3)
 
 

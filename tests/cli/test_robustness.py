@@ -15,7 +15,8 @@ from tests.conftest import CONFIGS, ROOT, one_line_error, run_inprocess, write_s
 @pytest.mark.parametrize("args, words", [
     (["kin", CONFIGS / "ch1" / "ex1-1.toml", "--lang", "xx"], "'--lang'"),
     (["kin"], "Missing argument 'SPEC.toml'"),
-    (["cam", CONFIGS / "ch4" / "ex4-1.toml", "--bogus"], "No such option '--bogus'"),
+    # click's own words ("No such option '--bogus'", "No such option: --bogus" before 8.2)
+    (["cam", CONFIGS / "ch4" / "ex4-1.toml", "--bogus"], "No such option"),
     (["kinn", "x.toml"], "did you mean 'kin'"),
     (["kin", CONFIGS / "ch1" / "ex1-1.toml", "--digits", "0"], "'--digits'"),
 ])

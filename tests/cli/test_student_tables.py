@@ -4,7 +4,10 @@ that repeat the input angle and keep groups of columns whole; ``--columns`` choo
 import copy
 import io
 import json
-import tomllib
+try:
+    import tomllib
+except ImportError:      # Python < 3.11
+    import tomli as tomllib
 
 import pytest
 

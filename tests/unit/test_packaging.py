@@ -25,7 +25,20 @@ def _imported_top_level_modules():
                 names.update(a.name.split(".")[0] for a in node.names)
             elif isinstance(node, ast.ImportFrom) and node.level == 0 and node.module:
                 names.add(node.module.split(".")[0])
-    return names - set(sys.stdlib_module_names) - {"mechcli", "tomli"} - CPYTHON_BUILTINS
+    # tomllib: the standard library's from Python 3.11 (tomli before it, a dependency)
+    return names - _stdlib() - {"mechcli", "tomli", "tomllib"} - CPYTHON_BUILTINS
+
+
+def _stdlib():
+    """The standard library's top-level modules (sys.stdlib_module_names from Python 3.10;
+    before it, every module found in the interpreter's own library folder)."""
+    if hasattr(sys, "stdlib_module_names"):
+        return set(sys.stdlib_module_names)
+    import pkgutil
+    import sysconfig
+    lib = sysconfig.get_paths()["stdlib"]
+    return set(sys.builtin_module_names) | {m.name for m in pkgutil.iter_modules([lib])} | {
+        m.name for m in pkgutil.iter_modules([lib + "/lib-dynload"])}
 
 
 #: CPython's built-in SHA-256 under its names before and from 3.12 (report/files.py tries

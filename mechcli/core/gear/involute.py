@@ -108,10 +108,14 @@ def _start(theta):
     return np.where(theta < _START_SWITCH, small, large)
 
 
+#: the real cube root (math.cbrt is Python 3.11's; theta >= 0 here)
+_cbrt = getattr(math, "cbrt", None) or (lambda x: math.copysign(abs(x) ** (1.0 / 3.0), x))
+
+
 def _start_scalar(theta):
     """:func:`_start` for one float (math only)."""
     if theta < _START_SWITCH:
-        y = math.cbrt(3.0 * theta)
+        y = _cbrt(3.0 * theta)
         y2 = y * y
         return y * (1.0 + y2 * (-2.0 / 15.0 + y2 * (3.0 / 175.0 + y2 * (
             -2.0 / 1575.0 + y2 * (-16.0 / 202125.0 + y2 * (362.0 / 9384375.0))))))

@@ -170,9 +170,13 @@ def _local(problem, method, x0, tol, maxiter, central=True):
     if method == "slsqp":
         cons = ([{"type": "ineq", "fun": lambda u: -G(u), "jac": lambda u: -DG(u)}]
                 if k else [])
-        res = optimize.minimize(F, u0, jac=DF, method="SLSQP", bounds=bounds,
-                                constraints=cons, callback=cb,
-                                options={"ftol": tol, "maxiter": maxiter})
+        import warnings
+        with warnings.catch_warnings():
+            # scipy < 1.16 notes that it clipped a step to the bounds (it does; harmless)
+            warnings.filterwarnings("ignore", message="Values in x were outside bounds")
+            res = optimize.minimize(F, u0, jac=DF, method="SLSQP", bounds=bounds,
+                                    constraints=cons, callback=cb,
+                                    options={"ftol": tol, "maxiter": maxiter})
         nit = res.nit
         converged = res.status == 0
         capped = res.status == 9
