@@ -215,8 +215,14 @@ def main(argv=None):
         _err("interrupted" if interrupted else "aborted")
         code = 130 if interrupted else ExitStatus.INTERNAL
     except click.ClickException as exc:
-        # a usage error: one line, like every other error (and the JSON object with --json)
-        message = exc.format_message()
+        no_args = getattr(click.exceptions, "NoArgsIsHelpError", None)
+        if no_args is not None and isinstance(exc, no_args):
+            # bare `mechcli` (click >= 8.2 raises this): the help, on stdout, exit 0
+            click.echo(exc.ctx.get_help())
+            sys.exit(int(ExitStatus.OK))
+        # a usage error: one line, like every other error (and the JSON object with --json);
+        # click's own may span lines ("Choose from:" and one choice a line)
+        message = " ".join(exc.format_message().split())
         ctx = getattr(exc, "ctx", None)
         if ctx is not None and ctx.command_path and ctx.command_path != "mechcli":
             message = f"{ctx.command_path}: {message}"

@@ -72,6 +72,10 @@ class RunOptions:
         sets = tuple(opts.get("sets", ()) or ())
         name = stem or (spec.stem if spec else "mechcli")
         report_run.begin(spec.stem if spec else name)
+        if out is not None and not str(out).strip():
+            # an empty --out would write into the working folder: say so, never guess
+            import click
+            raise click.BadParameter("expected a folder, got an empty path", param_hint="--out")
         if out is None:
             out = Path("out") / default_dir_name(name, sets, None if spec else _quick_form())
         return cls(
@@ -163,7 +167,7 @@ def _quick_form():
 def common_options(func):
     """Decorate a click command with the options every subcommand shares."""
     opts = [
-        click.option("--out", "-o", "out", type=click.Path(file_okay=False, path_type=Path),
+        click.option("--out", "-o", "out", type=click.Path(file_okay=False),
                      default=None,
                      help="Output directory [default: out/<spec stem>/, "
                           "out/<spec stem>+<hash of the --set values>/ with --set]."),

@@ -44,6 +44,8 @@ def check(paths, jobs, junit, json_out, sets, plot, quiet):
     code = batch.exit_code(results, problems)
     summary = report.summarize(results, problems, time.perf_counter() - t0, jobs, code)
     files = []
+    if junit is not None and not str(junit).strip():
+        raise click.BadParameter("expected a file, got an empty path", param_hint="--junit")
     if junit:
         try:
             write_text(junit, report.junit_xml(results, problems, summary))

@@ -36,9 +36,11 @@ def flywheel(spec_path, **opts):
     if sol.swing is not None and not sol.swing[0] < 2.0:
         from mechcli.spec.errors import SpecError
         key = "flywheel.dW" if spec.flywheel.dW is not None else "moment"
+        wm = getattr(spec.flywheel, "omega_mean", None)
         raise SpecError(spec_path, key, "an energy swing below 2 J ωm² (δ = "
                         "ΔWmax/(J ωm²) < 2: the least speed stays positive)",
-                        f"δ = {sol.swing[0]:.6g}")
+                        f"δ = {sol.swing[0]:.6g}"
+                        + (f" with ωm = {wm:.6g} rad/s" if wm is not None else ""))
     outputs = Outputs(run.out_dir, digits=run.digits)
     outputs.csv("flywheel.csv", report.columns(sol))
     if sol.loops is not None:

@@ -12,17 +12,20 @@ def atlas_mapper(workers, scheduler):
     ``map`` in-process; a process pool (``--workers N``); a Dask cluster
     (``--scheduler ADDRESS``, the ``dask`` extra)."""
     from mechcli.spec.errors import SpecError
+    if scheduler is not None and not scheduler.strip():
+        raise SpecError("--scheduler", "", "a Dask scheduler address such as tcp://host:8786",
+                        "an empty address")
     if scheduler:
         try:
             from dask.distributed import Client
         except ImportError:
-            raise SpecError("--scheduler", "--scheduler", "the dask extra installed (pip "
+            raise SpecError("--scheduler", "", "the dask extra installed (pip "
                             "install 'mechcli[dask]')", "no dask.distributed") from None
         from mechcli.core.errors import UnsolvableError
         try:
             client = Client(scheduler, timeout="10s")
         except ValueError as exc:           # not an address
-            raise SpecError("--scheduler", "--scheduler", "a Dask scheduler address such as "
+            raise SpecError("--scheduler", "", "a Dask scheduler address such as "
                             "tcp://host:8786", f"'{scheduler}' ({exc})") from None
         except Exception as exc:            # noqa: BLE001 (whatever the connection raises)
             raise UnsolvableError(f"--scheduler {scheduler}: cannot reach the Dask "

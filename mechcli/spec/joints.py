@@ -128,8 +128,11 @@ def read_joints(mech):
         pivot = d.name("pivot")
         drivers.append((link, pivot))
         driver_paths.append(d.path)
-        if i > 0:
-            followers[link] = (d.number("ratio", 1.0), math.radians(d.number("phase", 0.0)))
+        if i > 0:   # the phase defaults to the drawing's: q = ratio q1 + phase there
+            from mechcli.spec.kin import follower_ratio
+            phase = d.number("phase", None)
+            followers[link] = (follower_ratio(d),
+                               None if phase is None else math.radians(phase))
         d.finish()
 
     drawing = Drawing(frame, joints, links, tuple(sliders), tuple(drivers))
@@ -139,6 +142,10 @@ def read_joints(mech):
         raise SpecError(mech.file, _where(mech, exc, link_paths, slider_paths, driver_paths,
                                           drivers),
                         "a drawing of a linkage the engine can solve", str(exc)) from None
+    if drivers:
+        q1 = result.inputs[drivers[0][0]]
+        followers = {k: (ratio, result.inputs[k] - ratio * q1 if phase is None else phase)
+                     for k, (ratio, phase) in followers.items()}
     paths = [mech.key("joints")] * len(result.linkage.elements)
     return frame, list(result.linkage.elements), followers, paths, result
 

@@ -187,7 +187,7 @@ def _general(mech):
                                          d.name("name", None)))
         paths.append(d.path)
         if i > 0:
-            followers[link] = (d.number("ratio", 1.0),
+            followers[link] = (follower_ratio(d),
                                math.radians(d.number("phase", 0.0)) if kind == "crank"
                                else d.number("phase", 0.0) * mech.unit)
         d.finish()
@@ -197,6 +197,16 @@ def _general(mech):
         paths.append(dy.path)
         dy.finish()
     return frame, elements, followers, paths
+
+
+#: the largest |ratio| of a secondary driver to the primary one (a gear train's ratio):
+#: beyond it the sweep's step would leave the secondary input unresolved
+MAX_RATIO = 1e4
+
+
+def follower_ratio(d):
+    """A secondary driver's ``ratio`` to the primary one, in [-MAX_RATIO, MAX_RATIO]."""
+    return d.number("ratio", 1.0, lo=-MAX_RATIO, hi=MAX_RATIO)
 
 
 def _dyad_branch(dy):

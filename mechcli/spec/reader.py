@@ -522,5 +522,9 @@ class Section:
     def set_unit_from(self, name="units", default="mm"):
         """Read the declared length unit and set it for this and later sub-tables."""
         unit = self.string(name, default, choices=list(LENGTH_UNITS))
+        if unit not in LENGTH_UNITS:   # a default handed on from another spec (a base)
+            raise SpecError(self.file, self.key(name),
+                            "one of " + ", ".join(f"'{c}'" for c in LENGTH_UNITS),
+                            repr(unit), closest(str(unit), list(LENGTH_UNITS)))
         self.unit = LENGTH_UNITS[unit]
         return unit

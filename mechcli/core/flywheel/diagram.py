@@ -137,7 +137,10 @@ def speeds_from_swing(J, dW, omega_mean):
     (float, float, float)
         δ, ωmax, ωmin.
     """
-    delta = dW / (J * omega_mean ** 2)
+    # divided one factor at a time: J ωm² of a tiny ωm underflows to 0, its quotient is
+    # then inf (δ ≥ 2 is refused by the command), never a ZeroDivisionError
+    with np.errstate(over="ignore", divide="ignore"):
+        delta = float(np.float64(dW) / J / omega_mean / omega_mean)
     return delta, omega_mean * (1 + delta / 2), omega_mean * (1 - delta / 2)
 
 
