@@ -161,6 +161,22 @@ def cli():
     """
 
 
+def _unknown_first(args, exc):
+    """The first unknown key of the spec the failing command read (:mod:`mechcli.spec.
+    unknown`), when the error is about that spec; None otherwise."""
+    if not args or args[0] not in COMMANDS or not str(exc.file).lower().endswith(".toml"):
+        return None
+    sets = [args[i + 1] for i, a in enumerate(args[:-1]) if a == "--set"]
+    sets += [a.split("=", 1)[1] for a in args if a.startswith("--set=")]
+    from mechcli.spec.unknown import first_unknown_key
+    try:
+        found = first_unknown_key(args[0], exc.file, sets)
+    except Exception:   # noqa: BLE001 -- a second opinion never hides the first error
+        return None
+    # the error already names that key: keep its own words
+    return None if found is None or found.key == exc.key else found
+
+
 def _err(message):
     click.echo(f"mechcli: error: {message}", err=True)
 
@@ -195,7 +211,10 @@ def main(argv=None):
         # with standalone_mode=False click returns (not raises) the code of an Exit
         rv = cli.main(args=args, prog_name="mechcli", standalone_mode=False)
     except (SpecError, OutputPathError) as exc:
-        # a bad spec, or an --out that cannot take the files (unsafe name, OS error)
+        # a bad spec, or an --out that cannot take the files (unsafe name, OS error);
+        # a key no table knows is named first, before what it made go wrong
+        if isinstance(exc, SpecError):
+            exc = _unknown_first(args, exc) or exc
         _traceback(show_tb)
         _err(exc.format())
         _json_error(args, exc.format(), ExitStatus.BAD_SPEC)
