@@ -41,7 +41,19 @@ def atlas_mapper(workers, scheduler):
     return map, (lambda: None)
 
 
-def atlas_case(prob, spec, run, mapper):
+def atlas_folder(prob, run, atlas_dir):
+    """Where an ``atlas_build`` writes, or where a ``path`` search builds its default
+    atlas: the command line's ``--atlas DIR``, else inside ``--out`` (the spec's
+    ``directory``, a relative folder there, or ``atlas``)."""
+    from pathlib import Path
+
+    if atlas_dir is not None:
+        return Path(atlas_dir)
+    sub = prob.data.get("directory") if prob.kind == "atlas_build" else None
+    return Path(run.out_dir) / (sub or "atlas")
+
+
+def atlas_case(prob, spec, run, mapper, atlas_dir=None):
     """``atlas_build`` and ``path``: the atlas on disk (mechcli.atlas_store) with the
     core's numbers; a SynthSolution like the other kinds'."""
     import time
@@ -51,24 +63,39 @@ def atlas_case(prob, spec, run, mapper):
     from mechcli.core.synth import atlas
     from mechcli.core.synth.problems import SynthSolution
     d = prob.data
+    from mechcli.spec.errors import SpecError
+
+    def refuse(directory, why):
+        # a folder the atlas cannot go into: the option's or the spec key's, exit 2
+        if atlas_dir is not None:
+            return SpecError("--atlas", "", "a folder the atlas can be written into",
+                             f"'{directory}' ({why})")
+        return SpecError(str(spec.path), f"{prob.path}.directory",
+                         "a folder for the atlas", f"'{directory}' ({why})")
+
     if prob.kind == "atlas_build":
-        directory = (Path(run.out_dir) / "atlas" if d["directory"] is None
-                     else Path(spec.path).parent / d["directory"])
+        directory = atlas_folder(prob, run, atlas_dir)
         grid = tuple(tuple(float(v) for v in __import__("numpy").linspace(lo, hi, n))
                      for lo, hi, n in (d["grid_x"], d["grid_y"]))
         t = time.perf_counter()
         if directory.exists() and not directory.is_dir():
-            from mechcli.spec.errors import SpecError
-            raise SpecError(str(spec.path), f"{prob.path}.directory", "a folder for the atlas",
-                            f"'{directory}', a file")
-        info = atlas_store.build_atlas(directory, d["A"], d["B"], d["C"], grid,
-                                       chunk=d["chunk"], mapper=mapper,
-                                       harmonics=d["harmonics"])
+            raise refuse(directory, "a file")
+        try:
+            info = atlas_store.build_atlas(directory, d["A"], d["B"], d["C"], grid,
+                                           chunk=d["chunk"], mapper=mapper,
+                                           harmonics=d["harmonics"])
+        except OSError as exc:
+            raise refuse(directory, exc.strerror or str(exc)) from None
         return SynthSolution(prob.kind, None, None, (info, time.perf_counter() - t))
-    if d["atlas"] is None:      # the default atlas, built once under --out
-        directory = Path(run.out_dir) / "atlas"
-        atlas_store.build_atlas(directory, mapper=mapper)
-    else:
+    if d["atlas"] is None:      # the default atlas, built once (under --out, or --atlas)
+        directory = atlas_folder(prob, run, atlas_dir)
+        if directory.exists() and not directory.is_dir():
+            raise refuse(directory, "a file")
+        try:
+            atlas_store.build_atlas(directory, mapper=mapper)
+        except OSError as exc:
+            raise refuse(directory, exc.strerror or str(exc)) from None
+    else:                       # reading an atlas the spec names is allowed
         directory = Path(spec.path).parent / d["atlas"]
     pts = d["points"]
     x = [p[0] for p in pts]
@@ -105,8 +132,12 @@ def atlas_case(prob, spec, run, mapper):
               help="Local processes for an atlas build or search.")
 @click.option("--scheduler", default=None, metavar="ADDRESS",
               help="A Dask scheduler for an atlas build or search (the dask extra).")
+@click.option("--atlas", "atlas_dir", type=click.Path(file_okay=False), default=None,
+              metavar="DIR",
+              help="Build the atlas (atlas_build, or a path search's default atlas) in DIR "
+                   "instead of inside --out (a spec never chooses where mechcli writes).")
 @common_options
-def synth(spec_path, workers=None, scheduler=None, **opts):
+def synth(spec_path, workers=None, scheduler=None, atlas_dir=None, **opts):
     """Design a linkage: rigid-body guidance (two/three positions, coupler poses,
     Burmester), function generation (Freudenstein, Chebyshev, least squares),
     design from the time ratio K; writes linkage.toml for `mechcli kin`."""
@@ -121,8 +152,10 @@ def synth(spec_path, workers=None, scheduler=None, **opts):
     from mechcli.core.errors import ConvergenceError, UnsolvableError
     from mechcli.spec.reader import MAX_LENGTH, MIN_LENGTH
 
+    if atlas_dir is not None and not str(atlas_dir).strip():
+        raise click.BadParameter("expected a folder, got an empty path", param_hint="--atlas")
     spec = read_synth_spec(spec_path, run.sets)
-    solutions = []
+    solutions, prob_of = [], {}
     mapper = close = None
     try:
         for prob in spec.cases:
@@ -130,7 +163,7 @@ def synth(spec_path, workers=None, scheduler=None, **opts):
                 if prob.kind in ("atlas_build", "path"):
                     if mapper is None:
                         mapper, close = atlas_mapper(workers, scheduler)
-                    sol = atlas_case(prob, spec, run, mapper)
+                    sol = atlas_case(prob, spec, run, mapper, atlas_dir)
                 else:
                     sol = solve_synthesis(prob.kind, prob.data)
             except DescribedError as exc:   # worded in the spec's units and keys
@@ -142,6 +175,7 @@ def synth(spec_path, workers=None, scheduler=None, **opts):
             if bad:     # its linkage.toml would be refused by kin: no design
                 raise UnsolvableError(bad)
             solutions.append(sol)
+            prob_of[id(sol)] = prob
     finally:
         if close is not None:
             close()
@@ -154,8 +188,11 @@ def synth(spec_path, workers=None, scheduler=None, **opts):
     for sol in solutions:
         # an atlas built under --out is this run's output: listed in outputs.json,
         # removed with the rest if the run fails (an [expected] typo)
-        if sol.kind in ("atlas_build", "path") and (out_root / "atlas").is_dir():
-            for f in sorted((out_root / "atlas").iterdir()):
+        if sol.kind not in ("atlas_build", "path") or atlas_dir is not None:
+            continue
+        folder = atlas_folder(prob_of[id(sol)], run, None).resolve()
+        if folder.is_dir() and out_root in folder.parents:
+            for f in sorted(folder.iterdir()):
                 if f.is_file() and f not in outputs.files:
                     outputs.files.append(f)
     for i, sol in enumerate(solutions):

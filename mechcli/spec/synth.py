@@ -473,8 +473,26 @@ def _atlas_build(sec):
                         f"{data['grid_x'][2] * data['grid_y'][2]:g}")
     data["chunk"] = sec.integer("chunk", 20000, lo=100, hi=1_000_000)
     data["harmonics"] = sec.integer("harmonics", 16, lo=2, hi=64)
-    data["directory"] = sec.string("directory", None)
+    data["directory"] = _inside_out(sec, "directory")
     return data
+
+
+def _inside_out(sec, key):
+    """A folder for the atlas *inside* ``--out``: a relative path without ``..``.  A
+    spec is data (a teacher's CI runs students' specs): it never chooses where mechcli
+    writes; the command line's ``--atlas DIR`` does."""
+    from pathlib import PurePosixPath, PureWindowsPath
+
+    raw = sec.string(key, None)
+    if raw is None:
+        return None
+    parts = PurePosixPath(raw.replace("\\", "/")).parts
+    if (not raw.strip() or PurePosixPath(raw).is_absolute() or PureWindowsPath(raw).drive
+            or PureWindowsPath(raw).is_absolute() or ".." in parts):
+        raise sec.error(key, "a folder inside --out (a relative path without '..'; a spec "
+                        "never chooses where mechcli writes: give `mechcli synth --atlas "
+                        "DIR` for a folder elsewhere)", repr(raw))
+    return raw
 
 
 def _path(sec):
