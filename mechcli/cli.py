@@ -204,6 +204,8 @@ def main(argv=None):
 
     args = list(sys.argv[1:] if argv is None else argv)
     show_tb = "--traceback" in args
+    from mechcli._signals import sigterm_as_exit
+    restore = sigterm_as_exit()
     try:
         if args and args[0] in COMMANDS and args[0] not in _LIGHT_COMMANDS:
             from mechcli._alloc import keep_heap_warm
@@ -260,4 +262,10 @@ def main(argv=None):
         code = ExitStatus.INTERNAL
     else:
         code = rv if isinstance(rv, int) and not isinstance(rv, bool) else ExitStatus.OK
+    finally:
+        restore()
+        # a run that did not commit its outputs leaves --out as the earlier run left it
+        files = sys.modules.get("mechcli.report.files")
+        if files is not None:
+            files.abandon_staged()
     sys.exit(int(code))

@@ -41,19 +41,25 @@ def atlas_mapper(workers, scheduler):
     return map, (lambda: None)
 
 
-def atlas_folder(prob, run, atlas_dir):
+def atlas_folder(prob, run, atlas_dir, outputs=None):
     """Where an ``atlas_build`` writes, or where a ``path`` search builds its default
     atlas: the command line's ``--atlas DIR``, else inside ``--out`` (the spec's
-    ``directory``, a relative folder there, or ``atlas``)."""
+    ``directory``, a relative folder there, or ``atlas``).  Inside ``--out`` the atlas
+    is this run's output: it is built in the run's staged folder (*outputs*), started
+    from the earlier run's atlas there (hard links: an atlas built once is resumed,
+    not rebuilt), and committed with the run's other files."""
     from pathlib import Path
 
     if atlas_dir is not None:
         return Path(atlas_dir)
-    sub = prob.data.get("directory") if prob.kind == "atlas_build" else None
-    return Path(run.out_dir) / (sub or "atlas")
+    sub = (prob.data.get("directory") if prob.kind == "atlas_build" else None) or "atlas"
+    if outputs is None:
+        return Path(run.out_dir) / sub
+    staged = outputs.staged_folder(sub)
+    return staged
 
 
-def atlas_case(prob, spec, run, mapper, atlas_dir=None):
+def atlas_case(prob, spec, run, mapper, atlas_dir=None, outputs=None):
     """``atlas_build`` and ``path``: the atlas on disk (mechcli.atlas_store) with the
     core's numbers; a SynthSolution like the other kinds'."""
     import time
@@ -66,6 +72,8 @@ def atlas_case(prob, spec, run, mapper, atlas_dir=None):
     from mechcli.spec.errors import SpecError
 
     def refuse(directory, why):
+        if outputs is not None:
+            directory = outputs._shown(directory)
         # a folder the atlas cannot go into: the option's or the spec key's, exit 2
         if atlas_dir is not None:
             return SpecError("--atlas", "", "a folder the atlas can be written into",
@@ -74,7 +82,7 @@ def atlas_case(prob, spec, run, mapper, atlas_dir=None):
                          "a folder for the atlas", f"'{directory}' ({why})")
 
     if prob.kind == "atlas_build":
-        directory = atlas_folder(prob, run, atlas_dir)
+        directory = atlas_folder(prob, run, atlas_dir, outputs)
         grid = tuple(tuple(float(v) for v in __import__("numpy").linspace(lo, hi, n))
                      for lo, hi, n in (d["grid_x"], d["grid_y"]))
         t = time.perf_counter()
@@ -88,7 +96,7 @@ def atlas_case(prob, spec, run, mapper, atlas_dir=None):
             raise refuse(directory, exc.strerror or str(exc)) from None
         return SynthSolution(prob.kind, None, None, (info, time.perf_counter() - t))
     if d["atlas"] is None:      # the default atlas, built once (under --out, or --atlas)
-        directory = atlas_folder(prob, run, atlas_dir)
+        directory = atlas_folder(prob, run, atlas_dir, outputs)
         if directory.exists() and not directory.is_dir():
             raise refuse(directory, "a file")
         try:
@@ -157,13 +165,14 @@ def synth(spec_path, workers=None, scheduler=None, atlas_dir=None, **opts):
     spec = read_synth_spec(spec_path, run.sets)
     solutions, prob_of = [], {}
     mapper = close = None
+    outputs = Outputs(run.out_dir, digits=run.digits)
     try:
         for prob in spec.cases:
             try:
                 if prob.kind in ("atlas_build", "path"):
                     if mapper is None:
                         mapper, close = atlas_mapper(workers, scheduler)
-                    sol = atlas_case(prob, spec, run, mapper, atlas_dir)
+                    sol = atlas_case(prob, spec, run, mapper, atlas_dir, outputs)
                 else:
                     sol = solve_synthesis(prob.kind, prob.data)
             except DescribedError as exc:   # worded in the spec's units and keys
@@ -179,19 +188,17 @@ def synth(spec_path, workers=None, scheduler=None, atlas_dir=None, **opts):
     finally:
         if close is not None:
             close()
-    outputs = Outputs(run.out_dir, digits=run.digits)
     u, unit = spec.header.scale, spec.header.unit
     from pathlib import Path
 
     from mechcli.report import atlas as atlas_report
-    out_root = Path(run.out_dir).resolve()
     for sol in solutions:
         # an atlas built under --out is this run's output: listed in outputs.json,
         # removed with the rest if the run fails (an [expected] typo)
         if sol.kind not in ("atlas_build", "path") or atlas_dir is not None:
             continue
-        folder = atlas_folder(prob_of[id(sol)], run, None).resolve()
-        if folder.is_dir() and out_root in folder.parents:
+        folder = atlas_folder(prob_of[id(sol)], run, None, outputs)
+        if folder.is_dir():
             for f in sorted(folder.iterdir()):
                 if f.is_file() and f not in outputs.files:
                     outputs.files.append(f)

@@ -20,6 +20,17 @@ separator or ``..``, or resolves outside the folder is refused
 through.  An OS error while writing there (``--out`` under a regular file, a
 read-only folder, a folder where the file should go) is the same error with
 the OS's reason: the user's ``--out`` is wrong, it is not a bug.
+
+A run's files are staged (issue 34 §2): :class:`Outputs` writes them into a hidden
+folder beside ``--out`` (``.NAME.mechcli-<random>``), and :meth:`Outputs.manifest`
+commits the run: the earlier run's files that are still valid for the user (changed
+since, or never mechcli's) are hard-linked in, the manifest is written last, and the
+staged folder takes the place of ``--out`` in one step (``renameat2`` with
+``RENAME_EXCHANGE`` on Linux; elsewhere two renames, with ``--out`` missing for the
+instant between them, never mixed).  So at every moment ``--out`` is one run's whole
+output with its manifest: a run that fails or is interrupted before its commit leaves
+the earlier run's folder exactly as it was, and its staged folder is removed
+(:func:`abandon_staged`, from the command line's error boundary).
 """
 
 from __future__ import annotations
@@ -262,20 +273,8 @@ def _terminate_as_exit():
     SystemExit(143) so that the temporary file is removed like on Ctrl-C; returns
     the function that puts the previous handler back.  (SIGKILL cannot be caught:
     it leaves the hidden ``.NAME.*.tmp`` beside the target.)"""
-    import signal
-    import threading
-
-    if threading.current_thread() is not threading.main_thread():
-        return lambda: None
-
-    def _exit(signum, frame):
-        raise SystemExit(128 + signum)
-
-    try:
-        previous = signal.signal(signal.SIGTERM, _exit)
-    except (ValueError, OSError):      # not settable here
-        return lambda: None
-    return lambda: signal.signal(signal.SIGTERM, previous)
+    from mechcli._signals import sigterm_as_exit
+    return sigterm_as_exit()
 
 
 def _os_reason(where, exc):
@@ -370,9 +369,65 @@ class Outputs:
     """
 
     def __init__(self, out_dir, digits=DEFAULT_DIGITS):
-        self.out_dir = Path(out_dir)
+        #: where the run's files go once committed: the user's --out
+        self.final = Path(out_dir)
+        #: where they are written until then (:meth:`_stage`); the final folder after
+        self.out_dir = self.final
+        self.staged = None
         self.digits = int(digits)
         self.files: list[Path] = []
+
+    def _relative(self, f):
+        """A file's name in the manifest: its path below the output folder."""
+        base = self.staged if self.staged is not None else self.final
+        try:
+            return Path(f).relative_to(base).as_posix()
+        except ValueError:
+            return Path(f).name
+
+    def _shown(self, where):
+        """*where* as the user knows it: a path in the staged folder named in --out."""
+        if self.staged is not None:
+            try:
+                return self.final / Path(where).relative_to(self.staged)
+            except ValueError:
+                pass
+        return where
+
+    def _stage(self):
+        """The hidden staging folder beside --out, made on the first write."""
+        if self.staged is None:
+            final = self.final
+            for up in [final, *final.parents]:   # a file where a folder should be
+                if up.exists():
+                    if not up.is_dir():
+                        raise OSError(errno.ENOTDIR, "Not a directory", str(final))
+                    break
+            parent = final.parent if str(final.parent) else Path(".")
+            parent.mkdir(parents=True, exist_ok=True)
+            for _ in range(100):
+                cand = parent / f".{final.name or 'out'}.mechcli-{os.urandom(6).hex()}"
+                try:
+                    os.mkdir(cand, 0o777)
+                    break
+                except FileExistsError:
+                    continue
+            else:
+                raise FileExistsError(errno.EEXIST, "no free staging folder", str(parent))
+            self.staged = self.out_dir = cand
+            _STAGED.append(self)
+        return self.staged
+
+    def staged_folder(self, name):
+        """A folder *name* of this run's output, to be filled by other code (an atlas):
+        inside the staged folder, started as a copy (hard links) of the earlier run's
+        folder of that name, so what it held is reused, and committed with the rest."""
+        self._stage()
+        path = self.path(name)
+        if not path.exists() and (self.final / name).is_dir():
+            _carry(self.final / name, path)
+        path.mkdir(parents=True, exist_ok=True)
+        return path
 
     def path(self, name):
         """``--out``/*name*, after checking that *name* is a plain file name that stays
@@ -394,19 +449,25 @@ class Outputs:
         what this run wrote before (as :func:`mechcli.report.run.finish` does), so a
         failed run leaves none of its output, and raise :class:`OutputPathError`."""
         try:
+            self._stage()
             path = self.path(name)
         except OutputPathError:
             self.discard()
             raise
+        except OSError as exc:
+            self.discard()
+            raise OutputPathError(f"a folder where mechcli can write {name}",
+                                  _os_reason(exc.filename or self.final, exc)) from None
         try:
             self.files.append(write(path, *args))
         except OSError as exc:
-            self.discard()
             # the path the OS refused: a parent folder (mkdir), else the file itself
-            # (the rename target, never the temporary file)
+            # (the rename target, never the temporary file), named as --out will hold it
             where = exc.filename2 or exc.filename
             if where is None or Path(where).name.startswith(f".{path.name}."):
                 where = path
+            where = self._shown(where)
+            self.discard()
             raise OutputPathError(f"a folder where mechcli can write {name}",
                                   _os_reason(where, exc)) from None
         return self.files[-1]
@@ -448,34 +509,83 @@ class Outputs:
         """
         import json
 
-        previous = read_manifest(self.out_dir, same_as=info)
+        final = self.final
+        previous = read_manifest(final, same_as=info)
+        self._stage()
         entries = []
         for f in self.files:
             size, digest = _WRITTEN.get(str(f)) or (f.stat().st_size, file_sha256(f))
-            entries.append({"name": f.name, "bytes": size, "sha256": digest})
+            entries.append({"name": self._relative(f), "bytes": size, "sha256": digest})
         doc = {"generator": "mechcli", "format": MANIFEST_FORMAT, **info, "files": entries}
-        path = self._write_quiet(MANIFEST, json.dumps(doc, ensure_ascii=False, indent=2) + "\n")
         written = {e["name"] for e in entries} | {MANIFEST}
-        removed, kept = [], []
+        # what the earlier run wrote and this one did not: removed (left out of the new
+        # folder) while it is still the file mechcli wrote, kept (carried over) otherwise
+        listed = {}
         for old in previous:
             name = old.get("name") if isinstance(old, dict) else None
-            if not isinstance(name, str) or name in written:
-                continue
-            try:
-                stale = self.path(name)
-            except OutputPathError:
-                continue
-            if stale.is_symlink() or not stale.is_file():
-                continue
-            if file_sha256(stale) != old.get("sha256"):
-                kept.append(name)
-                continue
-            try:
-                stale.unlink()
-                removed.append(name)
-            except OSError:
-                kept.append(name)
-        return path, removed, kept
+            if isinstance(name, str):
+                listed[name] = old.get("sha256")
+        removed, kept, carry = [], [], []
+        for name in sorted(written - {MANIFEST}):
+            there = final / name
+            if there.is_dir() and not there.is_symlink():   # the user's folder: never replaced
+                self.discard()
+                raise OutputPathError(f"a folder where mechcli can write {name}",
+                                      f"{there}: Is a directory")
+        if final.is_dir():
+            for entry in sorted(os.listdir(final)):
+                if entry in written or entry.startswith(f".{final.name}.mechcli-") \
+                        or os.path.lexists(self.staged / entry):   # this run's own folder
+                    continue
+                src = final / entry
+                if entry in listed and not src.is_symlink() and src.is_file():
+                    if file_sha256(src) == listed[entry]:
+                        removed.append(entry)
+                        continue
+                    kept.append(entry)
+                carry.append(entry)     # never mechcli's, or changed since: the user's
+        try:
+            for entry in carry:
+                _carry(final / entry, self.staged / entry)
+        except OSError as exc:
+            self.discard()
+            raise OutputPathError(f"a folder where mechcli can write {MANIFEST}",
+                                  _os_reason(final, exc)) from None
+        self._write_quiet(MANIFEST, json.dumps(doc, ensure_ascii=False, indent=2) + "\n")
+        self._commit()
+        return final / MANIFEST, removed, kept
+
+    def _commit(self):
+        """The staged folder becomes --out in one step; the earlier folder is removed."""
+        import shutil
+
+        final, staged = self.final, self.staged
+        try:
+            if not final.exists():
+                os.rename(staged, final)
+            elif _exchange(staged, final):
+                shutil.rmtree(staged, ignore_errors=True)
+            else:   # two renames: --out is absent for the instant between them
+                old = final.parent / f".{final.name}.mechcli-old-{os.urandom(6).hex()}"
+                os.rename(final, old)
+                os.rename(staged, final)
+                shutil.rmtree(old, ignore_errors=True)
+        except OSError as exc:
+            self.discard()
+            raise OutputPathError(f"a folder mechcli can replace with its outputs",
+                                  _os_reason(final, exc)) from None
+        if self in _STAGED:
+            _STAGED.remove(self)
+        self.staged = None
+        self.out_dir = final
+        moved = []
+        for f in self.files:
+            rel = Path(f).relative_to(staged) if staged in Path(f).parents else Path(f.name)
+            info = _WRITTEN.get(str(f))
+            moved.append(final / rel)
+            if info is not None:
+                _WRITTEN[str(final / rel)] = info
+        self.files = moved
 
     def _write_quiet(self, name, text):
         """Write *name* as :meth:`text` does (an OS error is an :class:`OutputPathError`),
@@ -485,11 +595,80 @@ class Outputs:
         return path
 
     def discard(self):
-        """Remove the files this run wrote (each was complete: see :func:`_atomic`),
-        so that a run that fails after writing leaves none of its output."""
-        for f in self.files:
-            try:
-                f.unlink()
-            except OSError:   # gone already, or the folder refuses: nothing more to undo
-                pass
+        """Forget this run's output: its staged folder is removed, so that a run that
+        fails after writing leaves the earlier run's folder as it was."""
+        if self.staged is not None:
+            import shutil
+            shutil.rmtree(self.staged, ignore_errors=True)
+            if self in _STAGED:
+                _STAGED.remove(self)
+            self.staged = None
+            self.out_dir = self.final
         self.files.clear()
+
+
+#: Outputs whose staged folder is not committed yet (removed by :func:`abandon_staged`)
+_STAGED: list = []
+
+
+def abandon_staged():
+    """Remove the staged folder of every run not committed (an error or an interrupt
+    reached the command line's boundary): --out keeps the earlier run's files."""
+    for out in list(_STAGED):
+        out.discard()
+
+
+def _carry(src, dst):
+    """The earlier folder's entry *src* into the staged folder: hard links (no copy, the
+    original untouched until the swap), a copy where the file system has none, and a
+    folder (an atlas under --out) as a tree of them."""
+    import shutil
+
+    if src.is_symlink():
+        os.symlink(os.readlink(src), dst)
+    elif src.is_dir():
+        shutil.copytree(src, dst, symlinks=True, copy_function=_link_or_copy)
+    else:
+        _link_or_copy(src, dst)
+
+
+def _link_or_copy(src, dst):
+    try:
+        os.link(src, dst)
+    except OSError:
+        import shutil
+        shutil.copy2(src, dst)
+    return dst
+
+
+_RENAME_EXCHANGE = 2
+_renameat2 = None
+
+
+def _exchange(a, b):
+    """Swap the folders *a* and *b* atomically (Linux ``renameat2`` with
+    ``RENAME_EXCHANGE``); False where that is not available."""
+    global _renameat2
+    if not sys.platform.startswith("linux"):
+        return False
+    if _renameat2 is None:
+        try:
+            import ctypes
+            libc = ctypes.CDLL(None, use_errno=True)
+            fn = libc.renameat2
+            fn.argtypes = [ctypes.c_int, ctypes.c_char_p, ctypes.c_int, ctypes.c_char_p,
+                           ctypes.c_uint]
+            fn.restype = ctypes.c_int
+            _renameat2 = (fn, ctypes)
+        except (OSError, AttributeError):
+            _renameat2 = False
+    if not _renameat2:
+        return False
+    fn, ctypes = _renameat2
+    at_fdcwd = -100
+    if fn(at_fdcwd, os.fsencode(str(a)), at_fdcwd, os.fsencode(str(b)), _RENAME_EXCHANGE) == 0:
+        return True
+    err = ctypes.get_errno()
+    if err in (errno.EINVAL, errno.ENOSYS, errno.ENOTSUP if hasattr(errno, "ENOTSUP") else -1):
+        return False            # a file system without it: the two renames
+    raise OSError(err, os.strerror(err), str(b))

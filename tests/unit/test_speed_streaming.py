@@ -204,17 +204,20 @@ def test_sigterm_while_streaming_leaves_no_temporary_file(tmp_path):
          "--set", "input.step=0.00003", "--no-plot", "--out", str(out)],
         stdout=subprocess.PIPE, stderr=subprocess.PIPE)
     deadline = time.monotonic() + 60
+    def streaming():   # the run writes into its staged folder beside --out
+        return any(p.name.endswith(".tmp") for d in tmp_path.glob(".out.mechcli-*")
+                   for p in d.iterdir())
+
     while time.monotonic() < deadline:          # wait until the stream has begun
-        if out.exists() and any(p.name.endswith(".tmp") for p in out.iterdir()):
-            break
-        if proc.poll() is not None:
+        if streaming() or proc.poll() is not None:
             break
         time.sleep(0.05)
     assert proc.poll() is None, "the run ended before it could be interrupted"
     proc.send_signal(signal.SIGTERM)
     proc.communicate(timeout=60)
     assert proc.returncode == 128 + signal.SIGTERM
-    assert [p.name for p in out.iterdir() if p.suffix in (".tmp", ".csv")] == []
+    # neither the CSV, nor its temporary file, nor the staged folder is left
+    assert not out.exists() and list(tmp_path.iterdir()) == []
 
 
 def test_manifest_checksums_are_sha256(tmp_path):
