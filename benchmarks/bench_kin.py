@@ -16,6 +16,9 @@ streamed to its CSV in bounded memory (peak RSS against the in-memory run at
 600,001 rows); the extreme refinement of 例 1-1's sweep (``refine_extremes``, warm)
 <= 3 ms.
 
+Issue 30: the class-III six-bar given by its joints (a triad by Newton), 36,001
+positions with velocities and accelerations, <= 10x the four-bar in the same run.
+
 Usage: python benchmarks/bench_kin.py [--quick] [--json]
 """
 
@@ -252,8 +255,32 @@ def streamed(quick):
     print(f"{tag}_time: {t_str:.1f} s ({t_str / rows * 1e6:.2f} us per row, CSV included)")
 
 
+def class3(repeat):
+    """Issue 30: the class-III six-bar of configs/ch1/class3-sixbar.toml (a triad solved
+    by batched Newton) at 36,001 positions with velocities and accelerations, against
+    the four-bar preset in the same run (goal <= 10x)."""
+    import math
+
+    from mechcli.core.linkage.drawing import Drawing, from_drawing
+
+    xy = {"A": (0.0, 0.0), "B": (-19.35, -1.44), "C": (81.65, 53.48), "E": (117.78, 50.71),
+          "F": (102.9, 93.53), "G": (188.83, 22.69), "H": (80.08, 150.21)}
+    xy = {k: (x / 1000, y / 1000) for k, (x, y) in xy.items()}
+    links = {1: ("A", "B"), 2: ("B", "C"), 3: ("C", "E", "F"), 4: ("G", "E"), 5: ("H", "F")}
+    t = time.perf_counter()
+    lk = from_drawing(Drawing(6, xy, links, (), ((1, "A"),))).linkage
+    build = time.perf_counter() - t
+    th = np.linspace(0, 2 * math.pi, 36001)
+    tri = best_of(lambda: solve(lk, {1: DriverMotion(th, 10.0)}, order=2), repeat)
+    fb = engine(36001, repeat)
+    print(f"engine_class3_sixbar_36001_pva: {tri * 1e3:.2f} ms")
+    print(f"engine_class3_over_fourbar_36001_pva: {tri / fb:.1f} x")
+    print(f"joints_class3_sixbar_from_drawing: {build * 1e3:.1f} ms")
+
+
 def main():
     quick = "--quick" in sys.argv
+    class3(5 if quick else 15)
     r = 3 if quick else 7
     streamed(quick)
     plain_process(10 if quick else 20)

@@ -47,6 +47,10 @@ from mechcli.core.records import record
 #: the linkage's size) for a position to count as assembled
 MAX_NEWTON = 30
 CLOSURE_TOL = 1e-12
+#: ... and where Newton stops: the step after the one that met CLOSURE_TOL (quadratic
+#: convergence takes 1e-12 to round-off), so that velocities and the refined extremes
+#: are computed at a pose closed to round-off
+STOP_TOL = 1e-14
 #: the continuation table's step [rad of the driver]
 TABLE_STEP = math.radians(0.5)
 
@@ -130,7 +134,7 @@ class Triad(Element):
         x, y, phi = (st.full(v).copy() for v in self.start(q))
         scale = st.scale
         ok, A, r, t, Rd = _newton(self, K, x, y, phi, scale)
-        det = _det(A)
+        cof, det = _cofactors(A)
         sing = np.abs(det) / (abs(self.length_1 * self.length_2 * self.length_3) * scale)
         sing = np.where(ok, np.minimum(sing, 1.0), 0.0)
         st.condition(self, self.joint_1, sing)
@@ -144,7 +148,7 @@ class Triad(Element):
         if st.vel:
             safe = np.where(bad, 1.0, det) if bad is not None else det
             rhs = [r[k][0] * K[k].vx + r[k][1] * K[k].vy for k in range(3)]
-            vx, vy, w = _cramer(A, rhs, safe)
+            vx, vy, w = _solve(cof, rhs, safe)
             for k, (dx, dy) in enumerate(self.body()):
                 p = pts[k]
                 p.vx, p.vy = vx + w * t[k][0], vy + w * t[k][1]
@@ -157,7 +161,7 @@ class Triad(Element):
                     rhs.append(r[k][0] * K[k].ax + r[k][1] * K[k].ay
                                + w * w * (r[k][0] * Rd[k][0] + r[k][1] * Rd[k][1])
                                - (rv[0] * rv[0] + rv[1] * rv[1]))
-                ax, ay, al = _cramer(A, rhs, safe)
+                ax, ay, al = _solve(cof, rhs, safe)
                 for k in range(3):
                     p = pts[k]
                     p.ax = ax + al * t[k][0] - w * w * Rd[k][0]
@@ -209,46 +213,55 @@ def _matrix(r, t):
     return [(rk[0], rk[1], rk[0] * tk[0] + rk[1] * tk[1]) for rk, tk in zip(r, t)]
 
 
-def _det(A):
+def _cofactors(A):
+    """The cofactors of the 3x3 matrix A (rows of arrays) and its determinant: the
+    solves with one matrix share them (:func:`_solve`)."""
     (a, b, c), (d, e, f), (g, h, i) = A
-    return a * (e * i - f * h) - b * (d * i - f * g) + c * (d * h - e * g)
+    c11, c12, c13 = e * i - f * h, f * g - d * i, d * h - e * g
+    c21, c22, c23 = c * h - b * i, a * i - c * g, b * g - a * h
+    c31, c32, c33 = b * f - c * e, c * d - a * f, a * e - b * d
+    det = a * c11 + b * c12 + c * c13
+    return ((c11, c12, c13), (c21, c22, c23), (c31, c32, c33)), det
 
 
-def _cramer(A, rhs, det):
-    """Solve the 3x3 systems A u = rhs (arrays of positions) by Cramer's rule."""
-    (a, b, c), (d, e, f), (g, h, i) = A
+def _solve(cof, rhs, det):
+    """A u = rhs from A's cofactors: u = adj(A) rhs / det (Cramer's rule)."""
+    (c11, c12, c13), (c21, c22, c23), (c31, c32, c33) = cof
     r1, r2, r3 = rhs
-    u1 = (r1 * (e * i - f * h) - b * (r2 * i - f * r3) + c * (r2 * h - e * r3)) / det
-    u2 = (a * (r2 * i - f * r3) - r1 * (d * i - f * g) + c * (d * r3 - r2 * g)) / det
-    u3 = (a * (e * r3 - r2 * h) - b * (d * r3 - r2 * g) + r1 * (d * h - e * g)) / det
-    return u1, u2, u3
+    inv = 1.0 / det
+    return ((c11 * r1 + c21 * r2 + c31 * r3) * inv, (c12 * r1 + c22 * r2 + c32 * r3) * inv,
+            (c13 * r1 + c23 * r2 + c33 * r3) * inv)
+
+
+def _cramer(A, rhs, det=None):
+    """Solve the 3x3 systems A u = rhs (arrays of positions) by Cramer's rule."""
+    cof, d = _cofactors(A)
+    return _solve(cof, rhs, d if det is None else det)
 
 
 def _newton(tri, K, x, y, phi, scale):
     """Newton on the closure equations from the pose (x, y, phi), in place; returns
-    (converged mask, A, r, t, Rd) at the final pose."""
+    (converged mask, A, r, t, Rd) at the final pose.  Each iteration first measures
+    the closure error |(|r_k| - l_k)| ~ |g_k| / l_k at the current pose and stops when
+    every position is within :data:`STOP_TOL` of the linkage's size (a position counts
+    as assembled within :data:`CLOSURE_TOL`), so the last pose's geometry serves the
+    velocity and acceleration solves as it is."""
     lengths = tri.lengths
-    tol = CLOSURE_TOL * scale
+    tol, stop = CLOSURE_TOL * scale, STOP_TOL * scale
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        for _ in range(MAX_NEWTON):
+        for _ in range(MAX_NEWTON + 1):
             r, t, Rd = _geometry(tri, K, x, y, phi)
             g = [0.5 * (rk[0] * rk[0] + rk[1] * rk[1] - lk * lk) for rk, lk in zip(r, lengths)]
-            A = _matrix(r, t)
-            det = _det(A)
-            dx, dy, dp = _cramer(A, g, det)
-            ok = np.isfinite(dx) & np.isfinite(dy) & np.isfinite(dp)
-            dx, dy, dp = (np.where(ok, v, 0.0) for v in (dx, dy, dp))
-            x -= dx
-            y -= dy
-            phi -= dp
-            step = np.maximum(np.maximum(np.abs(dx), np.abs(dy)), np.abs(dp) * scale)
-            if np.all(step <= tol):
+            err = np.maximum.reduce([np.abs(gk) * (1.0 / abs(lk)) for gk, lk in zip(g, lengths)])
+            if np.all(err <= stop):
                 break
-        r, t, Rd = _geometry(tri, K, x, y, phi)
+            dx, dy, dp = _cramer(_matrix(r, t), g)
+            fine = np.isfinite(dx) & np.isfinite(dy) & np.isfinite(dp) & (err > stop)
+            x -= np.where(fine, dx, 0.0)
+            y -= np.where(fine, dy, 0.0)
+            phi -= np.where(fine, dp, 0.0)
         A = _matrix(r, t)
-        err = np.maximum.reduce([np.abs(np.hypot(rk[0], rk[1]) - lk)
-                                 for rk, lk in zip(r, lengths)])
-        ok = np.isfinite(err) & (err <= tol * 10) & np.isfinite(phi)
+        ok = np.isfinite(err) & (err <= tol) & np.isfinite(phi)
     return ok, A, r, t, Rd
 
 

@@ -1,0 +1,87 @@
+"""Random assemblable drawings (issue 30 §4): a drawing of a four-bar or of the class-III
+six-bar with its joints moved at random is solved by mechcli.core.linkage.drawing; over
+the range its continuation reaches, every pair of joints on one link keeps its drawn
+distance (loop closure), the velocities are the derivatives of the positions (central
+differences), and the drawn pose is reproduced at the drawn input angle."""
+
+import math
+
+import numpy as np
+from hypothesis import assume, given, settings
+from hypothesis import strategies as st
+
+from mechcli.core.linkage import DriverMotion, solve
+from mechcli.core.linkage.drawing import Drawing, DrawingError, from_drawing
+
+SET = settings(max_examples=25, deadline=None)
+#: the class-III six-bar of configs/ch1/class3-sixbar.toml [m]
+TRIAD = {"A": (0.0, 0.0), "B": (-0.01935, -0.00144), "C": (0.08165, 0.05348),
+         "E": (0.11778, 0.05071), "F": (0.1029, 0.09353), "G": (0.18883, 0.02269),
+         "H": (0.08008, 0.15021)}
+TRIAD_LINKS = {1: ("A", "B"), 2: ("B", "C"), 3: ("C", "E", "F"), 4: ("G", "E"), 5: ("H", "F")}
+move = st.floats(-0.008, 0.008)
+
+
+def _check(fd, xy, links):
+    lk = fd.linkage
+    q0 = fd.inputs[1]
+    tri = [e for e in lk.elements if e.kind == "triad"]
+    if tri and not tri[0].period:                 # the range the continuation reached
+        lo, hi = min(tri[0].table[0]), max(tri[0].table[0])
+    else:
+        lo, hi = q0 - math.pi, q0 + math.pi
+    q = np.linspace(lo, hi, 97)[1:-1]
+    m = solve(lk, {1: DriverMotion(q, 1.0)}, order=1)
+    ok = m.regular
+    assume(ok.sum() > 20)
+    size = max(abs(v) for p in xy.values() for v in p)
+    for n, names in links.items():
+        for a_i, a in enumerate(names):
+            for b in names[a_i + 1:]:
+                d = np.hypot(m.points[a].x - m.points[b].x, m.points[a].y - m.points[b].y)
+                want = math.dist(xy[a], xy[b])
+                assert np.max(np.abs(d - want)[ok]) <= 1e-12 * size, (n, a, b)
+    h = 1e-6
+    mp = solve(lk, {1: DriverMotion(q + h, 1.0)}, order=0)
+    mm = solve(lk, {1: DriverMotion(q - h, 1.0)}, order=0)
+    # away from toggles (sin γ > 0.05 for every group), where x''' stays moderate
+    sin_min = np.min([np.broadcast_to(c.sin_gamma, q.shape) for c in m.conditions], axis=0)
+    good = ok & mp.regular & mm.regular & (sin_min > 0.05)
+    assume(good.sum() > 10)
+    for p in xy:
+        fdv = (mp.points[p].x - mm.points[p].x) / (2 * h)
+        v = m.points[p].vx
+        # central difference: truncation h^2 |x'''| / 6, rounding eps |x| / h (~1e-10 m)
+        assert np.max(np.abs(fdv - v)[good]) <= 1e-6 * np.max(np.abs(v[good])) + 1e-9, p
+    # the drawing itself, at its input angle
+    m0 = solve(lk, {1: DriverMotion(np.array([q0]))}, order=0)
+    for p, (x, y) in xy.items():
+        assert math.hypot(m0.points[p].x[0] - x, m0.points[p].y[0] - y) <= 1e-9 * size
+
+
+@SET
+@given(move, move, move, move, move, move)
+def test_a_moved_class3_drawing_closes_and_differentiates(dcx, dcy, dex, dey, dfx, dfy):
+    xy = dict(TRIAD)
+    for k, (dx, dy) in zip("CEF", ((dcx, dcy), (dex, dey), (dfx, dfy))):
+        xy[k] = (xy[k][0] + dx, xy[k][1] + dy)
+    try:
+        fd = from_drawing(Drawing(6, xy, TRIAD_LINKS, (), ((1, "A"),)))
+    except DrawingError:
+        assume(False)
+    assert fd.structure.mechanism_class == 3
+    _check(fd, xy, TRIAD_LINKS)
+
+
+@SET
+@given(st.floats(0.02, 0.2), st.floats(0.0, 2 * math.pi), st.floats(0.05, 0.4),
+       st.floats(-0.3, 0.3), st.floats(0.1, 0.5))
+def test_a_random_four_bar_drawing_closes_and_differentiates(r, th, cx, cy, dx):
+    xy = {"A": (0.0, 0.0), "B": (r * math.cos(th), r * math.sin(th)), "C": (cx, cy),
+          "D": (dx, 0.0)}
+    links = {1: ("A", "B"), 2: ("B", "C"), 3: ("D", "C")}
+    try:
+        fd = from_drawing(Drawing(4, xy, links, (), ((1, "A"),)))
+    except DrawingError:
+        assume(False)
+    _check(fd, xy, links)
