@@ -23,9 +23,10 @@ equation for the column that only enters it.
 
 The coefficients are those of the general system (scaled as there), Python
 floats where constant (exact zeros skipped, +-1 folded), arrays over the
-positions otherwise; a negated array stays pending (``_Neg``) until a sum or a
-product takes the sign, so a -1 costs no pass over memory.  :func:`factor` does the part that depends on the matrix
-only, :func:`apply` the rest for one right-hand side (the condition number
+positions otherwise; a negated array stays pending (:class:`~.folding.Neg`)
+until a sum or a product takes the sign, so a -1 costs no pass over memory (the
+arithmetic is :mod:`.folding`'s).  :func:`factor` does the part that depends on
+the matrix only, :func:`apply` the rest for one right-hand side (the condition number
 solves the identity's columns with the same factor: unit right-hand sides, all
 floats, a few passes over memory each).  Positions where the
 2 x 2 determinant vanishes give zeros and are reported, as the general
@@ -37,134 +38,54 @@ from __future__ import annotations
 
 import numpy as np
 
-_ZERO = 0.0
+from typing import Tuple
 
+from mechcli.core.linkage.folding import (Neg, add, const, cross3, div, dot3, mul,  # noqa: F401
+                                          neg, sub, value)
+from mechcli.core.records import record
 
-class _Neg:
-    """``-v`` not yet computed: a coefficient of -1 (the force of link i on j is
-    minus that of j on i) folded into the next sum or product instead of a pass
-    over memory of its own.  :func:`value` computes it where it leaves the algebra."""
-
-    __slots__ = ("v",)
-
-    def __init__(self, v):
-        self.v = v
-
-    def __abs__(self):
-        return abs(self.v)
+# the folding arithmetic (:mod:`.folding`); the underscored names are its earlier
+# names here, kept for code that imported them
+_Neg, _neg, _mul, _add, _sub, _div = Neg, neg, mul, add, sub, div
+_dot3, _cross = dot3, cross3
 
 
 def _isf(v):
     return type(v) is float
 
 
-def _neg(a):
-    ta = type(a)
-    if ta is _Neg:
-        return a.v
-    if ta is float:
-        return -a
-    return _Neg(a)
+@record
+class DriverLayout:
+    """A driver block: the local columns ``forces`` of the two unknowns its force
+    equations give, and the column ``moment`` only its moment equation has."""
+
+    forces: Tuple[int, int]
+    moment: int
 
 
-def value(a):
-    """``a`` as a float or an array (a pending negation computed)."""
-    return -a.v if type(a) is _Neg else a
+@record
+class OuterPair:
+    """A dyad link's outer pair: ``kind`` "R" or "P", the local columns ``cols`` of
+    its two unknowns, and ``base``, the local row of its link's first equation."""
+
+    kind: str
+    cols: Tuple[int, int]
+    base: int
 
 
-def const(a):
-    """A Python float for an array that holds one value at every position (a
-    stride-0 broadcast, as the engine gives a fixed point or a fixed angle),
-    anything else unchanged: the arithmetic here folds it."""
-    if type(a) is np.ndarray and a.ndim and not any(a.strides):
-        return float(a.reshape(-1)[0])
-    return a
+@record
+class DyadLayout:
+    """A dyad block: the outer pairs of its links ``a`` and ``b`` and the local
+    columns ``inner`` of the inner pair's two unknowns."""
 
-
-# (the type tests are written out, not calls of _isf: these run a few hundred times a
-# call, and the fixed cost of one kinetostatics call is a goal of its own)
-def _mul(a, b):
-    ta, tb = type(a), type(b)
-    if ta is float:
-        if a == 0.0:
-            return _ZERO
-        if a == 1.0:
-            return b
-        if a == -1.0:
-            return _neg(b)
-        if tb is _Neg:
-            return _mul(-a, b.v)
-    if tb is float:
-        if b == 0.0:
-            return _ZERO
-        if b == 1.0:
-            return a
-        if b == -1.0:
-            return _neg(a)
-        if ta is _Neg:
-            return _mul(a.v, -b)
-    if ta is _Neg:
-        return _mul(a.v, b.v) if tb is _Neg else _neg(_mul(a.v, b))
-    if tb is _Neg:
-        return _neg(_mul(a, b.v))
-    return a * b
-
-
-def _add(a, b):
-    ta, tb = type(a), type(b)
-    if ta is float and a == 0.0:
-        return b
-    if tb is float and b == 0.0:
-        return a
-    if tb is _Neg:
-        return _neg(_add(a.v, b.v)) if ta is _Neg else _sub(a, b.v)
-    if ta is _Neg:
-        return _sub(b, a.v)
-    return a + b
-
-
-def _sub(a, b):
-    ta, tb = type(a), type(b)
-    if tb is float and b == 0.0:
-        return a
-    if ta is float and a == 0.0:
-        return _neg(b)
-    if tb is _Neg:
-        return _sub(b.v, a.v) if ta is _Neg else _add(a, b.v)
-    if ta is _Neg:
-        return _neg(_add(a.v, b))
-    return a - b
-
-
-def _div(a, b):
-    ta, tb = type(a), type(b)
-    if tb is float:
-        if b == 1.0:
-            return a
-        if b == -1.0:
-            return _neg(a)
-        if ta is _Neg:
-            return a.v / -b
-    if tb is _Neg:
-        return _div(a.v, b.v) if ta is _Neg else _neg(_div(a, b.v))
-    if ta is _Neg:
-        return _neg(_div(a.v, b))
-    return a / b
-
-
-def _dot3(w, c):
-    """``w . c`` of two 3-vectors (floats or arrays)."""
-    return _add(_add(_mul(w[0], c[0]), _mul(w[1], c[1])), _mul(w[2], c[2]))
-
-
-def _cross(c1, c2):
-    return (_sub(_mul(c1[1], c2[2]), _mul(c1[2], c2[1])),
-            _sub(_mul(c1[2], c2[0]), _mul(c1[0], c2[2])),
-            _sub(_mul(c1[0], c2[1]), _mul(c1[1], c2[0])))
+    a: OuterPair
+    inner: Tuple[int, int]
+    b: OuterPair
 
 
 def layout(kind_of, cols_of_rows, nrows):
-    """The closed-form layout of one block, or None (the general elimination).
+    """The closed-form layout of one block (a :class:`DriverLayout` or a
+    :class:`DyadLayout`), or None (the general elimination).
 
     ``kind_of``: per local pair (in the block's column order, two columns
     each) its kind "R"/"P" and the local link indices (0 or 1) it acts on;
@@ -180,7 +101,7 @@ def layout(kind_of, cols_of_rows, nrows):
             return None
         m = only_m[0]
         f = tuple(c for c in range(3) if c != m)
-        return ("driver", f, m)
+        return DriverLayout(f, m)
     if nrows != 6 or len(kind_of) != 3 or len(cols_of_rows) != 6:
         return None
     outer, inner = {}, None
@@ -214,15 +135,15 @@ def layout(kind_of, cols_of_rows, nrows):
             # (ux, uy, um) and (0, 0, s): the normal force, then the couple
             if set(r1) != {base + 2} or not r1[base + 2]:
                 return None
-        out.append((kind, (c0, c1), base))
-    return ("dyad", out[0], (2 * inner, 2 * inner + 1), out[1])
+        out.append(OuterPair(kind, (c0, c1), base))
+    return DyadLayout(out[0], (2 * inner, 2 * inner + 1), out[1])
 
 
 def _guard(det):
     """``(det, singular)``: exact zeros replaced by 1 (flagged)."""
-    if type(det) is _Neg:
+    if type(det) is Neg:
         det, sing = _guard(det.v)
-        return _neg(det), sing
+        return neg(det), sing
     if _isf(det):
         if det == 0.0:
             return 1.0, True
@@ -236,9 +157,9 @@ def _guard(det):
 def _cramer(p, q, r, s, det):
     """``(p q - r s) / det``; for a pending negation of ``det`` the products are
     subtracted the other way round (no pass for the sign)."""
-    if type(det) is _Neg:
-        return _div(_sub(_mul(r, s), _mul(p, q)), det.v)
-    return _div(_sub(_mul(p, q), _mul(r, s)), det)
+    if type(det) is Neg:
+        return div(sub(mul(r, s), mul(p, q)), det.v)
+    return div(sub(mul(p, q), mul(r, s)), det)
 
 
 def _residual(bk, a0, y0, a1, y1, over):
@@ -246,39 +167,39 @@ def _residual(bk, a0, y0, a1, y1, over):
     link i on j is minus that of j on i) the terms are summed the other way round
     (no pass for the sign)."""
     if _isf(over) and over < 0.0:
-        return _div(_sub(_add(_mul(a0, y0), _mul(a1, y1)), bk), -over)
-    return _div(_sub(_sub(bk, _mul(a0, y0)), _mul(a1, y1)), over)
+        return div(sub(add(mul(a0, y0), mul(a1, y1)), bk), -over)
+    return div(sub(sub(bk, mul(a0, y0)), mul(a1, y1)), over)
 
 
-def _outer(kind, cols, base, A, r):
+def _outer(cols, base, A, r):
     """A prismatic outer pair's two unknowns from its link's residual equations
     ``r`` (a revolute one's come from :func:`_residual` directly)."""
     c0, c1 = cols
     ux, uy, um = A[base][c0], A[base + 1][c0], A[base + 2][c0]
-    n = _div(_add(_mul(ux, r[0]), _mul(uy, r[1])), _add(_mul(ux, ux), _mul(uy, uy)))
-    return n, _div(_sub(r[2], _mul(um, n)), A[base + 2][c1])
+    n = div(add(mul(ux, r[0]), mul(uy, r[1])), add(mul(ux, ux), mul(uy, uy)))
+    return n, div(sub(r[2], mul(um, n)), A[base + 2][c1])
 
 
 def factor(lay, A):
     """The part of a block's closed-form solution that depends on ``A`` only
     (the equations free of the outer pairs, the 2 x 2 determinant), for
     :func:`apply` to any number of right-hand sides."""
-    if lay[0] == "driver":
-        _, (f0, f1), m = lay
+    if type(lay) is DriverLayout:
+        f0, f1 = lay.forces
         a00, a01, a10, a11 = A[0][f0], A[0][f1], A[1][f0], A[1][f1]
-        det, sing = _guard(_sub(_mul(a00, a11), _mul(a01, a10)))
+        det, sing = _guard(sub(mul(a00, a11), mul(a01, a10)))
         return lay, None, (a00, a01, a10, a11), det, sing
-    _, (ka, ca, ba), (i0, i1), (kb, cb, bb) = lay
+    i0, i1 = lay.inner
     ws, gs = [], []
-    for c, base in ((ca, ba), (cb, bb)):
+    for c, base in ((lay.a.cols, lay.a.base), (lay.b.cols, lay.b.base)):
         col0 = (A[base][c[0]], A[base + 1][c[0]], A[base + 2][c[0]])
         col1 = (A[base][c[1]], A[base + 1][c[1]], A[base + 2][c[1]])
-        w = _cross(col0, col1)
+        w = cross3(col0, col1)
         ws.append(w)
-        gs.append((_dot3(w, (A[base][i0], A[base + 1][i0], A[base + 2][i0])),
-                   _dot3(w, (A[base][i1], A[base + 1][i1], A[base + 2][i1]))))
+        gs.append((dot3(w, (A[base][i0], A[base + 1][i0], A[base + 2][i0])),
+                   dot3(w, (A[base][i1], A[base + 1][i1], A[base + 2][i1]))))
     (g00, g01), (g10, g11) = gs
-    det, sing = _guard(_sub(_mul(g00, g11), _mul(g01, g10)))
+    det, sing = _guard(sub(mul(g00, g11), mul(g01, g10)))
     return lay, ws, (g00, g01, g10, g11), det, sing
 
 
@@ -287,8 +208,8 @@ def apply(fac, A, b, shape, arrays=True):
     in the block's column order (zero at the singular positions); arrays of
     ``shape`` (or, with ``arrays`` False, Python floats where they are constant)."""
     lay, ws, g, det, sing = fac
-    if lay[0] == "driver":
-        _, (f0, f1), m = lay
+    if type(lay) is DriverLayout:
+        (f0, f1), m = lay.forces, lay.moment
         a00, a01, a10, a11 = g
         x0 = _cramer(a11, b[0], a01, b[1], det)
         x1 = _cramer(a00, b[1], a10, b[0], det)
@@ -296,23 +217,24 @@ def apply(fac, A, b, shape, arrays=True):
         X = [None] * 3
         X[f0], X[f1], X[m] = x0, x1, xm
     else:
-        _, (ka, ca, ba), (i0, i1), (kb, cb, bb) = lay
+        (i0, i1), ba, bb = lay.inner, lay.a.base, lay.b.base
         g00, g01, g10, g11 = g
-        h0 = _dot3(ws[0], (b[ba], b[ba + 1], b[ba + 2]))
-        h1 = _dot3(ws[1], (b[bb], b[bb + 1], b[bb + 2]))
+        h0 = dot3(ws[0], (b[ba], b[ba + 1], b[ba + 2]))
+        h1 = dot3(ws[1], (b[bb], b[bb + 1], b[bb + 2]))
         y0 = _cramer(g11, h0, g01, h1, det)
         y1 = _cramer(g00, h1, g10, h0, det)
         X = [None] * 6
         X[i0], X[i1] = y0, y1
-        for kind, c, base in ((ka, ca, ba), (kb, cb, bb)):
-            if kind == "R":  # (s, 0, mx) and (0, s, my): each force row gives one component
+        for outer in (lay.a, lay.b):
+            c, base = outer.cols, outer.base
+            if outer.kind == "R":  # (s, 0, mx) and (0, s, my): each force row gives one component
                 X[c[0]], X[c[1]] = (
                     _residual(b[base + k], A[base + k][i0], y0, A[base + k][i1], y1,
                               A[base + k][c[k]]) for k in (0, 1))
                 continue
-            r = [_sub(_sub(b[base + k], _mul(A[base + k][i0], y0)), _mul(A[base + k][i1], y1))
+            r = [sub(sub(b[base + k], mul(A[base + k][i0], y0)), mul(A[base + k][i1], y1))
                  for k in (0, 1, 2)]
-            X[c[0]], X[c[1]] = _outer(kind, c, base, A, r)
+            X[c[0]], X[c[1]] = _outer(c, base, A, r)
     X = [value(x) for x in X]
     if sing is not None:
         if sing is True:

@@ -14,22 +14,25 @@ and there are three equations (ΣFx, ΣFy, ΣM about S) per moving link: a
 square linear system per position.  (Without the condition numbers, a link of a
 closed-form block takes its moments about its outer pair's point instead, as by
 hand: the same solution, and that pair drops out of the moment equation for free;
-the condition numbers are those of the system about the centres of mass.)  It is assembled from the engine's topology
-and, because every driver and every dyad of the engine is a statically
-determinate group (an Assur group), it is block lower-triangular in the
-reverse solving order: each element's 3 or 6 unknowns are solved for all
-positions at once, from the last dyad back to the drivers, in closed form as by
-hand (:mod:`.dyad_statics`: the moments about the outer pins give the inner
-pair, then each outer pair) for every driver and dyad, and by a batched Gaussian
-elimination with partial pivoting (:mod:`.elimination`, or LAPACK for short
-sweeps) for any block the dyad layout does not describe and where a position
+the condition numbers are those of the system about the centres of mass.)  It is
+assembled from the engine's topology and, because every driver and every dyad of
+the engine is a statically determinate group (an Assur group), it is block
+lower-triangular in the reverse solving order: each element's 3 or 6 unknowns are
+solved for all positions at once, from the last dyad back to the drivers, in closed
+form as by hand (:mod:`.dyad_statics`: the moments about the outer pins give the
+inner pair, then each outer pair) for every driver and dyad, and by a batched
+Gaussian elimination with partial pivoting (:mod:`.elimination`, or LAPACK for
+short sweeps) for any block the dyad layout does not describe and where a position
 overflows.  Exact zeros and values that are the same at every position (a fixed
-point, a block on a fixed guide) are folded as Python floats, so they cost no
-pass over memory.  The model
-(bodies, loads, pairs, results) is in :mod:`.force_model`, the load programs
-in :mod:`.loads`.  The structure of the system (which equations each unknown
-enters, the blocks, the order) is worked out once per topology (``_Plan``);
-a call computes only the coefficients and solves the blocks.
+point, a block on a fixed guide) are folded as Python floats, so they cost no pass
+over memory (:mod:`.folding`).  The model (bodies, loads, pairs, results) is in
+:mod:`.force_model`, the load programs in :mod:`.loads`.  The structure of the
+system (which equations each unknown enters and through which coefficient, the
+blocks, the order) is worked out once per topology (:mod:`.force_plan`); a call
+of :func:`solve_forces` computes only the coefficients and solves the blocks, in
+steps that pass one record of the call (``_Call``): the known loads → the
+right-hand sides → the block solves → the reactions → the frame resultants → the
+force and power residuals.
 
 Conventions (as the book, 第二章第一节)
 ---------------------------------------
@@ -56,16 +59,18 @@ from typing import Dict, Optional
 
 import numpy as np
 
-from mechcli.core.linkage import dyad_statics
-from mechcli.core.linkage.dyad_statics import _add, _div, _mul, _neg, _sub, const, value
+from mechcli.core.linkage import dyad_statics, force_plan
 from mechcli.core.linkage.elimination import gauss
-from mechcli.core.linkage.elements import Element
 from mechcli.core.linkage.engine import LinkageMotion, _facts
+from mechcli.core.linkage.folding import (Neg, add, const, div, exact_zero, mul, neg, sub,
+                                          value)
+from mechcli.core.linkage.force_plan import Arm, Constant, PairNormal
 # the model and the load programs, re-exported: this module is the entry point
 from mechcli.core.linkage.force_model import (COND_FLAG, Body, ForceModelError,  # noqa: F401
                                               ForceResult, Load, Pair, PairForce, Topology,
                                               com_of, topology)
 from mechcli.core.linkage.loads import LoadProgram  # noqa: F401
+from mechcli.core.records import record
 
 # ---------------------------------------------------------------------------
 # solve
@@ -73,7 +78,7 @@ from mechcli.core.linkage.loads import LoadProgram  # noqa: F401
 def _mid(a, b):
     """``(a + b) / 2``, a fixed point's values (a stride-0 array: its zero
     acceleration, a point at the origin) folded as floats."""
-    return _mul(0.5, _add(const(a), const(b)))
+    return mul(0.5, add(const(a), const(b)))
 
 
 def _point(motion, topo, origin, link, along, normal, order=2, cos_sin=None):
@@ -99,21 +104,21 @@ def _point(motion, topo, origin, link, along, normal, order=2, cos_sin=None):
         rx = ry = 0.0  # the origin itself: no angle needed
     else:
         c, s = cos_sin(link) if cos_sin is not None else (np.cos(k.theta), np.sin(k.theta))
-        rx = value(_sub(_mul(along, c), _mul(normal, s)))
-        ry = value(_add(_mul(along, s), _mul(normal, c)))
+        rx = value(sub(mul(along, c), mul(normal, s)))
+        ry = value(add(mul(along, s), mul(normal, c)))
     if order == 0:
         return o.x + rx, o.y + ry
     w = k.omega
     if acc_only:  # (the acceleration is only read: o.ax itself when rx = ry = 0)
         al, w = const(k.alpha), const(w)
-        w2 = _mul(w, w)
+        w2 = mul(w, w)
         return (o.x + rx, o.y + ry, None, None,
-                value(_sub(_sub(o.ax, _mul(al, ry)), _mul(w2, rx))),
-                value(_sub(_add(o.ay, _mul(al, rx)), _mul(w2, ry))))
+                value(sub(sub(o.ax, mul(al, ry)), mul(w2, rx))),
+                value(sub(add(o.ay, mul(al, rx)), mul(w2, ry))))
     if order == 1:
         wc = const(w)
-        return (o.x + rx, o.y + ry, value(_sub(o.vx, _mul(wc, ry))),
-                value(_add(o.vy, _mul(wc, rx))),
+        return (o.x + rx, o.y + ry, value(sub(o.vx, mul(wc, ry))),
+                value(add(o.vy, mul(wc, rx))),
                 None, None)
     vx, vy = o.vx - w * ry, o.vy + w * rx
     w2 = w * w
@@ -121,121 +126,8 @@ def _point(motion, topo, origin, link, along, normal, order=2, cos_sin=None):
             o.ax - k.alpha * ry - w2 * rx, o.ay + k.alpha * rx - w2 * ry)
 
 
-# ---------------------------------------------------------------------------
-# the system's structure, built once per topology
-# ---------------------------------------------------------------------------
-class _Plan:
-    """The structure of a linkage's kinetostatic system, worked out once per
-    topology (cached on it): the unknowns, which equations each enters and how
-    its coefficient is computed, and, per element block (in the reverse solving
-    order), where each coefficient goes in the block's matrix and which solved
-    unknowns of later blocks enter its right-hand side.
-
-    Unknowns are solved scaled: forces as they are, couples and balancing
-    torques divided by the length scale L (the moment rows are divided by L),
-    so every coefficient below is dimensionless: ``("c", v)`` a constant,
-    ``("mx"|"my", link, point, sign)`` the moment arm of a force component
-    about the link's centre of mass, ``("ux"|"uy"|"um", link, point, direction,
-    sign)`` a force along a (normal or driver) direction.
-    """
-
-    def __init__(self, topo):
-        linkage = topo.linkage
-        frame = linkage.frame
-        self.eq_of = eq_of = {link: 3 * i for i, link in enumerate(topo.links)}
-        columns, owners, self.pair_cols, self.driver_cols = [], [], [], {}
-
-        def force(col_x, col_y, link, sign, point, direction=None):
-            if link == frame:
-                return
-            e = eq_of[link]
-            if direction is None:
-                col_x += [(e, ("c", sign)), (e + 2, ("mx", link, point, sign))]
-                col_y += [(e + 1, ("c", sign)), (e + 2, ("my", link, point, sign))]
-            else:
-                col_x += [(e, ("ux", link, point, direction, sign)),
-                          (e + 1, ("uy", link, point, direction, sign)),
-                          (e + 2, ("um", link, point, direction, sign))]
-
-        for pi, pr in enumerate(topo.pairs):
-            if pr.kind == "R":
-                cx, cy = [], []
-                for link, sign in ((pr.j, 1.0), (pr.i, -1.0)):
-                    force(cx, cy, link, sign, pr.point)
-                self.pair_cols.append((len(columns), len(columns) + 1))
-                columns += [cx, cy]
-                owners += [("R", pi, 0), ("R", pi, 1)]
-            else:
-                cn, cm = [], []
-                for link, sign in ((pr.j, 1.0), (pr.i, -1.0)):
-                    force(cn, None, link, sign, pr.point, ("n", pi))
-                    if link != frame:
-                        cm.append((eq_of[link] + 2, ("c", sign)))  # the couple (scaled)
-                self.pair_cols.append((len(columns), len(columns) + 1))
-                columns += [cn, cm]
-                owners += [("P", pi, 0), ("P", pi, 1)]
-        for d in linkage.drivers:
-            col = []
-            if d.rotary:
-                col.append((eq_of[d.link] + 2, ("c", 1.0)))  # the torque (scaled)
-            else:
-                force(col, None, d.link, 1.0, d.point, ("d", d.link))
-            self.driver_cols[d.link] = len(columns)
-            columns.append(col)
-            owners.append(("D", d.link, 0))
-        # couples and balancing torques: the scaled unknown is value / L
-        self.is_couple = [o[0] == "P" and o[2] == 1
-                          or (o[0] == "D" and linkage.driver(o[1]).rotary) for o in owners]
-        self.columns = columns
-        self.nrows = 3 * len(topo.links)
-        self.blocks = []
-        self.ref_point = {}
-        solved = []
-        for idx, new_links, pidx in reversed(topo.blocks):
-            unk = [u for pi in pidx for u in self.pair_cols[pi]]
-            el = linkage.elements[idx]
-            if el.is_driver:
-                unk.append(self.driver_cols[el.link])
-            rows = [eq_of[ln] + c for ln in new_links for c in range(3)]
-            if len(unk) != len(rows):  # pragma: no cover - every engine element is determinate
-                raise ForceModelError(f"element {idx} is not statically determinate")
-            row_pos = {r: i for i, r in enumerate(rows)}
-            entries = [(row_pos[r], jc, spec) for jc, u in enumerate(unk)
-                       for r, spec in columns[u] if r in row_pos]
-            known = [(row_pos[r], u, spec) for u in solved for r, spec in columns[u]
-                     if r in row_pos]
-            # the closed-form layout of the block (a driver or a dyad), if it has one
-            cols_of_rows = [{} for _ in unk]
-            for i, jc, spec in entries:
-                cols_of_rows[jc][i] = spec[0] == "c"
-            kind_of = [(topo.pairs[pi].kind,
-                        tuple(k for k, ln in enumerate(new_links)
-                              if ln in (topo.pairs[pi].i, topo.pairs[pi].j)))
-                       for pi in pidx]
-            lay = dyad_statics.layout(kind_of, cols_of_rows, len(rows))
-            self.blocks.append((unk, rows, entries, known, lay))
-            solved += unk
-            # a closed-form block's links may take their moments about their outer pair's
-            # point instead of the centre of mass (the same solution): that pair then
-            # drops out of the moment equation with no pass over memory
-            if lay is not None and lay[0] == "dyad":
-                for ln, (_kind, cols, _base) in zip(new_links, (lay[1], lay[3])):
-                    self.ref_point[ln] = topo.pairs[pidx[cols[0] // 2]].point
-            elif lay is not None and len(pidx) == 1 and len(new_links) == 1:
-                self.ref_point[new_links[0]] = topo.pairs[pidx[0]].point
-        self.all_closed = all(blk[-1] is not None for blk in self.blocks)
-        # the element that makes each link, where it can give the angle's cosine and
-        # sine from its points (Element.direction)
-        self.direction_of = {ln: el for el in linkage.elements for ln in el.makes()[1]
-                             if type(el).direction is not Element.direction}
-
-
-def _plan(topo):
-    plan = topo.__dict__.get("_force_plan")
-    if plan is None:
-        plan = _Plan(topo)
-        object.__setattr__(topo, "_force_plan", plan)
-    return plan
+# the system's structure, built once per topology (:mod:`.force_plan`; the names it had here)
+_Plan, _plan = force_plan.Plan, force_plan.plan
 
 
 #: above this many positions a link's cosine and sine come from its element's points
@@ -323,7 +215,7 @@ def _solve_closed(lay, A, b, flat, condition):
             # arrays of their own: a folded sign (-(-v)) or a coefficient of 1 gives
             # back a right-hand side itself (a load's array, a read-only broadcast of a
             # constant load, an earlier block's unknown) or another unknown of the block
-            seen = {id(v.v if type(v) is dyad_statics._Neg else v)
+            seen = {id(v.v if type(v) is Neg else v)
                     for v in b + [a for row in A for a in row]}
             for i, v in enumerate(X):
                 if id(v) in seen or not v.flags.writeable:
@@ -355,8 +247,8 @@ def _solve_closed(lay, A, b, flat, condition):
 CLOSED_FORM = True
 
 
-def _exact_zero(v):
-    return (type(v) is float or type(v) is int) and v == 0
+#: (the name before :mod:`.folding`)
+_exact_zero = exact_zero
 
 
 def _broadcasts(a, b):
@@ -367,52 +259,9 @@ def _broadcasts(a, b):
         return False
 
 
-def solve_forces(topo: Topology, motion: LinkageMotion, bodies: Dict[int, Body], loads=(),
-                 gravity=(0.0, 0.0), unit_motion: Optional[LinkageMotion] = None,
-                 scale: Optional[float] = None, condition: bool = True) -> ForceResult:
-    """Pair reactions and balancing torques/forces at every position of ``motion``.
-
-    Parameters
-    ----------
-    topo : Topology
-        From :func:`topology`.
-    motion : LinkageMotion
-        Engine output of order 2 (only regular positions should be passed).
-    bodies : dict
-        ``{link: Body}``; links not listed are massless with their centre of
-        mass at the default point.
-    loads : sequence of Load
-    gravity : (gx, gy)
-        Gravitational acceleration vector [m/s^2] (``(0, -9.8)``; zeros for none).
-    unit_motion : LinkageMotion, optional
-        Engine output of order 1 with a unit speed of the primary driver (the
-        velocity coefficients), for the virtual-power check; default: none.
-    scale : float, optional
-        Length scaling the moment equations for the condition number
-        (default: the linkage's scale).
-    condition : bool
-        Compute the condition number of every element block (costs about as
-        much as the solve itself); otherwise ``cond`` is all NaN-free ones.
-    """
-    linkage = topo.linkage
-    frame = linkage.frame
-    n = motion.feasible.shape
-    flat = motion.feasible.size
-    L = _facts(linkage).scale if scale is None else scale
-    gx, gy = gravity
-
-    def arr(x):
-        # the common case, an array over the positions already: a view, no broadcast_to
-        if type(x) is np.ndarray and x.dtype == np.float64 and x.shape in (n, (flat,)):
-            return x.reshape(flat)
-        return np.broadcast_to(np.asarray(x, dtype=float), n).reshape(flat)
-
-    def coord(v):
-        # a number that is the same at every position (a Python number, a fixed point's
-        # stride-0 array) as a float, folded by the arithmetic; else the flat array
-        c = const(v)
-        return float(c) if type(c) is float or type(c) is int else arr(c)
-
+def _check_shapes(bodies, loads, n):
+    """Raise ValueError for a body's or a load's array that does not broadcast to
+    the motion's shape ``n`` (a batch of designs needs a batched linkage or input)."""
     for what, obj, fields in ([(f"body of link {k}", b, ("mass", "inertia", "along", "normal"))
                                for k, b in bodies.items()]
                               + [(f"load '{ld.name}'", ld, ("fx", "fy", "torque", "along",
@@ -426,24 +275,46 @@ def solve_forces(topo: Topology, motion: LinkageMotion, bodies: Dict[int, Body],
                 raise ValueError(f"{what}: {f} of shape {sh} does not broadcast to the "
                                  f"motion's shape {n} (a batch of designs needs a batched "
                                  "linkage or input)")
-    if np.ndim(L):
-        # a batch of designs: one moment scale per design (flattened like the
-        # positions), so each design's system is scaled as when solved alone
-        L = arr(L)
-    # the moment equations are scaled by L for the condition numbers and for the
-    # general elimination's pivots; when every block is solved in closed form
-    # without condition numbers the scaling changes nothing but round-off: skipped
-    # (fewer passes over memory)
-    plan = _plan(topo)
-    Ls = 1.0 if not condition and CLOSED_FORM and plan.all_closed else L
 
-    # cosine and sine of each link's angle, once per call (the centres of mass,
-    # the loads and the virtual power share them)
-    trig = {}
 
-    def cos_sin(link):
-        th = motion.links[link].theta
-        cs = trig.get(id(th))
+@record(eq=False, frozen=False)
+class _Call:
+    """What the steps of one :func:`solve_forces` call share: the topology, its
+    :class:`~.force_plan.Plan` and the motion; ``n`` the motion's shape, ``flat``
+    its number of positions; ``Ls`` the length that scales the moment equations
+    (1.0 where the scaling changes only round-off); ``condition`` whether the
+    condition numbers are computed; ``trig`` the cosine and sine of the links'
+    angles computed so far (:meth:`cos_sin`)."""
+
+    topo: Topology
+    plan: force_plan.Plan
+    motion: LinkageMotion
+    n: tuple
+    flat: int
+    Ls: object
+    condition: bool
+    trig: dict
+
+    def arr(self, x):
+        """``x`` as a flat float array over the positions (a view where it is one)."""
+        # the common case, an array over the positions already: a view, no broadcast_to
+        n, flat = self.n, self.flat
+        if type(x) is np.ndarray and x.dtype == np.float64 and x.shape in (n, (flat,)):
+            return x.reshape(flat)
+        return np.broadcast_to(np.asarray(x, dtype=float), n).reshape(flat)
+
+    def coord(self, v):
+        """A number that is the same at every position (a Python number, a fixed
+        point's stride-0 array) as a float, folded by the arithmetic; else the flat
+        array."""
+        c = const(v)
+        return float(c) if type(c) is float or type(c) is int else self.arr(c)
+
+    def cos_sin(self, link):
+        """Cosine and sine of ``link``'s angle, once per call (the centres of mass,
+        the loads, the directions and the virtual power share them)."""
+        th = self.motion.links[link].theta
+        cs = self.trig.get(id(th))
         if cs is None:  # keyed by the angle array: a block shares its guide's
             if type(th) is np.ndarray and th.ndim and not any(th.strides):
                 # one angle at every position (a block on a fixed guide): floats
@@ -451,14 +322,40 @@ def solve_forces(topo: Topology, motion: LinkageMotion, bodies: Dict[int, Body],
                 cs = (float(np.cos(t1)[0]), float(np.sin(t1)[0]), th)
             else:  # from the element's points if it can (cheaper than cos and sin but
                 # for a few positions, where the calls cost more than the arithmetic)
-                el = plan.direction_of.get(link) if th.size > DIRECTION_MIN else None
-                u = el.direction(motion, link) if el is not None else None
+                el = self.plan.direction_of.get(link) if th.size > DIRECTION_MIN else None
+                u = el.direction(self.motion, link) if el is not None else None
                 cs = (np.cos(th), np.sin(th), th) if u is None else (u[0], u[1], th)
-            trig[id(th)] = cs
+            self.trig[id(th)] = cs
         return cs[0], cs[1]
 
-    # centre of mass, its acceleration, and minus the known force/moment on each link
-    # (the right-hand side of its equations: no negation pass)
+
+@record(eq=False)
+class _Known:
+    """The known loads of a call: per moving link ``com[link] = (x, y, origin,
+    along, normal)`` (its centre of mass and where it is defined), ``minus[link] =
+    [fx, fy, m]`` (minus the known force and moment about the centre of mass: the
+    right-hand side of its equations, no negation pass), and ``com_off[link]``, the
+    centre's constant offset from its origin where the link's angle is fixed."""
+
+    com: dict
+    minus: dict
+    com_off: dict
+
+
+def _known_loads(call, bodies, loads, gravity):
+    """Step 1: the centres of mass and the known loads on every moving link
+    (:class:`_Known`): weight, d'Alembert inertia force and couple, external loads."""
+    known = _inertia_loads(call, bodies, gravity)
+    for ld in loads:
+        _add_load(call, known, ld)
+    return known
+
+
+def _inertia_loads(call, bodies, gravity):
+    """The centres of mass and minus their weights and inertia forces and couples:
+    ``m (a_S - g)`` and ``J alpha`` (:class:`_Known` without the external loads)."""
+    topo, motion, arr, n, cos_sin = call.topo, call.motion, call.arr, call.n, call.cos_sin
+    gx, gy = gravity
     com, minus, com_off = {}, {}, {}
     for link in topo.links:
         b = bodies.get(link) or Body(link)
@@ -488,135 +385,168 @@ def solve_forces(topo: Topology, motion: LinkageMotion, bodies: Dict[int, Body],
         elif half:  # (m / 2) (a1 + a2 - 2 g): the same numbers, one pass fewer
             p1, p2 = motion.points[origin], motion.points[topo.frames[link][1]]
             mh = np.multiply(0.5, b.mass)  # (a list of the designs' masses too)
-            fx = arr(mh * arr(_sub(_add(const(p1.ax), const(p2.ax)), 2.0 * gx)).reshape(n))
-            fy = arr(mh * arr(_sub(_add(const(p1.ay), const(p2.ay)), 2.0 * gy)).reshape(n))
+            fx = arr(mh * arr(sub(add(const(p1.ax), const(p2.ax)), 2.0 * gx)).reshape(n))
+            fy = arr(mh * arr(sub(add(const(p1.ay), const(p2.ay)), 2.0 * gy)).reshape(n))
         else:
-            fx = arr(b.mass * _sub(arr(ax).reshape(n), gx))
-            fy = arr(b.mass * _sub(arr(ay).reshape(n), gy))
+            fx = arr(b.mass * sub(arr(ax).reshape(n), gx))
+            fy = arr(b.mass * sub(arr(ay).reshape(n), gy))
         al = const(kl.alpha)
         m = (arr(b.inertia * arr(kl.alpha).reshape(n))
-             if np.any(b.inertia) and not _exact_zero(al) else 0.0)
+             if np.any(b.inertia) and not exact_zero(al) else 0.0)
         minus[link] = [fx, fy, m]
-    for ld in loads:
-        if ld.link not in minus:
-            raise ForceModelError(f"load '{ld.name}' is on link {ld.link}, which does not move",
-                                  ("link", ld.link))
-        f = minus[ld.link]
-        tq, fx, fy = coord(ld.torque), coord(ld.fx), coord(ld.fy)
-        if ld.relative:
-            c, s = (arr(v) for v in cos_sin(ld.link))
-            fx, fy = fx * c - fy * s, fx * s + fy * c
-        if np.any(fx) or np.any(fy):
-            origin = ld.origin
-            if origin is not None and ld.link not in topo.members.get(origin, ()):
-                raise ForceModelError(f"load '{ld.name}' acts at '{origin}', which is not on "
-                                      f"link {ld.link}", ("point", origin))
-            if origin is None:
-                px, py = com[ld.link][0], com[ld.link][1]
-            else:
-                px, py = (arr(v) for v in _point(motion, topo, origin, ld.link, ld.along,
-                                                 ld.normal, order=0, cos_sin=cos_sin))
-            sx, sy = com[ld.link][0], com[ld.link][1]
-            f[0] = _sub(f[0], fx)
-            f[1] = _sub(f[1], fy)
-            tq = _add(tq, _sub(_mul(px - sx, fy), _mul(py - sy, fx)))
-        f[2] = _sub(f[2], tq)
+    return _Known(com, minus, com_off)
 
-    # the coefficients of this call: moment arms about the centres of mass
-    # (scaled by L) and the directions of the prismatic pairs and slider drivers
-    levers, directions = {}, {}
 
-    # without the condition numbers, a closed-form block's link takes its moments about
-    # its outer pair's point (_Plan.ref_point): the same solution, fewer passes; the
-    # condition numbers are those of the system about the centres of mass
-    ref = plan.ref_point if not condition and CLOSED_FORM else {}
+def _add_load(call, known, ld):
+    """Subtract the external load ``ld`` (its force moved to the centre of mass)
+    from its link's right-hand side in ``known``."""
+    topo, arr, coord = call.topo, call.arr, call.coord
+    if ld.link not in known.minus:
+        raise ForceModelError(f"load '{ld.name}' is on link {ld.link}, which does not move",
+                              ("link", ld.link))
+    f = known.minus[ld.link]
+    com = known.com[ld.link]
+    tq, fx, fy = coord(ld.torque), coord(ld.fx), coord(ld.fy)
+    if ld.relative:
+        c, s = (arr(v) for v in call.cos_sin(ld.link))
+        fx, fy = fx * c - fy * s, fx * s + fy * c
+    if np.any(fx) or np.any(fy):
+        origin = ld.origin
+        if origin is not None and ld.link not in topo.members.get(origin, ()):
+            raise ForceModelError(f"load '{ld.name}' acts at '{origin}', which is not on "
+                                  f"link {ld.link}", ("point", origin))
+        if origin is None:
+            px, py = com[0], com[1]
+        else:
+            px, py = (arr(v) for v in _point(call.motion, topo, origin, ld.link, ld.along,
+                                             ld.normal, order=0, cos_sin=call.cos_sin))
+        sx, sy = com[0], com[1]
+        f[0] = sub(f[0], fx)
+        f[1] = sub(f[1], fy)
+        tq = add(tq, sub(mul(px - sx, fy), mul(py - sy, fx)))
+    f[2] = sub(f[2], tq)
 
-    def lever(link, point):
+
+class _Coefficients:
+    """The coefficients of one call (:mod:`.force_plan`'s records made numbers):
+    moment arms about each link's reference point, scaled by L, and the directions
+    of the prismatic pairs and slider drivers, each computed once.
+
+    Without the condition numbers, a closed-form block's link takes its moments
+    about its outer pair's point (``Plan.ref_point``): the same solution, fewer
+    passes; the condition numbers are those of the system about the centres of
+    mass (``ref`` empty)."""
+
+    __slots__ = ("call", "known", "ref", "levers", "directions")
+
+    def __init__(self, call, known):
+        self.call, self.known = call, known
+        self.ref = call.plan.ref_point if not call.condition and CLOSED_FORM else {}
+        self.levers, self.directions = {}, {}
+
+    def lever(self, link, point):
+        """``(dx, dy) / L`` from ``link``'s reference point to ``point``."""
+        levers, call = self.levers, self.call
         lv = levers.get((link, point))
-        r = ref.get(link) if lv is None else None
+        r = self.ref.get(link) if lv is None else None
         if r is not None:  # about the outer pair's point
             if point == r:
                 lv = (0.0, 0.0)
             else:
-                p, o = motion.points[point], motion.points[r]
-                lv = (_div(_sub(coord(p.x), coord(o.x)), Ls),
-                      _div(_sub(coord(p.y), coord(o.y)), Ls))
+                p, o = call.motion.points[point], call.motion.points[r]
+                lv = (div(sub(call.coord(p.x), call.coord(o.x)), call.Ls),
+                      div(sub(call.coord(p.y), call.coord(o.y)), call.Ls))
             levers[(link, point)] = lv
-        if lv is None and point == com[link][2]:
-            if _exact_zero(com[link][3]) and _exact_zero(com[link][4]):
+        com = self.known.com[link]
+        if lv is None and point == com[2]:
+            if exact_zero(com[3]) and exact_zero(com[4]):
                 lv = levers[(link, point)] = (0.0, 0.0)  # the centre of mass itself
-            elif link in com_off:  # a constant offset: floats
-                off = com_off[link]
-                lv = levers[(link, point)] = (_div(-off[0], Ls), _div(-off[1], Ls))
+            elif link in self.known.com_off:  # a constant offset: floats
+                off = self.known.com_off[link]
+                lv = levers[(link, point)] = (div(-off[0], call.Ls), div(-off[1], call.Ls))
         if lv is None:
-            p = motion.points[point]
-            lv = levers[(link, point)] = (_div(arr(p.x) - com[link][0], Ls),
-                                          _div(arr(p.y) - com[link][1], Ls))
+            p = call.motion.points[point]
+            lv = levers[(link, point)] = (div(call.arr(p.x) - com[0], call.Ls),
+                                          div(call.arr(p.y) - com[1], call.Ls))
         return lv
 
-    def direction(key):
-        u = directions.get(key)
+    def direction(self, key):
+        """The unit vector of a :class:`~.force_plan.PairNormal` or
+        :class:`~.force_plan.DriverLine`."""
+        u = self.directions.get(key)
         if u is None:
-            if key[0] == "n":  # the left normal of a prismatic pair's guide
-                c, s = cos_sin(topo.pairs[key[1]].block)
-                u = (_neg(s if type(s) is float else arr(s)), c if type(c) is float else arr(c))
+            arr = self.call.arr
+            if type(key) is PairNormal:  # the left normal of a prismatic pair's guide
+                c, s = self.call.cos_sin(self.call.topo.pairs[key.pair].block)
+                u = (neg(s if type(s) is float else arr(s)), c if type(c) is float else arr(c))
             else:  # a slider driver's line
-                ang = linkage.driver(key[1]).angle
+                ang = self.call.topo.linkage.driver(key.link).angle
                 u = (np.cos(ang), np.sin(ang))
                 if np.ndim(ang):
                     u = (arr(u[0]), arr(u[1]))
-            directions[key] = u
+            self.directions[key] = u
         return u
 
-    def coef(spec):
-        kind = spec[0]
-        if kind == "c":
-            return spec[1]
-        if kind == "mx":
-            return _mul(-spec[3], lever(spec[1], spec[2])[1])
-        if kind == "my":
-            return _mul(spec[3], lever(spec[1], spec[2])[0])
-        ux, uy = direction(spec[3])
-        if kind == "ux":
-            return _mul(spec[4], ux)
-        if kind == "uy":
-            return _mul(spec[4], uy)
-        dx, dy = lever(spec[1], spec[2])
-        return _mul(spec[4], _sub(_mul(dx, uy), _mul(dy, ux)))
+    def of(self, spec):
+        """The value of a coefficient record (a float or an array)."""
+        kind = type(spec)
+        if kind is Constant:
+            return spec.value
+        if kind is Arm:
+            if spec.axis == 0:
+                return mul(-spec.sign, self.lever(spec.link, spec.point)[1])
+            return mul(spec.sign, self.lever(spec.link, spec.point)[0])
+        ux, uy = self.direction(spec.direction)
+        if spec.row == 0:
+            return mul(spec.sign, ux)
+        if spec.row == 1:
+            return mul(spec.sign, uy)
+        dx, dy = self.lever(spec.link, spec.point)
+        return mul(spec.sign, sub(mul(dx, uy), mul(dy, ux)))
 
-    rhs = [None] * plan.nrows
-    for link in topo.links:
-        e = plan.eq_of[link]
-        f = minus[link]
+
+def _right_hand_sides(call, known, coefs):
+    """Step 2: the right-hand side of every equation (minus the known loads; the
+    moment about the link's reference point, scaled by L)."""
+    rhs = [None] * call.plan.nrows
+    for link in call.topo.links:
+        e = call.plan.eq_of[link]
+        f = known.minus[link]
         m = f[2]
-        r = ref.get(link)
+        r = coefs.ref.get(link)
         if r is not None and not all(type(v) is float and v == 0.0 for v in f[:2]):
             # the known force moved from the centre of mass S to R: + (S - R) x f
-            x, y, origin, along, normal = com[link]
-            if origin == r and along is not None and _exact_zero(along) and \
-                    _exact_zero(normal):
+            x, y, origin, along, normal = known.com[link]
+            if origin == r and along is not None and exact_zero(along) and \
+                    exact_zero(normal):
                 off = None  # S is R
-            elif origin == r and link in com_off:
-                off = com_off[link]
+            elif origin == r and link in known.com_off:
+                off = known.com_off[link]
             else:
-                o = motion.points[r]
-                off = (_sub(x, coord(o.x)), _sub(y, coord(o.y)))
+                o = call.motion.points[r]
+                off = (sub(x, call.coord(o.x)), sub(y, call.coord(o.y)))
             if off is not None:
-                m = _add(m, _sub(_mul(off[0], f[1]), _mul(off[1], f[0])))
-        rhs[e], rhs[e + 1], rhs[e + 2] = f[0], f[1], _div(m, Ls)
+                m = add(m, sub(mul(off[0], f[1]), mul(off[1], f[0])))
+        rhs[e], rhs[e + 1], rhs[e + 2] = f[0], f[1], div(m, call.Ls)
+    return rhs
 
-    # element blocks, from the last element back to the drivers (block
-    # lower-triangular): each one's unknowns from its links' equations
-    xs = [None] * len(plan.columns)  # scaled solution
+
+def _solve_blocks(call, coefs, rhs):
+    """Step 3: the element blocks, from the last element back to the drivers (block
+    lower-triangular), each one's unknowns from its links' equations: the scaled
+    unknowns and the largest condition number of the blocks at each position."""
+    flat, condition = call.flat, call.condition
+    coef = coefs.of
+    xs = [None] * len(call.plan.columns)  # scaled solution
     cond = np.ones(flat)
-    for unk, rows, entries, solved, lay in plan.blocks:
+    for unk, rows, entries, solved, lay in call.plan.blocks:
         k = len(rows)
         A = [[0.0] * k for _ in range(k)]
         for i, j, spec in entries:
-            A[i][j] = _add(A[i][j], coef(spec))
+            A[i][j] = add(A[i][j], coef(spec))
         b = [rhs[r] for r in rows]
         for i, u, spec in solved:
-            b[i] = _sub(b[i], _mul(coef(spec), xs[u]))
+            b[i] = sub(b[i], mul(coef(spec), xs[u]))
         got = (_solve_closed(lay, A, b, flat, condition)
                if lay is not None and CLOSED_FORM and (flat > DENSE_MAX or not condition)
                else None)
@@ -629,37 +559,63 @@ def solve_forces(topo: Topology, motion: LinkageMotion, bodies: Dict[int, Body],
             cond = np.maximum(cond, c_blk)
         for jc, u in enumerate(unk):
             xs[u] = X[jc]
-    x = [_mul(v, Ls) if c else v for v, c in zip(xs, plan.is_couple)]
-    pair_cols = [pc + ((direction(("n", pi)) if pr.kind == "P" else ()))
-                 for pi, (pr, pc) in enumerate(zip(topo.pairs, plan.pair_cols))]
-    driver_cols = plan.driver_cols
+    return xs, cond
 
-    # results
-    balancing = {d.link: x[driver_cols[d.link]].reshape(n) for d in linkage.drivers}
+
+def _reactions(call, coefs, xs):
+    """Step 4: the unknowns in their units: ``(balancing, pairs)``, the balancing
+    torque or force of every driver and the :class:`PairForce` of every pair."""
+    n, plan, topo = call.n, call.plan, call.topo
+    x = [mul(v, call.Ls) if c else v for v, c in zip(xs, plan.is_couple)]
+    balancing = {d.link: x[plan.driver_cols[d.link]].reshape(n)
+                 for d in topo.linkage.drivers}
     pairs = []
-    for pi, pr in enumerate(topo.pairs):
-        pc = pair_cols[pi]
+    for pi, (pr, pc) in enumerate(zip(topo.pairs, plan.pair_cols)):
         if pr.kind == "R":
             pairs.append(PairForce(pr, x[pc[0]].reshape(n), x[pc[1]].reshape(n),
                                    np.zeros(n)))
         else:
-            nval, nx, ny = x[pc[0]], pc[2], pc[3]
+            nval = x[pc[0]]
+            nx, ny = coefs.direction(plan.normal[pi])
             # (a float direction multiplied as such: a fixed guide's -0.0 kept)
             pairs.append(PairForce(pr, (nval * nx if type(nx) is float
-                                        else value(_mul(nval, nx))).reshape(n),
+                                        else value(mul(nval, nx))).reshape(n),
                                    (nval * ny if type(ny) is float
-                                    else value(_mul(nval, ny))).reshape(n),
+                                    else value(mul(nval, ny))).reshape(n),
                                    x[pc[1]].reshape(n)))
-    # force and moment transmitted to the frame (about the origin), input power: folded
-    # sums (no zeros to start from; a pending sign taken by the next term)
-    sums = {"fx": 0.0, "fy": 0.0, "m": 0.0, "p": 0.0}
-    terms = {k: [] for k in sums}
+    return balancing, pairs
 
-    def put(key, v, sign=1.0):
-        sums[key] = _add(sums[key], v) if sign > 0 else _sub(sums[key], v)
+
+class _Sums:
+    """Folded sums (no zeros to start from; a pending sign taken by the next term)
+    that remember their array terms: :meth:`own` gives a sum an array of its own."""
+
+    __slots__ = ("sums", "terms")
+
+    def __init__(self, keys):
+        self.sums = dict.fromkeys(keys, 0.0)
+        self.terms = {k: [] for k in keys}
+
+    def put(self, key, v, sign=1.0):
+        self.sums[key] = add(self.sums[key], v) if sign > 0 else sub(self.sums[key], v)
         if type(v) is not float:
-            terms[key].append(v)
+            self.terms[key].append(v)
 
+    def own(self, key, flat):
+        # an array of its own: a sum of one term is that term (a pair's force) itself
+        v = value(self.sums[key])
+        if type(v) is float:
+            return np.full(flat, v)
+        return v.copy() if any(v is t for t in self.terms[key]) else v
+
+
+def _frame_resultants(call, balancing, pairs):
+    """Step 5: the force and moment (about the origin) transmitted to the frame and
+    the input power, as flat arrays ``(fx, fy, m, power)``."""
+    motion, flat, arr = call.motion, call.flat, call.arr
+    linkage = call.topo.linkage
+    frame = linkage.frame
+    sums = _Sums(("fx", "fy", "m", "p"))
     for pf in pairs:
         pr = pf.pair
         if frame not in (pr.i, pr.j):
@@ -667,78 +623,145 @@ def solve_forces(topo: Topology, motion: LinkageMotion, bodies: Dict[int, Body],
         p = motion.points[pr.point]
         fx, fy = pf.fx.reshape(flat), pf.fy.reshape(flat)
         px, py = const(p.x), const(p.y)
-        t = _sub(_mul(px if type(px) is float else arr(px), fy),
-                 _mul(py if type(py) is float else arr(py), fx))
+        t = sub(mul(px if type(px) is float else arr(px), fy),
+                mul(py if type(py) is float else arr(py), fx))
         if pr.kind == "P":
-            t = _add(t, pf.couple.reshape(flat))
+            t = add(t, pf.couple.reshape(flat))
         # the force on the frame: + the pair's, or - when frame < link
         sign = 1.0 if pr.j == frame else -1.0
-        put("fx", fx, sign)
-        put("fy", fy, sign)
-        put("m", t, sign)
+        sums.put("fx", fx, sign)
+        sums.put("fy", fy, sign)
+        sums.put("m", t, sign)
     for d in linkage.drivers:
         val = balancing[d.link].reshape(flat)
         if d.rotary:
-            put("m", val, -1.0)
+            sums.put("m", val, -1.0)
             w = const(motion.links[d.link].omega)
-            put("p", _mul(val, w if type(w) is float else arr(w)))
+            sums.put("p", mul(val, w if type(w) is float else arr(w)))
         else:
             p = motion.points[d.point]
             ux, uy = np.cos(d.angle), np.sin(d.angle)
             if np.ndim(d.angle):
                 ux, uy = arr(ux), arr(uy)
-            fx, fy = _mul(val, ux), _mul(val, uy)
-            put("fx", fx, -1.0)
-            put("fy", fy, -1.0)
-            put("m", _sub(_mul(arr(p.x), fy), _mul(arr(p.y), fx)), -1.0)
-            put("p", _mul(val, arr(motion.slides[d.slide_names(frame)[0]].v)))
+            fx, fy = mul(val, ux), mul(val, uy)
+            sums.put("fx", fx, -1.0)
+            sums.put("fy", fy, -1.0)
+            sums.put("m", sub(mul(arr(p.x), fy), mul(arr(p.y), fx)), -1.0)
+            sums.put("p", mul(val, arr(motion.slides[d.slide_names(frame)[0]].v)))
+    return tuple(sums.own(k, flat) for k in ("fx", "fy", "m", "p"))
 
-    def own(key):
-        # an array of its own: a sum of one term is that term (a pair's force) itself
-        v = value(sums[key])
-        if type(v) is float:
-            return np.full(flat, v)
-        return v.copy() if any(v is t for t in terms[key]) else v
 
-    ffx, ffy, fm, power = own("fx"), own("fy"), own("m"), own("p")
-    # global balance: Σ known forces (gravity, loads, inertia) = force on the frame
-    # (minus the known forces, summed, plus the force on the frame: the same |d|)
-    kfx = value(functools.reduce(_add, (minus[ln][0] for ln in topo.links), 0.0))
-    kfy = value(functools.reduce(_add, (minus[ln][1] for ln in topo.links), 0.0))
+def _force_residual(call, known, ffx, ffy):
+    """Step 6a: the global balance |Σ known forces (gravity, loads, inertia) - the
+    force on the frame| (minus the known forces, summed, plus the force on the
+    frame: the same length), flat."""
+    links = call.topo.links
+    kfx = value(functools.reduce(add, (known.minus[ln][0] for ln in links), 0.0))
+    kfy = value(functools.reduce(add, (known.minus[ln][1] for ln in links), 0.0))
     dx, dy = kfx + ffx, kfy + ffy  # |d| without hypot's cost (no overflow at forces)
     dx *= dx
     dy *= dy
     dx += dy
-    force_residual = np.sqrt(dx, out=dx)
-    # virtual power with the velocity coefficients: a second route to the balancing
-    if unit_motion is not None:
-        pres = np.zeros(flat)
-        for d in linkage.drivers:
-            val = balancing[d.link].reshape(flat)
-            if d.rotary:
-                pres += val * arr(unit_motion.links[d.link].omega)
-            else:
-                pres += val * arr(unit_motion.slides[d.slide_names(frame)[0]].v)
-        for link in topo.links:
-            f = minus[link]
-            if all(type(v) is float and v == 0.0 for v in f):
-                continue  # no known load on this link (massless, unloaded)
-            x0, y0, origin, along, normal = com[link]
-            # the same positions as the motion (as the callers solve it): its angles' trig
-            # (only a centre off its origin needs the angle's trig)
-            same = (along is None or (_exact_zero(along) and _exact_zero(normal))
-                    or unit_motion.links[link].theta is motion.links[link].theta
-                    or np.array_equal(unit_motion.links[link].theta,
-                                      motion.links[link].theta))
-            _x, _y, vx, vy, _a, _b = _point(unit_motion, topo, origin, link, along, normal,
-                                             order=1, cos_sin=cos_sin if same else None)
-            # the known moment is about the centre of mass: P = F·v_S + M·ω (f = -F, -M)
-            pres -= value(_add(_add(_mul(f[0], arr(vx)), _mul(f[1], arr(vy))),
-                               _mul(f[2], arr(unit_motion.links[link].omega))))
-        power_residual = pres.reshape(n)
-    else:
-        power_residual = np.zeros(n)
+    return np.sqrt(dx, out=dx)
+
+
+def _power_residual(call, known, balancing, unit_motion):
+    """Step 6b: the virtual power with the velocity coefficients ``unit_motion``,
+    Σ balancing·ω* + Σ known loads·v*: a second route to the balancing (zeros
+    without ``unit_motion``), of the motion's shape."""
+    if unit_motion is None:
+        return np.zeros(call.n)
+    motion, topo, flat, arr = call.motion, call.topo, call.flat, call.arr
+    frame = topo.linkage.frame
+    pres = np.zeros(flat)
+    for d in topo.linkage.drivers:
+        val = balancing[d.link].reshape(flat)
+        if d.rotary:
+            pres += val * arr(unit_motion.links[d.link].omega)
+        else:
+            pres += val * arr(unit_motion.slides[d.slide_names(frame)[0]].v)
+    for link in topo.links:
+        f = known.minus[link]
+        if all(type(v) is float and v == 0.0 for v in f):
+            continue  # no known load on this link (massless, unloaded)
+        x0, y0, origin, along, normal = known.com[link]
+        # the same positions as the motion (as the callers solve it): its angles' trig
+        # (only a centre off its origin needs the angle's trig)
+        same = (along is None or (exact_zero(along) and exact_zero(normal))
+                or unit_motion.links[link].theta is motion.links[link].theta
+                or np.array_equal(unit_motion.links[link].theta,
+                                  motion.links[link].theta))
+        _x, _y, vx, vy, _a, _b = _point(unit_motion, topo, origin, link, along, normal,
+                                         order=1, cos_sin=call.cos_sin if same else None)
+        # the known moment is about the centre of mass: P = F·v_S + M·ω (f = -F, -M)
+        pres -= value(add(add(mul(f[0], arr(vx)), mul(f[1], arr(vy))),
+                          mul(f[2], arr(unit_motion.links[link].omega))))
+    return pres.reshape(call.n)
+
+
+def solve_forces(topo: Topology, motion: LinkageMotion, bodies: Dict[int, Body], loads=(),
+                 gravity=(0.0, 0.0), unit_motion: Optional[LinkageMotion] = None,
+                 scale: Optional[float] = None, condition: bool = True) -> ForceResult:
+    """Pair reactions and balancing torques/forces at every position of ``motion``.
+
+    Parameters
+    ----------
+    topo : Topology
+        From :func:`topology`.
+    motion : LinkageMotion
+        Engine output of order 2 (only regular positions should be passed).
+    bodies : dict
+        ``{link: Body}``; links not listed are massless with their centre of
+        mass at the default point.
+    loads : sequence of Load
+    gravity : (gx, gy)
+        Gravitational acceleration vector [m/s^2] (``(0, -9.8)``; zeros for none).
+    unit_motion : LinkageMotion, optional
+        Engine output of order 1 with a unit speed of the primary driver (the
+        velocity coefficients), for the virtual-power check; default: none.
+    scale : float, optional
+        Length scaling the moment equations for the condition number
+        (default: the linkage's scale).
+    condition : bool
+        Compute the condition number of every element block (costs about as
+        much as the solve itself); otherwise ``cond`` is all NaN-free ones.
+
+    Returns
+    -------
+    ForceResult
+
+    Notes
+    -----
+    The steps: the known loads (:func:`_known_loads`) → the right-hand sides
+    (:func:`_right_hand_sides`) → the block solves (:func:`_solve_blocks`) → the
+    reactions in their units (:func:`_reactions`) → the frame resultants
+    (:func:`_frame_resultants`) → the force and power residuals.
+    """
+    n = motion.feasible.shape
+    _check_shapes(bodies, loads, n)
+    L = _facts(topo.linkage).scale if scale is None else scale
+    plan = _plan(topo)
+    call = _Call(topo, plan, motion, n, motion.feasible.size, 1.0, condition, {})
+    if np.ndim(L):
+        # a batch of designs: one moment scale per design (flattened like the
+        # positions), so each design's system is scaled as when solved alone
+        L = call.arr(L)
+    # the moment equations are scaled by L for the condition numbers and for the
+    # general elimination's pivots; when every block is solved in closed form
+    # without condition numbers the scaling changes nothing but round-off: skipped
+    # (fewer passes over memory)
+    if condition or not CLOSED_FORM or not plan.all_closed:
+        call.Ls = L
+    known = _known_loads(call, bodies, loads, gravity)
+    coefs = _Coefficients(call, known)
+    rhs = _right_hand_sides(call, known, coefs)
+    xs, cond = _solve_blocks(call, coefs, rhs)
+    balancing, pairs = _reactions(call, coefs, xs)
+    ffx, ffy, fm, power = _frame_resultants(call, balancing, pairs)
+    force_residual = _force_residual(call, known, ffx, ffy)
+    power_residual = _power_residual(call, known, balancing, unit_motion)
     return ForceResult(balancing, pairs, (ffx.reshape(n), ffy.reshape(n)), fm.reshape(n),
                        power.reshape(n), cond.reshape(n), power_residual,
                        force_residual.reshape(n),
-                       {ln: (com[ln][0].reshape(n), com[ln][1].reshape(n)) for ln in topo.links})
+                       {ln: (known.com[ln][0].reshape(n), known.com[ln][1].reshape(n))
+                        for ln in topo.links})
