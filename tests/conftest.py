@@ -25,6 +25,18 @@ def run_cli(*args, cwd=None):
                           capture_output=True, text=True, cwd=cwd or ROOT, timeout=300)
 
 
+def load_module(path):
+    """The Python file *path* (a ``tests/reference`` script, a ``docs`` generator) as a
+    module, without it being a package: what the tests of those scripts import."""
+    import importlib.util
+
+    path = Path(path)
+    spec = importlib.util.spec_from_file_location(path.stem, path)
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
+
+
 def write_spec(tmp_path, text, name="spec.toml", encoding="utf-8"):
     """Write a spec file for a test and return its path."""
     p = tmp_path / name

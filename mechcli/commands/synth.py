@@ -189,8 +189,6 @@ def synth(spec_path, workers=None, scheduler=None, atlas_dir=None, **opts):
         if close is not None:
             close()
     u, unit = spec.header.scale, spec.header.unit
-    from pathlib import Path
-
     from mechcli.report import atlas as atlas_report
     for sol in solutions:
         # an atlas built under --out is this run's output: listed in outputs.json,

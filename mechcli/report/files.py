@@ -572,7 +572,7 @@ class Outputs:
                 shutil.rmtree(old, ignore_errors=True)
         except OSError as exc:
             self.discard()
-            raise OutputPathError(f"a folder mechcli can replace with its outputs",
+            raise OutputPathError("a folder mechcli can replace with its outputs",
                                   _os_reason(final, exc)) from None
         if self in _STAGED:
             _STAGED.remove(self)

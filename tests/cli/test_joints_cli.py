@@ -2,8 +2,6 @@
 analysis in the JSON and the report, a linkage by joints equal to its preset, and
 one-line exit-2 messages that name the key of a bad drawing."""
 
-import json
-
 import pytest
 
 from tests.conftest import CONFIGS, one_line_error, run_inprocess, run_json, write_spec

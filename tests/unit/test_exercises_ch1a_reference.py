@@ -14,14 +14,13 @@ are 1e-12 relative (finite differences) and 2e-13 mm (loop closure).
 from __future__ import annotations
 
 import ast
-import importlib.util
 import re
 import sys
 from decimal import Decimal
 
 import pytest
 
-from tests.conftest import CONFIGS, ROOT
+from tests.conftest import CONFIGS, ROOT, load_module
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -34,10 +33,7 @@ NAMES = ("exercise1-4", "exercise1-5", "exercise1-6", "exercise1-7", "exercise1-
 
 @pytest.fixture(scope="module")
 def ref():
-    spec = importlib.util.spec_from_file_location("independent_exercises_ch1a", SCRIPT)
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
+    return load_module(SCRIPT)
 
 
 @pytest.fixture(scope="module")

@@ -12,7 +12,6 @@ tests/textbook (``mechcli check``).
 from __future__ import annotations
 
 import ast
-import importlib.util
 import math
 import re
 import sys
@@ -20,7 +19,7 @@ import sys
 import numpy as np
 import pytest
 
-from tests.conftest import CONFIGS, ROOT
+from tests.conftest import CONFIGS, ROOT, load_module
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -31,14 +30,7 @@ SCRIPT = ROOT / "tests" / "reference" / "independent_exercises_ch1b.py"
 NAMES = ("exercise1-9", "exercise1-10", "exercise1-11")
 
 
-def _load():
-    spec = importlib.util.spec_from_file_location("independent_exercises_ch1b", SCRIPT)
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
-
-
-REF = _load()
+REF = load_module(SCRIPT)
 EXERCISES = {ex.name: ex for ex in REF.EXERCISES}
 _RESULTS = {}
 

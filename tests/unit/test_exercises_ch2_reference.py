@@ -16,14 +16,13 @@ from __future__ import annotations
 
 import ast
 import functools
-import importlib.util
 import math
 import re
 
 import numpy as np
 import pytest
 
-from tests.conftest import CONFIGS, ROOT
+from tests.conftest import CONFIGS, ROOT, load_module
 
 try:
     import tomllib
@@ -36,10 +35,7 @@ SOLVER = ROOT / "tests" / "reference" / "independent_force.py"
 
 @functools.lru_cache(maxsize=None)
 def _ref():
-    spec = importlib.util.spec_from_file_location("independent_exercises_ch2", SCRIPT)
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
+    return load_module(SCRIPT)
 
 
 @functools.lru_cache(maxsize=None)

@@ -11,12 +11,11 @@ change to one without the other fails here.  Every number below says where it co
 from __future__ import annotations
 
 import ast
-import importlib.util
 import math
 import sys
 
 from mechcli.spec.expected import evaluate
-from tests.conftest import CONFIGS, ROOT
+from tests.conftest import CONFIGS, ROOT, load_module
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -29,14 +28,7 @@ CONFIG_3_8 = CONFIGS / "ch3" / "exercise3-8.toml"
 CONFIG_6_1 = CONFIGS / "ch6" / "exercise6-1.toml"
 
 
-def _reference_module():
-    spec = importlib.util.spec_from_file_location("independent_exercises_ch3_ch6", SCRIPT)
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
-
-
-REF = _reference_module()
+REF = load_module(SCRIPT)
 
 
 def _toml(path):

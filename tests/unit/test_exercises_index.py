@@ -2,17 +2,12 @@
 docs/book-index.toml and configs/ by docs/make_exercises.py: it must be current, list
 every 【例】 and 习题 of the book once, and say where every config's values come from."""
 
-import importlib.util
 
-from tests.conftest import ROOT
+from tests.conftest import ROOT, load_module
 
 
 def _generator():
-    path = ROOT / "docs" / "make_exercises.py"
-    spec = importlib.util.spec_from_file_location("make_exercises", path)
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
+    return load_module(ROOT / "docs" / "make_exercises.py")
 
 
 def test_exercises_md_is_current():

@@ -263,18 +263,13 @@ def test_class3_config_against_its_independent_reference():
     # configs/ch1/class3-sixbar.toml's [expected] extremes are the reference's
     # (tests/reference/independent_triad.py: MINPACK on the joints' coordinates); they
     # agree to 1e-12 deg, so the written 9 decimals (±5e-10) hold
-    import importlib.util
-
-    from tests.conftest import CONFIGS, ROOT
+    from tests.conftest import CONFIGS, ROOT, load_module
     try:
         import tomllib
     except ImportError:   # Python < 3.11
         import tomli as tomllib
 
-    path = ROOT / "tests" / "reference" / "independent_triad.py"
-    spec = importlib.util.spec_from_file_location("independent_triad", path)
-    ref = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(ref)
+    ref = load_module(ROOT / "tests" / "reference" / "independent_triad.py")
     cfg = tomllib.loads((CONFIGS / "ch1" / "class3-sixbar.toml").read_text(encoding="utf-8"))
     assert {k: tuple(v) for k, v in cfg["mechanism"]["joints"].items()} == ref.DRAWING
     exp = cfg["expected"]

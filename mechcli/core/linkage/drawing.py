@@ -25,7 +25,7 @@ reports to add.  SI units and radians, like the rest of the core.
 from __future__ import annotations
 
 import math
-from typing import Dict, Optional, Tuple
+from typing import Optional
 
 import numpy as np
 
@@ -115,10 +115,6 @@ class FromDrawing:
     inputs: dict
     angle_offsets: dict
     mobility: object
-
-
-def _xy(drawing, name):
-    return np.array(drawing.joints[name], dtype=float)
 
 
 def _angle(v):
@@ -421,7 +417,7 @@ class _Builder:
     def _rpr(self, g):
         # RPR: the block's pin (outer R), the block-guide slide (inner P), the guide's
         # pivot (outer R); which link is the block the slider says
-        (a, b), (oa, ip, ob) = g.links, g.joints
+        a, (oa, ip, ob) = g.links[0], g.joints
         s = self._named(ip)
         blk, guide = s.block, s.guide
         op, oc = (oa, ob) if a == blk else (ob, oa)

@@ -40,7 +40,7 @@ from typing import ClassVar, Tuple
 
 import numpy as np
 
-from mechcli.core.linkage.elements import SINGULAR_TOL, Element, LinkState, PointState
+from mechcli.core.linkage.elements import Element, LinkState, PointState
 from mechcli.core.records import record
 
 #: Newton iterations at most per solve, and the residual it must reach (relative to
@@ -274,7 +274,6 @@ def continuation_table(tri, known, q0, pose0, step=TABLE_STEP):
     n = int(round(2 * math.pi / step))
     grid_f = q0 + step * np.arange(n + 1)
     Kf = known(grid_f)
-    poses = {0: pose0}
     scale = max([abs(v) for v in pose0[:2]] + [abs(tri.length_1), abs(tri.length_2),
                                                 abs(tri.length_3), 1e-300])
 
