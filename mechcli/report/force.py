@@ -250,11 +250,12 @@ def build_report(spec, res, lang="en", extra=None):
         from mechcli.report.structure import structure_block
         report.blocks.append(structure_block(lang, spec.linkage.structure, spec.linkage.frame))
     step_txt = f"{spec.output.table_step * fin:g}"
+    torque = any(s.startswith("Mb") for s in res.series)
     report.blocks.append(Block(
-        heading=(f"运动副反力与平衡力矩 (每 {step_txt}{at_u} 一行; F_Rij 为构件 i 对构件 j "
-                 "的作用力)" if zh else
-                 f"Pair reactions and balancing torque (every {step_txt}{at_u}; F_Rij = "
-                 "force of link i on link j)"),
+        heading=(f"运动副反力与平衡{'力矩' if torque else '力'} (每 {step_txt}{at_u} 一行; "
+                 "F_Rij 为构件 i 对构件 j 的作用力)" if zh else
+                 f"Pair reactions and balancing {'torque' if torque else 'force'} (every "
+                 f"{step_txt}{at_u}; F_Rij = force of link i on link j)"),
         headers=headers, rows=rows))
     ext = []
     flat = _constant(res)

@@ -603,6 +603,10 @@ def read_flywheel_spec(path, overrides=()) -> FlywheelSpec:
         if not first.rotary or first.link != 1 or len(linkage.drivers) > 1:
             raise root.error("mechanism", "a linkage driven by one crank, link 1 (the "
                              "equivalent link)", f"driver of link {first.link}")
+        if getattr(first, "actuator", None) is not None:
+            raise root.error("mechanism", "a linkage driven by a torque on its crank (an "
+                             "`actuator` drives through a slide: not a flywheel problem)",
+                             f"actuator {first.actuator!r}")
         try:
             topo = topology(linkage)
         except ForceModelError as exc:

@@ -45,6 +45,7 @@ from typing import Optional, Tuple
 
 import numpy as np
 
+from mechcli.core.linkage.force_plan import actuated_pair
 from mechcli.core.linkage.kinetostatics import Body, ForceModelError, LoadProgram, topology
 from mechcli.core.records import record
 from mechcli.spec.common import Header, read_expected, read_header
@@ -545,6 +546,14 @@ def read_force_root(root) -> ForceSpec:
     except ForceModelError as exc:
         raise SpecError(root.file, "mechanism", "a linkage whose pairs can carry forces",
                         str(exc)) from None
+    for i, d in enumerate(linkage.drivers):
+        if getattr(d, "actuator", None) is not None:
+            try:
+                actuated_pair(topo, d.actuator)
+            except ForceModelError as exc:
+                raise SpecError(root.file, f"mechanism.driver.{i}.actuator",
+                                "the name of an RPR dyad's slide (the cylinder that drives "
+                                "the machine)", f"{d.actuator!r}: {exc}") from None
     inp = read_input(root, linkage, followers, MAX_POSITIONS, POSITIONS_WHY)
     grav = read_gravity(root)
     bodies = read_bodies(root, topo, linkage.frame)

@@ -119,7 +119,7 @@ def read_joints(mech):
         slider_paths.append(t.path)
         t.finish()
 
-    drivers, driver_paths, followers = [], [], {}
+    drivers, driver_paths, followers, actuators = [], [], {}, {}
     for i, d in enumerate(mech.tables("driver")):
         d.string("type", "crank", choices=["crank"])
         link = d.integer("link", lo=1)
@@ -127,6 +127,13 @@ def read_joints(mech):
             raise d.error("link", "a link of [[mechanism.link]]", repr(link))
         pivot = d.name("pivot")
         drivers.append((link, pivot))
+        actuator = d.name("actuator", None)
+        if actuator is not None:
+            names = {sl.name or f"{sl.block}{sl.guide}" for sl in sliders}
+            if actuator not in names:
+                raise d.error("actuator", "the name of a [[mechanism.slider]] (the cylinder "
+                              "that drives the machine)", repr(actuator))
+            actuators[link] = actuator
         driver_paths.append(d.path)
         if i > 0:   # the phase defaults to the drawing's: q = ratio q1 + phase there
             from mechcli.spec.kin import follower_ratio
@@ -135,7 +142,7 @@ def read_joints(mech):
                                None if phase is None else math.radians(phase))
         d.finish()
 
-    drawing = Drawing(frame, joints, links, tuple(sliders), tuple(drivers))
+    drawing = Drawing(frame, joints, links, tuple(sliders), tuple(drivers), actuators)
     try:
         result = from_drawing(drawing)
     except DrawingError as exc:

@@ -180,7 +180,8 @@ def _general(mech):
         kind = d.string("type", "crank", choices=["crank", "slider"])
         link = d.integer("link", lo=1)
         if kind == "crank":
-            elements.append(Crank(link, d.name("pivot"), d.name("point"), d.length("length")))
+            elements.append(Crank(link, d.name("pivot"), d.name("point"), d.length("length"),
+                                  d.name("actuator", None)))
         else:
             elements.append(SliderDriver(link, d.name("origin"), d.name("point"),
                                          math.radians(d.number("angle", 0.0)),

@@ -192,7 +192,19 @@ _SLIDER = {"mechanism": {"type": "general", "frame": 2, "ground": {"O": [0, 0]},
                          "driver": [{"type": "slider", "link": 1, "origin": "O",
                                      "point": "B"}]},
            "input": {"start": 0, "stop": 10, "v1": 1}}
-PROBES = {"kin": [_SLIDER], "force": [_SLIDER]}
+#: a linkage by its joints with a slider (the configs' joints forms have none): the
+#: fire ladder of 习题 2-2, its cylinder drawn by `toward` and by `angle`, driving it
+_LADDER = {"units": "m", "mechanism": {
+    "type": "joints", "frame": 1, "joints": {"A": [0, 0.8], "B": [0.4, 0.6], "C": [0.8, 0]},
+    "link": [{"number": 2, "joints": ["A", "B"]}, {"number": 3, "joints": ["C"]},
+             {"number": 4, "joints": ["B"]}],
+    "slider": [{"block": 4, "guide": 3, "through": "B", "toward": "C", "name": "cyl"}],
+    "driver": [{"type": "crank", "link": 2, "pivot": "A", "actuator": "cyl"}]}}
+_LADDER_ANGLE = copy.deepcopy(_LADDER)
+_LADDER_ANGLE["mechanism"]["slider"][0].pop("toward")
+_LADDER_ANGLE["mechanism"]["slider"][0]["angle"] = -56.309932474020215  # B -> C
+PROBES = {"kin": [_SLIDER, _LADDER, _LADDER_ANGLE], "force": [_SLIDER, _LADDER, _LADDER_ANGLE],
+          "flywheel": [_LADDER], "optimize": [_LADDER]}
 
 
 def _engine(form):
@@ -210,6 +222,10 @@ LATE_PROBES = {"force": [_engine(f) for f in (
     1.0, {"angle": [0, 360], "value": [1, 1]}, {"fraction": [0, 1], "value": [1, 2]},
     {"x": [0, 200], "value": [1, 2]}, {"fraction": [0, 1], "strokes": [[1, 1], [0, 0]]},
     {"x": [0, 200], "strokes": [[1, 1], [0, 0], [0, 0], [1, 1]]})]}
+
+
+#: the commands that read kin's [mechanism] table (the linkage forms)
+_SHARED_MECHANISM = ("force", "flywheel", "optimize")
 
 
 def _seeds(command, configs=None):
@@ -230,6 +246,13 @@ def _seeds(command, configs=None):
         if data.get("command") == command or (f == template and "command" not in data):
             data["command"] = command
             seeds.append((data, str(f.parent)))
+        elif (command in _SHARED_MECHANISM and data.get("command") == "kin"
+              and isinstance(data.get("mechanism"), dict)
+              and data["mechanism"].get("type") == "joints"):
+            # the joints form is read by the same reader for every command that moves a
+            # linkage: learnt from kin's examples too (its keys, not its other tables)
+            seeds.append(({"command": command, "units": data.get("units", "mm"),
+                           "mechanism": data["mechanism"]}, str(f.parent)))
     seeds += [(dict(copy.deepcopy(p), command=command), None)
               for p in LATE_PROBES.get(command, ())]
     seeds.append(({"command": command}, None))

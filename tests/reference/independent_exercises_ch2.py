@@ -348,6 +348,39 @@ def exercise_2_5():
     return res
 
 
+def fire_ladder(phi_deg):
+    """习题 2-2 (configs/ch2/exercise2-2.toml's reading): the balancing force Fb on the
+    cylinder's piston by virtual work, and the pair reactions by hand statics.
+
+    A = (0, 0.8), C = (0.8, 0); the ladder's axis u = (cos φ, sin φ), its left normal n;
+    the rod's pin B = A + 0.4 u − 0.2 n; Q = 3000 N down at S2 = A + 1.5 u; massless
+    links.  Fb ds/dφ = Q dy_S2/dφ with s = |CB|; the cylinder (3 and 4, massless, pinned
+    at both ends) is a two-force member, so every force in it is along C -> B."""
+    phi = math.radians(phi_deg)
+    A, C = np.array([0.0, 0.8]), np.array([0.8, 0.0])
+    u, n = _e(phi), _n(phi)
+    B = A + 0.4 * u - 0.2 * n
+    d = B - C
+    s = math.hypot(*d)
+    ds = _dot(d, 0.4 * n + 0.2 * u) / s
+    fb = 3000.0 * 1.5 * math.cos(phi) / ds
+    f = fb * d / s                      # the rod's push on the ladder, along C -> B
+    out = {"Fb": fb}
+    for name, v in (("FR12", -f - np.array([0.0, -3000.0])),   # frame on ladder at A
+                    ("FR24", -f), ("FR34", f), ("FR13", f)):
+        out[name + "x"], out[name + "y"], out[name] = float(v[0]), float(v[1]), math.hypot(*v)
+    return out
+
+
+def exercise_2_2():
+    """习题 2-2 at φ = 0°, 20°, …, 80°: the results named as `mechcli force --json`."""
+    res = {}
+    for a in (0, 20, 40, 60, 80):
+        for k, v in fire_ladder(a).items():
+            res[f"{k}_at_{a}deg_N"] = v
+    return res
+
+
 def balance_residuals(prob, th_deg):
     """(power, force) residuals over th_deg, each relative to its largest term:
     power: max |Mb w1 + Σ (F.v + M w)| / max Σ |terms| (the virtual-power balance);
@@ -386,4 +419,5 @@ def power_residuals(prob, th_deg):
 if __name__ == "__main__":
     for p in (CrankRockingBlock(), SwingingFeed()):
         print(p.name, "fd_check max", max(fd_check(p).values()))
-    print(json.dumps(dict(exercise2_1=exercise_2_1(), exercise2_5=exercise_2_5()), indent=1))
+    print(json.dumps(dict(exercise2_1=exercise_2_1(), exercise2_2=exercise_2_2(),
+                          exercise2_5=exercise_2_5()), indent=1))

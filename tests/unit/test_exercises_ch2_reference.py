@@ -153,3 +153,35 @@ def test_config_expected_matches_independent_reference(name):
     failed = {k: (v, results[k], tol) for k, (v, tol) in expected.items()
               if not abs(results[k] - v) <= tol * (1 + 1e-9)}
     assert not failed, failed
+
+
+def test_exercise2_2_config_is_the_hand_derivation():
+    # configs/ch2/exercise2-2.toml's [expected] (but the residuals, which the hand
+    # derivation does not have) are the reference's fire_ladder values to their digits
+    expected = _expected(CONFIGS / "ch2" / "exercise2-2.toml")
+    results = _ref().exercise_2_2()
+    forces = {k: v for k, v in expected.items() if not k.endswith("_residual")}
+    assert len(forces) >= 15
+    failed = {k: (v, results[k], tol) for k, (v, tol) in forces.items()
+              if not abs(results[k] - v) <= tol * (1 + 1e-9)}
+    assert not failed, failed
+
+
+def test_exercise2_2_virtual_work_against_finite_differences():
+    # the reference's Fb = Q dy_S2/dφ / (ds/dφ) with ds/dφ in closed form: checked here
+    # with a central difference of s = |CB| (h = 1e-6 rad: error ~1e-12 relative)
+    def s_of(phi):
+        u = np.array([math.cos(phi), math.sin(phi)])
+        n = np.array([-math.sin(phi), math.cos(phi)])
+        b = np.array([0.0, 0.8]) + 0.4 * u - 0.2 * n
+        return math.hypot(*(b - np.array([0.8, 0.0])))
+
+    h = 1e-6
+    for deg in (0, 20, 40, 60, 80):
+        phi = math.radians(deg)
+        ds = (s_of(phi + h) - s_of(phi - h)) / (2 * h)
+        fb = 3000 * 1.5 * math.cos(phi) / ds
+        assert _ref().fire_ladder(deg)["Fb"] == pytest.approx(fb, rel=1e-8)
+    # the exercise's φ = 0 by hand: B = (0.4, 0.6), ds/dφ = 0.16/√0.52
+    assert _ref().fire_ladder(0)["Fb"] == pytest.approx(4500 * math.sqrt(0.52) / 0.16,
+                                                        rel=1e-13)

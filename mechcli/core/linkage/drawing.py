@@ -24,6 +24,7 @@ reports to add.  SI units and radians, like the rest of the core.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from typing import Optional
 
@@ -84,6 +85,10 @@ class Drawing:
     sliders : tuple of Slider
     drivers : tuple of (link, pivot)
         Cranks: the link and its pivot joint on the frame, the primary one first.
+    actuators : dict
+        driver link -> the name of the slider (an RPR group's prismatic pair, e.g. a
+        hydraulic cylinder) that drives the machine while the motion is given as that
+        driver's angle (:attr:`.elements.Crank.actuator`).
     """
 
     frame: int
@@ -91,6 +96,7 @@ class Drawing:
     links: dict
     sliders: tuple
     drivers: tuple
+    actuators: dict = dataclasses.field(default_factory=dict)
 
 
 @record
@@ -188,10 +194,22 @@ def from_drawing(drawing: Drawing) -> FromDrawing:
         b.crank(link, pivot)
     for group in structure.groups[len(drivers):]:
         b.group(group)
+    _check_actuators(drawing, b.elements)
     offsets = b.offsets()
     linkage = Linkage(frame, tuple(b.elements), angle_offsets=tuple(sorted(offsets.items())),
                       structure=structure)
     return FromDrawing(linkage, structure, dict(b.inputs), offsets, mob)
+
+
+def _check_actuators(drawing, elements):
+    """Every actuator names the slide of an RPR group (a cylinder between pivots)."""
+    slides = {el.slide_names(drawing.frame)[0] for el in elements if type(el) is RPR}
+    for link, name in drawing.actuators.items():
+        if name not in slides:
+            have = ", ".join(f"'{n}'" for n in sorted(slides)) or "none"
+            raise DrawingError(f"the actuator '{name}' of driver {link} is not the slider of "
+                               f"an RPR group (a cylinder between two pivots; those of "
+                               f"this linkage: {have})", "driver", link)
 
 
 class _Builder:
@@ -278,7 +296,8 @@ class _Builder:
         if length <= CLOSE_TOL * self.scale:
             raise DrawingError(f"the crank's joints '{pivot}' and '{point}' coincide",
                                "joint", point)
-        self.elements.append(Crank(link, pivot, point, length))
+        self.elements.append(Crank(link, pivot, point, length,
+                                   self.d.actuators.get(link)))
         self.inputs[link] = _angle(r)
         self.known.add(point)
         self.links.add(link)

@@ -458,12 +458,18 @@ class Crank(Element):
 
     ``point = pivot + length * exp(i*theta)``, where ``theta`` is the driver's
     input angle (the link's absolute angle) [rad]; ``length`` [m].
+
+    ``actuator``: the name of a slide (an RPR dyad's, e.g. a hydraulic cylinder
+    between two pivots) that drives the machine while the motion is given as this
+    link's angle: the kinetostatics then puts the balancing force along that slide
+    (``Fb``, positive in the direction its ``s`` grows) and no torque on this link.
     """
 
     link: int
     pivot: str
     point: str
     length: float
+    actuator: Optional[str] = None
 
     kind: ClassVar[str] = "crank"
     is_driver: ClassVar[bool] = True

@@ -68,7 +68,8 @@ class ForceSweep:
 
 
 def balancing_symbol(linkage, link):
-    base = "Mb" if linkage.driver(link).rotary else "Fb"
+    d = linkage.driver(link)
+    base = "Mb" if d.rotary and getattr(d, "actuator", None) is None else "Fb"
     return base if len(linkage.drivers) == 1 else f"{base}{link}"
 
 

@@ -30,7 +30,8 @@ from mechcli.core.linkage.elements import Element
 from mechcli.core.linkage.force_model import ForceModelError
 from mechcli.core.records import record
 
-__all__ = ["Constant", "Arm", "Along", "PairNormal", "DriverLine", "Plan", "plan"]
+__all__ = ["Constant", "Arm", "Along", "PairNormal", "PairLine", "DriverLine", "Plan",
+           "plan", "actuated_pair"]
 
 #: the rows of a link's equations: ΣFx, ΣFy, ΣM (offsets from ``Plan.eq_of[link]``)
 FX, FY, M = 0, 1, 2
@@ -73,6 +74,15 @@ class DriverLine:
     :class:`PairNormal`)."""
 
     link: int
+
+
+@record(eq=False)
+class PairLine:
+    """The line of sliding of ``topo.pairs[pair]`` (a prismatic pair driven by an
+    actuator), in the direction its slide ``s`` grows (compared by identity, as
+    :class:`PairNormal`)."""
+
+    pair: int
 
 
 @record
@@ -138,10 +148,19 @@ class Plan:
                 normal, couple = self._prismatic(pi, pr, linkage.frame)
                 self._unknowns(normal, couple=False)
                 self._unknowns(couple, couple=True)
+        self.actuated = {}
         for d in linkage.drivers:
             self.driver_cols[d.link] = len(self.columns)
             e = self.eq_of[d.link]
-            if d.rotary:  # the torque (scaled)
+            act = getattr(d, "actuator", None)
+            if act is not None:  # a force along an actuated slide, on its two links
+                pi = self.actuated[d.link] = actuated_pair(topo, act)
+                pr, cols = topo.pairs[pi], []
+                for link, sign in ((pr.block, 1.0), (pr.guide, -1.0)):
+                    if link != linkage.frame:
+                        cols += self._along(link, sign, pr.point, PairLine(pi))
+                self._unknowns(cols, couple=False)
+            elif d.rotary:  # the torque (scaled)
                 self._unknowns([(e + M, Constant(1.0))], couple=True)
             else:
                 self._unknowns(self._along(d.link, 1.0, d.point, DriverLine(d.link)),
@@ -154,6 +173,15 @@ class Plan:
             self.blocks.append(block)
             solved += block[0]
             self._reference_points(topo, new_links, pidx, block[-1])
+        if self.actuated:
+            # the effort enters at a slide, not at the driver whose angle is given: the
+            # driver's block lacks an unknown and the slide's has one more, so the
+            # system is no longer block-triangular; solved whole (the general elimination)
+            unk = list(range(len(self.columns)))
+            entries = [(r, u, spec) for u in unk for r, spec in self.columns[u]]
+            if len(unk) != self.nrows:  # pragma: no cover - a determinate linkage
+                raise ForceModelError("the actuated linkage is not statically determinate")
+            self.blocks, self.ref_point = [(unk, list(range(self.nrows)), entries, [], None)], {}
         self.all_closed = all(blk[-1] is not None for blk in self.blocks)
         self.direction_of = {ln: el for el in linkage.elements for ln in el.makes()[1]
                              if type(el).direction is not Element.direction}
@@ -233,3 +261,23 @@ def plan(topo) -> Plan:
         p = Plan(topo)
         object.__setattr__(topo, "_force_plan", p)
     return p
+
+
+def actuated_pair(topo, name):
+    """The index in ``topo.pairs`` of the prismatic pair of the RPR dyad whose slide is
+    called ``name`` (an actuator: a cylinder between two pivots).
+
+    Raises
+    ------
+    ForceModelError
+        No RPR dyad's slide has that name.
+    """
+    from mechcli.core.linkage.elements import RPR
+
+    frame = topo.linkage.frame
+    for pi, pr in enumerate(topo.pairs):
+        el = topo.linkage.elements[pr.element]
+        if pr.kind == "P" and type(el) is RPR and el.slide_names(frame)[0] == name:
+            return pi
+    raise ForceModelError(f"no RPR dyad's slide is called '{name}' (an actuator is the "
+                          f"slide of a cylinder between two pivots)", ("slide", name))

@@ -64,7 +64,7 @@ from mechcli.core.linkage.elimination import gauss
 from mechcli.core.linkage.engine import LinkageMotion, _facts
 from mechcli.core.linkage.folding import (Neg, add, const, div, exact_zero, mul, neg, sub,
                                           value)
-from mechcli.core.linkage.force_plan import Arm, Constant, PairNormal
+from mechcli.core.linkage.force_plan import Arm, Constant, PairLine, PairNormal
 # the model and the load programs, re-exported: this module is the entry point
 from mechcli.core.linkage.force_model import (COND_FLAG, Body, ForceModelError,  # noqa: F401
                                               ForceResult, Load, Pair, PairForce, Topology,
@@ -479,6 +479,9 @@ class _Coefficients:
             if type(key) is PairNormal:  # the left normal of a prismatic pair's guide
                 c, s = self.call.cos_sin(self.call.topo.pairs[key.pair].block)
                 u = (neg(s if type(s) is float else arr(s)), c if type(c) is float else arr(c))
+            elif type(key) is PairLine:  # an actuated slide's line, as its s grows
+                c, s = self.call.cos_sin(self.call.topo.pairs[key.pair].block)
+                u = (c if type(c) is float else arr(c), s if type(s) is float else arr(s))
             else:  # a slider driver's line
                 ang = self.call.topo.linkage.driver(key.link).angle
                 u = (np.cos(ang), np.sin(ang))
@@ -583,7 +586,23 @@ def _reactions(call, coefs, xs):
                                    (nval * ny if type(ny) is float
                                     else value(mul(nval, ny))).reshape(n),
                                    x[pc[1]].reshape(n)))
+    for link, pi in plan.actuated.items():
+        # an actuator's force (of the guide on the block, along the line) is carried
+        # by its pair too: the pair's reaction is the whole force of i on j
+        pf, pr = pairs[pi], topo.pairs[pi]
+        ux, uy = _line_of(call, pi)
+        sign = 1.0 if pr.j == pr.block else -1.0
+        f = balancing[link]
+        pairs[pi] = PairForce(pr, pf.fx + sign * f * ux, pf.fy + sign * f * uy, pf.couple)
     return balancing, pairs
+
+
+def _line_of(call, pi):
+    """Cosine and sine of an actuated slide's line (its block's angle), of the
+    motion's shape."""
+    c, s = call.cos_sin(call.topo.pairs[pi].block)
+    return (np.broadcast_to(c, call.n) if type(c) is float else np.reshape(c, call.n),
+            np.broadcast_to(s, call.n) if type(s) is float else np.reshape(s, call.n))
 
 
 class _Sums:
@@ -632,9 +651,13 @@ def _frame_resultants(call, balancing, pairs):
         sums.put("fx", fx, sign)
         sums.put("fy", fy, sign)
         sums.put("m", t, sign)
+    plan = call.plan
     for d in linkage.drivers:
         val = balancing[d.link].reshape(flat)
-        if d.rotary:
+        if d.link in plan.actuated:  # a force inside the machine: only its power
+            name = _slide_name(call.topo, plan.actuated[d.link])
+            sums.put("p", mul(val, arr(motion.slides[name].v)))
+        elif d.rotary:
             sums.put("m", val, -1.0)
             w = const(motion.links[d.link].omega)
             sums.put("p", mul(val, w if type(w) is float else arr(w)))
@@ -649,6 +672,12 @@ def _frame_resultants(call, balancing, pairs):
             sums.put("m", sub(mul(arr(p.x), fy), mul(arr(p.y), fx)), -1.0)
             sums.put("p", mul(val, arr(motion.slides[d.slide_names(frame)[0]].v)))
     return tuple(sums.own(k, flat) for k in ("fx", "fy", "m", "p"))
+
+
+def _slide_name(topo, pi):
+    """The slide (``LinkageMotion.slides`` key) of prismatic pair ``pi``."""
+    pr = topo.pairs[pi]
+    return topo.linkage.elements[pr.element].slide_names(topo.linkage.frame)[0]
 
 
 def _force_residual(call, known, ffx, ffy):
@@ -676,7 +705,10 @@ def _power_residual(call, known, balancing, unit_motion):
     pres = np.zeros(flat)
     for d in topo.linkage.drivers:
         val = balancing[d.link].reshape(flat)
-        if d.rotary:
+        if d.link in call.plan.actuated:
+            name = _slide_name(topo, call.plan.actuated[d.link])
+            pres += val * arr(unit_motion.slides[name].v)
+        elif d.rotary:
             pres += val * arr(unit_motion.links[d.link].omega)
         else:
             pres += val * arr(unit_motion.slides[d.slide_names(frame)[0]].v)
