@@ -140,7 +140,8 @@ def build(spec, lang, digits=10):
         exc.args = (report.closure_message(exc, spec.header.unit),)
         raise
     except MobilityError as exc:  # drivers that do not leave Assur groups: the spec's
-        key = "mobility.kin" if spec.problem.source != "joints" else "mobility.drivers"
+        key = "mobility.kin" if spec.problem.source not in ("joints", "links") \
+            else "mobility.drivers"
         raise SpecError(spec.path, key,
                         "one driver per freedom, the rest Assur groups", str(exc)) from None
     return (*report.present(spec, solution, lang, digits), solution)

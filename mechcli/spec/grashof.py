@@ -78,7 +78,7 @@ class MobilityProblem:
     frame: int
     local_dof: int
     redundant: int
-    source: str             # "joints" or the kin spec path
+    source: str             # "joints", "links" (the joints form) or the kin spec path
     drivers: tuple = ()     # the driving links: the structural analysis (groups) when given
 
 
@@ -207,6 +207,8 @@ def _read_mobility(sec, spec_dir):
         sec.finish()
         return MobilityProblem(joints, frame, local, redundant, str(kin), drivers)
     frame = sec.integer("frame", lo=0)
+    if sec.has("link"):
+        return _read_mobility_links(sec, frame, local, redundant)
     joints = []
     for js in sec.tables("joint"):
         kind = js.string("kind", "R", choices=["R", "P", "H"])
@@ -229,6 +231,52 @@ def _read_mobility(sec, spec_dir):
     drivers = _drivers(sec, joints, frame, used)
     sec.finish()
     return MobilityProblem(tuple(joints), frame, local, redundant, "joints", drivers)
+
+
+def _read_mobility_links(sec, frame, local, redundant):
+    """``[[mobility.link]]`` (number, joints) and ``[[mobility.slider]]`` (block, guide,
+    name): the joints form of ``kin``'s ``type = "joints"`` without the positions (the
+    structure does not depend on them); the same rule makes the pairs."""
+    from mechcli.core.linkage.drawing import DrawingError, Slider, pairs_of_links
+
+    if sec.has("joint"):
+        raise sec.error("joint", "either [[mobility.joint]] or [[mobility.link]], not both",
+                        "both")
+    links, paths = {}, {}
+    for t in sec.tables("link"):
+        n = t.integer("number", lo=0)
+        if n in links:
+            raise t.error("number", "a link number not listed before", repr(n))
+        names = t.strings("joints")
+        if not names or len(set(names)) != len(names):
+            raise t.error("joints", "an array of different joint names", repr(names))
+        for i, j in enumerate(names):
+            t.check_name(f"joints[{i}]", j)
+        links[n], paths[n] = tuple(names), t
+        t.finish()
+    sliders = []
+    for t in sec.tables("slider", []):
+        block, guide = t.integer("block", lo=0), t.integer("guide", lo=0)
+        for key, n in (("block", block), ("guide", guide)):
+            if n not in links and n != frame:
+                raise t.error(key, f"a link of [[mobility.link]] or the frame {frame}", repr(n))
+        if block == guide:
+            raise t.error("guide", "a link other than the block", repr(guide))
+        sliders.append(Slider(block, guide, "", 0.0, t.name("name", None)))
+        t.finish()
+    try:
+        pairs = pairs_of_links(frame, links, sliders)
+    except DrawingError as exc:
+        where = next(t for n, t in paths.items() if exc.name in links[n])
+        raise where.error("joints", "joints that each join two links or a link to the "
+                          "frame", str(exc)) from None
+    joints = [JointSpec(j.kind, j.links, j.name) for j in pairs]
+    used = sorted({ln for j in joints for ln in j.links})
+    if frame not in used:
+        raise sec.error("frame", f"a link named by a joint: {used}", repr(frame))
+    drivers = _drivers(sec, joints, frame, used)
+    sec.finish()
+    return MobilityProblem(tuple(joints), frame, local, redundant, "links", drivers)
 
 
 def _drivers(sec, joints, frame, used):

@@ -204,7 +204,13 @@ _LADDER_ANGLE = copy.deepcopy(_LADDER)
 _LADDER_ANGLE["mechanism"]["slider"][0].pop("toward")
 _LADDER_ANGLE["mechanism"]["slider"][0]["angle"] = -56.309932474020215  # B -> C
 PROBES = {"kin": [_SLIDER, _LADDER, _LADDER_ANGLE], "force": [_SLIDER, _LADDER, _LADDER_ANGLE],
-          "flywheel": [_LADDER], "optimize": [_LADDER]}
+          "flywheel": [_LADDER], "optimize": [_LADDER],
+          # grashof's [mobility] by the links' joints, with a slider (no config has one)
+          "grashof": [{"mobility": {
+              "frame": 4, "drivers": [1],
+              "link": [{"number": 1, "joints": ["A", "B"]}, {"number": 2, "joints": ["B", "C"]},
+                       {"number": 3, "joints": ["C"]}],
+              "slider": [{"block": 3, "guide": 4, "name": "C"}]}}]}
 
 
 def _engine(form):

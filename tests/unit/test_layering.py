@@ -49,6 +49,7 @@ SPEC_CORE_FUNCTIONS = {
     "four_bar", "slider_crank", "guide_bar", "shaper",  # presets (issue 11)
     "topology",            # the pair model of a linkage (which pairs carry forces)
     "actuated_pair",       # the pair an actuator names (a check of the spec, issue 30)
+    "pairs_of_links",      # the pairs of links given by their joints (grashof's [mobility])
     "default_quantities",  # the names of the quantities a linkage has
     "stack",               # one batched linkage of a population (optimize's candidates)
     "stream_grid",         # the analysed rows of a streamed kin sweep (a grid, no solve)

@@ -142,28 +142,56 @@ def _cross(u, v):
 def _topology(drawing):
     """Mobility joints: one revolute per joint name (a compound hinge where more than
     two links meet), one prismatic pair per slider; the frame's joints."""
-    frame = drawing.frame
-    on = {}
     for n, names in drawing.links.items():
         for j in names:
             if j not in drawing.joints:
                 raise DrawingError(f"link {n} names joint '{j}', which [mechanism.joints] "
                                    f"does not place", "link", n)
-            on.setdefault(j, []).append(n)
-    explicit = frame in drawing.links
-    joints = []
-    for j, links in on.items():
-        if not explicit and frame not in links and len(links) == 1:
-            links = [frame] + links            # a pivot of the frame
-        if len(links) < 2:
-            raise DrawingError(f"joint '{j}' is on link {links[0]} only: a joint joins two "
-                               f"links (a point on a link is a [[mechanism.point]])",
-                               "joint", j)
-        joints.append(Joint("R", tuple(links), j))
-    for i, s in enumerate(drawing.sliders):
-        joints.append(Joint("P", (s.block, s.guide), s.name or f"{s.block}{s.guide}"))
-    frame_joints = [j.name for j in joints if j.kind == "R" and frame in j.links]
+    joints = pairs_of_links(drawing.frame, drawing.links, drawing.sliders)
+    frame_joints = [j.name for j in joints if j.kind == "R" and drawing.frame in j.links]
     return joints, frame_joints
+
+
+def pairs_of_links(frame, links, sliders=()):
+    """The kinematic pairs of a linkage given by the joints its links carry.
+
+    Parameters
+    ----------
+    frame : int
+    links : dict
+        link number -> joint names it carries.  A name on two or more links is a
+        revolute joining them (a compound hinge where more than two meet); a name on
+        one link only is a pivot on the frame, unless the frame is listed itself.
+    sliders : sequence of Slider (or records with ``block``, ``guide``, ``name``)
+        One prismatic pair each.
+
+    Returns
+    -------
+    list of :class:`~mechcli.core.grashof.mobility.Joint`
+        The revolutes in order of first mention, then the prismatic pairs.
+
+    Raises
+    ------
+    DrawingError
+        A joint on one link only when the frame is listed (it joins nothing).
+    """
+    on = {}
+    for n, names in links.items():
+        for j in names:
+            on.setdefault(j, []).append(n)
+    explicit = frame in links
+    joints = []
+    for j, on_links in on.items():
+        if not explicit and frame not in on_links and len(on_links) == 1:
+            on_links = [frame] + on_links            # a pivot of the frame
+        if len(on_links) < 2:
+            raise DrawingError(f"joint '{j}' is on link {on_links[0]} only: a joint joins "
+                               f"two links (a point on a link is a [[mechanism.point]])",
+                               "joint", j)
+        joints.append(Joint("R", tuple(on_links), j))
+    for s in sliders:
+        joints.append(Joint("P", (s.block, s.guide), s.name or f"{s.block}{s.guide}"))
+    return joints
 
 
 def from_drawing(drawing: Drawing) -> FromDrawing:
