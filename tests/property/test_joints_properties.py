@@ -85,3 +85,35 @@ def test_a_random_four_bar_drawing_closes_and_differentiates(r, th, cx, cy, dx):
     except DrawingError:
         assume(False)
     _check(fd, xy, links)
+
+
+@SET
+@given(move, move, move, move, move, move, st.floats(0.1, 5.0), st.floats(0.1, 5.0),
+       st.floats(-2.0, 2.0))
+def test_a_moved_class3_drawing_passes_the_power_balance(dcx, dcy, dex, dey, dfx, dfy,
+                                                         m3, m4, alpha1):
+    # random masses and an accelerating crank on the moved triad: the kinetostatics'
+    # balancing torque equals the virtual power of the loads (Mb ω* + Σ(F·v* + M ω*) = 0,
+    # the unit-speed velocities from the engine's own linear solves), and the frame takes
+    # what the moving links do not balance (the force balance)
+    from mechcli.core.linkage.kinetostatics import Body, solve_forces, topology
+
+    xy = dict(TRIAD)
+    for k, (dx, dy) in zip("CEF", ((dcx, dcy), (dex, dey), (dfx, dfy))):
+        xy[k] = (xy[k][0] + dx, xy[k][1] + dy)
+    try:
+        fd = from_drawing(Drawing(6, xy, TRIAD_LINKS, (), ((1, "A"),)))
+    except DrawingError:
+        assume(False)
+    lk = fd.linkage
+    q = fd.inputs[1] + np.linspace(-0.3, 0.3, 25)
+    m = solve(lk, {1: DriverMotion(q, 7.0, alpha1)}, order=2)
+    assume(bool(np.all(m.regular)))
+    unit = solve(lk, {1: DriverMotion(q, 1.0, 0.0)}, order=1)
+    bodies = {1: Body(1, 0.4, 2e-4), 2: Body(2, 1.1, 4e-3), 3: Body(3, m3, 6e-3),
+              4: Body(4, m4, 3e-3), 5: Body(5, 0.8, 2e-3)}
+    fr = solve_forces(topology(lk), m, bodies, gravity=(0.0, -9.81), unit_motion=unit)
+    peak = max(float(np.max(np.abs(v))) for v in fr.balancing.values())
+    assert peak > 1e-3
+    assert float(np.max(np.abs(fr.power_residual))) <= 1e-9 * peak
+    assert float(np.max(fr.force_residual)) <= 1e-9 * max(peak, 1.0)
