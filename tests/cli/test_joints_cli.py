@@ -107,3 +107,17 @@ def test_forces_on_a_triad_pass_the_power_balance(tmp_path):
     assert r["mechanism_class"] == 3
     assert abs(r["power_balance_residual"]) < 1e-12
     assert r["Mb_max_N_m"] > 0.01          # the inertia loads are not negligible
+
+
+def test_exercise2_8_by_joints_equals_its_dyad_form(tmp_path):
+    # 习题 2-8 drawn by its joints (at θ1 = 90°) against the dyad form: the same forces at
+    # every reported extreme, to round-off of the drawing's digits; and its structure
+    gen = run_json("force", CONFIGS / "ch2" / "exercise2-8.toml", "--out", tmp_path / "g")
+    jts = run_json("force", CONFIGS / "ch2" / "exercise2-8-joints.toml", "--out", tmp_path / "j")
+    g, j = gen["results"], jts["results"]
+    assert j["mechanism_class"] == 2
+    assert [grp["type"] for grp in j["groups"]] == ["driver", "RRR", "RRR"]
+    keys = [k for k, v in g.items() if isinstance(v, float) and k.endswith(("_N", "_N_m"))]
+    assert len(keys) > 20
+    for k in keys:
+        assert j[k] == pytest.approx(g[k], rel=1e-9, abs=1e-9), k
