@@ -278,3 +278,36 @@ def test_class3_config_against_its_independent_reference():
         assert exp[f"{name}_max_at_deg"] == pytest.approx(at_hi, abs=5e-10)
         assert exp[f"{name}_min_deg"] == pytest.approx(lo, abs=5e-10)
         assert exp[f"{name}_min_at_deg"] == pytest.approx(at_lo, abs=5e-10)
+
+
+def test_class3_designs_stack_into_one_batch():
+    # optimize moves a population of drawings at once (engine.stack): designs whose
+    # triads have their own continuation tables keep them per design, and the batch
+    # gives each design's motion exactly as solved alone
+    from mechcli.core.linkage import stack
+
+    base = {"A": (0.0, 0.0), "B": (-0.01935, -0.00144), "C": (0.08165, 0.05348),
+            "E": (0.11778, 0.05071), "F": (0.1029, 0.09353), "G": (0.18883, 0.02269),
+            "H": (0.08008, 0.15021)}
+    links = {1: ("A", "B"), 2: ("B", "C"), 3: ("C", "E", "F"), 4: ("G", "E"), 5: ("H", "F")}
+    designs = []
+    for dx, dy in ((0.0, 0.0), (0.006, -0.01), (-0.004, 0.003)):
+        xy = dict(base, H=(base["H"][0] + dx, base["H"][1] + dy))
+        designs.append(from_drawing(Drawing(6, xy, links, (), ((1, "A"),))).linkage)
+    batch = stack(designs)
+    q = np.radians(np.arange(0.0, 360.0, 5.0))
+    mb = solve(batch, {1: DriverMotion(q, 10.0, 1.5)}, order=2)
+    for k, lk in enumerate(designs):
+        m = solve(lk, {1: DriverMotion(q, 10.0, 1.5)}, order=2)
+        assert np.array_equal(mb.regular[k], m.regular)
+        ok = m.regular
+        assert ok.sum() > 30
+        for p in ("C", "E", "F"):
+            for f in ("x", "y", "vx", "vy", "ax", "ay"):
+                got = getattr(mb.points[p], f)[k][ok]
+                want = getattr(m.points[p], f)[ok]
+                assert np.allclose(got, want, rtol=1e-12, atol=1e-12 * np.max(np.abs(want)))
+    # designs that differ in their structure still cannot be stacked
+    other = presets.four_bar(0.1, 0.3, 0.2, 0.25)
+    with pytest.raises(ValueError):
+        stack([designs[0], other])

@@ -215,14 +215,22 @@ def stack(linkages) -> "Linkage":
     elements = []
     for i, el in enumerate(first.elements):
         numeric = _fields(el)
+        differ = set()
         for k, lk in enumerate(linkages):
             other = lk.elements[i]
-            if type(other) is not type(el) or any(
-                    getattr(other, f.name) != getattr(el, f.name)
-                    for f in dataclasses.fields(el) if f.name not in numeric):
+            if type(other) is not type(el):
                 raise ValueError(f"element {i} ({el.kind}) of linkage {k} differs from linkage "
                                  "0 in more than its numbers")
+            differ.update(f.name for f in dataclasses.fields(el)
+                          if f.name not in numeric and getattr(other, f.name) != getattr(el, f.name))
         values = {}
+        if differ:  # an element may batch what else differs (a triad's tables)
+            hook = getattr(type(el), "stack_fields", None)
+            values = hook([lk.elements[i] for lk in linkages], sorted(differ)) \
+                if hook is not None else None
+            if values is None:
+                raise ValueError(f"element {i} ({el.kind}) of the linkages differs in more "
+                                 f"than its numbers ({', '.join(sorted(differ))})")
         for f in numeric:
             column = [getattr(lk.elements[i], f) for lk in linkages]
             if any(np.ndim(v) for v in column):

@@ -83,6 +83,8 @@ class Triad(Element):
     driver: int
     table: tuple = ()
     period: float = 0.0
+    #: a batch of designs (:func:`~.engine.stack`): each design's ``(table, period)``
+    batch: tuple = ()
 
     kind: ClassVar[str] = "triad"
     lengths_: ClassVar[Tuple[str, ...]] = ("length_1", "length_2", "length_3", "body_c",
@@ -118,15 +120,24 @@ class Triad(Element):
 
     # -- the solve ---------------------------------------------------------------
     def start(self, q):
-        """The table's pose at the driver's angles ``q`` (the Newton start)."""
-        tq, tx, ty, tp = (np.asarray(t, dtype=float) for t in self.table)
+        """The table's pose at the driver's angles ``q`` (the Newton start); for a
+        batch of designs, each design's rows from its own table."""
         q = np.asarray(q, dtype=float)
-        if self.period:
-            q = tq[0] + np.mod(q - tq[0], self.period)
-            tq = np.append(tq, tq[0] + self.period)
-            tx, ty = np.append(tx, tx[0]), np.append(ty, ty[0])
-            tp = np.append(tp, tp[0] + (tp[-1] - tp[0] + _wrap(tp[0] - tp[-1])))
-        return np.interp(q, tq, tx), np.interp(q, tq, ty), np.interp(q, tq, tp)
+        if not self.batch:
+            return _from_table(self.table, self.period, q)
+        m = len(self.batch)
+        qb = np.broadcast_to(q if q.ndim == 2 else q.reshape(1, -1), (m, q.shape[-1]))
+        rows = [_from_table(t, per, qb[k]) for k, (t, per) in enumerate(self.batch)]
+        return tuple(np.stack([r[i] for r in rows]) for i in range(3))
+
+    @classmethod
+    def stack_fields(cls, elements, names):
+        """:func:`~.engine.stack`: designs whose triads differ in their continuation
+        tables (each drawing has its own) keep them per design."""
+        if not set(names) <= {"table", "period"} or any(e.batch for e in elements):
+            return None
+        return {"table": (), "period": 0.0,
+                "batch": tuple((e.table, e.period) for e in elements)}
 
     def step(self, st):
         K = [st.P[p] for p in self.points]
@@ -308,6 +319,17 @@ def continuation_table(tri, known, q0, pose0, step=TABLE_STEP):
     qs = list(grid_b[1:len(bwd)][::-1]) + list(grid_f[:len(fwd)])
     rows = bwd[1:][::-1] + fwd
     return (tuple(map(float, qs)),) + tuple(tuple(r[k] for r in rows) for k in range(3)), 0.0
+
+
+def _from_table(table, period, q):
+    """The pose ``(x, y, phi)`` interpolated in one continuation table at ``q``."""
+    tq, tx, ty, tp = (np.asarray(t, dtype=float) for t in table)
+    if period:
+        q = tq[0] + np.mod(q - tq[0], period)
+        tq = np.append(tq, tq[0] + period)
+        tx, ty = np.append(tx, tx[0]), np.append(ty, ty[0])
+        tp = np.append(tp, tp[0] + (tp[-1] - tp[0] + _wrap(tp[0] - tp[-1])))
+    return np.interp(q, tq, tx), np.interp(q, tq, ty), np.interp(q, tq, tp)
 
 
 class _Pt:
