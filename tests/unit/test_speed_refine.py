@@ -79,7 +79,10 @@ def ex1_1():
 
 
 def _count_solves(monkeypatch):
-    """A list that grows by one at every engine solve of ``kinematics`` from now on."""
+    """A list that grows by one at every engine solve of the sweep analysis (``kinematics``
+    and the modules of its steps) from now on."""
+    from mechcli.core.linkage import accuracy, extremes, limits
+
     calls = []
     real = kinematics.solve
 
@@ -87,7 +90,8 @@ def _count_solves(monkeypatch):
         calls.append(1)
         return real(*a, **k)
 
-    monkeypatch.setattr(kinematics, "solve", counting)
+    for mod in (kinematics, limits, extremes, accuracy):
+        monkeypatch.setattr(mod, "solve", counting)
     return calls
 
 

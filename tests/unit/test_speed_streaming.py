@@ -18,7 +18,8 @@ import numpy as np
 import pytest
 
 from mechcli.core.linkage import DriverMotion, solve
-from mechcli.core.linkage.kinematics import _wrap, default_quantities
+from mechcli.core.linkage.kinematics import default_quantities
+from mechcli.core.linkage.sweep import _wrap
 from mechcli.core.linkage.streaming import StreamedRows, rows_at, stream_grid
 from mechcli.report import kin as report
 from mechcli.report.files import write_csv, write_csv_stream

@@ -5,7 +5,7 @@ were stated to their rounding only, while the difference's O(h²) bias moved the
 further (例 1-1's α2 min: 5e-11 rad off, ±2.4e-11 claimed); γ's maximum, on the
 difference of -cos² of the joint angle, 5.8e-12 rad off, ±1.1e-12 claimed.  Now γ is
 located on the exact rate of that cosine (from the point velocities), and a difference's
-bias is measured (Richardson, ``kinematics._truncation_shift``) and added to its tol.
+bias is measured (Richardson, ``extremes._truncation_shift``) and added to its tol.
 
 References: closed forms evaluated in mpmath at 40 digits, written here independently of
 the engine (it is used only to produce the results under test):

@@ -13,8 +13,8 @@ from typing import Dict, List, Optional, Tuple
 
 import numpy as np
 
-from mechcli.core.linkage.kinematics import (EPS, SEARCH_STEP, Accuracy, Sweep, _digits,
-                                             amplification, analyse_sweep)
+from mechcli.core.linkage.accuracy import EPS, Accuracy, _digits, amplification
+from mechcli.core.linkage.kinematics import SEARCH_STEP, Sweep, analyse_sweep
 from mechcli.core.linkage.kinetostatics import COND_FLAG, ForceResult, solve_forces
 from mechcli.core.linkage.engine import solve
 from mechcli.core.records import record

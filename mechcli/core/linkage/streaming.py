@@ -135,7 +135,7 @@ class StreamedRows:
         self.irregular = None
 
     def __iter__(self):
-        from mechcli.core.linkage.kinematics import _wrap
+        from mechcli.core.linkage.sweep import _wrap
 
         res = self.result
         unwraps = {qt.symbol: _Unwrap() for qt in self.quantities if qt.is_angle}
