@@ -1196,8 +1196,6 @@ def steady_state(inertia, moment, *, omega_guess, method="DOP853", rtol=1e-10, a
     ConvergenceError
         The root finder or the repeated loop did not converge within ``max_iter``.
     """
-    from scipy.optimize import brentq
-
     inertia = _as_inertia(inertia)
     _check_method(method, step)
     if root not in ROOTS:
@@ -1209,76 +1207,15 @@ def steady_state(inertia, moment, *, omega_guess, method="DOP853", rtol=1e-10, a
     if not moment.depends_on_omega:
         return _steady_energy(inertia, moment, phi0, T, float(omega_guess), tol, max_iter,
                               points)
-    cache, count, history = {}, [0, 0], []
-
-    def advance(w0):
-        """ω at the period end (``None`` on a stall), memoised."""
-        if w0 in cache:
-            return cache[w0][0]
-        count[0] += 1
-        history.append(w0)
-        try:
-            if method == "book":
-                ph, om, *_ = _book(inertia, moment, phi0, w0, phi0 + T, step)
-                count[1] += ph.size - 1
-                cache[w0] = (float(om[-1]), None)
-            else:
-                run = _ode(inertia, moment, phi0, w0, phi0 + T, method, rtol, atol)
-                count[1] += run.nfev
-                Je0 = float(inertia(phi0 + T)[0])
-                cache[w0] = (math.sqrt(max(2.0 * run.E_end / Je0, 0.0)), run)
-        except DescribedError as e:
-            if e.reason != "stall":
-                raise
-            cache[w0] = (None, None)
-        return cache[w0][0]
-
-    def F(w0):
-        w1 = advance(w0)
-        return math.inf if w1 is None else w1 - w0
-
+    pm = _PeriodMap(inertia, moment, phi0, T, method, rtol, atol, step)
     g = float(omega_guess)
     if root == "repeat":
-        w, it = g, 0
-        while True:
-            w1 = advance(w)
-            it += 1
-            if w1 is None:
-                raise DescribedError("the machine stops within a period", reason="no_steady_state",
-                                     omega0=w)
-            if abs(w1 - w) < tol:
-                w0 = w
-                break
-            if it >= max_iter or not math.isfinite(w1):
-                raise ConvergenceError(f"the repeated period did not settle in {it} periods "
-                                       f"(last change {abs(w1 - w):.3g})")
-            w = w1
-        iterations = it
+        w0, iterations = _repeat_root(pm, g, tol, max_iter)
     else:
-        f_g = F(g)
-        if f_g == 0:
-            w0, iterations = g, 1
-        else:
-            lo_hi = _bracket(F, g, f_g, max_iter)
-            if lo_hi is None:
-                raise DescribedError("no periodic speed was found", reason="no_steady_state",
-                                     omega0=g)
-            (a, fa), (b, fb) = lo_hi
-            if fa == 0 or fb == 0:
-                w0 = a if fa == 0 else b
-            else:
-                w0, r = brentq(F, a, b, xtol=tol, rtol=4 * np.finfo(float).eps,
-                               maxiter=max_iter, full_output=True, disp=False)
-                if not r.converged:
-                    raise ConvergenceError("the periodic speed was not found")
-            f0 = F(w0)
-            if not math.isfinite(f0) or abs(f0) > max(1e3 * tol, 1e-6 * w0):
-                raise DescribedError("no periodic speed was found", reason="no_steady_state",
-                                     omega0=w0)
-            iterations = count[0]
-    advance(w0)
-    w_end, run = cache[w0]
-    trail = tuple((w, cache[w][0]) for w in history)
+        w0, iterations = _shooting_root(pm, g, tol, max_iter)
+    pm.advance(w0)
+    w_end, run = pm.cache[w0]
+    trail = tuple((w, pm.cache[w][0]) for w in pm.history)
     if method == "book":
         m = _book_motion(inertia, moment, phi0, w0, phi0 + T, step)
         imax, imin = int(np.argmax(m.omega)), int(np.argmin(m.omega))
@@ -1286,7 +1223,7 @@ def steady_state(inertia, moment, *, omega_guess, method="DOP853", rtol=1e-10, a
         W = np.concatenate(([0.0], np.cumsum(0.5 * (m.Me[1:] + m.Me[:-1]) * np.diff(m.phi))))
         return dataclasses.replace(_summary(
             m, w0, m.omega[imax], m.omega[imin], m.phi[imax], m.phi[imin], mean,
-            float(W.max() - W.min()), iterations, abs(w_end - w0), root, count[1]),
+            float(W.max() - W.min()), iterations, abs(w_end - w0), root, pm.evaluations),
             history=trail)
     phi = _grid(phi0, phi0 + T, points)
     m = _motion_from_run(run, inertia, moment, phi, method, rtol, atol)
@@ -1302,7 +1239,95 @@ def steady_state(inertia, moment, *, omega_guess, method="DOP853", rtol=1e-10, a
     _, e_min = _extreme(run.E, phi, int(np.argmin(E)), -1.0)
     return dataclasses.replace(_summary(m, w0, w_max, w_min, p_max, p_min, mean,
                                         e_max - e_min, iterations, abs(w_end - w0), root,
-                                        count[1]), history=trail)
+                                        pm.evaluations), history=trail)
+
+
+class _PeriodMap:
+    """The period map ``ω0 ↦ ω(φ0 + T)`` of :func:`steady_state`, memoised: ``cache[ω0]
+    = (ω at the period's end or None on a stall, the run)``, ``calls`` the periods
+    integrated, ``evaluations`` the moment evaluations they cost, ``history`` the
+    starts in order."""
+
+    def __init__(self, inertia, moment, phi0, T, method, rtol, atol, step):
+        self.inertia, self.moment, self.phi0, self.T = inertia, moment, phi0, T
+        self.method, self.rtol, self.atol, self.step = method, rtol, atol, step
+        self.cache, self.history = {}, []
+        self.calls = self.evaluations = 0
+
+    def advance(self, w0):
+        """ω at the period end (``None`` on a stall)."""
+        if w0 in self.cache:
+            return self.cache[w0][0]
+        self.calls += 1
+        self.history.append(w0)
+        inertia, moment, phi0, T = self.inertia, self.moment, self.phi0, self.T
+        try:
+            if self.method == "book":
+                ph, om, *_ = _book(inertia, moment, phi0, w0, phi0 + T, self.step)
+                self.evaluations += ph.size - 1
+                self.cache[w0] = (float(om[-1]), None)
+            else:
+                run = _ode(inertia, moment, phi0, w0, phi0 + T, self.method, self.rtol,
+                           self.atol)
+                self.evaluations += run.nfev
+                Je0 = float(inertia(phi0 + T)[0])
+                self.cache[w0] = (math.sqrt(max(2.0 * run.E_end / Je0, 0.0)), run)
+        except DescribedError as e:
+            if e.reason != "stall":
+                raise
+            self.cache[w0] = (None, None)
+        return self.cache[w0][0]
+
+    def F(self, w0):
+        """``ω(φ0 + T) − ω0`` (+∞ on a stall: the start needs more speed)."""
+        w1 = self.advance(w0)
+        return math.inf if w1 is None else w1 - w0
+
+
+def _repeat_root(pm, g, tol, max_iter):
+    """The book's loop: each period from the last one's end speed until ``|Δω| < tol``:
+    ``(ω0, periods)``."""
+    w, it = g, 0
+    while True:
+        w1 = pm.advance(w)
+        it += 1
+        if w1 is None:
+            raise DescribedError("the machine stops within a period", reason="no_steady_state",
+                                 omega0=w)
+        if abs(w1 - w) < tol:
+            return w, it
+        if it >= max_iter or not math.isfinite(w1):
+            raise ConvergenceError(f"the repeated period did not settle in {it} periods "
+                                   f"(last change {abs(w1 - w):.3g})")
+        w = w1
+
+
+def _shooting_root(pm, g, tol, max_iter):
+    """brentq on the period map's fixed point, bracketed from ``g`` and its image:
+    ``(ω0, periods integrated)``."""
+    from scipy.optimize import brentq
+
+    F = pm.F
+    f_g = F(g)
+    if f_g == 0:
+        return g, 1
+    lo_hi = _bracket(F, g, f_g, max_iter)
+    if lo_hi is None:
+        raise DescribedError("no periodic speed was found", reason="no_steady_state",
+                             omega0=g)
+    (a, fa), (b, fb) = lo_hi
+    if fa == 0 or fb == 0:
+        w0 = a if fa == 0 else b
+    else:
+        w0, r = brentq(F, a, b, xtol=tol, rtol=4 * np.finfo(float).eps,
+                       maxiter=max_iter, full_output=True, disp=False)
+        if not r.converged:
+            raise ConvergenceError("the periodic speed was not found")
+    f0 = F(w0)
+    if not math.isfinite(f0) or abs(f0) > max(1e3 * tol, 1e-6 * w0):
+        raise DescribedError("no periodic speed was found", reason="no_steady_state",
+                             omega0=w0)
+    return w0, pm.calls
 
 
 def _bracket(F, g, f_g, max_iter):
