@@ -250,7 +250,23 @@ def read_cam_spec(root, step_override=None, points_override=None):
     CamSpec
     """
     header = read_header(root, "cam")
-    file = root.file
+    motion, contact, angular, r0, args, sizing = _follower(root)
+    rotation, omega = _cam_table(root)
+    args["rotation"] = rotation
+    stroke, segments = _motion_table(root, angular, r0, args)
+    limits = _limits(root, angular)
+    step = _sampling(root, step_override, points_override)
+    table_step, plot, animate, frames = _output(root)
+    expected = read_expected(root)
+    root.finish()
+    return CamSpec(header, motion, contact, r0, args, segments, stroke, angular, omega,
+                   limits, sizing, math.radians(step), math.radians(table_step), plot,
+                   animate, frames, expected)
+
+
+def _follower(root):
+    """[follower] (and [sizing], which decides whether r0 is required): ``(motion,
+    contact, angular, r0, args, sizing)``; ``args`` the profile's keyword arguments."""
     fol = root.table("follower")
     motion = fol.string("motion", "translating", choices=["translating", "oscillating"])
     arm = [k for k in ("a", "l") if k in fol.data]
@@ -299,6 +315,11 @@ def read_cam_spec(root, step_override=None, points_override=None):
                         f"{args['rr'] / root.unit:g}")
     fol.finish()
 
+    return motion, contact, angular, r0, args, sizing
+
+
+def _cam_table(root):
+    """[cam]: ``(rotation, omega)`` (+1 counter-clockwise; omega None if not given)."""
     cam = root.table("cam", None)
     rotation, omega = 1, None
     if cam is not None:
@@ -308,13 +329,19 @@ def read_cam_spec(root, step_override=None, points_override=None):
         # in 72 days, below which omega^2 underflows next to the lengths
         omega = cam.number("omega", None, lo=1e-6, hi=1e6)
         cam.finish()
-    args["rotation"] = rotation
 
+    return rotation, omega
+
+
+def _motion_table(root, angular, r0, args):
+    """[motion]: ``(stroke, segments)``, the stroke in m or rad."""
+    file = root.file
     mot = root.table("motion")
     if angular:
         psi = mot.number("psi", positive=True, hi=180.0)   # phi0 + psi < 180 deg (eq. 4-6)
         stroke = math.radians(psi)
         if r0 is not None:
+            a, l = args["a"], args["l"]
             phi0 = math.acos((a * a + l * l - r0 * r0) / (2 * a * l))
             if phi0 + stroke >= math.pi:
                 raise mot.error("psi", f"a swing below {180 - math.degrees(phi0):.6g} deg "
@@ -325,6 +352,11 @@ def read_cam_spec(root, step_override=None, points_override=None):
     segments = _segments(mot, stroke, angular, file)
     mot.finish()
 
+    return stroke, segments
+
+
+def _limits(root, angular):
+    """[limits]: the allowed pressure angles and the undercut rule."""
     lim = root.table("limits", None)
     a_rise_default = 45.0 if angular else 30.0
     if lim is not None:
@@ -341,6 +373,12 @@ def read_cam_spec(root, step_override=None, points_override=None):
     else:
         limits = Limits(math.radians(a_rise_default), math.radians(70.0), False)
 
+    return limits
+
+
+def _sampling(root, step_override, points_override):
+    """[sampling] and ``--step``/``--points``: the profile's step [deg]."""
+    file = root.file
     samp = root.table("sampling", None)
     step = DEFAULT_STEP_DEG
     if samp is not None:
@@ -373,6 +411,11 @@ def read_cam_spec(root, step_override=None, points_override=None):
                             f"(--points; {POINTS_WHY})", f"{int(points_override):,}")
         step = 360.0 / int(points_override)
 
+    return step
+
+
+def _output(root):
+    """[output]: ``(table_step [deg], plots, animate, frames)``."""
     out = root.table("output", None)
     table_step, plot, animate, frames = 10.0, True, False, 72
     if out is not None:
@@ -381,8 +424,4 @@ def read_cam_spec(root, step_override=None, points_override=None):
         animate = out.boolean("animate", False)
         frames = out.integer("frames", frames, lo=4, hi=720)
         out.finish()
-    expected = read_expected(root)
-    root.finish()
-    return CamSpec(header, motion, contact, r0, args, segments, stroke, angular, omega,
-                   limits, sizing, math.radians(step), math.radians(table_step), plot,
-                   animate, frames, expected)
+    return table_step, plot, animate, frames
