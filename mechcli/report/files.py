@@ -346,18 +346,34 @@ def read_manifest(out_dir, same_as=None):
     *same_as* (this run's ``{"command", "spec"}``), only a manifest of the same command
     on the same spec counts: another problem run into the same folder wrote files that
     are its own, not stale ones of this spec."""
+    doc = _manifest_doc(out_dir)
+    if doc is None:
+        return []
+    if same_as is not None and any(doc.get(k) != same_as.get(k) for k in ("command", "spec")):
+        return []
+    return doc["files"]
+
+
+def _manifest_doc(out_dir):
+    """The manifest in *out_dir* as mechcli wrote it (a dict), or None."""
     import json
 
     try:
         doc = json.loads((Path(out_dir) / MANIFEST).read_text(encoding="utf-8"))
     except (OSError, ValueError):
-        return []
+        return None
     if not isinstance(doc, dict) or doc.get("generator") != "mechcli" \
             or doc.get("format") != MANIFEST_FORMAT or not isinstance(doc.get("files"), list):
-        return []
-    if same_as is not None and any(doc.get(k) != same_as.get(k) for k in ("command", "spec")):
-        return []
-    return doc["files"]
+        return None
+    return doc
+
+
+def _same_problem(doc, info):
+    """The earlier run solved the same problem as this one: the same command on the same
+    spec contents (SHA-256) with the same ``--set`` overrides; its files are still valid."""
+    return (doc is not None and info.get("spec_sha256") is not None
+            and all(doc.get(k) == info.get(k) for k in ("command", "spec", "spec_sha256",
+                                                         "sets")))
 
 
 class Outputs:
@@ -376,6 +392,8 @@ class Outputs:
         self.staged = None
         self.digits = int(digits)
         self.files: list[Path] = []
+        #: files of an earlier run of the same problem kept as still valid (:meth:`manifest`)
+        self.reused: list = []
 
     def _relative(self, f):
         """A file's name in the manifest: its path below the output folder."""
@@ -494,11 +512,14 @@ class Outputs:
 
         The manifest is *info* (command, spec hash, ``--set`` overrides, versions) plus
         ``files``: the name, size and SHA-256 of every file this run wrote.  A file the
-        previous manifest lists and this run did not write is stale (a ``kin.gif`` of an
-        earlier ``--animate`` beside a new ``kin.csv``): it is removed when it is still
-        the file mechcli wrote (same SHA-256), and kept otherwise.  Nothing the previous
-        manifest does not list is ever touched, nor a name that is not a plain file
-        name in this folder.
+        previous manifest lists and this run did not write is kept when the previous run
+        solved the same problem (the same spec contents and ``--set`` values: a figure of
+        an earlier run stays through a ``--no-plot`` rerun) and is still the file mechcli
+        wrote; it is listed with ``"kept": true`` (:attr:`reused`).  Otherwise it is
+        stale (a ``kin.gif`` of an earlier ``--animate`` of another spec version beside a
+        new ``kin.csv``): removed when it is still the file mechcli wrote (same SHA-256),
+        kept as the user's otherwise.  Nothing the previous manifest does not list is ever
+        touched, nor a name that is not a plain file name in this folder.
 
         Returns
         -------
@@ -510,7 +531,9 @@ class Outputs:
         import json
 
         final = self.final
+        earlier = _manifest_doc(final)
         previous = read_manifest(final, same_as=info)
+        still_valid = _same_problem(earlier, info)
         self._stage()
         entries = []
         for f in self.files:
@@ -518,6 +541,7 @@ class Outputs:
             entries.append({"name": self._relative(f), "bytes": size, "sha256": digest})
         doc = {"generator": "mechcli", "format": MANIFEST_FORMAT, **info, "files": entries}
         written = {e["name"] for e in entries} | {MANIFEST}
+        self.reused = []
         # what the earlier run wrote and this one did not: removed (left out of the new
         # folder) while it is still the file mechcli wrote, kept (carried over) otherwise
         listed = {}
@@ -540,6 +564,12 @@ class Outputs:
                 src = final / entry
                 if entry in listed and not src.is_symlink() and src.is_file():
                     if file_sha256(src) == listed[entry]:
+                        if still_valid:    # the same problem's output: still valid
+                            self.reused.append(entry)
+                            entries.append({"name": entry, "bytes": src.stat().st_size,
+                                            "sha256": listed[entry], "kept": True})
+                            carry.append(entry)
+                            continue
                         removed.append(entry)
                         continue
                     kept.append(entry)

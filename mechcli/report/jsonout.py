@@ -26,10 +26,11 @@ def _clean(value):
     return value
 
 
-def dumps(command, spec, results, files, warnings=(), manifest=None, removed=()):
+def dumps(command, spec, results, files, warnings=(), manifest=None, removed=(), kept=()):
     """JSON text: ``{"command", "spec", "results", "warnings", "files", "manifest",
-    "removed"}``: *manifest* is the path of ``outputs.json`` (which lists *files*), and
-    *removed* the names of the stale files of an earlier run it removed."""
+    "removed", "kept"}``: *manifest* is the path of ``outputs.json`` (which lists *files*),
+    *removed* the names of the stale files of an earlier run it removed, *kept* those of
+    an earlier run of the same problem it kept as still valid."""
     doc = {
         "command": command,
         "spec": None if spec is None else str(spec),
@@ -40,4 +41,5 @@ def dumps(command, spec, results, files, warnings=(), manifest=None, removed=())
     if manifest is not None:
         doc["manifest"] = str(manifest)
         doc["removed"] = list(removed)
+        doc["kept"] = list(kept)
     return json.dumps(doc, ensure_ascii=False, indent=2)

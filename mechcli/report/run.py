@@ -119,7 +119,7 @@ def finish(run, command, report, results, outputs, warnings=()):
                         "run and changed since, so not this run's output")
     if run.json:
         click.echo(jsonout.dumps(command, run.spec_path, results, outputs.files, warnings,
-                                 manifest=manifest, removed=removed))
+                                 manifest=manifest, removed=removed, kept=outputs.reused))
         return
     if not run.quiet:
         # the table on stdout; the warnings (also in report.txt) on stderr, where a
@@ -130,6 +130,9 @@ def finish(run, command, report, results, outputs, warnings=()):
         else:   # a pipe, a file, a Makefile: the plain text, without importing rich
             click.echo(render_text(report, width=terminal_width()), nl=False)
         click.echo("written: " + ", ".join(str(f) for f in outputs.files))
+        if outputs.reused:
+            click.echo("kept (from an earlier run of the same spec and --set values): "
+                       + ", ".join(outputs.reused))
         if removed:
             click.echo("removed (stale, from an earlier run): " + ", ".join(removed))
     where = f"{run.spec_path}: " if run.spec_path else ""    # traceable in a parallel batch
