@@ -98,6 +98,20 @@ class RunOptions:
     def show_table(self):
         return not (self.quiet or self.json)
 
+    def problem_data(self):
+        """The spec's tables as this run solved them (the file with the ``--set``
+        overrides applied), for ``report.txt``'s given data; None without a spec file
+        or when it cannot be read again."""
+        if self.spec_path is None:
+            return None
+        from mechcli.spec.errors import SpecError
+        from mechcli.spec.reader import load_spec
+
+        try:
+            return load_spec(self.spec_path, self.sets).data
+        except (SpecError, OSError):
+            return None
+
 
 #: the characters a default output folder's name keeps from the quick-form values
 _PLAIN = re.compile(r"[^A-Za-z0-9.+-]+")

@@ -6,7 +6,7 @@ from __future__ import annotations
 import click
 
 from mechcli.report import jsonout
-from mechcli.report.table import print_rich, render_text, terminal_width
+from mechcli.report.table import Block, Report, print_rich, render_text, terminal_width
 
 
 def _is_terminal():
@@ -110,9 +110,13 @@ def finish(run, command, report, results, outputs, warnings=()):
             raise click.UsageError(str(exc)) from None
     warnings = _merge_warnings(warnings)
     shown = list(report.notes)
-    for w in warnings:
-        report.notes.append(("警告: " if run.lang == "zh" else "warning: ") + w)
-    outputs.text("report.txt", render_text(report))
+    # report.txt says what was solved (the given data, the spec and its hash, the --set
+    # values) so that a printed report can be handed in; the machine's warnings stay on
+    # stderr (and in the JSON)
+    given = given_block(run, command)
+    handed_in = Report(report.title, ([given] if given else []) + list(report.blocks),
+                       list(report.notes))
+    outputs.text("report.txt", render_text(handed_in))
     manifest, removed, kept = outputs.manifest(manifest_info(run, command))
     if kept:
         warnings.append(f"kept {', '.join(kept)} in {outputs.out_dir}: written by an earlier "
@@ -138,6 +142,77 @@ def finish(run, command, report, results, outputs, warnings=()):
     where = f"{run.spec_path}: " if run.spec_path else ""    # traceable in a parallel batch
     for w in warnings:
         click.echo(f"mechcli: warning: {where}{w}", err=True)
+
+
+#: spec keys that are the book's Greek letters: written as the letters in report.txt
+_GREEK = {"omega": "ω", "alpha": "α", "theta": "θ", "phi": "φ", "psi": "ψ", "delta": "δ",
+          "beta": "β", "gamma": "γ", "rho": "ρ", "epsilon": "ε", "lambda": "λ", "mu": "μ",
+          "sigma": "σ", "tau": "τ", "eta": "η"}
+#: the tables a spec gives besides its problem: not given data
+_NOT_GIVEN = ("command", "title", "description", "units", "expected", "output")
+
+
+def _symbol(key):
+    """``omega1`` -> ``ω1``, ``alpha_rise`` -> ``α_rise``; other keys as they are."""
+    import re
+
+    unit = ""
+    if key.endswith("_deg"):    # an angle given in degrees: the book's /(°)
+        key, unit = key[:-4], "/(°)"
+    m = re.match(r"([a-z]+)(.*)$", key)
+    if m and m.group(1) in _GREEK and (not m.group(2) or not m.group(2)[0].isalpha()):
+        return _GREEK[m.group(1)] + m.group(2) + unit
+    return key + unit
+
+
+def _given_value(v):
+    if isinstance(v, bool):
+        return "true" if v else "false"
+    if isinstance(v, float):
+        return format(v, ".10g")
+    if isinstance(v, dict):
+        return ", ".join(f"{_symbol(k)} = {_given_value(x)}" for k, x in v.items())
+    if isinstance(v, list):
+        return "[" + ", ".join(_given_value(x) for x in v) + "]"
+    return str(v)
+
+
+def _given_rows(data, where=""):
+    rows = []
+    for key, v in data.items():
+        if not where and key in _NOT_GIVEN:
+            continue
+        label = f"{where}{_symbol(key)}"
+        if isinstance(v, dict) and any(isinstance(x, (dict, list)) for x in v.values()):
+            rows += _given_rows(v, f"{label}.")
+        elif isinstance(v, dict):
+            rows += [[f"{label}.{_symbol(k)}", _given_value(x)] for k, x in v.items()]
+        elif isinstance(v, list) and v and all(isinstance(x, dict) for x in v):
+            rows += [[f"{label}[{i}]", _given_value(x)] for i, x in enumerate(v)]
+        else:
+            rows.append([label, _given_value(v)])
+    return rows
+
+
+def given_block(run, command):
+    """``report.txt``'s first block: the spec (path, SHA-256), the ``--set`` values and the
+    given data as solved (every key of the problem's tables, Greek keys as the book's
+    letters; lengths in the spec's unit); None without a spec file."""
+    data = run.problem_data()
+    if data is None:
+        return None
+    info = manifest_info(run, command)
+    zh = run.lang == "zh"
+    unit = data.get("units", "mm" if command != "flywheel" else "m")
+    sets = ", ".join(info["sets"])
+    head = [f"{'题目文件' if zh else 'spec'} {info['spec']}",
+            f"SHA-256 {(info['spec_sha256'] or '?')[:16]}…"]
+    if sets:
+        head.append(f"--set {sets}")
+    head.append(f"长度单位 {unit}, 角的单位 °, 其余为国际单位" if zh
+                else f"lengths in {unit}, angles in °, the rest in SI units")
+    return Block(heading=("已知条件 (" if zh else "Given (") + "; ".join(head) + ")",
+                 rows=_given_rows(data))
 
 
 def library_versions():
