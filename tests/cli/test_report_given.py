@@ -18,7 +18,7 @@ def test_report_txt_names_the_spec_its_hash_the_overrides_and_the_given_data(tmp
     digest = hashlib.sha256(EX2_1.read_bytes()).hexdigest()[:16]
     head = next(ln for ln in text.splitlines() if ln.startswith("Given ("))
     assert str(EX2_1) in head and digest in head and "--set input.step=2" in head
-    assert "lengths in mm" in text.split("\n  ", 1)[0]   # the heading, wrapped
+    assert "lengths in mm" in text.split("mechanism.type", 1)[0]   # the heading, wrapped
     rows = {re.split(r"\s{2,}", ln.strip())[0]: re.split(r"\s{2,}", ln.strip())[-1]
             for ln in text.splitlines() if ln.startswith("  ")}
     # the given data as solved: the --set value, not the file's (step = 1)
