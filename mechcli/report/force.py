@@ -170,9 +170,12 @@ def scalar_results(spec, res, accuracy_warn=None, extra=None):
 
 
 def _approx_results(spec, res, extra, out):
-    """The model and the largest |approximate − exact| of Mb and the engine's results
-    over the analysed positions (absolute, and relative to the exact peak)."""
+    """The model (and ``moment_arm = "series"`` when T and FT take the series arm) and
+    the largest |approximate − exact| of Mb and the engine's results over the analysed
+    positions (absolute, and relative to the exact peak)."""
     out["model"] = spec.model
+    if spec.piston.moment_arm != "exact":
+        out["moment_arm"] = spec.piston.moment_arm
     approx = dict(res.series)
     if extra.engine is not None:
         approx.update(extra.engine.series)
@@ -382,11 +385,18 @@ def _engine_blocks(spec, res, extra, report, zh, digits):
         _approx_results(spec, res, extra, diffs)
         parts = [f"{k[len('approx_error_'):-len('_max_rel')]} {v:.2%}"
                  for k, v in diffs.items() if k.endswith("_max_rel")]
-        report.notes.append(
-            ("模型: 近似 (活塞惯性力按 1/n 级数), 与精确模型的最大相对差: " if zh else
-             "model: approximate (the piston's inertia force from the series in 1/n, the "
-             "rest exact); largest differences to the exact model, relative to its peak: ")
-            + ", ".join(parts))
+        if spec.piston.moment_arm == "series":
+            head = ("模型: 近似 (活塞惯性力与 T、FT 的力臂 r(sin θ + sin 2θ/2n) 按 1/n 级数), "
+                    "与精确模型的最大相对差: " if zh else
+                    "model: approximate (the piston's inertia force and the moment arm of T "
+                    "and FT, r (sin θ + sin 2θ / 2n), from the series in 1/n, the rest "
+                    "exact); largest differences to the exact model, relative to its peak: ")
+        else:
+            head = ("模型: 近似 (活塞惯性力按 1/n 级数), 与精确模型的最大相对差: " if zh else
+                    "model: approximate (the piston's inertia force from the series in 1/n, "
+                    "the rest exact); largest differences to the exact model, relative to "
+                    "its peak: ")
+        report.notes.append(head + ", ".join(parts))
 
 
 def _constant(res):

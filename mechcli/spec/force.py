@@ -36,6 +36,9 @@ this module adds the inertia of the links, gravity and the external loads::
 
     [output]
     at = [60]                  # values at these inputs, by name (T_at_60deg_N_m …)
+
+    [approximate]              # only with [mechanism] model = "approximate"
+    moment_arm = "series"      # T = FP r (sin θ + sin 2θ / 2n), FT = T / r (default "exact")
 """
 
 from __future__ import annotations
@@ -113,7 +116,8 @@ class ForceSpec:
     #: from the series in 1/n, docs/approximate.md)
     model: str = "exact"
     #: the engine's piston (core.linkage.piston.Piston) when a pressure load or the
-    #: approximate model names one; its named results are reported
+    #: approximate model names one; its named results are reported (with the
+    #: approximate model its ``moment_arm`` is ``[approximate] moment_arm``)
     piston: object = None
 
 
@@ -527,6 +531,29 @@ def _output(sec, inp):
                        accuracy_warn, tuple(v * unit for v in at))
 
 
+#: ``[approximate] moment_arm``: the arm of the approximate model's T and FT
+MOMENT_ARMS = ("exact", "series")
+
+
+def read_approximate(root, model):
+    """``[approximate]`` -> the moment arm of the approximate model's T and FT:
+    ``"exact"`` (the default: the rod's force on the crank pin) or ``"series"``
+    (T = FP · r (sin θ + sin 2θ / 2n), docs/approximate.md).  The table belongs to
+    ``[mechanism] model = "approximate"``: with the exact model it is exit 2."""
+    if not root.has("approximate"):
+        return "exact"
+    sec = root.table("approximate")
+    arm = sec.string("moment_arm", "exact", choices=list(MOMENT_ARMS))
+    sec.finish()
+    if model != "approximate":
+        key = next(iter(sec.data), None)
+        raise SpecError(root.file, sec.key(key) if key is not None else "approximate",
+                        "[mechanism] model = \"approximate\" with an [approximate] table "
+                        "(the series moment arm belongs to the approximate model)",
+                        f"model = \"{model}\"")
+    return arm
+
+
 def load_force_spec(path, overrides=()) -> ForceSpec:
     """Read and validate a ``mechcli force`` spec (exit 2 on any error)."""
     return read_force_root(load_spec(path, overrides))
@@ -562,11 +589,15 @@ def read_force_root(root) -> ForceSpec:
                        (inp.start, inp.stop), pressure=True,
                        direction=-1 if inp.rotary and inp.omega < 0 else 1)
     out = _output(root.table("output") if root.has("output") else _empty(root, "output"), inp)
+    arm = read_approximate(root, model)
     expected = read_expected(root)
     root.finish()
     piston = next((p.source.piston for p in loads if p.source is not None), None)
     if model == "approximate":
         from mechcli.core.linkage.piston import Piston
         piston = Piston.of(linkage, 3)      # the slider-crank preset's slider
+        if arm != "exact":
+            import dataclasses
+            piston = dataclasses.replace(piston, moment_arm=arm)
     return ForceSpec(header, kind, linkage, topo, tracers, inp, bodies, grav, loads, out,
                      expected, guide_length, model, piston)

@@ -16,6 +16,10 @@ v = ωr(sin θ + sin 2θ/2n), a = ω²r(cos θ + cos 2θ/n) with the sign of mec
 slide s3 (s3 = l + r - x for b = +1).  With a crank acceleration α the chain rule
 adds ds/dθ · α to a.  The next term of the series is -b r λ³ sin⁴θ / 8, so the
 differences to the exact model shrink like 1/n³ (relative to r, ωr, ω²r).
+
+The same series gives the books' moment arm of the piston effort F_P about the
+crank pivot (:func:`moment_arm`): T ≈ F_P r (sin θ + sin 2θ / 2n), θ from the
+head-end dead centre; exactly it is r sin(θ + φ) / cos φ.
 """
 
 from __future__ import annotations
@@ -53,6 +57,23 @@ def exact(q, r, l, branch=1):
     dds = (-r * cos - b * r * r * np.cos(2 * q) / root
            - b * (r * r * sin * cos) ** 2 / root ** 3)
     return s, ds, dds
+
+
+def moment_arm(q, r, l, branch=1):
+    """The series moment arm [m] of the piston effort about the crank pivot at crank
+    angles *q* [rad]: the turning moment is T ≈ F_P · arm, F_P along the line of
+    stroke toward the crank (positive pushing the piston toward the crank pivot).
+
+    By virtual work with a massless rod, T = F_P · (d · u) · ds/dθ (d the direction
+    toward the crank, u that of increasing s; d · u = −b for the centred
+    slider-crank), so with the series' ds/dθ
+
+        arm = −b ds/dθ = r (b sin θ + sin 2θ / 2n),
+
+    i.e. r (sin θ + sin 2θ / 2n) with θ measured from the head-end dead centre
+    (θ1 = 0 for ``b = +1``, 180° for ``b = −1``).  Exactly it is r sin(θ + φ) / cos φ."""
+    b = 1.0 if branch >= 0 else -1.0
+    return -b * series(q, r, l, branch)[1]
 
 
 def motion(q, r, l, omega, alpha=0.0, branch=1):
@@ -200,15 +221,27 @@ class SeriesInertia:
     ``a`` the first-order series acceleration (:func:`motion`) at crank speed
     ``omega`` [rad/s] and acceleration ``alpha`` [rad/s²].  A ``source`` of a
     :class:`~mechcli.core.linkage.loads.LoadProgram` whose load is the unit
-    direction of the slide: the approximate model of ``mechcli force``."""
+    direction of the slide: the approximate model of ``mechcli force``.
 
-    def __init__(self, r, l, branch, mass, omega, alpha=0.0):
+    ``moment_arm``: ``"exact"`` (default) or ``"series"``: the engine's named
+    results T and FT then take the series moment arm (:meth:`arm`)."""
+
+    def __init__(self, r, l, branch, mass, omega, alpha=0.0, moment_arm="exact"):
         self.r, self.l, self.branch = float(r), float(l), int(branch)
         self.mass, self.omega, self.alpha = float(mass), float(omega), float(alpha)
+        self.moment_arm = str(moment_arm)
 
     def acceleration(self, q):
         """The series acceleration of the slide [m/s²] at crank angles ``q``."""
         return motion(q, self.r, self.l, self.omega, self.alpha, self.branch)[2]
+
+    def arm(self, q):
+        """The series moment arm of the piston effort [m] at crank angles ``q``
+        (:func:`moment_arm`) with ``moment_arm = "series"``; else None (T and FT
+        from the rod's force on the crank pin)."""
+        if self.moment_arm != "series":
+            return None
+        return moment_arm(q, self.r, self.l, self.branch)
 
     def force(self, q, motion_=None):
         return -self.mass * self.acceleration(q)
@@ -221,13 +254,16 @@ def force_model(piston, bodies, programs, gravity, omega, alpha=0.0):
     is along the guide too), everything else stays exact: the piston's body
     loses its mass and gains two loads at its pin, its weight m g (when gravity
     acts) and ``SeriesInertia``.  Returns ``(bodies, programs, inertia)``.
+    The piston's ``moment_arm`` (``"exact"`` or ``"series"``) is handed to the
+    ``SeriesInertia``: it chooses the arm of T and FT only, never the loads.
     """
     from mechcli.core.linkage.force_model import Load
     from mechcli.core.linkage.loads import LoadProgram
 
     body = bodies.get(piston.link)
     mass = float(body.mass) if body is not None else 0.0
-    inertia = SeriesInertia(piston.r, piston.l, piston.branch, mass, omega, alpha)
+    inertia = SeriesInertia(piston.r, piston.l, piston.branch, mass, omega, alpha,
+                            piston.moment_arm)
     if body is None:
         return bodies, tuple(programs), inertia
     bodies = {k: v for k, v in bodies.items() if k != piston.link}

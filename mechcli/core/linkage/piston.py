@@ -50,7 +50,12 @@ class PistonError(ValueError):
 
 @record
 class Piston:
-    """Geometry of a piston (see the module notes); lengths [m], angles [rad]."""
+    """Geometry of a piston (see the module notes); lengths [m], angles [rad].
+
+    ``moment_arm``: the arm of the approximate model's T and FT, ``"exact"`` (the
+    rod's force on the crank pin) or ``"series"`` (r (sin θ + sin 2θ / 2n), handed on
+    by :func:`~mechcli.core.linkage.approximate.force_model`); the exact model and
+    the kinetostatics never read it."""
 
     link: int
     pin: str
@@ -69,6 +74,7 @@ class Piston:
     s_crank: float
     theta_head: float
     theta_crank: float
+    moment_arm: str = "exact"
 
     @property
     def stroke(self):
@@ -290,7 +296,7 @@ def _pair(topo, a, b, point):
     raise PistonError(f"no pair between links {a} and {b} at {point}")
 
 
-def engine_series(piston, topo, fr, motion, gas, inertia_accel=None, mass=0.0):
+def engine_series(piston, topo, fr, motion, gas, inertia_accel=None, mass=0.0, arm=None):
     """The engine's named results over the positions of a kinetostatic solution [N, N m].
 
     Parameters
@@ -308,6 +314,13 @@ def engine_series(piston, topo, fr, motion, gas, inertia_accel=None, mass=0.0):
         approximate model's series); default the engine's exact acceleration.
     mass : float
         The reciprocating mass [kg] (the piston link's).
+    arm : ndarray, optional
+        The moment arm [m] of the piston effort about the crank pivot at the
+        positions (the approximate model's series,
+        :func:`~mechcli.core.linkage.approximate.moment_arm`): then T = FP · arm
+        and FT = T / r, the books' T ≈ F_P r (sin θ + sin 2θ / 2n); the other
+        results are unchanged.  Default: T and FT from the rod's force on the
+        crank pin.
 
     Returns
     -------
@@ -351,6 +364,9 @@ def engine_series(piston, topo, fr, motion, gas, inertia_accel=None, mass=0.0):
     out["FT"] = (-ry * fcx + rx * fcy) / piston.r
     out["Frad"] = -(rx * fcx + ry * fcy) / piston.r
     out["T"] = rx * fcy - ry * fcx
+    if arm is not None:
+        out["T"] = out["FP"] * np.asarray(arm, dtype=float)
+        out["FT"] = out["T"] / piston.r
     return out
 
 
@@ -430,11 +446,14 @@ class EngineSweep:
 
 def engine_at(piston, topo, evaluator, q, mass, approx=None):
     """``(series of the kinetostatics, engine series)`` at inputs ``q`` through a
-    :class:`~mechcli.core.linkage.force_analysis.ForceEvaluator`."""
+    :class:`~mechcli.core.linkage.force_analysis.ForceEvaluator`; ``approx`` (the
+    approximate model's :class:`~mechcli.core.linkage.approximate.SeriesInertia`)
+    gives FI's acceleration and, when it asks for it, T's moment arm."""
     fr, _masks, motion = evaluator(np.asarray(q, dtype=float))
     acc = None if approx is None else approx.acceleration(q)
+    arm = None if approx is None else approx.arm(q)
     gas = gas_force(piston, evaluator.programs, q, motion)
-    return fr, engine_series(piston, topo, fr, motion, gas, acc, mass)
+    return fr, engine_series(piston, topo, fr, motion, gas, acc, mass, arm)
 
 
 def analyse_engine(piston, topo, evaluator, q, fr, motion, mass, approx=None,
@@ -442,8 +461,9 @@ def analyse_engine(piston, topo, evaluator, q, fr, motion, mass, approx=None,
     """:class:`EngineSweep` over the analysed positions ``q`` (with their
     kinetostatics ``fr`` and ``motion``)."""
     acc = None if approx is None else approx.acceleration(q)
+    arm = None if approx is None else approx.arm(q)
     gas = gas_force(piston, evaluator.programs, q, motion)
-    series = engine_series(piston, topo, fr, motion, gas, acc, mass)
+    series = engine_series(piston, topo, fr, motion, gas, acc, mass, arm)
     extremes = {}
     if q.size == 0:
         return EngineSweep(series, extremes)
