@@ -1,7 +1,9 @@
 """``mechcli schema COMMAND``: the JSON Schema of a command's spec, for editors.
 
 The schema is learnt from the command's own spec reader
-(:mod:`mechcli.spec.schema`), so it cannot drift from what the reader accepts.
+(:mod:`mechcli.spec.schema`), so it cannot drift from what the reader accepts; each
+key's description comes from the catalogue that also writes the comments of
+``mechcli new``'s templates (:mod:`mechcli.spec.keydocs`).
 """
 
 from __future__ import annotations
@@ -18,7 +20,12 @@ import click
                    "schemas are learnt this way with the checkout's configs/).")
 def schema(command, output, learn):
     """Print the JSON Schema (draft-07) of COMMAND's spec (kin, force, grashof,
-    cam, gear), for editors that check TOML against a schema (Taplo, tombi)."""
+    cam, gear, synth, flywheel, optimize), for editors that check TOML against a
+    schema (Taplo, tombi): every key with its type, bounds, default and description.
+
+    \b
+      mechcli schema kin -o kin.schema.json
+    """
     import difflib
     import os
     import tempfile

@@ -42,9 +42,39 @@ class SpecError(ValueError):
                        for c in msg)
 
 
+#: common slips: a key written as a student would say it -> the keys meant, in order
+#: (the first of them the table knows is suggested)
+SLIPS = {
+    "rpm": ("n1", "n1_rpm", "n0_rpm", "n_mean_rpm"),
+    "n": ("n1", "n1_rpm", "n_mean_rpm"),
+    "speed": ("omega1", "n1", "omega", "n1_rpm", "omega_mean"),
+    "omega": ("omega1",),
+    "w": ("omega1", "omega"),
+    "w1": ("omega1",),
+    "angular_velocity": ("omega1", "omega"),
+    "angular_acceleration": ("alpha1",),
+    "velocity": ("v1", "omega1"),
+    "unit": ("units",),
+    "length_unit": ("units",),
+}
+
+
+def slip(name, candidates):
+    """The key meant by a common slip (``rpm`` for ``n1``, :data:`SLIPS`), if the table
+    has it among *candidates*; else None."""
+    for meant in SLIPS.get(str(name).lower().replace("-", "_"), ()):
+        if meant in candidates:
+            return meant
+    return None
+
+
 def closest(name, candidates):
-    """Nearest valid key to *name*, or None."""
+    """Nearest valid key to *name* (or the key a common slip means: :func:`slip`), or
+    None."""
     import difflib   # only when a key is wrong: not on every start-up
 
+    meant = slip(name, candidates)
+    if meant is not None:
+        return meant
     hits = difflib.get_close_matches(str(name), list(candidates), n=1, cutoff=0.5)
     return hits[0] if hits else None

@@ -13,7 +13,7 @@ import math
 import re
 import sys
 
-from mechcli.spec.errors import SpecError, closest
+from mechcli.spec.errors import SpecError, closest, slip
 
 REQUIRED = object()
 
@@ -100,6 +100,64 @@ def _same_symbol(name, candidates):
         return []
     hits = [c for c in candidates if c != name and _symbol(c) == sym]
     return hits if len(hits) == 1 else []
+
+
+#: a number written with a unit inside a string: ``"101.6 mm"``, ``"250 rpm"``, ``"30°"``
+_WITH_UNIT = re.compile(r"\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*"
+                        r"([^\d\s.,+\-\[\]{}][^\[\]{}]*?)\s*")
+#: units of a speed in revolutions per minute, as written in a string
+_RPM_UNITS = {"rpm", "r/min", "rev/min", "1/min", "min-1", "min^-1", "u/min", "转/分"}
+_ANGLE_UNITS = {"deg", "degree", "degrees", "°", "rad", "radian", "radians"}
+#: the keys that take a speed in rpm, beside one in rad/s (kin, force: n1; flywheel …)
+_RPM_KEYS = ("n1", "n1_rpm", "n0_rpm", "n_end_rpm", "n_mean_rpm")
+
+
+def _unit_words(sec, name, value, length):
+    """What a valid value looks like when *value* is a number with a unit inside a string
+    (``"101.6 mm"``, ``"250 rpm"``): units are not written in values, so say how they are
+    given (lengths in the file's ``units``, angles in degrees, a speed in rpm by its own
+    key).  None when *value* is not such a string."""
+    if not isinstance(value, str) or len(value) > 60:
+        return None
+    if re.fullmatch(r"\s*[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?\s*", value):
+        return f"a number, not a string: without the quotes ({name} = {value.strip()})"
+    m = _WITH_UNIT.fullmatch(value)
+    if m is None:
+        return None
+    number, unit = m.group(1), m.group(2).strip()
+    low = unit.lower()
+    plain = "a plain number, not a string with a unit"
+    here = next((k for k, v in LENGTH_UNITS.items() if math.isclose(v, sec.unit)), "mm")
+    if length or low in LENGTH_UNITS:
+        words = f"{plain}: every length is in the file's units = \"{here}\" ({name} = "
+        if low in LENGTH_UNITS and low != here:
+            there = float(number) * LENGTH_UNITS[low] / LENGTH_UNITS[here]
+            return words + (f"{there:.6g}, or {name} = {number} with units = \"{low}\" at the "
+                            f"top of the file for every length)")
+        return words + f"{number})"
+    if low in _RPM_UNITS:
+        if name in _RPM_KEYS or name.endswith("_rpm"):
+            return f"{plain} ({name} is in rpm: {name} = {number})"
+        alt = next((k for k in _RPM_KEYS if k in sec._known or k in sec._declared), None)
+        if alt is not None:
+            return f"{plain}: {name} is in rad/s (a speed in rpm is {alt} = {number} instead)"
+        return (f"{plain}: {name} is in rad/s ({number} rpm is {name} = "
+                f"{float(number) * math.pi / 30:.6g})")
+    if low in _ANGLE_UNITS:
+        deg = number if low[0] in "d°" else f"{math.degrees(float(number)):.6g}"
+        return f"{plain}: angles are in degrees ({name} = {deg})"
+    return (f"{plain} ({name} = {number} in the unit of the key, which `mechcli schema` and "
+            f"the comments of `mechcli new` give)")
+
+
+def _other_form_key(path, name):
+    """Is *name* a key that another form of the table at *path* takes (the shipped
+    schemas: :func:`mechcli.spec.unknown.taken_by_another_form`)?"""
+    from mechcli.spec.unknown import taken_by_another_form
+    try:
+        return taken_by_another_form(path, name)
+    except Exception:   # noqa: BLE001 -- a hint never hides the error it words
+        return False
 
 
 def parse_override(file, text):
@@ -281,7 +339,7 @@ class Section:
                             expected=expected)
 
     def _number(self, name, default=REQUIRED, *, positive=False, nonneg=False,
-                lo=None, hi=None, expected=None):
+                lo=None, hi=None, expected=None, length=False):
         value = self._get(name, default)
         if value is None or (value is default and default is not REQUIRED):
             return value
@@ -290,7 +348,8 @@ class Section:
         if lo is not None and hi is not None and not expected:
             want = f"a number in [{lo:g}, {hi:g}]"
         if isinstance(value, bool) or not isinstance(value, (int, float)):
-            raise self.error(name, want, _describe(value))
+            raise self.error(name, _unit_words(self, name, value, length) or want,
+                             _describe(value))
         value = float(value)
         if not math.isfinite(value):
             raise self.error(name, "a finite " + want.removeprefix("a "), _describe(value))
@@ -309,7 +368,7 @@ class Section:
             self.recorder.key(self, name, "number", default, positive=positive and not nonneg,
                               nonneg=nonneg)
         value = self._number(name, default, positive=positive and not nonneg, nonneg=nonneg,
-                             expected=None)
+                             expected=None, length=True)
         if value is None or (value is default and default is not REQUIRED):
             return value
         metres = value * self.unit
@@ -325,7 +384,7 @@ class Section:
         if self.recorder is not None:
             self.recorder.key(self, name, "number", default)
         lim = MAX_LENGTH / self.unit
-        value = self._number(name, default, lo=-lim, hi=lim)
+        value = self._number(name, default, lo=-lim, hi=lim, length=True)
         if value is None or (value is default and default is not REQUIRED):
             return value
         return value * self.unit
@@ -339,7 +398,8 @@ class Section:
         want = "an integer" if lo is None else (
             f"an integer >= {lo}" if hi is None else f"an integer in [{lo}, {hi}]")
         if isinstance(value, bool) or not isinstance(value, int):
-            raise self.error(name, want, _describe(value))
+            raise self.error(name, _unit_words(self, name, value, False) or want,
+                             _describe(value))
         if (lo is not None and value < lo) or (hi is not None and value > hi):
             raise self.error(name, want, _describe(value))
         return value
@@ -406,7 +466,8 @@ class Section:
             if isinstance(item, bool) or not isinstance(item, (int, float)) \
                     or not math.isfinite(item) or (positive and item <= 0):
                 raise SpecError(self.file, self.key(f"{name}[{i}]"),
-                                "a positive number" if positive else "a finite number",
+                                _unit_words(self, f"{name}[{i}]", item, False)
+                                or ("a positive number" if positive else "a finite number"),
                                 _describe(item))
             out.append(float(item))
         return out
@@ -513,11 +574,36 @@ class Section:
             self.recorder.finished(self)
         for name in self.data:
             if name not in self._known:
-                hint = closest(name, sorted(self._known)) \
+                if name in self._declared or self._discriminated() and _other_form_key(
+                        self.path, name):
+                    raise self._other_form(name)
+                hint = slip(name, self._known | self._declared) \
+                    or closest(name, sorted(self._known)) \
                     or next(iter(_same_symbol(name, self._known)), None)
                 raise SpecError(self.file, self.key(name),
                                 "a known key" + (f" of [{self.path}]" if self.path else ""),
                                 f"unknown key '{name}'", hint)
+
+    def _discriminated(self):
+        """The ``(key, value)`` of this table's form (``type = "slider_crank"``, ``kind =
+        "function"``), when the reader has read one; else None."""
+        return next(((k, v) for k, v in self.data.items()
+                     if k in ("type", "kind") and isinstance(v, str) and k in self._known),
+                    None)
+
+    def _other_form(self, name):
+        """The error for *name*, a key this table takes in another of its forms (``l3``
+        of a four-bar in a slider-crank's ``[mechanism]``): "slider_crank has no l3",
+        with the keys this form reads, and no did-you-mean of a different key."""
+        kind = self._discriminated()
+        keys = ", ".join(sorted(self._known))
+        if kind is None:
+            return SpecError(self.file, self.key(name),
+                             f"a key of this form of [{self.path}] ({keys})",
+                             f"'{name}', a key of another form")
+        return SpecError(self.file, self.key(name),
+                         f"a key of {kind[0]} = \"{kind[1]}\" ({keys})",
+                         f"'{name}': {kind[1]} has no {name}")
 
     def set_unit_from(self, name="units", default="mm"):
         """Read the declared length unit and set it for this and later sub-tables."""

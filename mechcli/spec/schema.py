@@ -7,8 +7,8 @@ every typed accessor the reader calls (``number``, ``length``, ``string(choices=
 The reader runs over *probe* specs that exercise its branches:
 
 * the seeds: the configs of the command (``configs/`` next to the package, in a
-  checkout) and the package template ``mechcli/templates/<command>.toml`` if any,
-  or else a spec holding only ``command``;
+  checkout) and the package templates ``mechcli/templates/<command>.toml`` and
+  ``<command>.<type>.toml`` if any, or else a spec holding only ``command``;
 * for every choice key seen (``mechanism.type``, a dyad's ``type``, ``contact``…),
   the spec with each other choice;
 * for every optional table or array of tables not in the spec, the spec with an
@@ -22,7 +22,9 @@ alike): every table has ``additionalProperties: false`` except the free-form
 ones the reader iterates (``[expected]``, ``[mechanism.ground]``), whose values
 share one schema.  Keys
 that depend on a discriminator are merged as a union of properties; a key is
-required when every complete reading of its table required it.
+required when every complete reading of its table required it.  Every key then gets
+its ``description`` from the catalogue that also writes the key comments of ``mechcli
+new``'s templates (:mod:`mechcli.spec.keydocs`).
 """
 
 from __future__ import annotations
@@ -239,6 +241,7 @@ def _seeds(command, configs=None):
     here = Path(__file__).resolve().parent.parent
     template = here / "templates" / f"{command}.toml"
     files = [template] if template.is_file() else []
+    files += sorted((here / "templates").glob(f"{command}.*.toml"))   # its other types
     files += sorted((here / "templates" / "examples").glob("*.toml"))
     configs = Path(configs) if configs is not None else here.parent / "configs"
     if configs.is_dir():
@@ -583,6 +586,9 @@ def command_schema(command, extra_seeds=(), configs=None):
     props = out.get("properties", {})
     if "command" in props:
         props["command"] = {"const": command, "type": "string"}
+    # every key's meaning, from the catalogue the templates' comments come from
+    from mechcli.spec.keydocs import describe_schema
+    describe_schema(out, command)
     return out
 
 

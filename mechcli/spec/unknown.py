@@ -12,6 +12,7 @@ reads cleanly never loads a schema.
 
 from __future__ import annotations
 
+import functools
 import json
 
 from mechcli.spec.errors import SpecError, closest
@@ -92,3 +93,53 @@ def _for(node, schema):
             extra = ap
     return {"type": "object", "properties": props,
             "additionalProperties": False if closed else (extra or True)}
+
+
+def taken_by_another_form(path, key):
+    """Does another form of the table at the dotted *path* (``mechanism``,
+    ``mechanism.dyad.0``) take *key*: is *key* a key of that table in a command's shipped
+    schema, whose tables are the union of their forms (``l3`` of a four-bar in a
+    slider-crank's ``[mechanism]``, ``slider`` of an RRP dyad in an RRR one)?  Only on
+    the error path of an unknown key."""
+    for schema in _shipped_schemas():
+        nodes = [schema]
+        for part in [p for p in str(path).split(".") if p]:
+            nodes = _step(nodes, part)
+        if any(key in alt.get("properties", {}) for n in nodes for alt in _alts(n)):
+            return True
+    return False
+
+
+@functools.lru_cache(maxsize=1)
+def _shipped_schemas():
+    """Every command's shipped schema (read once, on the first error that needs them)."""
+    from mechcli.spec.schema import COMMANDS, shipped_schema_text
+    out = []
+    for command in COMMANDS:
+        try:
+            out.append(json.loads(shipped_schema_text(command)))
+        except (OSError, ValueError):
+            continue
+    return tuple(out)
+
+
+def _alts(node):
+    if not isinstance(node, dict):
+        return []
+    return [node] + [a for a in node.get("anyOf", ()) if isinstance(a, dict)]
+
+
+def _step(nodes, part):
+    """The schemas of the child *part* (a key, or an index of an array) of *nodes*."""
+    out = []
+    for node in nodes:
+        for alt in _alts(node):
+            if part.isdigit() and isinstance(alt.get("items"), dict):
+                out.append(alt["items"])
+            elif not part.isdigit():
+                sub = alt.get("properties", {}).get(part)
+                if sub is None and isinstance(alt.get("additionalProperties"), dict):
+                    sub = alt["additionalProperties"]
+                if sub is not None:
+                    out.append(sub)
+    return out
