@@ -373,6 +373,11 @@ def refine_extremes(linkage, sweep, order, quantities, values, domain, iteration
     return out
 
 
+#: below this fraction of a function's largest magnitude over the sweep a sample is
+#: round-off of zero: no root is sought between two such samples
+ZERO_NOISE = 1e-12
+
+
 def zero_crossings(q, values, runs, f, rtol=1e-15, iterations=64):
     """Every input where a sampled function crosses or touches 0, refined.
 
@@ -395,11 +400,19 @@ def zero_crossings(q, values, runs, f, rtol=1e-15, iterations=64):
         is half its final bracket (at least a float spacing).
     """
     out, lo, hi, sgn = [], [], [], []
+    every = np.asarray(values, dtype=float)
+    # a stretch where the function is zero to round-off (a slider resting at a change
+    # point while the crank turns) has no roots to report: its sign is noise
+    noise = ZERO_NOISE * (float(np.max(np.abs(every))) if every.size else 0.0)
     for i0, i1 in runs:
         w = np.asarray(values[i0:i1], dtype=float)
-        for k in np.flatnonzero(w == 0.0):
+        big = np.abs(w) > noise
+        near = big.copy()          # a sample counts when it or a neighbour is not noise
+        near[1:] |= big[:-1]
+        near[:-1] |= big[1:]
+        for k in np.flatnonzero((w == 0.0) & near):
             out.append((float(q[i0 + k]), 0.0))
-        for k in np.flatnonzero(w[:-1] * w[1:] < 0):
+        for k in np.flatnonzero((w[:-1] * w[1:] < 0) & (big[:-1] | big[1:])):
             lo.append(q[i0 + k]); hi.append(q[i0 + k + 1]); sgn.append(np.sign(w[k]))
     if lo:
         lo, hi, sgn = np.array(lo, float), np.array(hi, float), np.array(sgn)
