@@ -339,6 +339,27 @@ class DriverMotion:
     ddq: Union[np.ndarray, float] = 0.0
 
 
+class Slides(dict):
+    """``LinkageMotion.slides``: slide name -> :class:`SlideMotion`, keyed by the slide's
+    name (``"3"``, ``"23"``, ``"E"``); a lookup by its symbol as the reports and CSVs
+    write it (``"s3"``, ``"s23"``, ``"sE"``) finds the same slide.  Iteration and
+    ``keys()`` give the names only."""
+
+    __slots__ = ()
+
+    def __missing__(self, key):
+        if isinstance(key, str) and key.startswith("s") and dict.__contains__(self, key[1:]):
+            return self[key[1:]]
+        raise KeyError(key)
+
+    def __contains__(self, key):
+        return dict.__contains__(self, key) or (
+            isinstance(key, str) and key.startswith("s") and dict.__contains__(self, key[1:]))
+
+    def get(self, key, default=None):
+        return self[key] if key in self else default
+
+
 @record(eq=False)
 class LinkageMotion:
     """Result of :func:`solve` over all input positions.
@@ -364,6 +385,10 @@ class LinkageMotion:
     links: Dict[int, LinkMotion]
     slides: Dict[str, SlideMotion]
     conditions: Tuple[DyadCondition, ...]
+
+    def __post_init__(self):
+        if type(self.slides) is not Slides:
+            object.__setattr__(self, "slides", Slides(self.slides))
 
     def condition(self, joint) -> DyadCondition:
         """The conditioning of the dyad whose joint (or block point) is ``joint``:
