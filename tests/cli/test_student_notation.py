@@ -268,7 +268,7 @@ def test_every_help_example_names_a_shipped_example():
 def test_readme_installs_in_a_venv_lists_every_command_and_completion():
     from mechcli.cli import COMMANDS
     text = (ROOT / "README.md").read_text(encoding="utf-8")
-    assert "python3 -m venv .venv && . .venv/bin/activate && pip install -e '.[test]'" in text
+    assert "python3 -m venv .venv && . .venv/bin/activate && pip install -e '.[cjk,test]'" in text
     synopsis = text.split("```", 2)[1]
     for name in COMMANDS:
         assert re.search(rf"^mechcli {name}\b", synopsis, re.M), name
