@@ -26,6 +26,11 @@ _PUBLIC = {
     "kinematic_coefficients": "mechcli.core.linkage.engine",
     "Linkage": "mechcli.core.linkage.engine",
     "LinkageMotion": "mechcli.core.linkage.engine",
+    # notebooks: DataFrames, book-format tables, the book's figure (mechcli/notebook.py)
+    "to_frame": "mechcli.notebook",
+    "summary": "mechcli.notebook",
+    "plot": "mechcli.notebook",
+    "run_spec": "mechcli.notebook",
 }
 
 __all__ = ["__version__", *_PUBLIC]

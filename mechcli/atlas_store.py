@@ -100,7 +100,7 @@ def _parameters(A_range, B_range, C_range, grid, chunk, harmonics):
 
 def build_atlas(directory, A_range=at.DEFAULT_A_RANGE, B_range=at.DEFAULT_B_RANGE,
                 C_range=at.DEFAULT_C_RANGE, grid=at.DEFAULT_GRID, chunk=20000, mapper=map,
-                harmonics=16, resume=True) -> AtlasInfo:
+                harmonics=16, resume=True, progress=None) -> AtlasInfo:
     """Sweep A, B, C over their ranges and the coupler point over the grid; keep
     every crank-rocker (crank 1) and store its descriptor with its parameters.
 
@@ -122,6 +122,11 @@ def build_atlas(directory, A_range=at.DEFAULT_A_RANGE, B_range=at.DEFAULT_B_RANG
     resume : bool
         Skip the chunks the manifest lists (after checking that the build's
         parameters are the same); ``False`` rebuilds everything.
+    progress : callable or None
+        Called as ``progress(done, chunks, curves=, resumed=)`` once before the
+        first task (the chunks a resumed build already has) and after each
+        finished chunk: chunks done of all, curves kept so far, chunks found on
+        disk (the caller shows it; nothing here prints).
 
     Raises
     ------
@@ -158,10 +163,19 @@ def build_atlas(directory, A_range=at.DEFAULT_A_RANGE, B_range=at.DEFAULT_B_RANG
                                               nchunks), indent=1).encode())
     tasks = [(str(directory), i, i * int(chunk), min(candidates, (i + 1) * int(chunk)),
               parameters) for i in range(nchunks) if i not in done]
+    resumed = len(done)
+
+    def report():
+        if progress is not None:
+            progress(len(done), nchunks, curves=int(sum(c["count"] for c in done.values())),
+                     resumed=resumed)
+
+    report()
     for entry in mapper(_build_task, tasks):
         done[entry["index"]] = entry
         _atomic_write(mpath, json.dumps(_manifest(parameters, list(done.values()), candidates,
                                                   nchunks), indent=1).encode())
+        report()
     return open_atlas(directory)
 
 
@@ -256,7 +270,8 @@ def _search_task(task):
     return (*at.rank_chunk(desc, params, Q, k), entry["index"])
 
 
-def search(directory_or_info, x, y, k=10, closed=True, mapper=map, verify=True):
+def search(directory_or_info, x, y, k=10, closed=True, mapper=map, verify=True,
+           progress=None):
     """The k atlas curves nearest the target path by descriptor distance.
 
     Parameters
@@ -280,6 +295,9 @@ def search(directory_or_info, x, y, k=10, closed=True, mapper=map, verify=True):
         streams its chunk from disk; only k rows per chunk come back).
     verify : bool
         Check every chunk's sha256 as it is read.
+    progress : callable or None
+        Called as ``progress(done, chunks, curves=)`` after each chunk searched:
+        chunks done of all, curves compared so far.
 
     Returns
     -------
@@ -300,7 +318,12 @@ def search(directory_or_info, x, y, k=10, closed=True, mapper=map, verify=True):
     Q = at.queries(z, info.harmonics)
     tasks = [(str(info.directory), c, Q, int(k), verify) for c in info.chunks]
     best = []
-    for dist, params, var, rows, index in mapper(_search_task, tasks):
+    seen = 0
+    count = {c["index"]: c["count"] for c in info.chunks}
+    for n, (dist, params, var, rows, index) in enumerate(mapper(_search_task, tasks), 1):
+        seen += int(count.get(index, 0))
+        if progress is not None:
+            progress(n, len(tasks), curves=seen)
         for d, p, v, r in zip(dist.tolist(), params.tolist(), var.tolist(), rows.tolist()):
             best.append(at.Match(float(d), *p, reversed=bool(v >= 2), chunk=int(index),
                               row=int(r)))

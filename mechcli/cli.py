@@ -33,7 +33,8 @@ COMMANDS = {
     "flywheel": ("mechcli.commands.flywheel", "flywheel",
                  "Machine dynamics: Je, Me, equation of motion, steady state, flywheel (ch. 6)."),
     "optimize": ("mechcli.commands.optimize", "optimize",
-                 "Optimization of linkages: function/path generation, any kin/force result (ch. 7)."),
+                 "Optimization of linkages: function/path generation, any kin/force result "
+                 "(ch. 7)."),
     "check": ("mechcli.commands.check", "check",
               "Run specs and compare every [expected] value (batches, CI, JUnit)."),
     "new": ("mechcli.commands.new", "new", "Write a commented starter spec for a command."),

@@ -36,7 +36,10 @@ class RunOptions:
     lang : str
         ``en`` or ``zh`` labels.
     quiet : bool
-        No terminal table.
+        No terminal table (and no progress bar).
+    verbose : bool
+        ``-v``: a line on stderr per step of long work (an atlas chunk, a
+        generation, a streamed chunk), besides the progress bar of a terminal.
     traceback : bool
         Show the traceback of an internal error.
     sets : tuple of str
@@ -48,6 +51,9 @@ class RunOptions:
     dpi : int
         ``--dpi``: resolution of the PNG pictures (the plots read it through
         :func:`mechcli.report.plotting.dpi`).
+    export : tuple of str
+        ``--export``: the CAD formats to write (``"dxf"``, ``"svg"``; see
+        :mod:`mechcli.report.cad`); empty for none and for the commands without it.
     """
 
     spec_path: Path | None
@@ -57,11 +63,13 @@ class RunOptions:
     animate: bool | None = None
     lang: str = "en"
     quiet: bool = False
+    verbose: bool = False
     traceback: bool = False
     sets: tuple = ()
     digits: int = DEFAULT_DIGITS
     columns: tuple = ()
     dpi: int = DEFAULT_DPI
+    export: tuple = ()
 
     @classmethod
     def from_click(cls, spec_path, opts, stem=None):
@@ -86,12 +94,14 @@ class RunOptions:
             animate=opts.pop("animate", None),
             lang=opts.pop("lang", "en"),
             quiet=opts.pop("quiet", False),
+            verbose=opts.pop("verbose", False),
             traceback=opts.pop("traceback", False),
             sets=tuple(opts.pop("sets", ()) or ()),
             digits=opts.pop("digits", None) or DEFAULT_DIGITS,
             columns=tuple(c.strip() for c in (opts.pop("columns", None) or "").split(",")
                           if c.strip()),
             dpi=opts.pop("dpi", None) or DEFAULT_DPI,
+            export=tuple(opts.pop("export", None) or ()),
         )
 
     @property
@@ -163,8 +173,8 @@ def _quick_form():
     ctx = click.get_current_context(silent=True)
     if ctx is None:
         return []
-    shared = {"out", "json_out", "no_plot", "animate", "lang", "quiet", "traceback",
-              "digits", "sets", "columns", "dpi"}
+    shared = {"out", "json_out", "no_plot", "animate", "lang", "quiet", "verbose", "traceback",
+              "digits", "sets", "columns", "dpi", "export"}
     given = []
     for param in ctx.command.params:
         value = ctx.params.get(param.name)
@@ -176,6 +186,44 @@ def _quick_form():
         long = next((o for o in param.opts if o.startswith("--")), param.name)
         given.append((long.lstrip("-"), value))
     return given
+
+
+#: the formats of ``--export`` (mechcli.report.cad writes them)
+EXPORT_FORMATS = ("dxf", "svg")
+
+
+class ExportFormats(click.ParamType):
+    """``--export dxf,svg``: a comma-separated list of CAD formats, checked when the
+    command line is parsed (before anything is read, computed or written): an unknown
+    format, or DXF without the ``cad`` extra (ezdxf), is a usage error (exit 2) naming
+    the option.  The value is a tuple of formats in the order given, each once."""
+
+    name = "formats"
+
+    def convert(self, value, param, ctx):
+        if isinstance(value, tuple):
+            return value
+        given = [v.strip().lower() for v in str(value).split(",")]
+        bad = [v for v in given if v not in EXPORT_FORMATS]
+        if bad or not given:
+            self.fail(f"expected {', '.join(EXPORT_FORMATS)} or both (dxf,svg), "
+                      f"got {value!r}", param, ctx)
+        if "dxf" in given:
+            import importlib.util   # found, not imported: ezdxf loads only when it writes
+            if importlib.util.find_spec("ezdxf") is None:
+                self.fail("DXF needs ezdxf, the cad extra: pip install 'mechcli[cad]' "
+                          "(or --export svg)", param, ctx)
+        return tuple(dict.fromkeys(given))
+
+
+def export_option(func):
+    """``--export dxf,svg``: the drawn geometry as CAD files (the commands that draw
+    geometry: cam, gear, kin, force, synth, optimize; docs/cad.md)."""
+    return click.option("--export", "export", type=ExportFormats(), default=None,
+                        metavar="dxf,svg",
+                        help="Also write the drawn geometry as CAD files: DXF (the cad "
+                             "extra, ezdxf) and/or SVG, in the spec's units "
+                             "(docs/cad.md).")(func)
 
 
 def common_options(func):
@@ -193,6 +241,9 @@ def common_options(func):
         click.option("--lang", type=click.Choice(["en", "zh"]), default="en", show_default=True,
                      help="Labels in English or the book's Chinese."),
         click.option("--quiet", "-q", is_flag=True, help="No table on the terminal."),
+        click.option("--verbose", "-v", is_flag=True,
+                     help="Detail of long work on stderr (a line per atlas chunk, "
+                          "generation or streamed chunk)."),
         click.option("--traceback", is_flag=True, help="Show the traceback of internal errors."),
         click.option("--digits", type=click.IntRange(1, EXACT_DIGITS), default=DEFAULT_DIGITS,
                      show_default=True, metavar="N",

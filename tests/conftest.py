@@ -97,3 +97,27 @@ def _close_figures():
     yield
     if "matplotlib.pyplot" in sys.modules:
         sys.modules["matplotlib.pyplot"].close("all")
+
+
+#: the modules whose tests take most of the suite's time (figures, the fuzzer, every
+#: config through every reader, schema learning, the optimizer, streams past memory):
+#: marked ``slow`` so that ``pytest -m "not slow"`` is a quick inner loop (README's test
+#: command still runs everything).  Measured with ``pytest --durations=0``.
+SLOW_MODULES = {
+    "test_fuzz_configs", "test_force_plots", "test_configs", "test_schema", "test_new_types",
+    "test_student_figure_labels", "test_unknown_keys", "test_student_tables",
+    "test_flywheel_course_problems", "test_student_cjk", "test_pictures_figures",
+    "test_speed_streaming", "test_interrupted_runs", "test_cjk_extra", "test_batches",
+    "test_triad_accuracy", "test_flywheel_cli", "test_optimize_joints", "test_gear_loads",
+    "test_cam_properties", "test_optimize_plots", "test_joints_properties", "test_atlas_cli",
+    "test_optimize_cli", "test_cad_export", "test_accuracy_estimate", "test_kin_plots",
+    "test_cam_plots", "test_gear_plots", "test_synth_plots", "test_flywheel_plots",
+    "test_plain_twins", "test_kin_extremes", "test_flywheel_props", "test_atlas",
+}
+
+
+def pytest_collection_modifyitems(config, items):
+    slow = pytest.mark.slow
+    for item in items:
+        if item.module.__name__.rsplit(".", 1)[-1] in SLOW_MODULES:
+            item.add_marker(slow)

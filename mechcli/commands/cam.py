@@ -6,7 +6,7 @@ from pathlib import Path
 
 import click
 
-from mechcli.options import RunOptions, common_options
+from mechcli.options import RunOptions, common_options, export_option
 
 
 class FiniteFloat(click.FloatRange):
@@ -29,6 +29,7 @@ class FiniteFloat(click.FloatRange):
               help="Profile sampling step in degrees [default: spec, else 0.1].")
 @click.option("--points", type=click.IntRange(36, 3_600_000), default=None,
               help="Profile points per revolution (instead of --step).")
+@export_option
 @common_options
 def cam(spec, step, points, **opts):
     """Design and check a disc cam from SPEC.toml (chapter 4, 例 7-2)."""
@@ -38,7 +39,19 @@ def cam(spec, step, points, **opts):
     from mechcli.spec.reader import load_spec
 
     cs = read_cam_spec(load_spec(spec, run.sets), step, points)
-    cam_report(run, cs, design_of(cs))
+    design = design_of(cs)
+    cam_report(run, cs, design, extra=lambda out: export(run, cs, design, out))
+
+
+def export(run, cs, design, outputs):
+    """``--export``: cam.dxf / cam.svg, the profile as profile.png draws it (report.cad)."""
+    if not run.export:
+        return
+    from mechcli.core.cam.geometry import working_outline
+    from mechcli.report import cad
+    outline = working_outline(design.follower, design.program, design.profile,
+                              design.checks.corners)
+    cad.write(outputs, "cam", cad.cam_sketch(cs, design, outline), run.export)
 
 
 def design_of(cs):

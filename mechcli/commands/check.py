@@ -18,29 +18,36 @@ import click
               help="Also write pictures, into out/check/<spec stem>/ [default: none, "
                    "each spec runs in a temporary directory].")
 @click.option("--quiet", "-q", is_flag=True, help="Only the failures, no table or summary.")
-def check(paths, jobs, junit, json_out, sets, plot, quiet):
+@click.option("--verbose", "-v", is_flag=True,
+              help="One line on stderr as each spec finishes (its checks and time).")
+def check(paths, jobs, junit, json_out, sets, plot, quiet, verbose=False):
     """Run each spec in PATH... (files, folders searched for *.toml, globs) with
     the command its `command` key names and compare every [expected] value.
 
     Exit 0 when all hold; 4 when any expected value is not met; otherwise, if
     a spec could not run, its code (1, 2, 3 in that order of precedence)."""
     import os
-    import sys
     import time
 
     from mechcli import batch
     from mechcli.report import check as report
+    from mechcli.report.console import Progress
     from mechcli.report.files import write_text
 
     t0 = time.perf_counter()
     specs, problems = batch.collect(paths)
     jobs = jobs or os.cpu_count() or 1
     out_dirs = batch.plot_dirs(specs) if plot else None
-    progress = _Progress(len(specs), enabled=sys.stderr.isatty() and not json_out)
-    try:
-        results = batch.run_batch(specs, sets, jobs, plot, out_dirs, on_done=progress.advance)
-    finally:
-        progress.stop()
+    # a bar on stderr (a terminal only, after 2 s, never with -q); -v: a line per spec
+    with Progress("check", show=not quiet, verbose=verbose) as progress:
+        step = progress.stage("specs", len(specs), detail=_spec_line)
+        done = []
+
+        def on_done(result):
+            done.append(result)
+            step(len(done), result=result)
+
+        results = batch.run_batch(specs, sets, jobs, plot, out_dirs, on_done=on_done)
     code = batch.exit_code(results, problems)
     summary = report.summarize(results, problems, time.perf_counter() - t0, jobs, code)
     files = []
@@ -67,28 +74,11 @@ def check(paths, jobs, junit, json_out, sets, plot, quiet):
         raise click.exceptions.Exit(code)   # mechcli.cli.main turns it into the exit code
 
 
-class _Progress:
-    """A rich progress bar on stderr, shown only once the batch has run for a second."""
-
-    def __init__(self, total, enabled):
-        import time
-        self.total, self.enabled, self.t0 = total, enabled and total > 1, time.perf_counter()
-        self.done, self.bar, self.task = 0, None, None
-
-    def advance(self, result):
-        import time
-        self.done += 1
-        if not self.enabled:
-            return
-        if self.bar is None and time.perf_counter() - self.t0 > 1.0 and self.done < self.total:
-            from rich.console import Console
-            from rich.progress import Progress
-            self.bar = Progress(console=Console(stderr=True), transient=True)
-            self.bar.start()
-            self.task = self.bar.add_task("mechcli check", total=self.total)
-        if self.bar is not None:
-            self.bar.update(self.task, completed=self.done)
-
-    def stop(self):
-        if self.bar is not None:
-            self.bar.stop()
+def _spec_line(done, total, result):
+    """``-v``: ``3/25 configs/ch1/ex1-1.toml: ok (6/6 expected values, 0.24 s)``."""
+    held = sum(c["held"] for c in result["checks"])
+    status = {"passed": "ok", "failed": "FAILED", "error": f"error {result['exit_code']}"}
+    checks = (f"{held}/{len(result['checks'])} expected values, "
+              if result["status"] != "error" else "")
+    return (f"{done}/{total} {result['spec']}: {status[result['status']]} "
+            f"({checks}{result['time_s']:.2f} s)")

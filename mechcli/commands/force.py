@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import click
 
-from mechcli.options import RunOptions, common_options
+from mechcli.options import RunOptions, common_options, export_option
 
 
 @click.command("force")
@@ -13,6 +13,7 @@ from mechcli.options import RunOptions, common_options
               default=None, metavar="DIGITS",
               help="Warn where fewer correct significant digits than this remain "
                    "(estimated; default: the spec's output.accuracy_warn, 8).")
+@export_option
 @common_options
 def force(spec_path, accuracy_warn=None, **opts):
     """Kinetostatics (动态静力分析) of any linkage of `kin`: pair reactions, the
@@ -40,6 +41,10 @@ def force(spec_path, accuracy_warn=None, **opts):
         warnings += force_plots.write(spec, result, sweep, outputs, run.lang,
                                       plots=run.plot and spec.output.plots, animate=animate,
                                       engine=extra.engine, switches=switches)
+    if run.export:
+        from mechcli.commands.kin import export_linkage
+        warnings += export_linkage(run, outputs, "force", spec, sweep, result.kin.motion,
+                                   result.kin.runs)
     finish(run, "force", report.build_report(spec, result, run.lang, extra),
            report.scalar_results(spec, result, accuracy_warn, extra), outputs, warnings)
 

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import click
 
-from mechcli.options import RunOptions, common_options
+from mechcli.options import RunOptions, common_options, export_option
 
 
 @click.command("kin")
@@ -13,6 +13,7 @@ from mechcli.options import RunOptions, common_options
               default=None, metavar="DIGITS",
               help="Warn where fewer correct significant digits than this remain "
                    "(estimated; default: the spec's output.accuracy_warn, 8).")
+@export_option
 @common_options
 def kin(spec_path, accuracy_warn=None, **opts):
     """Kinematics of a planar linkage (chapter 1): four-bar, slider-crank,
@@ -51,7 +52,7 @@ def kin(spec_path, accuracy_warn=None, **opts):
     outputs = Outputs(run.out_dir, digits=run.digits)
     warnings = []
     if streamed:
-        rows = _stream_csv(spec, sweep, quantities, result, outputs, report)
+        rows = _stream_csv(spec, sweep, quantities, result, outputs, report, run)
         warnings += _streamed_warnings(spec, quantities, result, rows, report)
     else:
         outputs.csv("kin.csv", report.columns(spec, quantities, result))
@@ -60,6 +61,8 @@ def kin(spec_path, accuracy_warn=None, **opts):
         from mechcli.report import kin_plots
         warnings += kin_plots.write(spec, quantities, result, sweep, outputs, run.lang,
                                     plots=run.plot and spec.output.plots, animate=animate)
+    if run.export:
+        warnings += export_linkage(run, outputs, "kin", spec, sweep, result.motion, result.runs)
     warnings += report.warnings(spec, result, accuracy_warn)
     results = report.scalar_results(spec, quantities, result, accuracy_warn, approx)
     if streamed:   # the CSV's rows; the analysis, table and plots ran on a subset of them
@@ -68,6 +71,31 @@ def kin(spec_path, accuracy_warn=None, **opts):
         _streamed_grid_errors(spec, quantities, result, rows, results, report)
     finish(run, "kin", report.build_report(spec, quantities, result, run.lang, approx),
            results, outputs, warnings)
+
+
+def export_linkage(run, outputs, stem, spec, sweep, motion, runs):
+    """``--export``: ``<stem>.dxf``/``.svg`` of the linkage at ``output.draw_at`` with
+    the traced points' paths over the sweep (*motion*, split at *runs*), for kin and
+    force (report.cad); returns warnings."""
+    import numpy as np
+
+    from mechcli.core.linkage import solve
+    from mechcli.report import cad
+    from mechcli.report.kin import input_factor
+
+    at = spec.output.draw_at
+    pose = solve(spec.linkage, sweep.inputs(np.array([at])), order=0)
+    curves = [c for tr in spec.tracers for c in cad.runs_of(motion.points[tr.name].p, runs)]
+    warnings = []
+    if not bool(pose.regular[0]):
+        pose = None
+        warnings.append(f"{stem}.{run.export[0]}: the mechanism cannot be assembled at "
+                        f"draw_at = {at * input_factor(spec):g}: only the traced paths "
+                        "are exported")
+    sk = cad.linkage_sketch(spec.linkage, pose, motion, spec.header.scale, spec.header.unit,
+                            spec.header.title, curves, spec.guide_length)
+    cad.write(outputs, stem, sk, run.export)
+    return warnings
 
 
 def _analysed_rows(spec):
@@ -84,17 +112,25 @@ def _analysed_rows(spec):
     return dataclasses.replace(spec, input=dataclasses.replace(inp, q=q))
 
 
-def _stream_csv(spec, sweep, quantities, result, outputs, report):
+def _stream_csv(spec, sweep, quantities, result, outputs, report, run):
     """Solve every row of a streamed sweep chunk by chunk into ``kin.csv``; the CSV
-    is written to a temporary file and renamed at the end (none if a row fails)."""
+    is written to a temporary file and renamed at the end (none if a row fails).
+    A terminal shows the rows solved (after 2 s, not with -q); -v a line per chunk."""
     import types
 
     from mechcli.core.errors import AssemblyError
     from mechcli.core.linkage.streaming import StreamedRows
+    from mechcli.report.console import Progress
 
     inp = spec.input
+    progress = Progress("kin", show=not run.quiet, verbose=run.verbose)
+
+    def chunk_line(done, total, kept):
+        return f"kin.csv: {done:,} of {total:,} rows solved, {kept:,} of them in the CSV"
+
     rows = StreamedRows(spec.linkage, sweep, quantities, spec.output.order, inp.start,
-                        inp.stop, inp.count, result)
+                        inp.stop, inp.count, result,
+                        progress=progress.stage("rows of kin.csv", inp.count, chunk_line))
     headers = [h for h, _col in report.columns(spec, quantities, result)]
 
     def chunks():
@@ -107,7 +143,8 @@ def _stream_csv(spec, sweep, quantities, result, outputs, report):
             chunk = types.SimpleNamespace(q=q, values=values)
             yield [col for _h, col in report.columns(spec, quantities, chunk)]
 
-    outputs.csv_stream("kin.csv", headers, chunks())
+    with progress:
+        outputs.csv_stream("kin.csv", headers, chunks())
     return rows
 
 

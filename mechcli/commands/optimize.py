@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import click
 
-from mechcli.options import RunOptions, common_options
+from mechcli.options import RunOptions, common_options, export_option
 
 
 class ResultTerms:
@@ -256,6 +256,7 @@ def check_result_keys(spec, terms):
 @click.argument("spec_path", metavar="SPEC.toml")
 @click.option("--workers", type=click.IntRange(1, 256), default=None,
               help="Local processes evaluating the population (overrides [method] workers).")
+@export_option
 @common_options
 def optimize(spec_path, workers=None, **opts):
     """Optimization of a linkage (chapter 7): function or path generation, or any
@@ -271,6 +272,11 @@ def optimize(spec_path, workers=None, **opts):
     from mechcli.spec.optimize import read_optimize_spec
 
     spec = read_optimize_spec(spec_path, run.sets)
+    if run.export and spec.problem == "cam":
+        from mechcli.spec.errors import SpecError
+        raise SpecError(str(spec_path), "--export", "an optimization of a linkage (problem = "
+                        "\"kin\" or \"force\"); export a cam with `mechcli cam --export`",
+                        "problem = \"cam\"")
     problem, evaluator = build_problem(spec)
     executor = None
     workers = workers or spec.method.workers
@@ -281,9 +287,26 @@ def optimize(spec_path, workers=None, **opts):
         problem.mapper = executor.map
         problem.chunk = 64
     m = spec.method
+    from mechcli.report.console import Progress
+    progress = Progress("optimize", show=not run.quiet, verbose=run.verbose)
+    stage = ("generations of differential evolution" if m.name == "differential_evolution"
+             else f"{m.name} iterations")
+
+    k, unit = report.f_scale(spec)      # f as the report shows it
+
+    def step_line(done, total, f, violation, evaluable):
+        where = f"generation {done}/{total}, best" if total else f"iteration {done},"
+        shown = (f"f = {f * k:.8g}" + (f" {unit}" if unit != "as the result" else "")
+                 if evaluable else "the design cannot be evaluated")
+        return (f"{m.name}: {where} {shown}"
+                + (f", constraint violation {violation:.3g}" if violation > 0 else ""))
+
     try:
-        result = minimize(problem, m.name, tol=m.tol, maxiter=m.maxiter, popsize=m.popsize,
-                          seed=m.seed, starts=m.starts, polish=m.polish, central=m.central)
+        with progress:
+            result = minimize(problem, m.name, tol=m.tol, maxiter=m.maxiter,
+                              popsize=m.popsize, seed=m.seed, starts=m.starts,
+                              polish=m.polish, central=m.central,
+                              progress=progress.stage(stage, detail=step_line))
     except DescribedError as exc:       # worded with the spec's keys
         raise DescribedError(report.error_message(exc, spec, problem), exc.reason,
                              **exc.values) from None
@@ -301,18 +324,18 @@ def optimize(spec_path, workers=None, **opts):
                                               for v, x in zip(spec.variables, result.x)})
     outputs.text("optimum.toml", report.optimum_toml(spec, result, optimum))
     warnings = report.warnings(spec, result, details)
-    if run.plot or run.animate:
-        # everything the pictures show is solved here; the report only draws
+    if run.plot or run.animate or run.export:
+        # everything the pictures (and --export) show is solved here; the report only draws
         import math
 
         import numpy as np
 
         from mechcli.core.linkage import DriverMotion, solve
         from mechcli.core.optimize.problem import grid
-        from mechcli.report import optimize_plots
         problem.mapper = map            # the pool (if any) is shut down
         surface = poses = None
         if run.plot and spec.method.surface and problem.n == 2:
+            from mechcli.report import optimize_plots
             surface = grid(problem, 0, 1, result.x, count=spec.method.surface_points,
                            span=optimize_plots.surface_span(problem, result))
         goal = getattr(evaluator, "goal", None)
@@ -332,8 +355,47 @@ def optimize(spec_path, workers=None, **opts):
             if getattr(goal, "angles", None) is not None and "theta0" in details:
                 qa = float(details["theta0"][0]) + np.asarray(goal.angles, dtype=float)
                 poses["at"] = solve(lk, {drv.link: DriverMotion(qa)}, order=0)
-        warnings += optimize_plots.write(spec, problem, result, details, outputs, run.lang,
-                                         plots=run.plot, animate=bool(run.animate),
-                                         surface=surface, poses=poses, goal=goal)
+        if run.plot or run.animate:
+            from mechcli.report import optimize_plots
+            warnings += optimize_plots.write(spec, problem, result, details, outputs,
+                                             run.lang, plots=run.plot,
+                                             animate=bool(run.animate), surface=surface,
+                                             poses=poses, goal=goal)
+        if run.export:
+            warnings += export(spec, optimum, poses, run, outputs)
     finish(run, "optimize", report.build_report(spec, problem, result, details, run.lang),
            report.results(spec, problem, result, details), outputs, warnings)
+
+
+def export(spec, optimum, poses, run, outputs):
+    """``--export``: ``optimize.dxf``/``.svg``, the optimum linkage at its problem's
+    ``output.draw_at`` with the paths of its traced points (the problem's and a path
+    goal's) over the inputs the pictures move it through (report.cad); returns
+    warnings."""
+    import numpy as np
+
+    from mechcli.core.linkage import DriverMotion, solve
+    from mechcli.core.refine import true_runs
+    from mechcli.report import cad
+    from mechcli.spec.optimize import problem_root, read_problem
+    if poses is None:
+        return ["--export: the optimum is not a linkage the engine moves (nothing exported)"]
+    prob = read_problem(spec.problem, problem_root(spec.problem_file, optimum))
+    lk, m = poses["linkage"], poses["motion"]
+    ok = np.broadcast_to(np.asarray(m.feasible, dtype=bool), np.shape(poses["q"]))
+    names = [t.name for t in prob.tracers]
+    if spec.objective["kind"] == "path":
+        names.append(spec.objective["point"])
+    curves = [c for n in dict.fromkeys(names) if n in m.points
+              for c in cad.runs_of(m.points[n].p, true_runs(ok))]
+    pose = solve(lk, {lk.drivers[0].link: DriverMotion(np.array([prob.output.draw_at]))},
+                 order=0)
+    warnings = []
+    if not bool(pose.feasible[0]):
+        pose = None
+        warnings.append("--export: the optimum cannot be assembled at draw_at: only the "
+                        "traced paths are exported")
+    sk = cad.linkage_sketch(lk, pose, m, spec.header.scale, spec.header.unit,
+                            spec.header.title, curves, prob.guide_length, feasible=ok)
+    cad.write(outputs, "optimize", sk, run.export)
+    return warnings

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import click
 
-from mechcli.options import RunOptions, common_options
+from mechcli.options import RunOptions, common_options, export_option
 
 
 def atlas_mapper(workers, scheduler):
@@ -59,9 +59,11 @@ def atlas_folder(prob, run, atlas_dir, outputs=None):
     return staged
 
 
-def atlas_case(prob, spec, run, mapper, atlas_dir=None, outputs=None):
+def atlas_case(prob, spec, run, mapper, atlas_dir=None, outputs=None, progress=None):
     """``atlas_build`` and ``path``: the atlas on disk (mechcli.atlas_store) with the
-    core's numbers; a SynthSolution like the other kinds'."""
+    core's numbers; a SynthSolution like the other kinds'.  *progress*
+    (:class:`mechcli.report.console.Progress`) shows the build, the search and the
+    refinement on a terminal, and a line per chunk or candidate with ``-v``."""
     import time
     from pathlib import Path
 
@@ -69,7 +71,21 @@ def atlas_case(prob, spec, run, mapper, atlas_dir=None, outputs=None):
     from mechcli.core.synth import atlas
     from mechcli.core.synth.problems import SynthSolution
     d = prob.data
+    from mechcli.report.console import Progress
     from mechcli.spec.errors import SpecError
+
+    if progress is None:
+        progress = Progress("synth", show=False)
+
+    def build_line(done, total, curves, resumed):
+        return (f"atlas: chunk {done}/{total} built, {curves:,} curves"
+                + (f" ({resumed} found on disk)" if resumed else ""))
+
+    def search_line(done, total, curves):
+        return f"atlas: chunk {done}/{total} searched, {curves:,} curves compared"
+
+    building = progress.stage("building the atlas (chunks)", detail=build_line)
+    searching = progress.stage("searching the atlas (chunks)", detail=search_line)
 
     def refuse(directory, why):
         if outputs is not None:
@@ -91,7 +107,7 @@ def atlas_case(prob, spec, run, mapper, atlas_dir=None, outputs=None):
         try:
             info = atlas_store.build_atlas(directory, d["A"], d["B"], d["C"], grid,
                                            chunk=d["chunk"], mapper=mapper,
-                                           harmonics=d["harmonics"])
+                                           harmonics=d["harmonics"], progress=building)
         except OSError as exc:
             raise refuse(directory, exc.strerror or str(exc)) from None
         return SynthSolution(prob.kind, None, None, (info, time.perf_counter() - t))
@@ -100,7 +116,7 @@ def atlas_case(prob, spec, run, mapper, atlas_dir=None, outputs=None):
         if directory.exists() and not directory.is_dir():
             raise refuse(directory, "a file")
         try:
-            atlas_store.build_atlas(directory, mapper=mapper)
+            atlas_store.build_atlas(directory, mapper=mapper, progress=building)
         except OSError as exc:
             raise refuse(directory, exc.strerror or str(exc)) from None
     else:                       # reading an atlas the spec names is allowed
@@ -110,10 +126,15 @@ def atlas_case(prob, spec, run, mapper, atlas_dir=None, outputs=None):
     y = [p[1] for p in pts]
     t = time.perf_counter()
     info = atlas_store.open_atlas(directory)
-    matches = atlas_store.search(info, x, y, k=d["k"], closed=d["closed"], mapper=mapper)
+    matches = atlas_store.search(info, x, y, k=d["k"], closed=d["closed"], mapper=mapper,
+                                 progress=searching)
     t1 = time.perf_counter()
-    cands = atlas.path_synthesis(matches, x, y, d["angles"], method=d["refine"],
-                                 gamma_min=d["gamma_min"])
+    # the matches are refined one by one: counted as the core takes each
+    cands = atlas.path_synthesis(
+        progress.track(matches, "refining the nearest curves",
+                       detail=lambda done, total: f"refined {done}/{total} of the nearest "
+                                                  "curves on the path"),
+        x, y, d["angles"], method=d["refine"], gamma_min=d["gamma_min"])
     t2 = time.perf_counter()
     # the candidates' coupler curves over a revolution, for path.png
     import numpy as np
@@ -144,6 +165,7 @@ def atlas_case(prob, spec, run, mapper, atlas_dir=None, outputs=None):
               metavar="DIR",
               help="Build the atlas (atlas_build, or a path search's default atlas) in DIR "
                    "instead of inside --out (a spec never chooses where mechcli writes).")
+@export_option
 @common_options
 def synth(spec_path, workers=None, scheduler=None, atlas_dir=None, **opts):
     """Design a linkage: rigid-body guidance (two/three positions, coupler poses,
@@ -166,13 +188,15 @@ def synth(spec_path, workers=None, scheduler=None, atlas_dir=None, **opts):
     solutions, prob_of = [], {}
     mapper = close = None
     outputs = Outputs(run.out_dir, digits=run.digits)
+    from mechcli.report.console import Progress
+    progress = Progress("synth", show=not run.quiet, verbose=run.verbose)
     try:
         for prob in spec.cases:
             try:
                 if prob.kind in ("atlas_build", "path"):
                     if mapper is None:
                         mapper, close = atlas_mapper(workers, scheduler)
-                    sol = atlas_case(prob, spec, run, mapper, atlas_dir, outputs)
+                    sol = atlas_case(prob, spec, run, mapper, atlas_dir, outputs, progress)
                 else:
                     sol = solve_synthesis(prob.kind, prob.data)
             except DescribedError as exc:   # worded in the spec's units and keys
@@ -186,6 +210,7 @@ def synth(spec_path, workers=None, scheduler=None, atlas_dir=None, **opts):
             solutions.append(sol)
             prob_of[id(sol)] = prob
     finally:
+        progress.close()
         if close is not None:
             close()
     u, unit = spec.header.scale, spec.header.unit
@@ -222,6 +247,8 @@ def synth(spec_path, workers=None, scheduler=None, atlas_dir=None, **opts):
             outputs.text(f"linkage{tag}.toml", report.linkage_toml(sol, spec.header,
                                                                    spec_path))
     warnings = report.warnings(spec, solutions)
+    if run.export:
+        warnings += export(spec, solutions, run, outputs)
     animate = bool(run.animate)
     atlas_sols = [(i, s) for i, s in enumerate(solutions) if s.kind in atlas_report.KINDS]
     if atlas_sols and run.plot and spec.draw:
@@ -234,3 +261,45 @@ def synth(spec_path, workers=None, scheduler=None, atlas_dir=None, **opts):
                                       plots=run.plot and spec.draw, animate=animate)
     finish(run, "synth", report.build_report(spec, solutions, run.lang),
            report.results(spec, solutions), outputs, warnings)
+
+
+def export(spec, solutions, run, outputs):
+    """``--export``: ``synth.dxf``/``.svg`` (``synth-N`` per case) of each designed
+    linkage, posed by the engine at its first prescribed input (else at the start of
+    its checked range), with the path of its coupler point M over that range as
+    ``positions.png`` draws it (report.cad); returns warnings."""
+    import numpy as np
+
+    from mechcli.core.linkage import DriverMotion, solve
+    from mechcli.core.refine import true_runs
+    from mechcli.report import cad
+    warnings, written = [], False
+    for i, sol in enumerate(solutions):
+        tag = f"-{i + 1}" if spec.multi else ""
+        if sol.design is None or sol.check is None:
+            continue
+        chk = sol.check
+        lk = chk.linkage
+        drv = lk.drivers[0].link
+        inputs = np.asarray(chk.inputs if chk.inputs is not None else [], dtype=float)
+        q0 = float(inputs[0]) if inputs.size else float(chk.start)
+        pose = solve(lk, {drv: DriverMotion(np.array([q0]))}, order=0)
+        path = (np.linspace(chk.start, chk.stop, 361) if chk.start != chk.stop
+                else np.concatenate([[q0], inputs]))
+        ok = np.asarray(solve(lk, {drv: DriverMotion(path)}, order=0).feasible, dtype=bool)
+        ok = np.broadcast_to(ok, path.shape)
+        if not ok.any():
+            continue
+        m = solve(lk, {drv: DriverMotion(path[ok])}, order=0)
+        at = np.cumsum(ok) - 1            # index of each feasible input among them
+        runs = [(int(at[a]), int(at[b - 1]) + 1) for a, b in true_runs(ok)]
+        curves = ([c for c in cad.runs_of(m.points["M"].p, runs)]
+                  if "M" in m.points and chk.start != chk.stop else [])
+        sk = cad.linkage_sketch(lk, pose if bool(pose.feasible[0]) else None, m,
+                                spec.header.scale, spec.header.unit, spec.header.title,
+                                curves)
+        cad.write(outputs, f"synth{tag}", sk, run.export)
+        written = True
+    if not written:
+        warnings.append("--export: no linkage was designed (nothing to export)")
+    return warnings

@@ -36,12 +36,22 @@ from __future__ import annotations
 
 import dataclasses
 import reprlib
+from typing import TYPE_CHECKING
 
 __all__ = ["record"]
+
+if TYPE_CHECKING:   # checkers and editors see a record's fields and constructor
+    from typing_extensions import dataclass_transform
+else:
+    def dataclass_transform(**_kwargs):
+        """``typing.dataclass_transform`` (PEP 681) only matters to type checkers: at run
+        time a no-op (no ``typing_extensions`` dependency, Python 3.9 included)."""
+        return lambda f: f
 
 _MISSING = dataclasses.MISSING
 
 
+@dataclass_transform(field_specifiers=(dataclasses.field,))
 def record(cls=None, *, eq=True, frozen=True):
     """The class *cls* as ``@dataclasses.dataclass(frozen=frozen, eq=eq)`` would make it
     (see the module's docstring); ``@record`` or ``@record(eq=False)``."""

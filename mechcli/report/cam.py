@@ -261,7 +261,8 @@ def warnings_for(cs, design, lang="en"):
             out.append(f"the working profile has a cusp near δ = {where:.4g}° "
                        f"(r0 + s + s'' = {ch.rho_work_min.value / u:.4g} {unit} <= 0); "
                        "increase r0" if not zh else
-                       f"凸轮实际廓线在 δ = {where:.4g}° 附近出现尖点 (r0 + s + s'' <= 0), 应增大基圆半径")
+                       f"凸轮实际廓线在 δ = {where:.4g}° 附近出现尖点 (r0 + s + s'' <= 0), "
+                       "应增大基圆半径")
         else:
             out.append(f"undercut: roller radius {fol.rr / u:g} {unit} >= pitch-curve radius of "
                        f"curvature {ch.rho_pitch_min.value / u:.4g} {unit} near δ = {where:.4g}°"
@@ -439,11 +440,15 @@ def build_report(cs, design, lang="en"):
     return rep
 
 
-def cam_report(run, cs, design):
-    """Write cam.csv, the pictures and report.txt; print the table or JSON."""
+def cam_report(run, cs, design, extra=None):
+    """Write cam.csv, the pictures and report.txt; print the table or JSON.
+    *extra*: a function of the run's outputs that writes more files (the command's
+    ``--export``) before the run is finished."""
     out = Outputs(run.out_dir, digits=run.digits)
     out.csv("cam.csv", csv_columns(cs, design))
     warnings = warnings_for(cs, design, run.lang)
+    if extra is not None:
+        extra(out)
     animate = cs.animate if run.animate is None else run.animate
     if (run.plot and cs.plot) or animate:
         from mechcli.report import cam_plots, plotting

@@ -104,27 +104,59 @@ def summary_line(s):
 
 
 def print_table(results, file=None):
-    """The rich table: spec, command, checks held/total, worst deviation, time."""
-    from rich.console import Console
-    from rich.table import Table
+    """The table: spec, command, checks held/total, worst deviation, time, status.
 
-    table = Table(title="mechcli check", title_justify="left")
-    for name, just in (("spec", "left"), ("command", "left"), ("checks", "right"),
-                       ("worst dev/tol", "right"), ("time s", "right"), ("", "left")):
-        table.add_column(name, justify=just)
+    On a terminal a rich table (the status coloured, no colour under ``NO_COLOR``); in
+    a pipe, a log or a file (``mechcli check configs/ | cat``) the plain text of every
+    other command's table: no box drawing, no ANSI escapes, no spec path cut."""
+    import sys
+
+    from mechcli.report.console import console as make_console
+    from mechcli.report.console import is_terminal
+
+    headers = ["spec", "command", "checks", "worst dev/tol", "time s", ""]
     style = {"passed": "green", "failed": "bold red", "error": "bold yellow"}
+    rows, styles = [], []
     for r in results:
         held = sum(c["held"] for c in r["checks"])
         status = {"passed": "ok", "failed": "FAILED", "error": f"error {r['exit_code']}"}
-        table.add_row(r["spec"], r["command"] or "-",
-                      f"{held}/{len(r['checks'])}" if r["status"] != "error" else "-",
-                      _fmt_dev(worst(r)), f"{r['time_s']:.2f}",
-                      f"[{style[r['status']]}]{status[r['status']]}[/]")
-    console = Console(file=file)
-    if not console.is_terminal:   # a log or a pipe: never cut a spec's path
-        width = max([len(r["spec"]) for r in results] + [20]) + 60
-        console = Console(file=file, width=max(width, 80))
-    console.print(table)
+        rows.append([r["spec"], r["command"] or "-",
+                     f"{held}/{len(r['checks'])}" if r["status"] != "error" else "-",
+                     _fmt_dev(worst(r)), f"{r['time_s']:.2f}", status[r["status"]]])
+        styles.append(style[r["status"]])
+    justify = ("left", "left", "right", "right", "right", "left")
+    stream = sys.stdout if file is None else file
+    if not is_terminal(stream):
+        stream.write(plain_table("mechcli check", headers, rows, justify))
+        return
+    from rich.markup import escape
+    from rich.table import Table
+
+    table = Table(title="mechcli check", title_justify="left")
+    for name, just in zip(headers, justify):
+        table.add_column(name, justify=just)
+    for row, st in zip(rows, styles):
+        table.add_row(*map(escape, row[:-1]), f"[{st}]{escape(row[-1])}[/]")
+    make_console(file).print(table)
+
+
+def plain_table(title, headers, rows, justify):
+    """*rows* under *headers* as plain text, each column as wide as its widest cell
+    (a long spec path is never cut), *justify* ``left``/``right`` per column."""
+    from mechcli.report.table import display_width
+
+    widths = [max([display_width(h)] + [display_width(r[i]) for r in rows])
+              for i, h in enumerate(headers)]
+
+    def line(cells):
+        out = []
+        for c, w, j in zip(cells, widths, justify):
+            gap = " " * (w - display_width(c))
+            out.append(c + gap if j == "left" else gap + c)
+        return "  ".join(out).rstrip()
+
+    return "\n".join([title, line(headers), line(["-" * w for w in widths])]
+                     + [line(r) for r in rows]) + "\n"
 
 
 def json_doc(results, problems, summary, files=()):

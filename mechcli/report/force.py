@@ -366,11 +366,11 @@ def _engine_blocks(spec, res, extra, report, zh, digits):
                      header("位置" if zh else "at", at_u), "最小值" if zh else "min",
                      header("位置" if zh else "at", at_u)], rows=ext))
         report.notes.append(
-            (f"活塞 {pst.link}: 行程 {pst.stroke / spec.header.scale:.6g} "
+            f"活塞 {pst.link}: 行程 {pst.stroke / spec.header.scale:.6g} "
              f"{spec.header.unit}, 外止点 θ = {np.degrees(pst.theta_head):.4f}°" if zh else
              f"piston {pst.link}: stroke {pst.stroke / spec.header.scale:.6g} "
              f"{spec.header.unit}, head-end dead centre at {np.degrees(pst.theta_head):.4f}°, "
-             f"crank end at {np.degrees(pst.theta_crank):.4f}°; the signs: see docs/force.md"))
+             f"crank end at {np.degrees(pst.theta_crank):.4f}°; the signs: see docs/force.md")
     for x, values in extra.at.items():
         shown = at_text(x * fin).replace("p", ".").replace("m", "-")
         rows = [[header(sym, _PRETTY[_unit(sym)]), fixed(v, digits)]

@@ -934,10 +934,12 @@ def present_generation(spec, sol, run, outputs):
              f"{g.m / sc:g} {u}, {g.z}, {math.degrees(g.alpha):g}°"),
             ("reference / base radius", "分度圆 / 基圆半径", "r, rb",
              f"{g.r / sc:.3f}, {g.rb / sc:.3f} {u}"),
-            ("tip / root radius", "齿顶圆 / 齿根圆半径", "ra, rf", f"{g.ra / sc:.3f}, {g.rf / sc:.3f} {u}"),
+            ("tip / root radius", "齿顶圆 / 齿根圆半径", "ra, rf",
+             f"{g.ra / sc:.3f}, {g.rf / sc:.3f} {u}"),
             ("least shift against undercut (ha*)", "最小变位系数 (ha*)", "xmin", f"{g.x_min:.4f}"),
             *undercut_rows(g, tooth, sc, u, lang),
-            ("least shift for this sharp cutter", "本刀具不根切最小变位系数", "xmin'", f"{x_rack:.4f}"),
+            ("least shift for this sharp cutter", "本刀具不根切最小变位系数", "xmin'",
+             f"{x_rack:.4f}"),
         ], lang))
         out = sol["outlines"][k]
         csv_cols[0].append(np.full(out.x.size, k + 1.0))
@@ -1069,7 +1071,8 @@ def present_bevel(spec, b, run, outputs):
         extra += loads_rows(b.loads, lambda v: f"{v / sc:.3f} {u}")
     return _simple(spec, run, outputs, _t(lang, "Straight bevel gear pair", "直齿圆锥齿轮传动"),
                    results, [
-        ("pitch-cone angles", "分度圆锥角", "δ1", "delta1_deg", "°"), ("", "", "δ2", "delta2_deg", "°"),
+        ("pitch-cone angles", "分度圆锥角", "δ1", "delta1_deg", "°"),
+        ("", "", "δ2", "delta2_deg", "°"),
         ("reference diameters", "分度圆直径", "d1", "d1", u), ("", "", "d2", "d2", u),
         ("cone distance", "锥距", "R", "R", u),
         ("addendum angle", "齿顶角", "θa", "theta_a_deg", "°"),

@@ -2,8 +2,9 @@
 
 Turns the :class:`~mechcli.core.grashof.analysis.GrashofSolution` of a spec
 into results, tables, CSV text and pictures; solves nothing (from the core it
-imports only result types and constants).  Lengths are shown in the spec's unit, angles in degrees.  ``results`` dicts
-hold only finite numbers, strings, booleans, None and lists of those.
+imports only result types and constants).  Lengths are shown in the spec's unit, angles
+in degrees.  ``results`` dicts hold only finite numbers, strings, booleans, None and lists
+of those.
 """
 
 from __future__ import annotations
@@ -459,7 +460,8 @@ def curve_outputs(curve, step, lang):
     import numpy as np
 
     ok = curve.feasible
-    cols = [("theta1_deg", np.degrees(curve.theta1[ok])), ("gamma_deg", np.degrees(curve.gamma[ok]))]
+    cols = [("theta1_deg", np.degrees(curve.theta1[ok])),
+            ("gamma_deg", np.degrees(curve.gamma[ok]))]
     every = max(1, int(round(np.radians(30.0) / step)))
     rows = [[_f(np.degrees(t)), _f(np.degrees(g)) if k else "-"]
             for t, g, k in zip(curve.theta1[::every], curve.gamma[::every], ok[::every])]

@@ -553,6 +553,10 @@ def _label(q, unit, lang):
     return header(greek(q.symbol, q.kind), pretty_unit(q.kind, unit), name)
 
 
+#: the table header of a quantity, ``quantity_label(q, "mm", "en")`` (mechcli.notebook's tables)
+quantity_label = _label
+
+
 def table_rows(spec, result, step):
     """Indices of the analysed positions closest to every ``step`` of the input."""
     q = result.q

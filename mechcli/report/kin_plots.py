@@ -150,9 +150,9 @@ def _glyph(text, base=7):
     A plain text path, not a mathtext marker (``$\\mathrm{A}$`` gives the same DejaVu
     Sans glyphs -- the same pixels for names of 1-3 characters, within a few levels on
     the antialiased edges of longer ones -- but its parser's grammar costs ~30 ms when
-    first used and ~2 ms a name after).  matplotlib scales a path marker by its farthest vertex, a mathtext one by
-    its box: the curves' control points lie outside the box, so the size is corrected
-    to draw the glyphs as large as before."""
+    first used and ~2 ms a name after).  matplotlib scales a path marker by its farthest
+    vertex, a mathtext one by its box: the curves' control points lie outside the box, so
+    the size is corrected to draw the glyphs as large as before."""
     import matplotlib
 
     if not text.strip():   # (names are never blank; no glyphs to draw)

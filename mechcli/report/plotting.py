@@ -15,7 +15,9 @@ Resolution: :func:`dpi` is ``--dpi`` of the current command (default
 Chinese text.  matplotlib falls back from one font to the next glyph by glyph only
 across the families listed in ``font.family`` (a generic family such as
 ``sans-serif`` resolves to ONE font), so :func:`setup` lists DejaVu Sans (Latin,
-Greek, symbols) and then the installed CJK font.  Without a CJK font,
+Greek, symbols) and then the CJK font: the ``cjk`` extra's (``pip install
+'mechcli[cjk]'``: Noto Sans SC, SIL OFL 1.1, registered with matplotlib when the first
+figure is set up, :func:`packaged_font`), else one the system has.  Without a CJK font,
 :func:`text` leaves the Chinese out of what it is given (a spec title
 ``例 1-1 铰链四杆机构 (four-bar linkage)`` becomes ``ex1-1: four-bar linkage``,
 the spec's stem and the English part), and the run says so in ONE warning
@@ -25,9 +27,13 @@ rendered becomes that same one-line warning, never one warning per glyph.
 
 from __future__ import annotations
 
+import functools
+import importlib
+import importlib.util
 import io
 import re
 import warnings
+from pathlib import Path
 
 import matplotlib
 from matplotlib import font_manager
@@ -123,18 +129,58 @@ _BASE_FAMILY = "DejaVu Sans"
 #: matplotlib's warning for a character no listed font has
 _GLYPH_MISSING = re.compile(r"Glyph (\d+) .*missing from (?:current )?font")
 
+#: the package of the ``cjk`` extra (``pip install 'mechcli[cjk]'``), pylopdf-fonts-zh-cn:
+#: Noto Sans SC, the Simplified Chinese subset of Noto Sans CJK (SIL Open Font License
+#: 1.1), a static CFF font that every supported matplotlib draws (the variable Noto Sans
+#: CJK needs FreeType >= 2.8, which the wheels of matplotlib < 3.11 do not bundle)
+_PACKAGED_FONT = "pylopdf_fonts_zh_cn"
+
 _found = (None, None)   # (number of fonts known to matplotlib, the CJK family or None)
 
 
+@functools.cache
+def packaged_font():
+    """Path of the ``cjk`` extra's font file (its package's ``sans_path()``), or None
+    when the extra is not installed (looked for once per process)."""
+    if importlib.util.find_spec(_PACKAGED_FONT) is None:
+        return None
+    try:
+        path = Path(importlib.import_module(_PACKAGED_FONT).sans_path())
+    except (ImportError, AttributeError, TypeError):   # a release without that function
+        return None
+    return path if path.is_file() else None
+
+
+def _registered(path):
+    """The family of the font file *path*, registered with matplotlib if it is not yet;
+    None if matplotlib cannot read it."""
+    manager = font_manager.fontManager
+    fname = str(path)
+    entry = next((f for f in manager.ttflist if f.fname == fname), None)
+    if entry is None:
+        try:
+            manager.addfont(fname)
+        except (OSError, RuntimeError, ValueError):   # a damaged or unreadable file
+            return None
+        entry = next((f for f in manager.ttflist if f.fname == fname), None)
+    return entry.name if entry is not None else None
+
+
 def cjk_font():
-    """Name of an installed font family with Chinese glyphs, or None.
+    """Name of the font family that draws Chinese, or None: the ``cjk`` extra's
+    (:func:`packaged_font`, registered with matplotlib on the first call), else the first
+    of :data:`_CJK_FAMILIES` that matplotlib knows.
 
     Looked up again whenever matplotlib learns a font (``fontManager.addfont``)."""
     global _found
     fonts = font_manager.fontManager.ttflist
     if _found[0] != len(fonts):
-        names = {f.name for f in fonts}
-        _found = (len(fonts), next((fam for fam in _CJK_FAMILIES if fam in names), None))
+        path = packaged_font()
+        family = _registered(path) if path is not None else None
+        if family is None:
+            names = {f.name for f in fonts}
+            family = next((fam for fam in _CJK_FAMILIES if fam in names), None)
+        _found = (len(fonts), family)   # after the registration, which adds to *fonts*
     return _found[1]
 
 
@@ -204,8 +250,8 @@ def title(s):
 def setup(lang="en"):
     """Configure matplotlib for *lang*; return the language actually usable.
 
-    With ``zh`` and no CJK font installed, plots fall back to English labels
-    (the caller reports that as a warning).
+    With ``zh`` and no CJK font installed, plots fall back to English labels and
+    the run says so in its one warning about fonts (:func:`mechcli.report.run.notice`).
     """
     matplotlib.rcParams.update({"figure.dpi": 100, "savefig.dpi": dpi(), "axes.grid": True,
                                 "grid.alpha": 0.4, "axes.unicode_minus": False,
@@ -214,6 +260,7 @@ def setup(lang="en"):
     # an explicit list: matplotlib takes each glyph from the first family that has it
     matplotlib.rcParams["font.family"] = [_BASE_FAMILY, fam] if fam else [_BASE_FAMILY]
     if fam is None and lang == "zh":
+        _run.notice(f"{_run.NO_CJK}: figure labels in English")   # once for the run
         return "en"
     return lang
 

@@ -45,8 +45,11 @@ def notice(text):
         _Current.notices.append(text)
 
 
-#: every warning about missing CJK glyphs starts so; :func:`finish` keeps one of them
+#: every warning about missing CJK glyphs starts so; :func:`finish` keeps one of them,
+#: which ``-q`` silences on stderr (the JSON keeps it)
 NO_CJK = "no CJK font found"
+#: what that warning says to do about it
+CJK_HINT = "(pip install 'mechcli[cjk]')"
 
 
 def _merge_warnings(warnings):
@@ -62,9 +65,8 @@ def _merge_warnings(warnings):
     if cjk:
         labels = any("label" in w for w in cjk)
         out.insert(0, f"{NO_CJK}: " + (
-            "figures are labelled in English and Chinese in titles is left out"
-            if labels else "Chinese in figure titles is left out (the spec name stands for it)")
-            + "; install a CJK font (e.g. Noto Sans CJK SC or WenQuanYi Micro Hei) to draw it")
+            "figure labels in English, titles without their Chinese" if labels
+            else "figure titles without their Chinese") + f" {CJK_HINT}")
     return out
 
 
@@ -141,6 +143,8 @@ def finish(run, command, report, results, outputs, warnings=()):
             click.echo("removed (stale, from an earlier run): " + ", ".join(removed))
     where = f"{run.spec_path}: " if run.spec_path else ""    # traceable in a parallel batch
     for w in warnings:
+        if run.quiet and w.startswith(NO_CJK):   # -q: not the fonts, every other warning
+            continue
         click.echo(f"mechcli: warning: {where}{w}", err=True)
 
 

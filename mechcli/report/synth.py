@@ -479,5 +479,6 @@ def error_message(exc, spec, prob):
         text += (f": with these a, b the line meets it for c in [{v['lo'] / u:.6g}, "
                  f"{v['hi'] / u:.6g}] {unit}")
     elif reason == "swing" and "hi" in v:
-        text += f" (it must lie between {math.degrees(v['lo']):g} and {math.degrees(v['hi']):g} deg)"
+        text += (f" (it must lie between {math.degrees(v['lo']):g} and "
+                 f"{math.degrees(v['hi']):g} deg)")
     return f"{where}: {text}"

@@ -79,6 +79,31 @@ def unit_header(symbol, unit, name=""):
     text = symbol if unit in ("", "1") else f"{symbol}/({unit})"
     return f"{name} {text}" if name else text
 
+#: the minus sign of a number that prints as zero (``-0``, ``-0.000``, ``-0.00e+00``,
+#: ``-0.000mm``), not part of a word or a difference (``x-0.5``, ``5-0``)
+_NEGATIVE_ZERO = re.compile(r"(?<![\w.)\]-])-(?=0(?:\.0*)?(?:[eE][+-]?\d+)?(?![\d.]))")
+
+
+def zero_sign(text):
+    """*text* with every number that prints as zero written without a minus sign: a
+    value that rounds to zero at the printed digits (a backlash of -2e-17 mm printed
+    ``-0.000``) is 0 in a table, whatever its sign before rounding."""
+    return _NEGATIVE_ZERO.sub("", text) if isinstance(text, str) and "-0" in text else text
+
+
+def plain_zeros(report):
+    """*report* with :func:`zero_sign` applied to every cell, heading and note (the
+    title is the user's text): what every table shows, on a terminal, in a pipe and
+    in ``report.txt``.  CSV and JSON keep the values as they are."""
+    def fix(rows):
+        return [[zero_sign(c) for c in row] for row in rows]
+
+    return Report(report.title,
+                  [Block(zero_sign(b.heading), list(b.headers), fix(b.rows))
+                   for b in report.blocks],
+                  [zero_sign(n) for n in report.notes])
+
+
 def display_width(text):
     """Terminal columns taken by *text* (CJK characters count two, a combining mark
     such as the bar of ``s̄`` none)."""
@@ -331,6 +356,7 @@ def render_text(report: Report, width=REPORT_WIDTH) -> str:
     """Plain-text report as written to ``report.txt``: every line no wider than
     *width* -- tables split into blocks, titles, headings, notes and long key/value
     rows wrapped."""
+    report = plain_zeros(report)
     title = wrap(report.title, width)
     out = title + ["=" * min(width, max(20, *map(display_width, title))), ""]
     for block in (b for whole in report.blocks for b in split_block(whole, width)):
@@ -359,10 +385,12 @@ def render_text(report: Report, width=REPORT_WIDTH) -> str:
 def print_rich(report: Report, file=None, width=None):
     """Show the report on the terminal with rich tables, split to the terminal's
     *width* (:func:`terminal_width` unless given)."""
-    from rich.console import Console
     from rich.markup import escape
     from rich.table import Table
 
+    from mechcli.report.console import console as make_console
+
+    report = plain_zeros(report)
     width = width or terminal_width(file)
     blocks = [b for whole in report.blocks for b in split_block(whole, width, gap=3, edge=4)]
     # the key/value blocks laid out once: "│ " label " │ " value " │" (a frame of 7)
@@ -375,7 +403,7 @@ def print_rich(report: Report, file=None, width=None):
                # a key/value block as laid out (a word wider than its column stays whole)
                + [lw + vw + 7 for lw, vw, _ in kv.values()],
                default=0)
-    console = Console(file=file, highlight=False, width=max(width, need))
+    console = make_console(file, highlight=False, width=max(width, need))
     # every text is the user's or ours, never rich markup: a title "door [/bold]" is text
     # titles, headings and notes wrap by our rule (never inside ``x = 1.5 mm``), not rich's
     console.print("\n".join(f"[bold]{escape(line)}[/bold]" for line in wrap(report.title, width)))

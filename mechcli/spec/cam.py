@@ -407,8 +407,8 @@ def _sampling(root, step_override, points_override):
                             f"revolution ({POINTS_WHY})", f"{step:g}")
     if points_override is not None:
         if int(points_override) > MAX_POINTS:
-            raise SpecError(file, "sampling.points", f"at most {MAX_POINTS:,} points per revolution "
-                            f"(--points; {POINTS_WHY})", f"{int(points_override):,}")
+            raise SpecError(file, "sampling.points", f"at most {MAX_POINTS:,} points per "
+                            f"revolution (--points; {POINTS_WHY})", f"{int(points_override):,}")
         step = 360.0 / int(points_override)
 
     return step

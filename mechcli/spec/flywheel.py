@@ -115,7 +115,7 @@ class FlywheelSpec:
     loads: tuple
     followers: dict
     inertia: InertiaSpec
-    moment: MomentSpec
+    moment: Optional[MomentSpec]
     motion: MotionSpec
     flywheel: FlywheelPart
     plots: bool

@@ -66,7 +66,7 @@ def _exactly_one(sec: Section, a, b, va, vb, why=""):
         return
     want = f"{a} or {b} (exactly one{why})"
     if va is None:
-        read = getattr(sec, "_known", set())
+        read: set = getattr(sec, "_known", set())
         for k in sec.data:
             hint = closest(k, (a, b))
             if hint and k not in read:

@@ -44,7 +44,7 @@ COLUMN, WIDTH = 23, 99
 TEMPLATES = Path(__file__).resolve().parent.parent / "templates"
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def catalogue():
     """``{table: {dotted path: text or {type: text}}}`` of ``templates/keys.toml``."""
     from mechcli.spec.reader import _toml

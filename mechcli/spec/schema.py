@@ -44,7 +44,7 @@ MAX_RUNS = 1500
 #: values tried for an untyped key, one per JSON type
 #: seeds a mutation (a choice, a value of an untyped key) is applied to, at most
 TRIES = 3
-CANDIDATES = (1, 1.5, "A", True, [1, 2], [1.5, 2.5], ["A", "B"], {})
+CANDIDATES: tuple = (1, 1.5, "A", True, [1, 2], [1.5, 2.5], ["A", "B"], {})
 _JSON_TYPE = {bool: "boolean", int: "integer", float: "number", str: "string", list: "array",
               dict: "object"}
 #: draft-07: the newest draft Taplo (Even Better TOML) and most editors validate with; the
@@ -196,7 +196,7 @@ _SLIDER = {"mechanism": {"type": "general", "frame": 2, "ground": {"O": [0, 0]},
            "input": {"start": 0, "stop": 10, "v1": 1}}
 #: a linkage by its joints with a slider (the configs' joints forms have none): the
 #: fire ladder of 习题 2-2, its cylinder drawn by `toward` and by `angle`, driving it
-_LADDER = {"units": "m", "mechanism": {
+_LADDER: dict = {"units": "m", "mechanism": {
     "type": "joints", "frame": 1, "joints": {"A": [0, 0.8], "B": [0.4, 0.6], "C": [0.8, 0]},
     "link": [{"number": 2, "joints": ["A", "B"]}, {"number": 3, "joints": ["C"]},
              {"number": 4, "joints": ["B"]}],

@@ -26,7 +26,10 @@ def _imported_top_level_modules():
             elif isinstance(node, ast.ImportFrom) and node.level == 0 and node.module:
                 names.add(node.module.split(".")[0])
     # tomllib: the standard library's from Python 3.11 (tomli before it, a dependency)
-    return names - _stdlib() - {"mechcli", "tomli", "tomllib"} - CPYTHON_BUILTINS
+    # typing_extensions: imported only under TYPE_CHECKING (core/records.py's
+    # dataclass_transform), for type checkers; never at run time
+    return names - _stdlib() - {"mechcli", "tomli", "tomllib", "typing_extensions"} \
+        - CPYTHON_BUILTINS
 
 
 def _stdlib():
@@ -47,7 +50,7 @@ CPYTHON_BUILTINS = {"_sha256", "_sha2"}
 
 
 #: import name -> the optional extra that provides it (imported only on that path)
-OPTIONAL = {"dask": "dask"}
+OPTIONAL = {"dask": "dask", "pandas": "pandas", "ezdxf": "cad"}
 
 
 def _declared():

@@ -223,7 +223,7 @@ def _acc_shape_pieces(shape):
                  for (u0, u1, c0, cs, cc, k), (v0, s0) in zip(shape, starts))
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def law_pieces(law):
     """The closed-form pieces of a normalized motion law.
 

@@ -153,5 +153,5 @@ def helical_pair(z1, z2, mn, alpha_n, han_star=1.0, cn_star=0.25, *, beta=None, 
         raise ValueError("a helix angle from a' is for unshifted gears")
     hp = HelicalPair(int(z1), int(z2), float(mn), float(alpha_n), float(han_star),
                      float(cn_star), float(beta), b, float(xn1), float(xn2))
-    hp.alpha_wt   # raises GearError for a shift sum without a zero-backlash mesh
+    _ = hp.alpha_wt   # raises GearError for a shift sum without a zero-backlash mesh
     return hp

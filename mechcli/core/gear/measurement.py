@@ -319,7 +319,8 @@ def shift_sum_for_centre_distance(z1, z2, alpha, a, a_w):
     if abs(a_w - a) <= 1e-14 * a:   # the standard distance: exactly no shift (not acos noise)
         return 0.0, alpha
     aw = math.acos(c)
-    return (z1 + z2) * (involute_function(aw) - involute_function(alpha)) / (2 * math.tan(alpha)), aw
+    inv = involute_function(aw) - involute_function(alpha)
+    return (z1 + z2) * inv / (2 * math.tan(alpha)), aw
 
 
 def normal_shift_sum_for_centre_distance(z1, z2, mn, alpha_n, beta, a_w):

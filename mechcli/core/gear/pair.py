@@ -129,7 +129,8 @@ def design_teeth_from_ratio(ratio, a_w, m):
     if abs(total - round(total)) > 1e-9 * max(1.0, total):
         raise MeshError(f"2 a'/m = {total:.6g} is not a whole number of teeth: a standard "
                         "pair needs a' = m (z1 + z2) / 2", "teeth_not_whole",
-                        total=total, below=m * math.floor(total) / 2, above=m * math.ceil(total) / 2)
+                        total=total, below=m * math.floor(total) / 2,
+                        above=m * math.ceil(total) / 2)
     total = int(round(total))
     z1 = total / (1 + ratio)
     if z1 < 1 - 1e-9 or total - round(z1) < 1:

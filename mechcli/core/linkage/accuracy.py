@@ -115,7 +115,9 @@ def amplification(linkage: Linkage, motion: LinkageMotion):
     own = {}
     for c in motion.conditions:
         own[c.element] = 1.0 / np.maximum(np.asarray(c.sin_gamma, dtype=float), EPS)
-    point, link, out = {}, {}, {}
+    point: dict = {}
+    link: dict = {}
+    out: dict = {}
     worst = np.ones(np.shape(motion.feasible))
     for idx in linkage.order:
         el = linkage.elements[idx]

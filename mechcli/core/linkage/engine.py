@@ -118,7 +118,7 @@ class Linkage:
                 raise exc
         object.__setattr__(self, "order", tuple(order))
 
-    def with_elements(self, *extra) -> "Linkage":
+    def with_elements(self, *extra) -> Linkage:
         """The same linkage with more elements (e.g. coupler points) added."""
         return Linkage(self.frame, self.elements + tuple(extra),
                        angle_offsets=self.angle_offsets, structure=self.structure)
@@ -188,7 +188,7 @@ class Linkage:
         return functools.reduce(np.maximum, sizes, 1e-300)
 
 
-def stack(linkages) -> "Linkage":
+def stack(linkages) -> Linkage:
     """One batched linkage from M linkages of the same structure.
 
     Every numeric parameter (lengths, coordinates, angles, branch) becomes an
@@ -215,22 +215,23 @@ def stack(linkages) -> "Linkage":
     elements = []
     for i, el in enumerate(first.elements):
         numeric = _fields(el)
-        differ = set()
+        differ: set = set()
         for k, lk in enumerate(linkages):
             other = lk.elements[i]
             if type(other) is not type(el):
                 raise ValueError(f"element {i} ({el.kind}) of linkage {k} differs from linkage "
                                  "0 in more than its numbers")
-            differ.update(f.name for f in dataclasses.fields(el)
-                          if f.name not in numeric and getattr(other, f.name) != getattr(el, f.name))
-        values = {}
+            differ.update(f.name for f in dataclasses.fields(el) if f.name not in numeric
+                          and getattr(other, f.name) != getattr(el, f.name))
+        values: dict = {}
         if differ:  # an element may batch what else differs (a triad's tables)
             hook = getattr(type(el), "stack_fields", None)
-            values = hook([lk.elements[i] for lk in linkages], sorted(differ)) \
+            got = hook([lk.elements[i] for lk in linkages], sorted(differ)) \
                 if hook is not None else None
-            if values is None:
+            if got is None:
                 raise ValueError(f"element {i} ({el.kind}) of the linkages differs in more "
                                  f"than its numbers ({', '.join(sorted(differ))})")
+            values = dict(got)
         for f in numeric:
             column = [getattr(lk.elements[i], f) for lk in linkages]
             if any(np.ndim(v) for v in column):

@@ -9,7 +9,7 @@ The kinematics (gaps, dead points, excluded intervals) come from
 from __future__ import annotations
 
 import dataclasses
-from typing import Dict, List, Optional, Tuple
+from typing import Any, Dict, List, Optional, Tuple
 
 import numpy as np
 
@@ -160,8 +160,8 @@ def analyse_forces(linkage, topo, sweep: Sweep, bodies, gravity, programs, parti
     progs = []
     for p in programs:
         if p.band is not None:
-            hi, lo = kin.extremes[p.slide.symbol]
-            p = p.with_band_limits(lo.value, hi.value)
+            top, bottom = kin.extremes[p.slide.symbol]
+            p = p.with_band_limits(bottom.value, top.value)
             band[p.load.name] = p.band_limits
         progs.append(p)
     pipe = ForceEvaluator(linkage, topo, sweep, bodies, gravity, progs)
@@ -197,7 +197,8 @@ def analyse_forces(linkage, topo, sweep: Sweep, bodies, gravity, programs, parti
         for which in ((1.0, -1.0) if signed else (1.0,)):
             k = int(np.argmax(which * v))
             targets.append((sym, which, k))
-    lo_b, hi_b = [], []
+    lo_b: Any = []
+    hi_b: Any = []
     for sym, which, k in targets:
         run = next((a, b) for a, b in runs if a <= k < b)
         a = qs[k - 1] if k > run[0] else (qs[k] - (qs[1] - qs[0]) if periodic else qs[k])

@@ -37,7 +37,7 @@ class Ln(NamedTuple):
     alpha: np.ndarray
 
 
-FRAME = Ln(np.float64(0.0), np.float64(0.0), np.float64(0.0))
+FRAME = Ln(np.zeros(()), np.zeros(()), np.zeros(()))
 
 
 def _solve2(u, w, rhs):

@@ -117,6 +117,10 @@ class StreamedRows:
         run of unwrapped angles on the same turn.
     chunk : int
         Rows solved at a time (the memory bound).
+    progress : callable or None
+        Called as ``progress(done, count, kept=rows)`` after each chunk: the rows
+        solved so far of *count*, and those handed out (the caller shows it; the
+        core never prints).
 
     Iterating gives ``(q, values)`` per chunk: the kept rows' inputs and
     ``{symbol: array}``.  Afterwards ``rows`` is the number of rows handed
@@ -126,10 +130,11 @@ class StreamedRows:
     """
 
     def __init__(self, linkage, sweep, quantities, order, start, stop, count, result,
-                 chunk=CHUNK):
+                 chunk=CHUNK, progress=None):
         self.linkage, self.sweep, self.quantities, self.order = linkage, sweep, quantities, order
         self.start, self.stop, self.count = start, stop, count
         self.result, self.chunk = result, chunk
+        self.progress = progress
         self.rows = 0
         self.peaks = {}
         self.irregular = None
@@ -162,6 +167,8 @@ class StreamedRows:
                 sel = None
             kept = idx if sel is None else idx[sel]
             if kept.size == 0:
+                if self.progress is not None:
+                    self.progress(b, self.count, kept=self.rows)
                 continue
             # runs inside this chunk: a new one where the rows are not consecutive
             breaks = np.flatnonzero(np.diff(kept) > 1) + 1
@@ -179,6 +186,8 @@ class StreamedRows:
                 self._peak(qt.symbol, v, q if sel is None else q[sel])
             prev = int(kept[-1])
             self.rows += kept.size
+            if self.progress is not None:
+                self.progress(b, self.count, kept=self.rows)
             yield (q if sel is None else q[sel]), values
 
     @staticmethod

@@ -194,7 +194,7 @@ class SweepResult:
     motion: LinkageMotion
     runs: list = dataclasses.field(default_factory=list)
     #: estimated correct digits (:class:`Accuracy`); None when not estimated
-    accuracy: Optional["Accuracy"] = None
+    accuracy: Optional[Accuracy] = None
     #: per excluded interval, how closely its two ends are located [rad or m]: a
     #: ``cannot assemble`` end is the root of the dyad's discriminant (to the
     #: rounding of the inputs, see :func:`assembly_limits`), a ``dead point`` end the
@@ -210,6 +210,11 @@ class SweepResult:
     #: (its velocity is greatest in either direction there when the input speed is
     #: constant), refined between samples of opposite sign (:func:`zero_crossings`)
     zeros: Dict[str, list] = dataclasses.field(default_factory=dict)
+
+
+def _gamma_of(joint):
+    """The getter of the transmission angle at *joint* [rad]."""
+    return lambda m: m.condition(joint).gamma
 
 
 def default_quantities(linkage: Linkage, order: int, tracers=()):
@@ -261,8 +266,7 @@ def default_quantities(linkage: Linkage, order: int, tracers=()):
                                     ("point", tr)))
         if k == 0:
             for joint in linkage.transmission_joints:
-                out.append(Quantity(f"gamma{joint}", "angle", 0,
-                                    lambda m, j=joint: m.condition(j).gamma,
+                out.append(Quantity(f"gamma{joint}", "angle", 0, _gamma_of(joint),
                                     source=("joint", joint)))
     return out
 

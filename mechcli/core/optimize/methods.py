@@ -120,9 +120,13 @@ def _finish(problem, x, method, message, converged, iterations, started, starts=
                   tuple(starts), extra)
 
 
-def _record(problem, iteration, x):
+def _record(problem, iteration, x, progress=None, total=None):
     f, g, ok = problem.one(x)
-    problem.record(iteration, x, f, problem.violation(g, ok), ok)
+    violation = problem.violation(g, ok)
+    problem.record(iteration, x, f, violation, ok)
+    if progress is not None:
+        progress(int(iteration), total, f=float(f), violation=float(violation),
+                 evaluable=bool(ok))
 
 
 def sizes(problem, x0):
@@ -134,7 +138,7 @@ def sizes(problem, x0):
     return np.where(x0 > 0, x0, alt)
 
 
-def _local(problem, method, x0, tol, maxiter, central=True):
+def _local(problem, method, x0, tol, maxiter, central=True, progress=None, done=0):
     """A local method on the scaled problem: u = x / size (every variable of
     order 1), F = f / |f(start)|, G = g / scale; so tol means the same whatever
     the unit of the lengths (a four-bar in metres or in millimetres)."""
@@ -164,7 +168,10 @@ def _local(problem, method, x0, tol, maxiter, central=True):
 
     def cb(uk, *args):
         it[0] += 1
-        _record(problem, it[0], np.asarray(getattr(uk, "x", uk)) * size)
+        # the count goes on over the starts of a multi-start (*done* before this one)
+        _record(problem, it[0], np.asarray(getattr(uk, "x", uk)) * size,
+                None if progress is None else
+                (lambda k, total, **v: progress(done + k, total, **v)))
 
     k = len(problem.constraint_names)
     if method == "slsqp":
@@ -235,7 +242,8 @@ def _trust_constr(F, DF, u0, bounds, cons, tol, maxiter, cb):
     the central path -- is checked, and a run that ends above ``tol`` is
     restarted from its design with the barrier parameter lowered by
     :data:`_BARRIER_DECAY`, at most :data:`_RESTARTS` times and as ``maxiter``
-    allows; the run with the least measure is returned.  For a convex problem the measure bounds the objective:
+    allows; the run with the least measure is returned.  For a convex problem the measure
+    bounds the objective:
     f - f* <= |f(start)| (m duality + gtol |u - u*|) in the scaled variables u.
     """
     import warnings
@@ -298,7 +306,7 @@ def _check_start(problem, x0, method):
             evaluable=ok, g=g)
 
 
-def _de(problem, tol, maxiter, popsize, seed, polish, central):
+def _de(problem, tol, maxiter, popsize, seed, polish, central, progress=None):
     from scipy import optimize
 
     ev0 = problem.evaluate(problem.start[None, :])
@@ -313,7 +321,7 @@ def _de(problem, tol, maxiter, popsize, seed, polish, central):
 
     def cb(intermediate_result):
         it[0] += 1
-        _record(problem, it[0], intermediate_result.x)
+        _record(problem, it[0], intermediate_result.x, progress, maxiter)
 
     res = optimize.differential_evolution(
         fun, list(zip(problem.lo, problem.hi)), popsize=popsize, tol=tol, maxiter=maxiter,
@@ -375,8 +383,15 @@ def _scalar(problem, method, tol, maxiter):
 
 
 def minimize(problem: Problem, method="slsqp", *, tol=1e-10, maxiter=1000, popsize=15,
-             seed=None, starts=1, polish=True, central=True) -> Result:
+             seed=None, starts=1, polish=True, central=True, progress=None) -> Result:
     """Minimize ``problem`` by ``method`` (one of :data:`METHODS`).
+
+    *progress*, if given, is called as ``progress(done, total, f=, violation=,
+    evaluable=)`` after each iteration with its design's objective (a placeholder
+    where not evaluable), violation and whether it could be evaluated: for
+    differential evolution *done* counts generations of *total* = ``maxiter`` (the
+    polish is not counted); for a local method iterations over all the starts, of
+    *total* None (they stop when converged); golden and Brent do not call it.
 
     Raises
     ------
@@ -400,10 +415,12 @@ def minimize(problem: Problem, method="slsqp", *, tol=1e-10, maxiter=1000, popsi
                                  "scalar", n=problem.n)
         x, converged, nit, message = _scalar(problem, method, tol, maxiter)
     elif method == "differential_evolution":
-        x, converged, nit, message = _de(problem, tol, maxiter, popsize, seed, polish, central)
+        x, converged, nit, message = _de(problem, tol, maxiter, popsize, seed, polish, central,
+                                         progress)
     else:
         _check_start(problem, x0, method)
-        x, converged, nit, message = _local(problem, method, x0, tol, maxiter, central)
+        x, converged, nit, message = _local(problem, method, x0, tol, maxiter, central,
+                                            progress)
         if starts > 1:
             from scipy.stats import qmc
             more = qmc.scale(qmc.LatinHypercube(d=problem.n, seed=seed).random(starts - 1),
@@ -416,7 +433,8 @@ def minimize(problem: Problem, method="slsqp", *, tol=1e-10, maxiter=1000, popsi
                 if not problem.feasible(gs, oks) and method == "nelder-mead":
                     starts_out.append((s, s, fs, False))
                     continue
-                xs, cs, ns, ms = _local(problem, method, s, tol, maxiter, central)
+                xs, cs, ns, ms = _local(problem, method, s, tol, maxiter, central,
+                                        progress, nit)
                 fe, ge, oke = problem.one(xs)
                 feas = bool(problem.feasible(ge, oke))
                 starts_out.append((s, xs, fe, feas))

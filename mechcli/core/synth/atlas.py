@@ -898,7 +898,7 @@ class PathCandidate:
     BCD at the coupler-follower joint) and the chain's Grashof type."""
 
     match: Match
-    refined: Optional["Refined"]
+    refined: Optional[Refined]
     mu_min: float
     mu_max: float
     kind: str
