@@ -113,6 +113,9 @@ SLOW_MODULES = {
     "test_optimize_cli", "test_cad_export", "test_accuracy_estimate", "test_kin_plots",
     "test_cam_plots", "test_gear_plots", "test_synth_plots", "test_flywheel_plots",
     "test_plain_twins", "test_kin_extremes", "test_flywheel_props", "test_atlas",
+    "test_progress_and_pipes", "test_check", "test_flywheel_motion", "test_student_outputs",
+    "test_engine_loads", "test_grashof_property", "test_notebook", "test_student_clip_notice",
+    "test_synth_quick_return_props", "test_outputs_stay", "test_own_problem_doc",
 }
 
 
