@@ -345,6 +345,20 @@ def measurement_rows(m, sfx, f3, helical=False, lang="en"):
     return rows
 
 
+def generating_results(gs, x="x", sfx=""):
+    """JSON results of a gear's generating profile shift (:class:`GeneratingShift`):
+    ``x_E<sfx>`` (ISO 21771's sin form) and ``x_E_tan<sfx>`` (the tan form); *x* is the
+    shift's own name (``xn`` for a helical gear)."""
+    return {f"{x}_E{sfx}": gs.x_E + 0.0, f"{x}_E_tan{sfx}": gs.x_E_tan + 0.0}
+
+
+def generating_row(gs, x="x", sfx=""):
+    """The report row (en, zh, symbol, text) of a gear's shift and its generating
+    shifts: 'x1 → x_E1 = 0.3000 → 0.2904, 0.2904' (the sin form, then the tan form)."""
+    return ("generating profile shift (sin, tan)", "切齿变位系数 (sin 式, tan 式)",
+            f"{x}{sfx} → {x}_E{sfx}", f"{_num4(gs.x)} → {_num4(gs.x_E)}, {_num4(gs.x_E_tan)}")
+
+
 def root_factor_results(sh):
     """JSON results of the root factors of a shift design split for equal strength."""
     out = {}
@@ -705,6 +719,9 @@ def present_spur(spec, sol, run, outputs):
         results[f"s_r{k + 1}"] = L(g.tooth_thickness(r))
         results[f"e_r{k + 1}"] = L(g.space_width(r))
     ms = sol["measures"]
+    gen = sol.get("generating")
+    if gen is not None:
+        results.update(generating_results(gen))
     results.update(measurement_results(ms, "", L))
     for k, (sc_r, hc_r) in enumerate(ms.radii):
         results[f"s_chord_r{k + 1}"] = L(sc_r)
@@ -715,6 +732,7 @@ def present_spur(spec, sol, run, outputs):
         ("module", "模数", "m", f3(g.m)),
         ("pressure angle", "压力角", "α", f"{math.degrees(g.alpha):.3f}°"),
         ("profile shift coefficient", "变位系数", "x", f"{g.x:.4f}"),
+        *([] if gen is None else [generating_row(gen)]),
         ("reference diameter", "分度圆直径", "d", f3(g.d)),
         ("base diameter", "基圆直径", "db", f3(g.db)),
         ("tip diameter", "齿顶圆直径", "da", f3(g.da)),
@@ -775,6 +793,9 @@ def present_pair(spec, pairs, run, outputs):
                "alpha_a2_deg": math.degrees(g2.alpha_a),
                "internal": g2.internal, "x1": g1.x, "x2": g2.x,
                "tip": "nominal" if g1.nominal_tip else "effective"}
+    for i, gen in enumerate(pairs.generating, start=1):
+        if gen is not None:
+            results.update(generating_results(gen, sfx=str(i)))
     for i, m in enumerate(pairs.measures, start=1):
         if m is not None:
             results.update(measurement_results(m, str(i), L))
@@ -850,6 +871,8 @@ def present_pair(spec, pairs, run, outputs):
             extra.insert(0, ("profile shifts for a' (" + rule + ")", "按中心距设计变位系数",
                              "x1 + x2", shift_text(sh)))
         if k == 0:
+            extra += [generating_row(gen, sfx=str(i))
+                      for i, gen in enumerate(pairs.generating, start=1) if gen is not None]
             for i, m in enumerate(pairs.measures, start=1):
                 if m is not None:
                     extra += measurement_rows(m, str(i), f3, lang=lang)
@@ -970,6 +993,10 @@ def present_helical(spec, sol, run, outputs):
                "a_w": L(hp.a_w), "alpha_wt_deg": math.degrees(hp.alpha_wt)}
     f3 = lambda v: f"{v / sc:.3f} {u}"  # noqa: E731
     extra, warnings = [], []
+    for i, gen in enumerate(sol.generating, start=1):
+        if gen is not None:
+            results.update(generating_results(gen, "xn", str(i)))
+            extra.append(generating_row(gen, "xn", str(i)))
     for i, m in enumerate(sol.measures, start=1):
         results.update(measurement_results(m, str(i), L))
         results[f"b_min{i}"] = L(m.span.b_min)

@@ -17,7 +17,8 @@ spur formula at beta = 0.
 * measurement over two pins (balls for helical gears), the pin diameter by
   default the one touching the flanks on the same diameter d + 2 xn mn;
 * a tooth-thickness allowance E (the normal arc thickness on the reference
-  circle is s - E) and the backlash it gives a pair;
+  circle is s - E), the backlash it gives a pair, and the generating
+  profile-shift coefficient x_E of the thinned tooth (ISO 21771);
 * the profile-shift sum of a pair for a given centre distance and its split.
 
 Notes
@@ -293,6 +294,61 @@ def allowances_for_backlash(j, j0, alpha_t, alpha_wt, beta, share1=0.5):
     """
     total = (j - j0) * math.cos(alpha_wt) * math.cos(beta) / math.cos(alpha_t)
     return share1 * total, (1 - share1) * total
+
+
+# -- generating profile shift ------------------------------------------------------------
+@record
+class GeneratingShift:
+    """The generating profile-shift coefficient x_E of a gear thinned by an allowance:
+    the (normal) shift at which the rack cuts the thinned tooth at zero backlash with
+    the rack.
+
+    Attributes
+    ----------
+    x : float
+        Nominal (normal) profile-shift coefficient.
+    E_sn : float
+        Signed normal thickness allowance on the reference circle (m): -E (thinning < 0).
+    E_bn : float
+        Signed normal thickness allowance on the base cylinder, normal to the flank
+        (the span allowance, m): the transverse E/cos(beta) carried to the base circle
+        (times cos at) and turned into the base tangent plane (times cos beta_b);
+        = -E cos(an).
+    x_E : float
+        ISO 21771's sin form x + E_bn / (2 mn sin an): the span of the thinned tooth is
+        the nominal span formula with x_E (W_k = ... + 2 x_E mn sin an).
+    x_E_tan : float
+        The tan form x + E_sn / (2 mn tan an): the thinned reference thickness is
+        mn (pi/2 + 2 x_E tan an).
+    """
+
+    x: float
+    E_sn: float
+    E_bn: float
+    x_E: float
+    x_E_tan: float
+
+
+def generating_shift(g: ToothForm):
+    """x_E of the gear *g* with its allowance, in both forms (:class:`GeneratingShift`).
+
+    Notes
+    -----
+    A rack shifted by x_E mn has the space width mn (pi/2 + 2 x_E tan an) on the line
+    that rolls on the reference circle, so the tooth it cuts has that reference
+    thickness; thinning by E lowers it by E: x_E = x - E / (2 mn tan an) (DIN ISO
+    21771:2014 §7.4, x_E = x + E_sn / (2 mn tan an)).  The same thinning lowers the base-normal
+    thickness (and the span W_k) by E cos an, and W_k grows by 2 mn sin an per unit of
+    shift: x_E = x + E_bn / (2 mn sin an), the form of ISO 21771:2007's backlash relation
+    x_E1 + x_E2 = x1 + x2 (zero backlash at a') - j_bn / (2 mn sin an).  Both give the same
+    number (cos at cos beta_b = cos an cos beta); they differ only when one is given the
+    other's allowance (a factor cos an).  A ring (internal gear) follows ISO's sign of x.
+    """
+    e_sn = -g.allowance
+    e_bn = e_sn / math.cos(g.beta) * math.cos(g.alpha_t) * math.cos(g.beta_b)
+    return GeneratingShift(g.xn, e_sn, e_bn,
+                           g.xn + e_bn / (2 * g.mn * math.sin(g.alpha_n)),
+                           g.xn + e_sn / (2 * g.mn * math.tan(g.alpha_n)))
 
 
 # -- profile shifts of a pair for a centre distance -------------------------------------

@@ -70,15 +70,19 @@ def _form(g, allowance=0.0):
 
 def solve_spur(p):
     """One spur gear (【例 5-3】): dict of ``gear`` (SpurGear), ``tooth`` (the
-    rack-generated tooth) and ``outline`` (GearOutline of ``p.points``, ``p.root``)."""
-    from mechcli.core.gear.measurement import measure
+    rack-generated tooth), ``outline`` (GearOutline of ``p.points``, ``p.root``),
+    ``measures`` and ``generating`` (:class:`~.measurement.GeneratingShift` of a gear
+    with an allowance, else None)."""
+    from mechcli.core.gear.measurement import generating_shift, measure
     from mechcli.core.gear.profile import gear_outline, generated_tooth
     g = _gear(p.teeth, p.z, p.x)
     tooth = generated_tooth(g)
-    measures = measure(_form(g, getattr(p, "allowance", 0.0)), getattr(p, "k", None),
+    allowance = getattr(p, "allowance", 0.0)
+    measures = measure(_form(g, allowance), getattr(p, "k", None),
                        getattr(p, "pin_diameter", None), p.radii)
     return {"gear": g, "tooth": tooth, "outline": gear_outline(tooth, p.points, p.root),
-            "measures": measures}
+            "measures": measures,
+            "generating": generating_shift(measures.form) if allowance > 0 else None}
 
 
 class PairSolution(list):
@@ -98,9 +102,13 @@ class PairSolution(list):
         The shifts designed for the centre distance (``p.x_split``).
     loads : ToothLoads or None
         Torques and tooth forces of the first mounting (``p.drive``).
+    generating : tuple
+        :class:`~.measurement.GeneratingShift` of gear 1 and gear 2: of a gear with an
+        allowance (given, or both gears when found from ``p.backlash``), else None.
     """
 
     measures = (None, None)
+    generating = (None, None)
     allowances = (0.0, 0.0)
     backlash = ()
     shift = None
@@ -291,6 +299,9 @@ def solve_pair(p):
     out.measures = tuple(
         None if g.internal else ms.measure(_form(g, ei), k, dp)
         for g, ei, k, dp in zip((first.g1, first.g2), e, ks, dps))
+    out.generating = tuple(   # a ring too: x_E in ISO's sign of x (+ thickens its teeth)
+        ms.generating_shift(_form(g, ei)) if ei > 0 or wanted is not None else None
+        for g, ei in zip((first.g1, first.g2), e))
     out.shift = shift
     drive = getattr(p, "drive", None)
     if drive is not None:
@@ -314,9 +325,11 @@ def solve_generation(p):
 
 def solve_helical(p):
     """A helical pair (习题 5-6, 5-7): :class:`~.helical.HelicalPair` with ``measures``
-    (:class:`~.measurement.GearMeasures` of both gears, in the normal plane)."""
+    (:class:`~.measurement.GearMeasures` of both gears, in the normal plane) and
+    ``generating`` (:class:`~.measurement.GeneratingShift` of a gear with an allowance,
+    else None)."""
     from mechcli.core.gear.helical import helical_pair
-    from mechcli.core.gear.measurement import ToothForm, measure
+    from mechcli.core.gear.measurement import ToothForm, generating_shift, measure
     xn = (getattr(p, "xn1", 0.0), getattr(p, "xn2", 0.0))
     shift = None
     if getattr(p, "x_split", None):
@@ -339,6 +352,8 @@ def solve_helical(p):
                                hp.d(hp.z2), dw[0], dw[1], hp.alpha_wt, hp.beta)
     out = HelicalSolution(hp, tuple(measures), loads)
     out.shift = shift
+    out.generating = tuple(generating_shift(m.form) if m.form.allowance > 0 else None
+                           for m in measures)
     return out
 
 
@@ -397,9 +412,11 @@ def _design_helical_shifts(p):
 class HelicalSolution:
     """A helical pair, the measurements of its gears, its loads and designed shifts
     (``pair``, ``measures``, ``loads``: ToothLoads or None, ``shift``: ShiftDesign or
-    None); attributes not found here are the pair's."""
+    None, ``generating``: GeneratingShift or None per gear); attributes not found here
+    are the pair's."""
 
     shift = None
+    generating = (None, None)
 
     def __init__(self, pair, measures, loads=None):
         self.pair, self.measures, self.loads = pair, measures, loads
