@@ -225,12 +225,17 @@ def _read_mobility(sec, spec_dir):
         joints.append(JointSpec(kind, tuple(links), name))
     if not joints:
         raise sec.error("joint", "at least one [[mobility.joint]]", "none")
+    return _mobility_problem(sec, joints, frame, local, redundant, "joints")
+
+
+def _mobility_problem(sec, joints, frame, local, redundant, source):
+    """The problem of the joints read (the frame among their links, the drivers checked)."""
     used = sorted({ln for j in joints for ln in j.links})
     if frame not in used:
         raise sec.error("frame", f"a link named by a joint: {used}", repr(frame))
     drivers = _drivers(sec, joints, frame, used)
     sec.finish()
-    return MobilityProblem(tuple(joints), frame, local, redundant, "joints", drivers)
+    return MobilityProblem(tuple(joints), frame, local, redundant, source, drivers)
 
 
 def _read_mobility_links(sec, frame, local, redundant):
@@ -271,12 +276,7 @@ def _read_mobility_links(sec, frame, local, redundant):
         raise where.error("joints", "joints that each join two links or a link to the "
                           "frame", str(exc)) from None
     joints = [JointSpec(j.kind, j.links, j.name) for j in pairs]
-    used = sorted({ln for j in joints for ln in j.links})
-    if frame not in used:
-        raise sec.error("frame", f"a link named by a joint: {used}", repr(frame))
-    drivers = _drivers(sec, joints, frame, used)
-    sec.finish()
-    return MobilityProblem(tuple(joints), frame, local, redundant, "links", drivers)
+    return _mobility_problem(sec, joints, frame, local, redundant, "links")
 
 
 def _drivers(sec, joints, frame, used):

@@ -59,16 +59,22 @@ def _check(fd, xy, links):
         assert math.hypot(m0.points[p].x[0] - x, m0.points[p].y[0] - y) <= 1e-9 * size
 
 
-@SET
-@given(move, move, move, move, move, move)
-def test_a_moved_class3_drawing_closes_and_differentiates(dcx, dcy, dex, dey, dfx, dfy):
+def _moved_triad(dcx, dcy, dex, dey, dfx, dfy):
+    """The class-III drawing with its triad's joints C, E, F moved (a drawing that does
+    not assemble is not an example)."""
     xy = dict(TRIAD)
     for k, (dx, dy) in zip("CEF", ((dcx, dcy), (dex, dey), (dfx, dfy))):
         xy[k] = (xy[k][0] + dx, xy[k][1] + dy)
     try:
-        fd = from_drawing(Drawing(6, xy, TRIAD_LINKS, (), ((1, "A"),)))
+        return xy, from_drawing(Drawing(6, xy, TRIAD_LINKS, (), ((1, "A"),)))
     except DrawingError:
         assume(False)
+
+
+@SET
+@given(move, move, move, move, move, move)
+def test_a_moved_class3_drawing_closes_and_differentiates(dcx, dcy, dex, dey, dfx, dfy):
+    xy, fd = _moved_triad(dcx, dcy, dex, dey, dfx, dfy)
     assert fd.structure.mechanism_class == 3
     _check(fd, xy, TRIAD_LINKS)
 
@@ -98,13 +104,7 @@ def test_a_moved_class3_drawing_passes_the_power_balance(dcx, dcy, dex, dey, dfx
     # what the moving links do not balance (the force balance)
     from mechcli.core.linkage.kinetostatics import Body, solve_forces, topology
 
-    xy = dict(TRIAD)
-    for k, (dx, dy) in zip("CEF", ((dcx, dcy), (dex, dey), (dfx, dfy))):
-        xy[k] = (xy[k][0] + dx, xy[k][1] + dy)
-    try:
-        fd = from_drawing(Drawing(6, xy, TRIAD_LINKS, (), ((1, "A"),)))
-    except DrawingError:
-        assume(False)
+    xy, fd = _moved_triad(dcx, dcy, dex, dey, dfx, dfy)
     lk = fd.linkage
     q = fd.inputs[1] + np.linspace(-0.3, 0.3, 25)
     m = solve(lk, {1: DriverMotion(q, 7.0, alpha1)}, order=2)
