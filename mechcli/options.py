@@ -130,7 +130,7 @@ _NAME_MAX = 64
 
 
 def _short_hash(parts):
-    import hashlib   # only for --set and long quick forms: not on every start-up
+    import hashlib  # only for --set and long quick forms: not on every start-up
 
     return hashlib.sha256("\0".join(parts).encode("utf-8")).hexdigest()[:8]
 
@@ -209,7 +209,7 @@ class ExportFormats(click.ParamType):
             self.fail(f"expected {', '.join(EXPORT_FORMATS)} or both (dxf,svg), "
                       f"got {value!r}", param, ctx)
         if "dxf" in given:
-            import importlib.util   # found, not imported: ezdxf loads only when it writes
+            import importlib.util  # found, not imported: ezdxf loads only when it writes
             if importlib.util.find_spec("ezdxf") is None:
                 self.fail("DXF needs ezdxf, the cad extra: pip install 'mechcli[cad]' "
                           "(or --export svg)", param, ctx)

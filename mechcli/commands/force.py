@@ -29,7 +29,7 @@ def force(spec_path, accuracy_warn=None, **opts):
     result, extra, (pipe, approx) = solve(spec, sweep)
     outputs = Outputs(run.out_dir, digits=run.digits)
     switches = _switch_rows(spec, sweep, result, pipe, approx)
-    from mechcli.report.force_rows import csv_columns   # both sides of every load switch
+    from mechcli.report.force_rows import csv_columns  # both sides of every load switch
     outputs.csv("force.csv", csv_columns(spec, result, extra, switches))
     warnings = report.warnings(spec, result, accuracy_warn)
     fin = report.input_factor(spec)

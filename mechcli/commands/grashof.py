@@ -129,9 +129,8 @@ def build(spec, lang, digits=10):
     """
     from mechcli.core.grashof.analysis import solve_grashof
     from mechcli.core.grashof.chain import ClosureError
-    from mechcli.report import grashof as report
-
     from mechcli.core.grashof.mobility import MobilityError
+    from mechcli.report import grashof as report
     from mechcli.spec.errors import SpecError
 
     try:

@@ -172,15 +172,13 @@ def synth(spec_path, workers=None, scheduler=None, atlas_dir=None, **opts):
     Burmester), function generation (Freudenstein, Chebyshev, least squares),
     design from the time ratio K; writes linkage.toml for `mechcli kin`."""
     run = RunOptions.from_click(spec_path, opts)
-    from mechcli.core.errors import DescribedError
+    from mechcli.core.errors import ConvergenceError, DescribedError, UnsolvableError
     from mechcli.core.synth.problems import solve_synthesis
     from mechcli.report import synth as report
     from mechcli.report.files import Outputs
     from mechcli.report.run import finish
-    from mechcli.spec.synth import read_synth_spec
-
-    from mechcli.core.errors import ConvergenceError, UnsolvableError
     from mechcli.spec.reader import MAX_LENGTH, MIN_LENGTH
+    from mechcli.spec.synth import read_synth_spec
 
     if atlas_dir is not None and not str(atlas_dir).strip():
         raise click.BadParameter("expected a folder, got an empty path", param_hint="--atlas")

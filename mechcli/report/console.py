@@ -123,8 +123,13 @@ class Progress:
         if self.bar is None:
             if self.clock() - self.t0 < self.delay or (total is not None and done >= total):
                 return
-            from rich.progress import (BarColumn, MofNCompleteColumn, ProgressColumn,
-                                       TextColumn, TimeRemainingColumn)
+            from rich.progress import (
+                BarColumn,
+                MofNCompleteColumn,
+                ProgressColumn,
+                TextColumn,
+                TimeRemainingColumn,
+            )
             from rich.progress import Progress as Bar
             from rich.text import Text
 

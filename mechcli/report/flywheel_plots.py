@@ -98,10 +98,9 @@ def _convergence(spec, sol, outputs, t):
 
 def animate(spec, sol, outputs, lang, frames=72):
     """flywheel.gif: the mechanism (when the spec has one) and the cursor on ω(φ)."""
-    from mechcli.report.plotting import plt
-
     from mechcli.core.linkage import DriverMotion, solve
     from mechcli.report.kin_plots import Drawing, limits
+    from mechcli.report.plotting import plt
     plotting.setup(lang)
     m = sol.motion
     deg = np.degrees(m.phi)

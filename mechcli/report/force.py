@@ -9,12 +9,26 @@ import numpy as np
 
 from mechcli.core.linkage.kinetostatics import COND_FLAG
 from mechcli.core.records import record
-from mechcli.report.kin import (dead_point_note, dead_point_results,  # noqa: F401
-                                accuracy_note, accuracy_results, accuracy_warnings,
-                                assembly_message, book_title, degrees_hint,
-                                excluded_warnings, fixed, header, input_column, input_factor,
-                                input_header, input_suffix, input_symbol, input_value,
-                                table_rows)
+from mechcli.report.kin import (  # noqa: F401
+    accuracy_note,
+    accuracy_results,
+    accuracy_warnings,
+    assembly_message,
+    book_title,
+    dead_point_note,
+    dead_point_results,
+    degrees_hint,
+    excluded_warnings,
+    fixed,
+    header,
+    input_column,
+    input_factor,
+    input_header,
+    input_suffix,
+    input_symbol,
+    input_value,
+    table_rows,
+)
 from mechcli.report.table import Block, Report
 
 

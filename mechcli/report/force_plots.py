@@ -268,8 +268,9 @@ def _frame_indices(result, frames, periodic):
 def animate_reactions(spec, result, sweep, outputs, t):
     """``force.gif``: the mechanism with the pair reactions F_Rij (force of link i on
     link j) drawn as arrows at the pair points, scaled to the largest magnitude."""
-    from mechcli.report.plotting import plt
     from matplotlib.lines import Line2D
+
+    from mechcli.report.plotting import plt
 
     motion = result.kin.motion
     k = 1 / spec.header.scale

@@ -80,10 +80,9 @@ def _history(result):
 
 
 def _convergence_png(spec, problem, result, outputs, t, title):
-    from mechcli.report.plotting import plt
-
     from mechcli.report import plotting
     from mechcli.report.optimize import f_scale
+    from mechcli.report.plotting import plt
     it, h, xlabel = _history(result)
     factor, funit = f_scale(spec)
     f = np.array([r.f for r in h]) * factor
@@ -115,11 +114,11 @@ def _convergence_png(spec, problem, result, outputs, t, title):
 
 
 def _surface_png(spec, problem, result, surface, outputs, t, title):
-    from mechcli.report.plotting import plt
     from matplotlib import colors
 
     from mechcli.report import plotting
     from mechcli.report.optimize import f_scale
+    from mechcli.report.plotting import plt
     u, v, F, feas = surface
     factor, funit = f_scale(spec)
     F = np.asarray(F, dtype=float) * factor
@@ -162,9 +161,8 @@ def _surface_png(spec, problem, result, surface, outputs, t, title):
 
 
 def _function_png(spec, details, goal, rotary, outputs, t, title):
-    from mechcli.report.plotting import plt
-
     from mechcli.report import plotting
+    from mechcli.report.plotting import plt
     out = spec.objective["output"]
     slide = isinstance(out, str)
     q = np.asarray(details["q"][0], dtype=float)
@@ -210,9 +208,8 @@ def _feasible_points(motion, name, k):
 
 
 def _path_png(spec, details, poses, outputs, t, title):
-    from mechcli.report.plotting import plt
-
     from mechcli.report import plotting
+    from mechcli.report.plotting import plt
     k = 1 / spec.unit
     name = spec.objective["point"]
     T = np.asarray(spec.objective["targets"], dtype=float) * k
@@ -251,10 +248,9 @@ def _output_of(motion, output):
 
 
 def _animate(spec, details, poses, outputs, t, title, frames=72):
-    from mechcli.report.plotting import plt
-
     from mechcli.report import plotting
     from mechcli.report.kin_plots import Drawing
+    from mechcli.report.plotting import plt
     m = poses["motion"]
     feas = np.asarray(m.feasible, dtype=bool)
     keep = np.flatnonzero(feas)

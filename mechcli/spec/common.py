@@ -7,7 +7,6 @@ spec readers.
 
 from __future__ import annotations
 
-
 from mechcli.core.records import record
 from mechcli.spec.errors import SpecError, closest
 from mechcli.spec.expected import Expected, read_expected  # noqa: F401 (re-exported)

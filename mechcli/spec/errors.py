@@ -71,7 +71,7 @@ def slip(name, candidates):
 def closest(name, candidates):
     """Nearest valid key to *name* (or the key a common slip means: :func:`slip`), or
     None."""
-    import difflib   # only when a key is wrong: not on every start-up
+    import difflib  # only when a key is wrong: not on every start-up
 
     meant = slip(name, candidates)
     if meant is not None:

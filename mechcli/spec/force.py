@@ -56,7 +56,6 @@ from mechcli.spec.errors import SpecError, closest
 from mechcli.spec.kin import InputSpec, _empty, read_input, read_mechanism
 from mechcli.spec.reader import MAX_LENGTH, load_spec
 
-
 #: bounds on the inertia and load data: large enough for any machine, small
 #: enough that no product or square in the solve and the RMS overflows to inf
 MAX_MASS = 1e9        # kg

@@ -20,9 +20,19 @@ from typing import Optional, Tuple
 
 import numpy as np
 
-from mechcli.core.linkage import (PRP, RPR, RRP, RRR, Crank, Ground, Linkage,
-                                  LinkageDefinitionError, PointOnLink, SliderDriver)
-from mechcli.core.linkage import presets
+from mechcli.core.linkage import (
+    PRP,
+    RPR,
+    RRP,
+    RRR,
+    Crank,
+    Ground,
+    Linkage,
+    LinkageDefinitionError,
+    PointOnLink,
+    SliderDriver,
+    presets,
+)
 from mechcli.core.records import record
 from mechcli.spec.common import Header, read_expected, read_header
 from mechcli.spec.errors import SpecError

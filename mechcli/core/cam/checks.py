@@ -11,8 +11,12 @@ from __future__ import annotations
 
 import math
 
-from mechcli.core.cam.geometry import (CamGeometryError, curvature_and_rate, pitch_corners,
-                                       pressure_angle_and_rate)
+from mechcli.core.cam.geometry import (
+    CamGeometryError,
+    curvature_and_rate,
+    pitch_corners,
+    pressure_angle_and_rate,
+)
 from mechcli.core.records import record
 from mechcli.core.refine import maximize_piecewise
 

@@ -11,12 +11,20 @@ import math
 
 import numpy as np
 
-from mechcli.core.cam.motion import Impact, MotionProgram, build_program, jump_samples
 from mechcli.core.cam.checks import CamChecks, check_cam
-from mechcli.core.cam.geometry import (CamGeometryError, CamProfile, Follower, UndercutError,
-                                       cam_profile)
-from mechcli.core.cam.sizing import (size_flat_base_radius, size_oscillating_base_radius,
-                                     translating_base_radius_min)
+from mechcli.core.cam.geometry import (
+    CamGeometryError,
+    CamProfile,
+    Follower,
+    UndercutError,
+    cam_profile,
+)
+from mechcli.core.cam.motion import Impact, MotionProgram, build_program, jump_samples
+from mechcli.core.cam.sizing import (
+    size_flat_base_radius,
+    size_oscillating_base_radius,
+    translating_base_radius_min,
+)
 from mechcli.core.records import record
 
 #: coarse search step of the refined extrema, rad

@@ -34,7 +34,7 @@ from __future__ import annotations
 import dataclasses
 import math
 
-from mechcli.core.gear.involute import involute_function, inverse_involute_scalar
+from mechcli.core.gear.involute import inverse_involute_scalar, involute_function
 from mechcli.core.gear.spur import GearError
 from mechcli.core.records import record
 

@@ -11,8 +11,8 @@ import dataclasses
 import math
 from typing import TYPE_CHECKING
 
+from mechcli.core.gear.involute import inverse_involute_scalar, involute_function
 from mechcli.core.gear.spur import GearError, SpurGear
-from mechcli.core.gear.involute import involute_function, inverse_involute_scalar
 from mechcli.core.records import record
 
 if TYPE_CHECKING:  # annotations only: numpy is imported lazily

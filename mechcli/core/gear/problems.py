@@ -33,8 +33,11 @@ def solve_involute(p):
 def solve_inverse_involute(p):
     """α = inv⁻¹(θ) for each ``p.theta`` (【例 5-2】): an :class:`~.involute.InverseInvolute`
     of tuples."""
-    from mechcli.core.gear.involute import (InverseInvolute, involute_function,
-                                            inverse_involute_scalar)
+    from mechcli.core.gear.involute import (
+        InverseInvolute,
+        inverse_involute_scalar,
+        involute_function,
+    )
     found = [inverse_involute_scalar(t, p.method, start=p.start, epsilon=p.epsilon,
                                      max_iter=p.max_iter) for t in p.theta]
     alpha = tuple(f[0] for f in found)
@@ -252,8 +255,12 @@ def solve_pair(p):
     ``"backlash"``, for a shift design or a backlash that cannot be had).
     """
     from mechcli.core.gear import measurement as ms
-    from mechcli.core.gear.pair import (check_mountings, design_teeth_from_ratio, gear_pair,
-                                        tip_shortened)
+    from mechcli.core.gear.pair import (
+        check_mountings,
+        design_teeth_from_ratio,
+        gear_pair,
+        tip_shortened,
+    )
     if p.ratio is None:
         z1, z2 = p.z1, p.z2
     else:

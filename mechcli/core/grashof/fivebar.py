@@ -8,7 +8,6 @@ inputs are the links joined to the frame (1 and 4).  Only numpy is used.
 
 from __future__ import annotations
 
-
 import numpy as np
 
 from mechcli.core.errors import UnsolvableError

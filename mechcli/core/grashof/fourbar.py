@@ -18,13 +18,22 @@ assembly).  Angles are counter-clockwise from +x, in radians.
 
 from __future__ import annotations
 
-
 import numpy as np
 
 from mechcli.core.errors import UnsolvableError
-from mechcli.core.grashof.chain import (_CODE, CHANGE_POINT_RTOL, TYPES, ClosureError,
-                                        GuideBar, LengthRange, SliderCrank, analyse_guide_bar,
-                                        analyse_slider_crank, driven_links, length_ranges)
+from mechcli.core.grashof.chain import (
+    _CODE,
+    CHANGE_POINT_RTOL,
+    TYPES,
+    ClosureError,
+    GuideBar,
+    LengthRange,
+    SliderCrank,
+    analyse_guide_bar,
+    analyse_slider_crank,
+    driven_links,
+    length_ranges,
+)
 from mechcli.core.records import record
 
 

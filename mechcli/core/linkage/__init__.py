@@ -17,11 +17,31 @@ import solve, four_bar``).
 """
 
 from mechcli.core.linkage.elements import (  # noqa: F401
-    ASSEMBLY_TOL, PRP, RPR, RRP, RRR, SINGULAR_TOL, Crank, Element, Ground, PointOnLink,
-    SliderDriver)
+    ASSEMBLY_TOL,
+    PRP,
+    RPR,
+    RRP,
+    RRR,
+    SINGULAR_TOL,
+    Crank,
+    Element,
+    Ground,
+    PointOnLink,
+    SliderDriver,
+)
 from mechcli.core.linkage.engine import (  # noqa: F401
-    DriverMotion, DyadCondition, LinkMotion, Linkage, LinkageDefinitionError, LinkageMotion,
-    PointMotion, SlideMotion, kinematic_coefficients, solve, stack)
+    DriverMotion,
+    DyadCondition,
+    Linkage,
+    LinkageDefinitionError,
+    LinkageMotion,
+    LinkMotion,
+    PointMotion,
+    SlideMotion,
+    kinematic_coefficients,
+    solve,
+    stack,
+)
 from mechcli.core.linkage.presets import four_bar, guide_bar, shaper, slider_crank  # noqa: F401
 
 #: the drawing primitives (:mod:`.sketch`): built when first named, not at start-up

@@ -190,6 +190,7 @@ def apply(linkage, sweep, result):
     exact closed form at the analysed positions [m, m/s, m/s²].
     """
     import dataclasses
+
     from mechcli.core.linkage.kinematics import Extreme
 
     r, l, branch, slider = slider_crank_parts(linkage)

@@ -32,7 +32,7 @@ import numpy as np
 
 from mechcli.core.grashof.mobility import Joint, MobilityError, count_mobility
 from mechcli.core.grashof.structure import decompose
-from mechcli.core.linkage.elements import (PRP, RPR, RRP, RRR, Crank, Ground, PointOnLink)
+from mechcli.core.linkage.elements import PRP, RPR, RRP, RRR, Crank, Ground, PointOnLink
 from mechcli.core.linkage.engine import DriverMotion, Linkage, solve
 from mechcli.core.records import record
 

@@ -36,12 +36,11 @@ is left to it (:func:`layout` returns None).
 
 from __future__ import annotations
 
-import numpy as np
-
 from typing import Tuple
 
-from mechcli.core.linkage.folding import (Neg, add, const, cross3, div, dot3, mul,  # noqa: F401
-                                          neg, sub, value)
+import numpy as np
+
+from mechcli.core.linkage.folding import Neg, add, const, cross3, div, dot3, mul, neg, sub, value  # noqa: F401
 from mechcli.core.records import record
 
 # the folding arithmetic (:mod:`.folding`); the underscored names are its earlier

@@ -9,10 +9,11 @@ import dataclasses
 
 import numpy as np
 
-from mechcli.core.linkage.engine import solve
-from mechcli.core.refine import bracketed_root
 from mechcli.core.linkage.accuracy import EPS
+from mechcli.core.linkage.engine import solve
 from mechcli.core.linkage.sweep import Extreme, _periodic, _wrap
+from mechcli.core.refine import bracketed_root
+
 
 class _Domain:
     """The analysed input domain: continuous arcs (runs) of the grid ``q``, how

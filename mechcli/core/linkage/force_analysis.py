@@ -14,12 +14,18 @@ from typing import Any, Dict, List, Optional, Tuple
 import numpy as np
 
 from mechcli.core.linkage.accuracy import EPS, Accuracy, _digits, amplification
+from mechcli.core.linkage.engine import solve
 from mechcli.core.linkage.kinematics import SEARCH_STEP, Sweep, analyse_sweep
 from mechcli.core.linkage.kinetostatics import COND_FLAG, ForceResult, solve_forces
-from mechcli.core.linkage.engine import solve
 from mechcli.core.records import record
-from mechcli.core.refine import (bisect, gauss_legendre, golden_section_max, mean_rms,
-                                 sorted_union, true_runs)
+from mechcli.core.refine import (
+    bisect,
+    gauss_legendre,
+    golden_section_max,
+    mean_rms,
+    sorted_union,
+    true_runs,
+)
 
 
 @record

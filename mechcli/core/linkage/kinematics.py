@@ -24,20 +24,44 @@ import dataclasses
 import numpy as np
 
 from mechcli.core.errors import AssemblyError
-from mechcli.core.linkage.accuracy import (ACCURACY_C, ACCURACY_CLASSES, ACCURACY_WARN, EPS,
-                                           FULL_DIGITS, Accuracy, AccuracyRange,
-                                           _accuracy_of_sweep, amplification,
-                                           estimate_accuracy)
+from mechcli.core.linkage.accuracy import (
+    ACCURACY_C,
+    ACCURACY_CLASSES,
+    ACCURACY_WARN,
+    EPS,
+    FULL_DIGITS,
+    Accuracy,
+    AccuracyRange,
+    _accuracy_of_sweep,
+    amplification,
+    estimate_accuracy,
+)
 from mechcli.core.linkage.engine import Linkage, solve
-from mechcli.core.linkage.extremes import (_Domain, _slide_zeros, refine_extremes,
-                                           zero_crossings)
-from mechcli.core.linkage.limits import (_bisect_boundaries, _describe_exclusions,
-                                         _limits_are_not_dead_points, _nearest_boundary,
-                                         _refined_exclusions, _scan_gaps, assembly_limits,
-                                         dead_points)
-from mechcli.core.linkage.sweep import (NEAR_TOGGLE_SIN, DeadPoint, Extreme, Quantity, Sweep,
-                                        SweepResult, Toggle, _dedupe, _periodic, _take,
-                                        _unwrap_runs, default_quantities)
+from mechcli.core.linkage.extremes import _Domain, _slide_zeros, refine_extremes, zero_crossings
+from mechcli.core.linkage.limits import (
+    _bisect_boundaries,
+    _describe_exclusions,
+    _limits_are_not_dead_points,
+    _nearest_boundary,
+    _refined_exclusions,
+    _scan_gaps,
+    assembly_limits,
+    dead_points,
+)
+from mechcli.core.linkage.sweep import (
+    NEAR_TOGGLE_SIN,
+    DeadPoint,
+    Extreme,
+    Quantity,
+    Sweep,
+    SweepResult,
+    Toggle,
+    _dedupe,
+    _periodic,
+    _take,
+    _unwrap_runs,
+    default_quantities,
+)
 from mechcli.core.records import record
 from mechcli.core.refine import sorted_union, true_runs
 

@@ -62,15 +62,25 @@ import numpy as np
 from mechcli.core.linkage import dyad_statics, force_plan
 from mechcli.core.linkage.elimination import gauss
 from mechcli.core.linkage.engine import LinkageMotion, _facts
-from mechcli.core.linkage.folding import (Neg, add, const, div, exact_zero, mul, neg, sub,
-                                          value)
-from mechcli.core.linkage.force_plan import Arm, Constant, PairLine, PairNormal
+from mechcli.core.linkage.folding import Neg, add, const, div, exact_zero, mul, neg, sub, value
+
 # the model and the load programs, re-exported: this module is the entry point
-from mechcli.core.linkage.force_model import (COND_FLAG, Body, ForceModelError,  # noqa: F401
-                                              ForceResult, Load, Pair, PairForce, Topology,
-                                              com_of, topology)
+from mechcli.core.linkage.force_model import (  # noqa: F401
+    COND_FLAG,
+    Body,
+    ForceModelError,
+    ForceResult,
+    Load,
+    Pair,
+    PairForce,
+    Topology,
+    com_of,
+    topology,
+)
+from mechcli.core.linkage.force_plan import Arm, Constant, PairLine, PairNormal
 from mechcli.core.linkage.loads import LoadProgram  # noqa: F401
 from mechcli.core.records import record
+
 
 # ---------------------------------------------------------------------------
 # solve

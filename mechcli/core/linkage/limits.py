@@ -8,8 +8,9 @@ from __future__ import annotations
 import numpy as np
 
 from mechcli.core.linkage.engine import solve
-from mechcli.core.refine import bisect
 from mechcli.core.linkage.sweep import NEAR_TOGGLE_SIN, DeadPoint, Toggle
+from mechcli.core.refine import bisect
+
 
 def _bisect_boundaries(linkage, sweep, order, good, bad):
     """Refine boundaries between regular inputs ``good`` and irregular ``bad``.

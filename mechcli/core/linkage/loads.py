@@ -17,6 +17,7 @@ import numpy as np
 from mechcli.core.linkage.force_model import Load
 from mechcli.core.records import record
 
+
 @record
 class LoadProgram:
     """A load with its program over the input.

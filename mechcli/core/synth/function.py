@@ -25,8 +25,7 @@ import numpy as np
 
 from mechcli.core.errors import DescribedError
 from mechcli.core.linkage.engine import DriverMotion, solve
-from mechcli.core.synth.design import (LinkageDesign, branch_of, four_bar_design,
-                                       slider_crank_design)
+from mechcli.core.synth.design import LinkageDesign, branch_of, four_bar_design, slider_crank_design
 
 #: a linear system whose smallest singular value is below this fraction of its
 #: largest does not determine the linkage (repeated or dependent points)

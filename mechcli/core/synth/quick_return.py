@@ -36,8 +36,12 @@ from typing import Optional, Sequence, Tuple
 import numpy as np
 
 from mechcli.core.errors import DescribedError
-from mechcli.core.grashof.fourbar import (CHANGE_POINT_RTOL, analyse_fourbar,
-                                          analyse_guide_bar, analyse_slider_crank)
+from mechcli.core.grashof.fourbar import (
+    CHANGE_POINT_RTOL,
+    analyse_fourbar,
+    analyse_guide_bar,
+    analyse_slider_crank,
+)
 from mechcli.core.linkage.presets import guide_bar as guide_bar_linkage
 from mechcli.core.records import record
 from mechcli.core.refine import golden_section_max

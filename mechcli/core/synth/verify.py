@@ -136,8 +136,11 @@ def _residuals(design, m):
 
 def _type(design, driver=1):
     """(type name, the input turns, γmin over a turn or None, figures for a K design)."""
-    from mechcli.core.grashof.fourbar import (analyse_fourbar, analyse_guide_bar,
-                                              analyse_slider_crank)
+    from mechcli.core.grashof.fourbar import (
+        analyse_fourbar,
+        analyse_guide_bar,
+        analyse_slider_crank,
+    )
     L = design.lengths
     if design.kind == "four_bar":
         # crossed: A and C on the same side of the diagonal BD in position 1 (AB and CD
