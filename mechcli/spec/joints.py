@@ -142,7 +142,8 @@ def read_joints(mech):
                                None if phase is None else math.radians(phase))
         d.finish()
 
-    drawing = Drawing(frame, joints, links, tuple(sliders), tuple(drivers), actuators)
+    drawing = Drawing(frame, joints, links, tuple(sliders), tuple(drivers), actuators,
+                      dict(followers))
     try:
         result = from_drawing(drawing)
     except DrawingError as exc:

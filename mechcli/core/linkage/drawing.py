@@ -32,7 +32,16 @@ import numpy as np
 
 from mechcli.core.grashof.mobility import Joint, MobilityError, count_mobility
 from mechcli.core.grashof.structure import decompose
-from mechcli.core.linkage.elements import PRP, RPR, RRP, RRR, Crank, Ground, PointOnLink
+from mechcli.core.linkage.elements import (
+    PRP,
+    RPR,
+    RRP,
+    RRR,
+    Crank,
+    Ground,
+    PointOnLink,
+    _slide_symbol,
+)
 from mechcli.core.linkage.engine import DriverMotion, Linkage, solve
 from mechcli.core.records import record
 
@@ -89,6 +98,10 @@ class Drawing:
         driver link -> the name of the slider (an RPR group's prismatic pair, e.g. a
         hydraulic cylinder) that drives the machine while the motion is given as that
         driver's angle (:attr:`.elements.Crank.actuator`).
+    followers : dict
+        secondary driver link -> ``(ratio, phase)``: its angle is ``ratio q1 + phase``
+        (phase None: the drawing's); what the continuation of a Newton-solved group
+        follows when a group hangs on more than one driver.
     """
 
     frame: int
@@ -97,6 +110,7 @@ class Drawing:
     sliders: tuple
     drivers: tuple
     actuators: dict = dataclasses.field(default_factory=dict)
+    followers: dict = dataclasses.field(default_factory=dict)
 
 
 @record
@@ -341,14 +355,12 @@ class _Builder:
             self._rpr(g)
         elif kind == "PRP":
             self._prp(g)
-        elif kind == "triad" and all(self._kind_of(j) == "R" for j in g.joints):
+        elif (kind == "triad" and len(self.inputs) == 1
+              and all(self._kind_of(j) == "R" for j in g.joints)):
             self._triad(g)
+            return
         else:
-            raise DrawingError(
-                f"links {list(g.links)} form a {kind} (class {g.klass}) group, which the "
-                f"engine cannot solve yet: the joints form solves dyads (RRR, RRP, RPR, PRP)",
-                "link", g.links[0])
-        if kind == "triad":
+            self._newton_group(g)
             return
         self.links.update(g.links)
         self._check(g.links, f"{kind} dyad of links {g.links[0]} and {g.links[1]}")
@@ -361,10 +373,6 @@ class _Builder:
         Newton started from a continuation table made here from the drawing."""
         from mechcli.core.linkage.triad import Triad, continuation_table
 
-        if len(self.inputs) != 1:
-            raise DrawingError(f"links {list(g.links)} form a class-III triad: the joints "
-                               f"form solves it for one driver only (its continuation "
-                               f"follows that driver's angle)", "link", g.links[0])
         inner = [j for j in g.joints if not any(k in self.links for k in self.hinges[j])]
         count = {n: sum(1 for j in inner if n in self.hinges[j]) for n in g.links}
         tern = next(n for n in g.links if count[n] == 3)
@@ -397,6 +405,111 @@ class _Builder:
         self.known.update(order)
         self.links.update(g.links)
         self._check(g.links, f"triad of links {', '.join(map(str, g.links))}")
+
+    def _newton_group(self, g):
+        """A group with no closed form (a triad with sliders, class IV and up, an RPP
+        dyad, a triad under two drivers): :class:`~.newton_group.NewtonGroup`, each
+        link a body with the drawing's first joint as origin and its first-to-second
+        joint direction as reference angle (a slider's block: the line's direction, so
+        that the statics sees its pair's normal), started by continuation."""
+        from mechcli.core.linkage.newton_group import NewtonGroup, continuation_table, local
+
+        links = list(g.links)
+        idx = {ln: i for i, ln in enumerate(links)}
+        sliders = [self._named(j) for j in g.joints if self._kind_of(j) == "P"]
+        angle, line_of = {}, []
+        for s in sliders:
+            mine = [ln for ln in (s.block, s.guide) if ln in idx]
+            free = [ln for ln in mine if ln not in angle]
+            if free:
+                angle[free[0]] = s.angle
+                line_of.append(free[0])
+                continue
+            turn = abs(_wrap(angle[mine[0]] - s.angle))
+            if min(turn, math.pi - turn) > 1e-9:
+                raise DrawingError(f"link {mine[0]} slides along two lines that are not "
+                                   f"parallel; the joints form solves a group whose blocks "
+                                   f"each slide along one direction", "link", mine[0])
+            line_of.append(mine[0])
+        origin = {}
+        for ln in links:
+            names = self.d.links.get(ln, ())
+            origin[ln] = tuple(self._p(names[0]))
+            if ln not in angle:
+                angle[ln] = _angle(self._p(names[1]) - self._p(names[0])) if len(names) > 1 \
+                    else 0.0
+        known = []
+
+        def end(ln, p):
+            """(body index, local x, local y) of the drawn point p fixed on link ln."""
+            if ln in idx:
+                return (idx[ln],) + local(origin[ln], angle[ln], p)
+            if ln == self.frame:
+                key = (ln, "")
+                o, th = (0.0, 0.0), 0.0
+            else:
+                o_name = next(j for j in self.d.links.get(ln, ()) if j in self.known)
+                key, o, th = (ln, o_name), self.xy[o_name], self.engine_angle[ln]
+            if key not in known:
+                known.append(key)
+            return (-1 - known.index(key),) + local(o, th, p)
+
+        def angle_of(ln):
+            return angle[ln] if ln in idx else self.engine_angle.get(ln, 0.0)
+
+        pins = []
+        for j in g.joints:
+            if self._kind_of(j) != "R":
+                continue
+            at = [k for k in self.hinges[j] if k in idx]
+            p = self._p(j)
+            if any(k in self.links for k in self.hinges[j]):
+                if j not in self.known:  # pragma: no cover - a known link's joints are known
+                    raise DrawingError(f"joint '{j}' is not positioned", "joint", j)
+                pins += [(j,) + end(k, p) + (-1, 0.0, 0.0) for k in at]
+            else:
+                a = end(at[0], p)
+                pins += [(j,) + a + end(k, p) for k in at[1:]]
+        slides = []
+        for s, line_link in zip(sliders, line_of):
+            blk, gd = s.block, s.guide
+            p0, t = self._line(s)
+            names = list(self.d.links.get(blk, ())) + list(self.d.links.get(gd, ()))
+            pt = next((j for j in names if j in self.hinges), s.through)
+            p = self._p(pt)
+            h0 = float(-t[1] * (p[0] - p0[0]) + t[0] * (p[1] - p0[1]))
+            a, b = end(blk, p), end(gd, p0)
+            beta = _wrap(s.angle - angle_of(gd))
+            c0 = _wrap(angle_of(blk) - angle_of(gd))
+            roles = (gd, blk) if line_link == blk else (blk, gd)   # (guide, block): statics
+            name = _slide_symbol(s.name, blk, gd, self.frame)
+            slides.append((name, pt) + a + b + (float(beta), h0, float(c0), roles[1], roles[0]))
+        (driver, q0), *rest = self.inputs.items()
+        pose0 = []
+        for ln in links:
+            pose0 += [origin[ln][0], origin[ln][1], angle[ln]]
+        ends = tuple((names[0], names[1] if len(names) > 1 else "")
+                     for names in (tuple(self.d.links.get(ln, ())) for ln in links))
+        proto = NewtonGroup(tuple(links), tuple(pins), tuple(slides), tuple(known), driver,
+                            ends, g.type)
+        lk = self.linkage()
+        follow = {}
+        for k, qk in rest:
+            ratio, phase = self.d.followers.get(k, (1.0, None))
+            follow[k] = (ratio, qk - ratio * q0 if phase is None else phase)
+
+        def known_motion(q):
+            q = np.asarray(q, dtype=float)
+            ins = {driver: DriverMotion(q)}
+            ins.update({k: DriverMotion(r * q + ph) for k, (r, ph) in follow.items()})
+            return solve(lk, ins, order=0)
+
+        table, period = continuation_table(proto, known_motion, q0, pose0, self.scale,
+                                           self.frame)
+        self.elements.append(dataclasses.replace(proto, table=table, period=period))
+        self.known.update(proto.inner_joints)
+        self.links.update(g.links)
+        self._check(g.links, f"{g.type} of links {', '.join(map(str, g.links))}")
 
     def _named(self, pair):
         """The slider whose prismatic pair the decomposition calls *pair*."""

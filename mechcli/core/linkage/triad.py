@@ -279,12 +279,11 @@ def _newton(tri, K, x, y, phi, scale):
 def continuation_table(tri, known, q0, pose0, step=TABLE_STEP):
     """The ternary link's pose against the driver's angle, by continuation from the
     drawing: ``known(q)`` gives the known points K_1..K_3 (PointState with x, y) at
-    driver angles ``q`` (an array); ``pose0 = (x, y, phi)`` at ``q0``.  Forward over
-    a turn, and backward as far as the forward pass could not reach; each step's
-    Newton starts from the previous pose.  Returns ``(table, period)``."""
-    n = int(round(2 * math.pi / step))
-    grid_f = q0 + step * np.arange(n + 1)
-    Kf = known(grid_f)
+    driver angles ``q`` (an array); ``pose0 = (x, y, phi)`` at ``q0``.  The marches and
+    the table's window are :func:`~.newton_group.table_from_marches`'.  Returns
+    ``(table, period)``."""
+    from mechcli.core.linkage.newton_group import table_from_marches
+
     scale = max([abs(v) for v in pose0[:2]] + [abs(tri.length_1), abs(tri.length_2),
                                                 abs(tri.length_3), 1e-300])
 
@@ -296,40 +295,14 @@ def continuation_table(tri, known, q0, pose0, step=TABLE_STEP):
             return None
         return float(x), float(y), float(phi)
 
-    fwd = [pose0]
-    for i in range(1, n + 1):
-        nxt = advance(Kf, i, fwd[-1])
-        if nxt is None or abs(nxt[2] - fwd[-1][2]) > 0.5:
-            break
-        fwd.append(nxt)
-    if len(fwd) == n + 1:           # a whole turn: the table is periodic
-        qs = grid_f[:n]
-        rows = fwd[:n]
-        return (tuple(map(float, qs)),) + tuple(tuple(r[k] for r in rows)
-                                                 for k in range(3)), 2 * math.pi
-    m = n - (len(fwd) - 1)
-    grid_b = q0 - step * np.arange(m + 1)
-    Kb = known(grid_b)
-    bwd = [pose0]
-    for i in range(1, m + 1):
-        nxt = advance(Kb, i, bwd[-1])
-        if nxt is None or abs(nxt[2] - bwd[-1][2]) > 0.5:
-            break
-        bwd.append(nxt)
-    qs = list(grid_b[1:len(bwd)][::-1]) + list(grid_f[:len(fwd)])
-    rows = bwd[1:][::-1] + fwd
-    return (tuple(map(float, qs)),) + tuple(tuple(r[k] for r in rows) for k in range(3)), 0.0
+    return table_from_marches(known, advance, q0, pose0, scale, step)
 
 
 def _from_table(table, period, q):
     """The pose ``(x, y, phi)`` interpolated in one continuation table at ``q``."""
-    tq, tx, ty, tp = (np.asarray(t, dtype=float) for t in table)
-    if period:
-        q = tq[0] + np.mod(q - tq[0], period)
-        tq = np.append(tq, tq[0] + period)
-        tx, ty = np.append(tx, tx[0]), np.append(ty, ty[0])
-        tp = np.append(tp, tp[0] + (tp[-1] - tp[0] + _wrap(tp[0] - tp[-1])))
-    return np.interp(q, tq, tx), np.interp(q, tq, ty), np.interp(q, tq, tp)
+    from mechcli.core.linkage.newton_group import _from_table as read
+
+    return tuple(read(table, period, q))
 
 
 class _Pt:
