@@ -1,5 +1,5 @@
-"""Random assemblable drawings (issue 30 §4): a drawing of a four-bar or of the class-III
-six-bar with its joints moved at random is solved by mechcli.core.linkage.drawing; over
+"""Random assemblable drawings (issue 30 §4): a drawing of a four-bar, of the class-III
+six-bar or of the class-IV six-bar (a Newton-solved group) with its joints moved at random is solved by mechcli.core.linkage.drawing; over
 the range its continuation reaches, every pair of joints on one link keeps its drawn
 distance (loop closure), the velocities are the derivatives of the positions (central
 differences), and the drawn pose is reproduced at the drawn input angle."""
@@ -20,12 +20,17 @@ TRIAD = {"A": (0.0, 0.0), "B": (-0.01935, -0.00144), "C": (0.08165, 0.05348),
          "H": (0.08008, 0.15021)}
 TRIAD_LINKS = {1: ("A", "B"), 2: ("B", "C"), 3: ("C", "E", "F"), 4: ("G", "E"), 5: ("H", "F")}
 move = st.floats(-0.008, 0.008)
+#: the class-IV six-bar of configs/ch1/class4-group.toml [m]
+CLASS4 = {"A": (0.0, 0.0), "B": (0.01, 0.0), "C": (0.088, 0.073), "D": (0.117, 0.057),
+          "E": (0.106, 0.049), "F": (0.076, 0.005), "G": (0.15, 0.0)}
+CLASS4_LINKS = {1: ("A", "B"), 2: ("B", "C", "F"), 3: ("C", "D"), 4: ("G", "D", "E"),
+                5: ("E", "F")}
 
 
 def _check(fd, xy, links):
     lk = fd.linkage
     q0 = fd.inputs[1]
-    tri = [e for e in lk.elements if e.kind == "triad"]
+    tri = [e for e in lk.elements if e.kind in ("triad", "group")]
     if tri and not tri[0].period:                 # the range the continuation reached
         lo, hi = min(tri[0].table[0]), max(tri[0].table[0])
     else:
@@ -111,6 +116,51 @@ def test_a_moved_class3_drawing_passes_the_power_balance(dcx, dcy, dex, dey, dfx
     assume(bool(np.all(m.regular)))
     unit = solve(lk, {1: DriverMotion(q, 1.0, 0.0)}, order=1)
     bodies = {1: Body(1, 0.4, 2e-4), 2: Body(2, 1.1, 4e-3), 3: Body(3, m3, 6e-3),
+              4: Body(4, m4, 3e-3), 5: Body(5, 0.8, 2e-3)}
+    fr = solve_forces(topology(lk), m, bodies, gravity=(0.0, -9.81), unit_motion=unit)
+    peak = max(float(np.max(np.abs(v))) for v in fr.balancing.values())
+    assert peak > 1e-3
+    assert float(np.max(np.abs(fr.power_residual))) <= 1e-9 * peak
+    assert float(np.max(fr.force_residual)) <= 1e-9 * max(peak, 1.0)
+
+
+def _moved_class4(dcx, dcy, ddx, ddy, dex, dey, dfx, dfy):
+    xy = dict(CLASS4)
+    for k, (dx, dy) in zip("CDEF", ((dcx, dcy), (ddx, ddy), (dex, dey), (dfx, dfy))):
+        xy[k] = (xy[k][0] + dx, xy[k][1] + dy)
+    try:
+        return xy, from_drawing(Drawing(6, xy, CLASS4_LINKS, (), ((1, "A"),)))
+    except DrawingError:
+        assume(False)
+
+
+small = st.floats(-0.004, 0.004)
+
+
+@SET
+@given(small, small, small, small, small, small, small, small)
+def test_a_moved_class4_drawing_closes_and_differentiates(dcx, dcy, ddx, ddy, dex, dey,
+                                                         dfx, dfy):
+    xy, fd = _moved_class4(dcx, dcy, ddx, ddy, dex, dey, dfx, dfy)
+    assert fd.structure.mechanism_class == 4
+    assert [e.kind for e in fd.linkage.elements].count("group") == 1
+    _check(fd, xy, CLASS4_LINKS)
+
+
+@SET
+@given(small, small, small, small, small, small, small, small, st.floats(0.1, 5.0),
+       st.floats(-2.0, 2.0))
+def test_a_moved_class4_drawing_passes_the_power_balance(dcx, dcy, ddx, ddy, dex, dey,
+                                                         dfx, dfy, m4, alpha1):
+    from mechcli.core.linkage.kinetostatics import Body, solve_forces, topology
+
+    xy, fd = _moved_class4(dcx, dcy, ddx, ddy, dex, dey, dfx, dfy)
+    lk = fd.linkage
+    q = fd.inputs[1] + np.linspace(-0.3, 0.3, 25)
+    m = solve(lk, {1: DriverMotion(q, 7.0, alpha1)}, order=2)
+    assume(bool(np.all(m.regular)))
+    unit = solve(lk, {1: DriverMotion(q, 1.0, 0.0)}, order=1)
+    bodies = {1: Body(1, 0.4, 2e-4), 2: Body(2, 1.1, 4e-3), 3: Body(3, 0.5, 1e-3),
               4: Body(4, m4, 3e-3), 5: Body(5, 0.8, 2e-3)}
     fr = solve_forces(topology(lk), m, bodies, gravity=(0.0, -9.81), unit_motion=unit)
     peak = max(float(np.max(np.abs(v))) for v in fr.balancing.values())

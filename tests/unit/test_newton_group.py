@@ -162,3 +162,24 @@ def test_kinetostatics_passes_the_power_balance(tmp_path, name):
     res = run_json("force", spec, "-q")["results"]
     assert res["power_balance_residual"] < 1e-9
     assert res["force_balance_residual"] < 1e-9
+
+
+def test_designs_of_one_topology_stack_into_one_batch(tmp_path):
+    # two drawings of the class-IV linkage (its frame pivot G moved): engine.stack puts
+    # the group's pair coordinates in (M, 1) columns and keeps a table per design; the
+    # batch solves each design as it solves alone, to round-off
+    from mechcli.core.linkage.engine import stack
+
+    text = (CONFIGS / "ch1" / "class4-group.toml").read_text(encoding="utf-8")
+    moved = tmp_path / "moved.toml"
+    moved.write_text(text.replace("G = [150, 0]", "G = [146, 3]"), encoding="utf-8")
+    specs = [load_kin_spec(CONFIGS / "ch1" / "class4-group.toml", ()), load_kin_spec(moved, ())]
+    batch = stack([s.linkage for s in specs])
+    q = np.radians(np.arange(0.0, 360.0, 2.0))
+    mb = solve(batch, {1: DriverMotion(q, 10.0, 0.0)})
+    for k, s in enumerate(specs):
+        m = _engine_motion(s, q)
+        for j in "CDEF":
+            for f in ("x", "y", "vx", "vy", "ax", "ay"):
+                va, vb = getattr(m.points[j], f), getattr(mb.points[j], f)[k]
+                assert np.max(np.abs(va - vb)) <= 1e-12 * np.max(np.abs(va)), (k, j, f)

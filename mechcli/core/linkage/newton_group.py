@@ -139,12 +139,34 @@ class NewtonGroup(Element):
 
     @classmethod
     def stack_fields(cls, elements: Sequence[NewtonGroup], names: Any) -> Any:
-        """:func:`~.engine.stack`: designs that differ only in their continuation
-        tables keep them per design."""
-        if not set(names) <= {"table", "period"} or any(e.batch for e in elements):
+        """:func:`~.engine.stack`: designs of one topology (the same links, joints and
+        known links) whose drawings differ: each keeps its continuation table, and the
+        pairs' numbers become columns of the designs, ``(M, 1)`` arrays that broadcast
+        over the positions like every other element's batched lengths."""
+        if not set(names) <= {"table", "period", "pins", "slides"} or any(
+                e.batch for e in elements):
             return None
-        return {"table": (), "period": 0.0,
-                "batch": tuple((e.table, e.period) for e in elements)}
+        out: dict = {"table": (), "period": 0.0,
+                     "batch": tuple((e.table, e.period) for e in elements)}
+        for name in ("pins", "slides"):
+            rows = [getattr(e, name) for e in elements]
+            if any(len(r) != len(rows[0]) for r in rows):
+                return None
+            stacked = []
+            for k, first in enumerate(rows[0]):
+                entry = []
+                for f, v in enumerate(first):
+                    column = [r[k][f] for r in rows]
+                    if isinstance(v, (str, int)) and not isinstance(v, bool) \
+                            and type(v) is not float:
+                        if any(c != v for c in column):
+                            return None
+                        entry.append(v)
+                    else:
+                        entry.append(np.asarray(column, dtype=float)[:, None])
+                stacked.append(tuple(entry))
+            out[name] = tuple(stacked)
+        return out
 
     # -- the solve ----------------------------------------------------------------
     def start(self, q: Arr) -> List[Arr]:
@@ -238,8 +260,8 @@ class _System:
     """The group's equations on one state: the known bodies and points from ``P`` and
     ``L`` (the engine's solve state, or a solved motion for the continuation)."""
 
-    def __init__(self, el: NewtonGroup, P: Any, L: Any, frame: int, scale: float) -> None:
-        self.el, self.P, self.scale = el, P, float(scale)
+    def __init__(self, el: NewtonGroup, P: Any, L: Any, frame: int, scale: Arr) -> None:
+        self.el, self.P, self.scale = el, P, scale   # an (M, 1) array for a batch
         self.n = len(el.links)
         self.m = 3 * self.n
         self.kb = [self._known_body(P, L, frame, ln, o) for ln, o in el.known]
@@ -393,7 +415,7 @@ class _System:
     def conditioning(self, J: np.ndarray) -> Arr:
         """sigma_min / sigma_max of J with its angle columns made lengths."""
         Jn = J.copy()
-        Jn[..., 2::3] /= self.scale
+        Jn[..., 2::3] /= np.asarray(self.scale, dtype=float)[..., None, None]
         with np.errstate(all="ignore"):
             finite = np.isfinite(Jn).all(axis=(-2, -1))
             Jn[~finite] = np.eye(self.m)
@@ -459,7 +481,10 @@ def _solve(J, rhs: Sequence[Arr]) -> List[Arr]:
     """J x = rhs for every position (rhs: m arrays), x as m arrays; NaN where J is
     singular."""
     shape = J.shape[:-2]
-    R = np.stack([np.broadcast_to(np.asarray(r, dtype=float), shape) for r in rhs], axis=-1)
+    if not shape:     # one position (the continuation's steps)
+        R = np.array([float(r) for r in rhs])
+    else:
+        R = np.stack([np.broadcast_to(np.asarray(r, dtype=float), shape) for r in rhs], -1)
     with np.errstate(all="ignore"):
         try:
             x = np.linalg.solve(J, R[..., None])[..., 0]
@@ -492,10 +517,12 @@ def continuation_table(group: NewtonGroup, known: Callable, q0: float, pose0: Se
 
 
 def table_from_marches(known: Callable, advance: Callable, q0: float,
-                       pose0: Sequence[float], scale: float, step: float = TABLE_STEP):
+                       pose0: Sequence[float], scale: float, step: float = TABLE_STEP,
+                       predict: bool = True):
     """A continuation table ``(q, pose columns…)`` and its period from marches of up to
     a turn each way from the drawing's ``q0`` (``advance(motion, i, pose)``: the pose at
-    the march's i-th angle from the previous one, None where Newton fails).
+    the march's i-th angle from the previous one, None where Newton fails;
+    ``predict``: start it from the secant through the previous two poses instead).
 
     A branch that comes back to the drawn pose after a turn is periodic (period 2π) and
     read modulo a turn.  Otherwise the table is one window of less than a turn, read
@@ -515,7 +542,11 @@ def table_from_marches(known: Callable, advance: Callable, q0: float,
         m = known(grid)
         qs, poses = [float(q0)], [tuple(float(v) for v in pose0)]
         for i in range(1, n + 1):
-            nxt = advance(m, i, poses[-1])
+            # Newton starts from the secant through the last two poses (a step's
+            # error then ~ step², so one or two iterations)
+            guess = poses[-1] if len(poses) < 2 or not predict else tuple(
+                2.0 * a - b for a, b in zip(poses[-1], poses[-2]))
+            nxt = advance(m, i, guess)
             if nxt is None or _jumped(poses[-1], nxt, scale):
                 # the branch ends in this step (a dead point): close in on it by halving
                 h = step / 2
@@ -633,7 +664,7 @@ def local(origin: Tuple[float, float], angle: float, p: Sequence[float]) -> Tupl
     ``angle``."""
     dx, dy = p[0] - origin[0], p[1] - origin[1]
     c, s = math.cos(angle), math.sin(angle)
-    return c * dx + s * dy, -s * dx + c * dy
+    return float(c * dx + s * dy), float(-s * dx + c * dy)
 
 
 __all__ = ["NewtonGroup", "continuation_table", "local"]
