@@ -137,7 +137,11 @@ def _moved_class4(dcx, dcy, ddx, ddy, dex, dey, dfx, dfy):
 small = st.floats(-0.004, 0.004)
 
 
-@SET
+#: each class-IV example builds a continuation table (~0.5 s): fewer examples
+SET4 = settings(max_examples=8, deadline=None)
+
+
+@SET4
 @given(small, small, small, small, small, small, small, small)
 def test_a_moved_class4_drawing_closes_and_differentiates(dcx, dcy, ddx, ddy, dex, dey,
                                                          dfx, dfy):
@@ -147,7 +151,7 @@ def test_a_moved_class4_drawing_closes_and_differentiates(dcx, dcy, ddx, ddy, de
     _check(fd, xy, CLASS4_LINKS)
 
 
-@SET
+@SET4
 @given(small, small, small, small, small, small, small, small, st.floats(0.1, 5.0),
        st.floats(-2.0, 2.0))
 def test_a_moved_class4_drawing_passes_the_power_balance(dcx, dcy, ddx, ddy, dex, dey,

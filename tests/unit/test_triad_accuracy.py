@@ -151,11 +151,23 @@ def _link_rates(p, v, a, i, j):
     return mp.atan2(ry, rx), w, al
 
 
+def _built_by_newton(dx):
+    """The same drawing with its triad solved by the general Newton group instead."""
+    from mechcli.core.linkage import drawing
+
+    with pytest.MonkeyPatch.context() as mpatch:
+        mpatch.setattr(drawing._Builder, "_triad", drawing._Builder._newton_group)
+        return _built(dx)
+
+
+@pytest.mark.parametrize("element", ["triad", "group"])
 @pytest.mark.parametrize("distance", [1e-3, 1e-5, 3e-6])
-def test_triad_estimate_is_a_safe_bound_near_its_singular_position(distance):
+def test_triad_estimate_is_a_safe_bound_near_its_singular_position(distance, element):
+    # element "group": the NewtonGroup (all the pairs' equations, σmin/σmax as its
+    # condition) on the same drawing, so the estimate's bound covers both elements
     h = _critical()
     dx = h - distance * h
-    fd = _built(dx)
+    fd = _built(dx) if element == "triad" else _built_by_newton(dx)
     q0 = fd.inputs[1]
     grid = q0 + np.radians(np.arange(0.0, 360.0, 3.0))
     s = _condition(dx, grid)
@@ -192,8 +204,9 @@ def test_triad_estimate_is_a_safe_bound_near_its_singular_position(distance):
         true = -math.log10(max(err[sym], 1e-300) / max(peak[sym], 1.0 if sym[0] == "t" else 0.0))
         true = min(true, 15.65)    # both are capped at the digits a float64 has
         # never more than about a digit optimistic (θ3, the ternary link's angle: 0.87 at
-        # d = 1e-3); the rates' estimate errs on the safe side, by up to 4.1 digits for α2
-        # at d = 3e-6 (the dyads' model applied to the triad's condition, docs/accuracy.md)
+        # d = 1e-3 for the triad, 0.9 for the group); the rates' estimate errs on the safe
+        # side, by up to 3.3 digits for α2 at d = 3e-6 (the dyads' model applied to the
+        # triad's condition, docs/accuracy.md)
         assert -4.5 <= est[sym] - true <= 1.1, (sym, est[sym], true)
         checked += 1
     assert checked == 12

@@ -412,7 +412,12 @@ class _Builder:
         link a body with the drawing's first joint as origin and its first-to-second
         joint direction as reference angle (a slider's block: the line's direction, so
         that the statics sees its pair's normal), started by continuation."""
-        from mechcli.core.linkage.newton_group import NewtonGroup, continuation_table, local
+        from mechcli.core.linkage.newton_group import (
+            NewtonGroup,
+            best_conditioning,
+            continuation_table,
+            local,
+        )
 
         links = list(g.links)
         idx = {ln: i for i, ln in enumerate(links)}
@@ -506,7 +511,8 @@ class _Builder:
 
         table, period = continuation_table(proto, known_motion, q0, pose0, self.scale,
                                            self.frame)
-        self.elements.append(dataclasses.replace(proto, table=table, period=period))
+        well = best_conditioning(proto, known_motion(table[0]), table, self.scale, self.frame)
+        self.elements.append(dataclasses.replace(proto, table=table, period=period, well=well))
         self.known.update(proto.inner_joints)
         self.links.update(g.links)
         self._check(g.links, f"{g.type} of links {', '.join(map(str, g.links))}")

@@ -53,6 +53,11 @@ CLOSURE_TOL = 1e-12
 STOP_TOL = 1e-14
 #: the continuation table's step [rad of the primary driver]
 TABLE_STEP = math.radians(0.5)
+#: the reported condition is σmin/σmax relative to the table's best, times this margin:
+#: the digits-lost estimate (the dyads' model, docs/accuracy.md) then stays within about
+#: a digit of the truth on the optimistic side near a singular position (measured against
+#: 60-digit solutions, tests/unit/test_triad_accuracy.py: +0.9 … −2.5 digits)
+MARGIN = 1.0 / 3.0
 #: where the branch ends (a dead point) the continuation closes in on it to this [rad]
 FOLD_TOL = 1e-11
 #: a branch that reaches over a turn without closing is read in a window this much
@@ -85,6 +90,11 @@ class NewtonGroup(Element):
     for a link with one): the statics' frame of the link (its default centre of mass,
     the origin of a ``com = [along, normal]``).
 
+    ``well``: the best conditioning (σmin/σmax) over the continuation table; the
+    reported condition is the conditioning relative to it (times :data:`MARGIN`; → 0 at
+    a dead point), so that it reads like a dyad's sine whatever the group's size and
+    formulation.
+
     ``driver``: the primary driver (the table's input); ``table = (q, u_1 … u_3n)``,
     ``period`` 2π when it covers a whole turn; ``batch``: per design ``(table,
     period)`` (:func:`~.engine.stack`).
@@ -97,6 +107,7 @@ class NewtonGroup(Element):
     driver: int
     ends: tuple = ()
     group: str = "group"
+    well: Any = 1.0
     table: tuple = ()
     period: float = 0.0
     batch: tuple = ()
@@ -143,11 +154,12 @@ class NewtonGroup(Element):
         known links) whose drawings differ: each keeps its continuation table, and the
         pairs' numbers become columns of the designs, ``(M, 1)`` arrays that broadcast
         over the positions like every other element's batched lengths."""
-        if not set(names) <= {"table", "period", "pins", "slides"} or any(
+        if not set(names) <= {"table", "period", "pins", "slides", "well"} or any(
                 e.batch for e in elements):
             return None
         out: dict = {"table": (), "period": 0.0,
-                     "batch": tuple((e.table, e.period) for e in elements)}
+                     "batch": tuple((e.table, e.period) for e in elements),
+                     "well": np.asarray([e.well for e in elements], dtype=float)[:, None]}
         for name in ("pins", "slides"):
             rows = [getattr(e, name) for e in elements]
             if any(len(r) != len(rows[0]) for r in rows):
@@ -185,7 +197,7 @@ class NewtonGroup(Element):
         sys = _System(self, st.P, st.L, st.frame, st.scale)
         ok, J = sys.newton(u)
         ok &= ~_left_branch(u0, u, st.scale)
-        sing = np.where(ok, sys.conditioning(J), 0.0)
+        sing = np.where(ok, np.minimum(sys.conditioning(J) / self.well, 1.0) * MARGIN, 0.0)
         st.condition(self, (self.inner_joints or self.outer_points)[0], sing)
         bad = st.mark(ok, sing)
         vel = acc = None
@@ -516,9 +528,20 @@ def continuation_table(group: NewtonGroup, known: Callable, q0: float, pose0: Se
     return table_from_marches(known, advance, q0, pose0, scale, step)
 
 
+def best_conditioning(group: NewtonGroup, motion: Any, table: tuple, scale: float,
+                      frame: int) -> float:
+    """The largest σmin/σmax over the table's poses (``motion``: the known part solved
+    at the table's angles): :attr:`NewtonGroup.well`."""
+    sys = _System(group, motion.points, motion.links, frame, scale)
+    u = [np.asarray(c, dtype=float) for c in table[1:]]
+    _g, J = sys.residual(u)
+    best = float(np.max(sys.conditioning(J)))
+    return best if best > 0.0 else 1.0
+
+
 def table_from_marches(known: Callable, advance: Callable, q0: float,
                        pose0: Sequence[float], scale: float, step: float = TABLE_STEP,
-                       predict: bool = True):
+                       predict: bool = False):
     """A continuation table ``(q, pose columns…)`` and its period from marches of up to
     a turn each way from the drawing's ``q0`` (``advance(motion, i, pose)``: the pose at
     the march's i-th angle from the previous one, None where Newton fails;
@@ -542,24 +565,32 @@ def table_from_marches(known: Callable, advance: Callable, q0: float,
         m = known(grid)
         qs, poses = [float(q0)], [tuple(float(v) for v in pose0)]
         for i in range(1, n + 1):
-            # Newton starts from the secant through the last two poses (a step's
-            # error then ~ step², so one or two iterations)
+            # Newton starts from the previous pose (or, with predict, the secant through
+            # the last two: fewer iterations, but near a passage where two branches
+            # come close it can land on the other, so not by default)
             guess = poses[-1] if len(poses) < 2 or not predict else tuple(
                 2.0 * a - b for a, b in zip(poses[-1], poses[-2]))
             nxt = advance(m, i, guess)
-            if nxt is None or _jumped(poses[-1], nxt, scale):
-                # the branch ends in this step (a dead point): close in on it by halving
-                h = step / 2
-                while h > FOLD_TOL:
-                    nxt = solve_at(qs[-1] + sign * h, poses[-1])
-                    if nxt is None:
-                        h /= 2
-                    else:
-                        qs.append(qs[-1] + sign * h)
-                        poses.append(nxt)
-                return qs, poses, True
-            qs.append(float(grid[i]))
-            poses.append(nxt)
+            if nxt is not None and not _jumped(poses[-1], nxt, scale):
+                qs.append(float(grid[i]))
+                poses.append(nxt)
+                continue
+            # a fast passage or the branch's end: shorter steps to this grid angle,
+            # halved where they fail and doubled back where they pass; a step that
+            # fails at FOLD_TOL is a dead point (the input cannot go on)
+            h = step / 2
+            while sign * (grid[i] - qs[-1]) > FOLD_TOL:
+                hh = min(h, sign * (float(grid[i]) - qs[-1]))
+                nxt = solve_at(qs[-1] + sign * hh, poses[-1])
+                if nxt is None:
+                    h = hh / 2
+                    if h < FOLD_TOL:
+                        return qs, poses, True
+                    continue
+                qs.append(qs[-1] + sign * hh)
+                poses.append(nxt)
+                h = min(2 * hh, step)
+            qs[-1] = float(grid[i])
         return qs, poses, False
 
     qf, fwd, stopped_f = march(1)

@@ -295,7 +295,7 @@ def continuation_table(tri, known, q0, pose0, step=TABLE_STEP):
             return None
         return float(x), float(y), float(phi)
 
-    return table_from_marches(known, advance, q0, pose0, scale, step, predict=False)
+    return table_from_marches(known, advance, q0, pose0, scale, step)
 
 
 def _from_table(table, period, q):
