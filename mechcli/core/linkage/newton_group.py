@@ -27,7 +27,8 @@ solved for whole arrays of positions at once (``numpy.linalg.solve`` on stacked
 is g's time derivative with the unknown rates set to zero (the point rules
 ``P' = v + w R(90°) R d``, ``P'' = a + al R(90°) R d - w^2 R d``, and for the line
 ``n' = -w_b t``).  The conditioning is ``sigma_min / sigma_max`` of J with its angle
-columns divided by L, reported like a dyad's sine; near zero is the group's dead point.
+columns divided by L (1/κ₁ relative to the table's best), reported like a dyad's sine;
+near zero is the group's dead point.
 
 Newton needs a start on the right assembly branch: as for the all-revolute triad
 (:mod:`.triad`), the element carries a table of its poses against the primary
@@ -53,10 +54,10 @@ CLOSURE_TOL = 1e-12
 STOP_TOL = 1e-14
 #: the continuation table's step [rad of the primary driver]
 TABLE_STEP = math.radians(0.5)
-#: the reported condition is σmin/σmax relative to the table's best, times this margin:
+#: the reported condition is 1/κ₁ relative to the table's best, times this margin:
 #: the digits-lost estimate (the dyads' model, docs/accuracy.md) then stays within about
 #: a digit of the truth on the optimistic side near a singular position (measured against
-#: 60-digit solutions, tests/unit/test_triad_accuracy.py: +0.9 … −2.5 digits)
+#: 60-digit solutions, tests/unit/test_triad_accuracy.py: +1.0 … −2.9 digits)
 MARGIN = 1.0 / 3.0
 #: where the branch ends (a dead point) the continuation closes in on it to this [rad]
 FOLD_TOL = 1e-11
@@ -90,7 +91,7 @@ class NewtonGroup(Element):
     for a link with one): the statics' frame of the link (its default centre of mass,
     the origin of a ``com = [along, normal]``).
 
-    ``well``: the best conditioning (σmin/σmax) over the continuation table; the
+    ``well``: the best conditioning (1/κ₁) over the continuation table; the
     reported condition is the conditioning relative to it (times :data:`MARGIN`; → 0 at
     a dead point), so that it reads like a dyad's sine whatever the group's size and
     formulation.
@@ -425,14 +426,20 @@ class _System:
         return ok, J
 
     def conditioning(self, J: np.ndarray) -> Arr:
-        """sigma_min / sigma_max of J with its angle columns made lengths."""
+        """1 / (‖J‖₁ ‖J⁻¹‖₁) of J with its angle columns made lengths (the reciprocal of
+        its 1-norm condition number: an inverse per position, a fifth of an SVD's cost)."""
         Jn = J.copy()
         Jn[..., 2::3] /= np.asarray(self.scale, dtype=float)[..., None, None]
         with np.errstate(all="ignore"):
-            finite = np.isfinite(Jn).all(axis=(-2, -1))
-            Jn[~finite] = np.eye(self.m)
-            sv = np.linalg.svd(Jn, compute_uv=False)
-        return np.where(finite, sv[..., -1] / np.maximum(sv[..., 0], 1e-300), 0.0)
+            bad = ~np.isfinite(Jn).all(axis=(-2, -1))
+            try:
+                inv = np.linalg.inv(_regularised(Jn, bad))
+            except np.linalg.LinAlgError:
+                det = np.linalg.det(_regularised(Jn, bad))
+                bad = bad | ~np.isfinite(det) | (det == 0.0)
+                inv = np.linalg.inv(_regularised(Jn, bad))
+            norm = np.abs(Jn).sum(axis=-2).max(axis=-1) * np.abs(inv).sum(axis=-2).max(axis=-1)
+            return np.where(bad | ~np.isfinite(norm), 0.0, 1.0 / norm)
 
     # -- results --------------------------------------------------------------------------
     def write(self, st: Any, u: Sequence[Arr], vel: Any, acc: Any) -> None:
@@ -530,7 +537,7 @@ def continuation_table(group: NewtonGroup, known: Callable, q0: float, pose0: Se
 
 def best_conditioning(group: NewtonGroup, motion: Any, table: tuple, scale: float,
                       frame: int) -> float:
-    """The largest σmin/σmax over the table's poses (``motion``: the known part solved
+    """The largest 1/κ₁ over the table's poses (``motion``: the known part solved
     at the table's angles): :attr:`NewtonGroup.well`."""
     sys = _System(group, motion.points, motion.links, frame, scale)
     u = [np.asarray(c, dtype=float) for c in table[1:]]
