@@ -26,9 +26,9 @@ solved for whole arrays of positions at once (``numpy.linalg.solve`` on stacked
 ``g' = J u' + g'_known = 0`` and ``g'' = J u'' + g''_rest = 0``, where the known part
 is g's time derivative with the unknown rates set to zero (the point rules
 ``P' = v + w R(90°) R d``, ``P'' = a + al R(90°) R d - w^2 R d``, and for the line
-``n' = -w_b t``).  The conditioning is ``sigma_min / sigma_max`` of J with its angle
-columns divided by L (1/κ₁ relative to the table's best), reported like a dyad's sine;
-near zero is the group's dead point.
+``n' = -w_b t``).  The conditioning is the reciprocal 1-norm condition number 1/κ₁ of J
+with its angle columns divided by L, relative to its best over the table (times
+:data:`MARGIN`), reported like a dyad's sine; near zero is the group's dead point.
 
 Newton needs a start on the right assembly branch: as for the all-revolute triad
 (:mod:`.triad`), the element carries a table of its poses against the primary
