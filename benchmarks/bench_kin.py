@@ -279,9 +279,35 @@ def class3(repeat):
     print(f"joints_class3_sixbar_from_drawing: {build * 1e3:.1f} ms")
 
 
+def class4(repeat):
+    """The class-IV six-bar of configs/ch1/class4-group.toml (a NewtonGroup: 12 pose
+    unknowns, a 12 x 12 solve per position and Newton step) at 36,001 positions with
+    velocities and accelerations, against the four-bar preset in the same run (no goal:
+    the figure says what the general group costs beside the triad's closed Cramer form)."""
+    import math
+
+    from mechcli.core.linkage.drawing import Drawing, from_drawing
+
+    xy = {"A": (0, 0), "B": (10, 0), "C": (88, 73), "D": (117, 57), "E": (106, 49),
+          "F": (76, 5), "G": (150, 0)}
+    xy = {k: (x / 1000, y / 1000) for k, (x, y) in xy.items()}
+    links = {1: ("A", "B"), 2: ("B", "C", "F"), 3: ("C", "D"), 4: ("G", "D", "E"),
+             5: ("E", "F")}
+    t = time.perf_counter()
+    lk = from_drawing(Drawing(6, xy, links, (), ((1, "A"),))).linkage
+    build = time.perf_counter() - t
+    th = np.linspace(0, 2 * math.pi, 36001)
+    grp = best_of(lambda: solve(lk, {1: DriverMotion(th, 10.0)}, order=2), repeat)
+    fb = engine(36001, repeat)
+    print(f"engine_class4_sixbar_36001_pva: {grp * 1e3:.2f} ms")
+    print(f"engine_class4_over_fourbar_36001_pva: {grp / fb:.1f} x")
+    print(f"joints_class4_sixbar_from_drawing: {build * 1e3:.1f} ms")
+
+
 def main():
     quick = "--quick" in sys.argv
     class3(5 if quick else 15)
+    class4(2 if quick else 5)
     r = 3 if quick else 7
     streamed(quick)
     plain_process(10 if quick else 20)
