@@ -167,7 +167,7 @@ class NewtonGroup(Element):
                 return None
             stacked = []
             for k, first in enumerate(rows[0]):
-                entry = []
+                entry: list = []
                 for f, v in enumerate(first):
                     column = [r[k][f] for r in rows]
                     if isinstance(v, (str, int)) and not isinstance(v, bool) \
