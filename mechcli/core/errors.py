@@ -4,6 +4,10 @@ Every error the core raises for a *problem without solution* derives from
 :class:`UnsolvableError`; the command line maps it to exit code 3.
 """
 
+from __future__ import annotations
+
+from typing import Any, Iterable, Tuple
+
 
 class UnsolvableError(ValueError):
     """The problem, although well-formed, has no solution (exit code 3)."""
@@ -24,7 +28,7 @@ class DescribedError(UnsolvableError):
         The numbers of the failure: lengths [m], angles [rad], counts.
     """
 
-    def __init__(self, message, reason="", **values):
+    def __init__(self, message: str, reason: str = "", **values: Any) -> None:
         super().__init__(message)
         self.reason, self.values = reason, values
 
@@ -47,7 +51,8 @@ class AssemblyError(UnsolvableError):
     the intervals for the user (``report.kin.assembly_message``).
     """
 
-    def __init__(self, message, intervals=(), too_few=False):
+    def __init__(self, message: str, intervals: Iterable[Tuple[float, float, str]] = (),
+                 too_few: bool = False) -> None:
         super().__init__(message)
         self.intervals = list(intervals)
         self.too_few = too_few

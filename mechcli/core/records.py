@@ -36,23 +36,37 @@ from __future__ import annotations
 
 import dataclasses
 import reprlib
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any, Callable, FrozenSet, List, Optional, Tuple, TypeVar, overload
 
 __all__ = ["record"]
 
 if TYPE_CHECKING:   # checkers and editors see a record's fields and constructor
+    import inspect
+
     from typing_extensions import dataclass_transform
 else:
-    def dataclass_transform(**_kwargs):
+    def dataclass_transform(**_kwargs: Any) -> Callable[[_T], _T]:
         """``typing.dataclass_transform`` (PEP 681) only matters to type checkers: at run
         time a no-op (no ``typing_extensions`` dependency, Python 3.9 included)."""
         return lambda f: f
 
 _MISSING = dataclasses.MISSING
+#: dataclasses' own private marker of an InitVar field (not in its type stubs)
+_INITVAR = dataclasses._FIELD_INITVAR  # type: ignore[attr-defined]
+_T = TypeVar("_T")
+
+
+@overload
+def record(cls: type[_T], *, eq: bool = True, frozen: bool = True) -> type[_T]: ...
+
+
+@overload
+def record(cls: None = None, *, eq: bool = True,
+           frozen: bool = True) -> Callable[[type[_T]], type[_T]]: ...
 
 
 @dataclass_transform(field_specifiers=(dataclasses.field,))
-def record(cls=None, *, eq=True, frozen=True):
+def record(cls: Optional[type] = None, *, eq: bool = True, frozen: bool = True) -> Any:
     """The class *cls* as ``@dataclasses.dataclass(frozen=frozen, eq=eq)`` would make it
     (see the module's docstring); ``@record`` or ``@record(eq=False)``."""
     if cls is None:
@@ -60,13 +74,13 @@ def record(cls=None, *, eq=True, frozen=True):
     return _make(cls, eq, frozen)
 
 
-def _is_frozen(base):
+def _is_frozen(base: Any) -> bool:
     """Whether a dataclass *base* is frozen (a record says so itself)."""
     own = base.__dict__.get("_record_frozen")
     return own if own is not None else base.__dataclass_params__.frozen
 
 
-def _make(cls, eq, frozen):
+def _make(cls: Any, eq: bool, frozen: bool) -> Any:
     name = cls.__qualname__
     own = cls.__dict__
     if not own.get("__doc__"):
@@ -89,7 +103,7 @@ def _make(cls, eq, frozen):
     cls._record_frozen = frozen
     fields = dataclasses.fields(cls)
     for f in cls.__dataclass_fields__.values():
-        if f._field_type is dataclasses._FIELD_INITVAR or getattr(f, "kw_only", False) is True:
+        if f._field_type is _INITVAR or getattr(f, "kw_only", False) is True:
             raise TypeError(f"{name}.{f.name}: @record has no InitVar or kw_only fields")
         if hasattr(type(f.default), "__set__"):
             raise TypeError(f"{name}.{f.name}: @record has no descriptor-typed fields")
@@ -118,7 +132,8 @@ def _make(cls, eq, frozen):
     return cls
 
 
-def _init(cls, init_fields, other_fields, frozen):
+def _init(cls: Any, init_fields: List[dataclasses.Field], other_fields: List[dataclasses.Field],
+          frozen: bool) -> Callable[..., None]:
     names = tuple(f.name for f in init_fields)
     known = frozenset(names)
     count = len(names)
@@ -129,7 +144,7 @@ def _init(cls, init_fields, other_fields, frozen):
     post_init = hasattr(cls, "__post_init__")
     qualname = cls.__qualname__
 
-    def __init__(self, *args, **kwargs):
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
         if len(args) > count:
             raise TypeError(f"{qualname}.__init__() takes {count + 1} positional "
                             f"arguments but {len(args) + 1} were given")
@@ -157,8 +172,8 @@ def _init(cls, init_fields, other_fields, frozen):
                 raise TypeError(f"{qualname}.__init__() missing {len(missing)} required "
                                 f"argument{'s' if len(missing) > 1 else ''}: "
                                 + ", ".join(repr(n) for n in missing))
-        else:
-            values = args
+        else:   # (a tuple, only read below)
+            values = args   # type: ignore[assignment]
         if frozen:   # (no descriptor fields: refused above) straight into the instance
             self.__dict__.update(zip(names, values))
             for name, factory in later:
@@ -176,7 +191,7 @@ def _init(cls, init_fields, other_fields, frozen):
 
 
 class _Factory:
-    def __repr__(self):
+    def __repr__(self) -> str:
         return "<factory>"
 
 
@@ -188,11 +203,13 @@ class _LazySignature:
     :func:`inspect.signature` look at ``__init__``) for a subclass with its own
     ``__init__``."""
 
-    def __init__(self, init, fields):
-        self.init, self.fields, self.signature = init, fields, None
+    def __init__(self, init: Callable[..., None], fields: List[dataclasses.Field]) -> None:
+        self.init, self.fields = init, fields
+        self.signature: Optional[inspect.Signature] = None
 
-    def __get__(self, obj, owner=None):
-        if (owner if owner is not None else type(obj)).__init__ is not self.init:
+    def __get__(self, obj: object, owner: Optional[type] = None) -> Optional[inspect.Signature]:
+        # the class's own __init__ (not a bound one) is compared: mypy's caution is moot
+        if (owner if owner is not None else type(obj)).__init__ is not self.init:  # type: ignore[misc]
             return None
         if self.signature is None:
             import inspect
@@ -206,16 +223,16 @@ class _LazySignature:
         return self.signature
 
 
-def _repr(names):
+def _repr(names: Tuple[str, ...]) -> Callable[[Any], str]:
     @reprlib.recursive_repr()
-    def __repr__(self):
+    def __repr__(self) -> str:
         return (f"{type(self).__qualname__}("
                 + ", ".join(f"{n}={getattr(self, n)!r}" for n in names) + ")")
     return __repr__
 
 
-def _eq(names):
-    def __eq__(self, other):
+def _eq(names: Tuple[str, ...]) -> Callable[[Any, object], Any]:
+    def __eq__(self, other: object) -> Any:
         if other.__class__ is self.__class__:
             return tuple(getattr(self, n) for n in names) \
                 == tuple(getattr(other, n) for n in names)
@@ -223,19 +240,19 @@ def _eq(names):
     return __eq__
 
 
-def _hash(names):
-    def __hash__(self):
+def _hash(names: Tuple[str, ...]) -> Callable[[Any], int]:
+    def __hash__(self) -> int:
         return hash(tuple(getattr(self, n) for n in names))
     return __hash__
 
 
-def _frozen(cls, names):
-    def __setattr__(self, name, value):
+def _frozen(cls: Any, names: FrozenSet[str]) -> Tuple[Callable[..., None], Callable[..., None]]:
+    def __setattr__(self, name: str, value: Any) -> None:
         if type(self) is cls or name in names:
             raise dataclasses.FrozenInstanceError(f"cannot assign to field {name!r}")
         super(cls, self).__setattr__(name, value)
 
-    def __delattr__(self, name):
+    def __delattr__(self, name: str) -> None:
         if type(self) is cls or name in names:
             raise dataclasses.FrozenInstanceError(f"cannot delete field {name!r}")
         super(cls, self).__delattr__(name)

@@ -8,11 +8,13 @@ and radians in the returned :class:`CamSpec`.
 from __future__ import annotations
 
 import math
+from typing import Any, Dict, Iterable, Iterator, Optional, Tuple
 
 from mechcli.core.cam.motion import PolynomialLaw
 from mechcli.core.records import record
 from mechcli.spec.common import read_expected, read_header
 from mechcli.spec.errors import SpecError
+from mechcli.spec.reader import Section
 
 LAW_CHOICES = ("uniform", "parabolic", "cosine", "sine", "cubic", "poly345", "poly4567",
                "modified-trapezoid", "modified-sine", "polynomial", "constant-velocity",
@@ -110,7 +112,7 @@ class CamSpec:
     expected: dict
 
 
-def _segments(motion_sec, stroke, angular, file):
+def _segments(motion_sec: Section, stroke: float, angular: bool, file: str) -> tuple:
     secs = motion_sec.tables("segments")
     if not secs:
         raise motion_sec.error("segments", "at least one segment", "an empty array")
@@ -180,7 +182,7 @@ def _segments(motion_sec, stroke, angular, file):
                  for kind, span, law, lift in out)
 
 
-def _polynomial(sec):
+def _polynomial(sec: Section) -> PolynomialLaw:
     """The ``coefficients`` of a ``law = "polynomial"`` segment: s/h = Σ c_k u^k,
     u = δ/δ0, checked to start at 0 and reach 1 (within POLY_TOL, then exactly)."""
     key = "coefficients"
@@ -204,7 +206,8 @@ def _polynomial(sec):
     return PolynomialLaw(tuple(ck / total for ck in c))
 
 
-def _check_range(sec, law, kind, level, lift, stroke, angular):
+def _check_range(sec: Section, law: PolynomialLaw, kind: str, level: float, lift: float,
+                 stroke: float, angular: bool) -> None:
     """The follower stays within [0, stroke] inside a polynomial segment."""
     fmin, umin, fmax, umax = law.extremes()
     sign = 1.0 if kind == "rise" else -1.0
@@ -223,18 +226,19 @@ def _check_range(sec, law, kind, level, lift, stroke, angular):
                         f"the stroke {_show(stroke, angular, sec.unit)}")
 
 
-def _levels(segs):
+def _levels(segs: Iterable[tuple]) -> Iterator[float]:
     level = 0.0
     for kind, _, _, lift in segs:
         level += lift if kind == "rise" else (-lift if kind == "return" else 0.0)
         yield level
 
 
-def _show(value, angular, unit):
+def _show(value: float, angular: bool, unit: float) -> str:
     return f"{math.degrees(value):g} deg" if angular else f"{value / unit:g}"
 
 
-def read_cam_spec(root, step_override=None, points_override=None):
+def read_cam_spec(root: Section, step_override: Optional[float] = None,
+                  points_override: Optional[int] = None) -> CamSpec:
     """Validate a ``mechcli cam`` spec.
 
     Parameters
@@ -264,7 +268,8 @@ def read_cam_spec(root, step_override=None, points_override=None):
                    animate, frames, expected)
 
 
-def _follower(root):
+def _follower(
+        root: Section) -> Tuple[str, str, bool, Optional[float], Dict[str, Any], Optional[Sizing]]:
     """[follower] (and [sizing], which decides whether r0 is required): ``(motion,
     contact, angular, r0, args, sizing)``; ``args`` the profile's keyword arguments."""
     fol = root.table("follower")
@@ -318,7 +323,7 @@ def _follower(root):
     return motion, contact, angular, r0, args, sizing
 
 
-def _cam_table(root):
+def _cam_table(root: Section) -> Tuple[int, Optional[float]]:
     """[cam]: ``(rotation, omega)`` (+1 counter-clockwise; omega None if not given)."""
     cam = root.table("cam", None)
     rotation, omega = 1, None
@@ -333,7 +338,8 @@ def _cam_table(root):
     return rotation, omega
 
 
-def _motion_table(root, angular, r0, args):
+def _motion_table(root: Section, angular: bool, r0: Optional[float],
+                  args: Dict[str, Any]) -> Tuple[float, tuple]:
     """[motion]: ``(stroke, segments)``, the stroke in m or rad."""
     file = root.file
     mot = root.table("motion")
@@ -355,7 +361,7 @@ def _motion_table(root, angular, r0, args):
     return stroke, segments
 
 
-def _limits(root, angular):
+def _limits(root: Section, angular: bool) -> Limits:
     """[limits]: the allowed pressure angles and the undercut rule."""
     lim = root.table("limits", None)
     a_rise_default = 45.0 if angular else 30.0
@@ -376,7 +382,8 @@ def _limits(root, angular):
     return limits
 
 
-def _sampling(root, step_override, points_override):
+def _sampling(root: Section, step_override: Optional[float],
+              points_override: Optional[int]) -> float:
     """[sampling] and ``--step``/``--points``: the profile's step [deg]."""
     file = root.file
     samp = root.table("sampling", None)
@@ -414,7 +421,7 @@ def _sampling(root, step_override, points_override):
     return step
 
 
-def _output(root):
+def _output(root: Section) -> Tuple[float, bool, bool, int]:
     """[output]: ``(table_step [deg], plots, animate, frames)``."""
     out = root.table("output", None)
     table_step, plot, animate, frames = 10.0, True, False, 72

@@ -1,5 +1,9 @@
 """Spec errors: one line naming the file, the key, what was expected, what was found."""
 
+from __future__ import annotations
+
+from typing import Collection, Optional
+
 
 class SpecError(ValueError):
     """A problem file (or a ``--set`` override) is invalid; exit code 2.
@@ -18,7 +22,8 @@ class SpecError(ValueError):
         A did-you-mean hint.
     """
 
-    def __init__(self, file, key, expected, got, suggestion=None):
+    def __init__(self, file: object, key: str, expected: str, got: str,
+                 suggestion: Optional[str] = None) -> None:
         self.file = str(file)
         self.key = key
         self.expected = expected
@@ -26,7 +31,7 @@ class SpecError(ValueError):
         self.suggestion = suggestion
         super().__init__(self.format())
 
-    def format(self):
+    def format(self) -> str:
         where = self.file
         if self.key:
             table, _, leaf = self.key.rpartition(".")
@@ -59,7 +64,7 @@ SLIPS = {
 }
 
 
-def slip(name, candidates):
+def slip(name: object, candidates: Collection[str]) -> Optional[str]:
     """The key meant by a common slip (``rpm`` for ``n1``, :data:`SLIPS`), if the table
     has it among *candidates*; else None."""
     for meant in SLIPS.get(str(name).lower().replace("-", "_"), ()):
@@ -68,7 +73,7 @@ def slip(name, candidates):
     return None
 
 
-def closest(name, candidates):
+def closest(name: object, candidates: Collection[str]) -> Optional[str]:
     """Nearest valid key to *name* (or the key a common slip means: :func:`slip`), or
     None."""
     import difflib  # only when a key is wrong: not on every start-up

@@ -18,13 +18,13 @@ from __future__ import annotations
 import dataclasses
 import math
 from pathlib import Path
-from typing import Optional, Tuple
+from typing import Any, Iterable, Optional, Sequence, Tuple, Union
 
 from mechcli.core.records import record
 from mechcli.spec.common import Header, read_expected, read_header
 from mechcli.spec.errors import SpecError
 from mechcli.spec.force import MAX_FORCE, MAX_INERTIA, read_bodies, read_gravity, read_loads
-from mechcli.spec.reader import REQUIRED, load_spec
+from mechcli.spec.reader import REQUIRED, Section, load_spec
 
 #: the largest |ω| [rad/s] and angle [deg] a spec may give (a 1e6 rad/s shaft is
 #: already beyond any machine; angles within a hundred turns)
@@ -123,7 +123,7 @@ class FlywheelSpec:
     path: Optional[Path]
 
 
-def _deg_array(sec, name, size=None):
+def _deg_array(sec: Section, name: str, size: Optional[int] = None) -> Tuple[float, ...]:
     vals = sec.numbers(name, size=size) if size else sec.numbers(name)
     for i, v in enumerate(vals):
         if abs(v) > MAX_ANGLE_DEG:
@@ -132,15 +132,17 @@ def _deg_array(sec, name, size=None):
     return tuple(math.radians(v) for v in vals)
 
 
-def _period(sec, default=2 * math.pi):
+def _period(sec: Section, default: float = 2 * math.pi) -> float:
     """``period_deg`` [deg] -> [rad]: the angle after which the table or series repeats
     (360 by default; 720 for a four-stroke engine's cycle)."""
     deg = sec.number("period_deg", None, lo=1e-3, hi=MAX_PERIOD_DEG)
     return default if deg is None else math.radians(deg)
 
 
-def _table(sec, value_key, lo, hi, what, methods=("cubic", "linear", "fourier"),
-           default_period=2 * math.pi):
+def _table(sec: Section, value_key: str, lo: float, hi: float, what: str,
+           methods: Sequence[str] = ("cubic", "linear", "fourier"),
+           default_period: float = 2 * math.pi
+           ) -> Tuple[Tuple[float, ...], Tuple[float, ...], str, float]:
     """``phi_deg = [...]`` and ``<value_key> = [...]`` of one period (``period_deg``),
     increasing φ; the interpolation ``method``, the first of *methods* by default.
     Returns ``(phi, values, method, period)``."""
@@ -163,7 +165,7 @@ def _table(sec, value_key, lo, hi, what, methods=("cubic", "linear", "fourier"),
     return phi, tuple(vals), method, period
 
 
-def _inertia(root, has_linkage, optional=False):
+def _inertia(root: Section, has_linkage: bool, optional: bool = False) -> InertiaSpec:
     """The inertia forms; *optional*: the spec sizes or gives a flywheel, so without an
     [inertia] the machine's own is neglected (Je = 0, eq. 6-30)."""
     sec = root.table("inertia", None)
@@ -217,7 +219,8 @@ def _inertia(root, has_linkage, optional=False):
     return InertiaSpec("constant", J=J)
 
 
-def _mass_k(sec, key, lo, default=REQUIRED, k_alone=False):
+def _mass_k(sec: Section, key: str, lo: float, default: Any = REQUIRED,
+            k_alone: bool = False) -> Any:
     """``J`` [kg m²], or ``mass`` [kg] with ``k``, the radius of gyration [units]: J = m k²
     (problems give a flywheel or a rotor so).  Not both.  *k_alone*: ``k`` without
     ``mass`` is another key's business (a sized flywheel's radius of gyration)."""
@@ -238,7 +241,7 @@ def _mass_k(sec, key, lo, default=REQUIRED, k_alone=False):
     return sec.number(key, default, lo=lo, hi=MAX_INERTIA)
 
 
-def _mean_or_number(sec, name):
+def _mean_or_number(sec: Section, name: str) -> Union[float, str]:
     """A constant moment [N m], or ``"mean"``: the value that makes the work over a cycle
     vanish (the textbook's "the resisting moment is the mean"), computed by the core."""
     if isinstance(sec.data.get(name), str):
@@ -247,16 +250,50 @@ def _mean_or_number(sec, name):
     return sec.number(name, 0.0, lo=-MAX_FORCE, hi=MAX_FORCE)
 
 
-def _moment(root, has_loads):
+def _moment(root: Section, has_loads: bool) -> MomentSpec:
+    """``[moment]``'s terms (or the linkage's loads alone), in named steps: the constant
+    terms and the motor line, the tables, the harmonic series, the segments and the
+    chain's torques, then the checks of the whole."""
     sec = root.table("moment", None)
     if sec is None:
         if not has_loads:
             raise root.error("moment", "a [moment] table or [[load]] tables of a linkage "
                              "(the equivalent moment comes from them)", "neither")
         return MomentSpec(loads=True)
-    kw = {"loads": has_loads}
+    kw: dict[str, Any] = {"loads": has_loads}
     period = _period(sec)
     kw["period"] = period
+    _moment_constants(sec, kw)
+    for name in ("table", "resisting_table"):
+        t = sec.table(name, None)
+        if t is not None:
+            kw[name] = _moment_table(sec, t, name, period)
+    _same_table_angles(sec, kw)
+    h = sec.table("harmonic", None)
+    if h is not None:
+        a0 = h.number("a0", 0.0, lo=-MAX_FORCE, hi=MAX_FORCE)
+        a = tuple(h.numbers("a", []))
+        b = tuple(h.numbers("b", []))
+        if len(a) > 100 or len(b) > 100 or any(abs(x) > MAX_FORCE for x in a + b):
+            raise h.error("a", f"at most 100 coefficients within ±{MAX_FORCE:g}",
+                          f"{len(a)} and {len(b)}")
+        kw["harmonic"] = (a0, a, b, _period(h, period))
+        h.finish()
+    kw["segments"] = _moment_segments(sec, period)
+    torques = []
+    for t in sec.tables("torque", []):
+        torques.append((t.number("M", lo=-MAX_FORCE, hi=MAX_FORCE),
+                        t.number("ratio", lo=-1e6, hi=1e6)))
+        t.finish()
+    kw["torques"] = tuple(torques)
+    _check_moment(sec, kw, has_loads)
+    sec.finish()
+    return MomentSpec(**kw)
+
+
+def _moment_constants(sec: Section, kw: dict[str, Any]) -> None:
+    """``constant``, ``drive`` (Md = a − bω) and ``resisting`` into *kw*, with ``mean``:
+    the one of ``constant``/``resisting`` given as ``"mean"`` (then 0.0 in *kw*)."""
     constant = _mean_or_number(sec, "constant")
     if sec.has("drive"):
         a, b = sec.numbers("drive", size=2)       # Md = a - b omega [N m, N m s]
@@ -274,34 +311,41 @@ def _moment(root, has_loads):
     kw["mean"] = means[0] if means else None
     kw["constant"] = 0.0 if constant == "mean" else constant
     kw["resisting"] = 0.0 if resisting == "mean" else resisting
-    for name in ("table", "resisting_table"):
-        t = sec.table(name, None)
-        if t is not None:
-            # linear by default: the work is then exact, and a jump of the moment between
-            # two nodes (表 6-2: 727 -> 85 N m) does not overshoot as a spline would
-            phi_t, M_t, method, per = _table(t, "M", -MAX_FORCE, MAX_FORCE, "a moment [N m]",
-                                             ("linear", "cubic"), period)
-            integration = t.string("integration", "exact", choices=list(INTEGRATIONS))
-            if integration != "exact" and t.has("method"):
-                raise t.error("method", f'no method with integration = "{integration}" '
-                              "(the rule fixes the interpolation: trapezoid = linear, "
-                              "simpson = a parabola over each pair of intervals)",
-                              repr(t.raw("method")))
-            if integration == "trapezoid":
-                method = "linear"
-            elif integration == "simpson":
-                method = "quadratic"
-                closed = abs(phi_t[-1] - phi_t[0] - per) <= 1e-9 * per
-                n = len(phi_t) - 1 if closed else len(phi_t)
-                if n % 2:
-                    raise t.error("integration", "an even number of intervals per period "
-                                  "for Simpson's rule", f"{n} intervals")
-            kw[name] = (phi_t, M_t, method, per, integration)
-            if abs(phi_t[-1] - phi_t[0] - per) <= 1e-9 * per and M_t[-1] != M_t[0]:
-                raise SpecError(sec.file, sec.key(f"{name}.M"), "a last moment equal to the "
-                                "first (phi_deg spans a whole period: the table is periodic)",
-                                f"{M_t[0]:g} and {M_t[-1]:g}")
-            t.finish()
+
+
+def _moment_table(sec: Section, t: Section, name: str, period: float) -> tuple:
+    """``[moment.<name>]`` (``table`` or ``resisting_table``): ``(phi [rad], M [N m],
+    method, period [rad], integration)``."""
+    # linear by default: the work is then exact, and a jump of the moment between
+    # two nodes (表 6-2: 727 -> 85 N m) does not overshoot as a spline would
+    phi_t, M_t, method, per = _table(t, "M", -MAX_FORCE, MAX_FORCE, "a moment [N m]",
+                                     ("linear", "cubic"), period)
+    integration = t.string("integration", "exact", choices=list(INTEGRATIONS))
+    if integration != "exact" and t.has("method"):
+        raise t.error("method", f'no method with integration = "{integration}" '
+                      "(the rule fixes the interpolation: trapezoid = linear, "
+                      "simpson = a parabola over each pair of intervals)",
+                      repr(t.raw("method")))
+    if integration == "trapezoid":
+        method = "linear"
+    elif integration == "simpson":
+        method = "quadratic"
+        closed = abs(phi_t[-1] - phi_t[0] - per) <= 1e-9 * per
+        n = len(phi_t) - 1 if closed else len(phi_t)
+        if n % 2:
+            raise t.error("integration", "an even number of intervals per period "
+                          "for Simpson's rule", f"{n} intervals")
+    if abs(phi_t[-1] - phi_t[0] - per) <= 1e-9 * per and M_t[-1] != M_t[0]:
+        raise SpecError(sec.file, sec.key(f"{name}.M"), "a last moment equal to the "
+                        "first (phi_deg spans a whole period: the table is periodic)",
+                        f"{M_t[0]:g} and {M_t[-1]:g}")
+    t.finish()
+    return (phi_t, M_t, method, per, integration)
+
+
+def _same_table_angles(sec: Section, kw: dict[str, Any]) -> None:
+    """A driving and a resisting table on other angles are summed exactly only when both
+    are linear."""
     if "table" in kw and "resisting_table" in kw and kw["table"][1:] != kw[
             "resisting_table"][1:] and ("linear", "linear") != (kw["table"][2],
                                                                kw["resisting_table"][2]) and (
@@ -310,16 +354,11 @@ def _moment(root, has_loads):
         raise sec.error("resisting_table", "the same phi_deg and period as [moment.table] "
                         "unless both are linear (linear tables on different angles are "
                         "summed exactly)", "other angles")
-    h = sec.table("harmonic", None)
-    if h is not None:
-        a0 = h.number("a0", 0.0, lo=-MAX_FORCE, hi=MAX_FORCE)
-        a = tuple(h.numbers("a", []))
-        b = tuple(h.numbers("b", []))
-        if len(a) > 100 or len(b) > 100 or any(abs(x) > MAX_FORCE for x in a + b):
-            raise h.error("a", f"at most 100 coefficients within ±{MAX_FORCE:g}",
-                          f"{len(a)} and {len(b)}")
-        kw["harmonic"] = (a0, a, b, _period(h, period))
-        h.finish()
+
+
+def _moment_segments(sec: Section, period: float) -> tuple:
+    """``[[moment.segment]]``: ``(phi_from, phi_to, M_from, M_to)`` [rad, N m] each, a
+    resisting one negated; no overlaps, all within one period."""
     segs = []
     for s in sec.tables("segment", []):
         phi = _deg_array(s, "phi_deg", size=2)
@@ -339,13 +378,13 @@ def _moment(root, has_loads):
     if segs and max(x[1] for x in segs) - min(x[0] for x in segs) > period * (1 + 1e-9):
         raise sec.error("segment", f"segments within one period ({math.degrees(period):g}°; "
                         "a longer cycle needs [moment] period_deg)", "a longer span")
-    kw["segments"] = tuple(segs)
-    torques = []
-    for t in sec.tables("torque", []):
-        torques.append((t.number("M", lo=-MAX_FORCE, hi=MAX_FORCE),
-                        t.number("ratio", lo=-1e6, hi=1e6)))
-        t.finish()
-    kw["torques"] = tuple(torques)
+    return tuple(segs)
+
+
+def _check_moment(sec: Section, kw: dict[str, Any], has_loads: bool) -> None:
+    """What the terms together must be: linear tables beside the loads, a period only with
+    a term that varies with φ, a ``"mean"`` only with such a term."""
+    segs = kw["segments"]
     for name in ("table", "resisting_table"):
         if has_loads and name in kw and kw[name][2] != "linear":
             raise sec.error(f"{name}.method", "a linear table (the loads of the linkage are "
@@ -358,11 +397,10 @@ def _moment(root, has_loads):
                            or "harmonic" in kw or has_loads):
         raise sec.error(kw["mean"], '"mean" with a moment that varies with φ (a table, a '
                         "harmonic series, segments or loads)", '"mean"')
-    sec.finish()
-    return MomentSpec(**kw)
 
 
-def _speed(sec, name, rpm_name, default=REQUIRED, lo=0.0):
+def _speed(sec: Section, name: str, rpm_name: str, default: Any = REQUIRED,
+           lo: float = 0.0) -> Tuple[Any, bool]:
     """A speed [rad/s] given as ``name`` [rad/s] or ``rpm_name`` [r/min] (not both).
     Returns ``(value, given in r/min)``."""
     if sec.has(rpm_name):
@@ -378,14 +416,14 @@ def _speed(sec, name, rpm_name, default=REQUIRED, lo=0.0):
     return sec.number(name, default, lo=0.0, hi=MAX_OMEGA), False
 
 
-def _unused(sec, keys, why):
+def _unused(sec: Section, keys: Iterable[str], why: str) -> None:
     """Exit 2 on the first of *keys* the section has: the form does not use it."""
     for k in keys:
         if sec.has(k):
             raise sec.error(k, f"no {k} {why}", repr(sec.raw(k)))
 
 
-def _motion(root, omega_dependent):
+def _motion(root: Section, omega_dependent: bool) -> Tuple[MotionSpec, bool]:
     """[motion]; *omega_dependent*: the moment has a motor line −bω (else Me(φ) only)."""
     sec = root.table("motion", None)
     if sec is None:
@@ -468,7 +506,7 @@ SHAPE_KEYS = ("shape", "radius", "thickness", "density", "k")
 SWING_KEYS = ("dW", "energy_coefficient", "work_per_cycle", "omega_mean", "n_mean_rpm")
 
 
-def _flywheel(root, motion, has_moment):
+def _flywheel(root: Section, motion: MotionSpec, has_moment: bool) -> FlywheelPart:
     """[flywheel] in the form *motion* allows (see docs/flywheel.md):
 
     * with [motion]: ``J`` (or ``mass`` and ``k``) added, or ``delta`` sized in the steady
@@ -560,7 +598,8 @@ def _flywheel(root, motion, has_moment):
     return FlywheelPart(J, delta, shape, radius, density, thickness, dW, omega_mean, k, rpm)
 
 
-def _check_periods(root, inertia, moment, has_linkage):
+def _check_periods(root: Section, inertia: InertiaSpec, moment: Optional[MomentSpec],
+                   has_linkage: bool) -> None:
     """The periods of the inertia and the moment's terms must divide the longest one (the
     cycle): 360° and 720° make a 720° cycle; 360° and 500° make none."""
     periods = []            # (period [rad], the key that set it)
@@ -587,12 +626,13 @@ def _check_periods(root, inertia, moment, has_linkage):
                             f"({math.degrees(T):g}°: the cycle)", f"{math.degrees(p):g}°")
 
 
-def read_flywheel_spec(path, overrides=()) -> FlywheelSpec:
+def read_flywheel_spec(path: Union[str, Path], overrides: Iterable[str] = ()) -> FlywheelSpec:
     """Read and validate a ``mechcli flywheel`` spec (SpecError on the first bad key)."""
     root = load_spec(path, overrides)
     header = read_header(root, "flywheel", default_unit="m")
     linkage = topo = None
-    bodies, loads, followers, gravity = {}, (), {}, (0.0, 0.0)
+    loads: tuple = ()
+    bodies, followers, gravity = {}, {}, (0.0, 0.0)
     if root.has("mechanism"):
         from mechcli.core.linkage.kinematics import default_quantities
         from mechcli.core.linkage.kinetostatics import ForceModelError, topology

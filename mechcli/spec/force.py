@@ -44,7 +44,7 @@ this module adds the inertia of the links, gravity and the external loads::
 from __future__ import annotations
 
 import math
-from typing import Optional, Tuple
+from typing import TYPE_CHECKING, Any, Dict, Iterable, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -54,7 +54,15 @@ from mechcli.core.records import record
 from mechcli.spec.common import Header, read_expected, read_header
 from mechcli.spec.errors import SpecError, closest
 from mechcli.spec.kin import InputSpec, _empty, read_input, read_mechanism
-from mechcli.spec.reader import MAX_LENGTH, load_spec
+from mechcli.spec.reader import MAX_LENGTH, Section, load_spec
+
+if TYPE_CHECKING:
+    import os
+
+    from mechcli.core.linkage.force_model import Topology
+    from mechcli.core.linkage.kinetostatics import Load
+    from mechcli.core.linkage.piston import GasLoad, Piston, PressureCurve
+    from mechcli.core.linkage.sweep import Quantity
 
 #: bounds on the inertia and load data: large enough for any machine, small
 #: enough that no product or square in the solve and the RMS overflows to inf
@@ -75,7 +83,8 @@ MAX_POSITIONS = 100_001
 POSITIONS_WHY = "1 GiB budget at ~9.1 kB per position"
 
 
-def _bounded(sec, key, values, lim, what):
+def _bounded(sec: Section, key: str, values: Sequence[float], lim: float,
+             what: str) -> Sequence[float]:
     for v in values:
         if abs(v) > lim:
             raise sec.error(key, f"{what} within ±{lim:g}", repr(list(values)) if
@@ -120,7 +129,7 @@ class ForceSpec:
     piston: object = None
 
 
-def _link_number(sec, key, topo, frame):
+def _link_number(sec: Section, key: str, topo: Topology, frame: int) -> int:
     n = sec.integer(key, lo=1)
     if n == frame:
         raise sec.error(key, "a moving link (the frame carries no inertia or loads)",
@@ -131,8 +140,10 @@ def _link_number(sec, key, topo, frame):
     return n
 
 
-def _place(sec, key, from_key, topo, link, allow_mid):
-    """A point fixed on ``link``: ``(origin, along, normal)``; along None = midpoint."""
+def _place(sec: Section, key: str, from_key: str, topo: Topology, link: int,
+           allow_mid: bool) -> Optional[Tuple[str, Any, Any]]:
+    """A point fixed on ``link``: ``(origin, along, normal)``; along None = midpoint
+    (then normal None too; else both floats [m])."""
     raw = sec.raw(key, "mid" if allow_mid else None)
     origin = sec.name(from_key, None)
     if origin is not None and link not in topo.members.get(origin, ()):
@@ -160,7 +171,7 @@ def _place(sec, key, from_key, topo, link, allow_mid):
     return origin or topo.frames[link][0], xy[0] * sec.unit, xy[1] * sec.unit
 
 
-def read_gravity(root):
+def read_gravity(root: Section) -> Tuple[float, float]:
     """``[gravity] g, angle`` -> (gx, gy) [m/s^2]; (0, 0) without the table."""
     if not root.has("gravity"):
         return (0.0, 0.0)
@@ -174,7 +185,7 @@ def read_gravity(root):
     return grav
 
 
-def read_bodies(root, topo, frame):
+def read_bodies(root: Section, topo: Topology, frame: int) -> Dict[int, Body]:
     """``[[link]]`` tables -> ``{link: Body}`` (mass, J about the centre of mass, com)."""
     bodies = {}
     for t in root.tables("link", []):
@@ -186,6 +197,7 @@ def read_bodies(root, topo, frame):
             raise t.error("mass", f"a positive mass [kg] up to {MAX_MASS:g}", f"{mass:g}")
         J = t.number("J", 0.0, nonneg=True, hi=MAX_INERTIA)
         place = _place(t, "com", "com_from", topo, n, allow_mid=True)
+        assert place is not None   # (allow_mid: "mid" by default, never None)
         origin, along, normal = place
         if along is None:  # the default midpoint
             bodies[n] = Body(n, mass, J)
@@ -195,8 +207,9 @@ def read_bodies(root, topo, frame):
     return bodies
 
 
-def read_loads(root, topo, frame, rotary, quantities, span=None, pressure=False,
-               direction=1):
+def read_loads(root: Section, topo: Topology, frame: int, rotary: bool,
+               quantities: Iterable[Quantity], span: Optional[Tuple[float, float]] = None,
+               pressure: bool = False, direction: int = 1) -> Tuple[LoadProgram, ...]:
     """``[[load]]`` tables -> LoadProgram tuple (windows in degrees of a rotary input).
 
     With ``pressure`` a load may be a gas pressure on a piston (``mechcli force``;
@@ -313,7 +326,9 @@ _PRESSURE_FORMS = ("a pressure (a number) or a table {angle|fraction|x = [...], 
                    "[...]} or {fraction|x = [...], strokes = [[...], [...]]}")
 
 
-def _pressure_curve(t, key, scale, rotary, span, piston, direction=1):
+def _pressure_curve(t: Section, key: str, scale: float, rotary: bool,
+                    span: Optional[Tuple[float, float]], piston: Piston,
+                    direction: int = 1) -> PressureCurve:
     """``pressure`` (a number or a table) -> :class:`PressureCurve` [Pa]."""
     from mechcli.core.linkage.piston import PressureCurve
 
@@ -372,7 +387,8 @@ def _pressure_curve(t, key, scale, rotary, span, piston, direction=1):
         whole = [c for c in (360.0, 720.0) if abs(width - c) <= 1e-9 * c]
         pt.finish()
         lo, hi = sorted(math.degrees(v) for v in span) if span is not None else (None, None)
-        spans = span is not None and xs[0] <= lo + 1e-9 and xs[-1] >= hi - 1e-9
+        # (lo and hi are floats when span is given)
+        spans = span is not None and xs[0] <= lo + 1e-9 and xs[-1] >= hi - 1e-9  # type: ignore[operator]
         # a whole cycle repeats when both ends give the same pressure (they are the same
         # crank position); with unequal ends it is read as it stands, over the input it spans
         if whole and ys[0] == ys[-1]:
@@ -407,7 +423,8 @@ def _pressure_curve(t, key, scale, rotary, span, piston, direction=1):
                          direction=-1 if direction < 0 else 1)
 
 
-def _gas_load(t, name, link, topo, rotary, span, direction=1):
+def _gas_load(t: Section, name: str, link: int, topo: Topology, rotary: bool,
+              span: Optional[Tuple[float, float]], direction: int = 1) -> Tuple[GasLoad, Load]:
     """A pressure load on a piston -> ``(GasLoad, Load)`` (the load's components are
     the unit vector of the line of stroke toward the crank; the source scales them)."""
     from mechcli.core.linkage.kinetostatics import Load
@@ -460,7 +477,7 @@ def _gas_load(t, name, link, topo, rotary, span, direction=1):
     return GasLoad(piston, head, area, crank, rod_area), load
 
 
-def _force_load(t, name, link, topo):
+def _force_load(t: Section, name: str, link: int, topo: Topology) -> Load:
     """A force and/or torque load (``force``/``magnitude``, ``torque``, ``at``)."""
     from mechcli.core.linkage.kinetostatics import Load
 
@@ -490,7 +507,7 @@ def _force_load(t, name, link, topo):
     return Load(name, link, fx, fy, torque, origin, along, normal, relative)
 
 
-def _output(sec, inp):
+def _output(sec: Section, inp: InputSpec) -> ForceOutput:
     unit = math.pi / 180 if inp.rotary else sec.unit
     span = (inp.stop - inp.start) / unit
     # a table row per step: at most the sweep's own number of positions
@@ -511,7 +528,7 @@ def _output(sec, inp):
     if len(at) > 100:
         raise sec.error("at", "at most 100 input positions", f"{len(at)}")
     lo, hi = sorted((inp.start / unit, inp.stop / unit))
-    named = {}
+    named: Dict[float, int] = {}
     for i, v in enumerate(at):
         if not lo - 1e-9 <= v <= hi + 1e-9:
             raise SpecError(sec.file, sec.key(f"at[{i}]"), f"an input within the analysed "
@@ -534,7 +551,7 @@ def _output(sec, inp):
 MOMENT_ARMS = ("exact", "series")
 
 
-def read_approximate(root, model):
+def read_approximate(root: Section, model: str) -> str:
     """``[approximate]`` -> the moment arm of the approximate model's T and FT:
     ``"exact"`` (the default: the rod's force on the crank pin) or ``"series"``
     (T = FP · r (sin θ + sin 2θ / 2n), docs/approximate.md).  The table belongs to
@@ -553,12 +570,12 @@ def read_approximate(root, model):
     return arm
 
 
-def load_force_spec(path, overrides=()) -> ForceSpec:
+def load_force_spec(path: Union[str, os.PathLike], overrides: Iterable[str] = ()) -> ForceSpec:
     """Read and validate a ``mechcli force`` spec (exit 2 on any error)."""
     return read_force_root(load_spec(path, overrides))
 
 
-def read_force_root(root) -> ForceSpec:
+def read_force_root(root: Section) -> ForceSpec:
     """:func:`load_force_spec` on a root table already loaded (``optimize``
     reads its problem's tables this way)."""
     from mechcli.core.linkage.kinematics import default_quantities
@@ -591,7 +608,9 @@ def read_force_root(root) -> ForceSpec:
     arm = read_approximate(root, model)
     expected = read_expected(root)
     root.finish()
-    piston = next((p.source.piston for p in loads if p.source is not None), None)
+    # (a load's source is a GasLoad, typed object in LoadProgram)
+    piston = next((p.source.piston for p in loads  # type: ignore[attr-defined]
+                   if p.source is not None), None)
     if model == "approximate":
         from mechcli.core.linkage.piston import Piston
         piston = Piston.of(linkage, 3)      # the slider-crank preset's slider

@@ -11,11 +11,15 @@ solves them, ``mechcli.report.gear`` words what the spec forbids.
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING, Any, Iterable, List, Optional, Tuple, Union
 
 from mechcli.core.records import record
 from mechcli.spec.common import Header, read_expected, read_header
 from mechcli.spec.errors import SpecError, closest
 from mechcli.spec.reader import MAX_LENGTH, MIN_LENGTH, Section, load_spec
+
+if TYPE_CHECKING:
+    import os
 
 #: most points of an involute curve or table (larger is a mistyped step, not a wish)
 MAX_POINTS = 1_000_000
@@ -45,19 +49,19 @@ COEFFICIENT = (0.0, 45.0)
 INVOLUTE_DEG = (0.0, 89.0)
 
 
-def _teeth(sec: Section, name, lo=1, hi=10000):
+def _teeth(sec: Section, name: str, lo: int = 1, hi: int = 10000) -> int:
     """A tooth number: an integer in [1, 10000] (a float such as 20.5, or 0, is an error)."""
     return sec.integer(name, lo=lo, hi=hi)
 
 
-def _tooth_numbers(sec: Section):
+def _tooth_numbers(sec: Section) -> Tuple[int, int]:
     """z1 and z2 of a pair.  Both are declared first, so a missing z1 is reported as
     missing, not as a misspelling of the z2 that follows it."""
     sec.declare("z1", "z2")
     return _teeth(sec, "z1"), _teeth(sec, "z2")
 
 
-def _exactly_one(sec: Section, a, b, va, vb, why=""):
+def _exactly_one(sec: Section, a: str, b: str, va: object, vb: object, why: str = "") -> None:
     """Refuse both or neither of the alternative keys *a*, *b* (values *va*, *vb*).
 
     Neither, next to a key nobody reads that is close to one of them: name that key and
@@ -75,7 +79,8 @@ def _exactly_one(sec: Section, a, b, va, vb, why=""):
     raise sec.error(a, want, "both" if va is not None else "neither")
 
 
-def _degrees(sec: Section, name, default, bounds, positive=False, open_hi=False):
+def _degrees(sec: Section, name: str, default: Optional[float], bounds: Tuple[float, float],
+             positive: bool = False, open_hi: bool = False) -> Any:
     """An angle in degrees within *bounds* (declared on the accessor); returned in degrees.
 
     ``positive`` excludes the lower bound 0 (a step, a span); ``open_hi`` the upper one."""
@@ -87,21 +92,21 @@ def _degrees(sec: Section, name, default, bounds, positive=False, open_hi=False)
     return value
 
 
-def _pressure_angle(sec: Section, name="alpha_deg", default=20.0):
+def _pressure_angle(sec: Section, name: str = "alpha_deg", default: float = 20.0) -> float:
     """A pressure angle in degrees, within PRESSURE_ANGLE_DEG; returned in radians."""
     return math.radians(_degrees(sec, name, default, PRESSURE_ANGLE_DEG, open_hi=True))
 
 
-def _coefficient(sec: Section, name, default):
+def _coefficient(sec: Section, name: str, default: float) -> float:
     """A tooth-system coefficient (ha*, c*) within COEFFICIENT."""
     return sec.number(name, default, lo=COEFFICIENT[0], hi=COEFFICIENT[1])
 
 
-def _module(sec: Section, name="m"):
+def _module(sec: Section, name: str = "m") -> float:
     return sec.length(name)   # positive, converted to metres
 
 
-def _one_or_many(sec: Section, name):
+def _one_or_many(sec: Section, name: str) -> List[float]:
     """A number or an array of numbers; returns a list (empty if absent)."""
     raw = sec.raw(name, None)
     if raw is None:
@@ -111,7 +116,7 @@ def _one_or_many(sec: Section, name):
     return [sec.number(name, positive=True)]
 
 
-def _lengths(sec: Section, name):
+def _lengths(sec: Section, name: str) -> List[float]:
     """A length or an array of lengths in the spec's unit, returned in metres (empty if
     absent); each within the lengths mechcli accepts (``reader.MIN_LENGTH`` …
     ``MAX_LENGTH``, as :meth:`Section.length`)."""
@@ -123,7 +128,7 @@ def _lengths(sec: Section, name):
     return [v * sec.unit for v in values]
 
 
-def _angles(sec: Section, name, bounds):
+def _angles(sec: Section, name: str, bounds: Tuple[float, float]) -> List[float]:
     """An angle or an array of angles in degrees within *bounds*, in radians."""
     values = _one_or_many(sec, name)
     lo, hi = bounds
@@ -143,7 +148,7 @@ class ToothSystem:
     c_star: float
 
 
-def _tooth_system(sec: Section, c_default=0.25):
+def _tooth_system(sec: Section, c_default: float = 0.25) -> ToothSystem:
     m = _module(sec)
     alpha = _pressure_angle(sec)
     ha = _coefficient(sec, "ha_star", 1.0)
@@ -151,20 +156,21 @@ def _tooth_system(sec: Section, c_default=0.25):
     return ToothSystem(m, alpha, ha, c)
 
 
-def _shift(sec: Section, name):
+def _shift(sec: Section, name: str) -> float:
     return sec.number(name, 0.0, lo=-1.5, hi=1.5)
 
 
-def _item_keys(sec: Section, name, n):
+def _item_keys(sec: Section, name: str, n: int) -> Tuple[str, ...]:
     """Key paths of the n values of a number-or-array key (``a_w``; ``a_w[0]``, ``a_w[1]``)."""
     return tuple(sec.key(name if n == 1 else f"{name}[{i}]") for i in range(n))
 
 
-def _inv(a):
+def _inv(a: float) -> float:
     return math.tan(a) - a
 
 
-def _measurement(sec: Section, z, mn, alpha_n, xn, beta=0.0, suffix=""):
+def _measurement(sec: Section, z: int, mn: float, alpha_n: float, xn: float, beta: float = 0.0,
+                 suffix: str = "") -> Tuple[Optional[int], Optional[float], float]:
     """``k``, ``pin_diameter`` and ``thickness_allowance`` (+ *suffix*) of one gear.
 
     Bounds: k in [1, z - 1] (a span over z teeth would close around the gear); the
@@ -217,7 +223,7 @@ class Drive:
     n1_rpm: float | None = None     # a round trip through W and rad/s)
 
 
-def _drive(sec: Section):
+def _drive(sec: Section) -> Optional[Drive]:
     """``power_kW`` and ``n1_rpm`` (both or neither): the :class:`Drive`, or None."""
     sec.declare("power_kW", "n1_rpm")
     power = sec.number("power_kW", None, lo=POWER_KW[0], hi=POWER_KW[1],
@@ -314,7 +320,7 @@ class PairProblem:
     tip: str = "effective"          # "nominal": a pointed tooth's mesh ends on the tip circle
 
     @property
-    def designed(self):
+    def designed(self) -> bool:
         """z1, z2 are found from the ratio."""
         return self.ratio is not None
 
@@ -399,7 +405,7 @@ class GearSpec:
 
 
 # -- readers per kind -------------------------------------------------------------------
-def _read_involute(sec):
+def _read_involute(sec: Section) -> InvoluteProblem:
     rb = sec.length("rb")
     amax = _degrees(sec, "alpha_max_deg", 40.0, INVOLUTE_DEG, positive=True)
     step = _degrees(sec, "curve_step_deg", 0.1, INVOLUTE_DEG, positive=True)
@@ -425,7 +431,7 @@ def _read_involute(sec):
     return InvoluteProblem(rb, math.radians(amax), math.radians(step), t0, t1, ts, cols, digits)
 
 
-def _read_inverse(sec):
+def _read_inverse(sec: Section) -> InverseInvoluteProblem:
     raw = sec.raw("theta")
     if isinstance(raw, list):
         theta = sec.numbers("theta")
@@ -449,7 +455,7 @@ def _read_inverse(sec):
     return InverseInvoluteProblem(tuple(theta), method, start, eps, max_iter, rounding, sd)
 
 
-def _read_spur(sec):
+def _read_spur(sec: Section) -> SpurProblem:
     z = _teeth(sec, "z")
     ts = _tooth_system(sec)
     x = _shift(sec, "x")
@@ -467,7 +473,7 @@ def _read_spur(sec):
     return SpurProblem(z, ts, x, points, root, radii, fu, fp, k, dp, e)
 
 
-def _read_pair(sec):
+def _read_pair(sec: Section) -> PairProblem:
     ts = _tooth_system(sec)
     a_w = tuple(_lengths(sec, "a_w"))
     alpha_w = _angles(sec, "alpha_w_deg", WORKING_ANGLE_DEG)
@@ -505,7 +511,7 @@ def _read_pair(sec):
     x1, x2 = _shift(sec, "x1"), _shift(sec, "x2")
     ha1 = sec.number("ha_star1", None, lo=COEFFICIENT[0], hi=COEFFICIENT[1])
     ha2 = sec.number("ha_star2", None, lo=COEFFICIENT[0], hi=COEFFICIENT[1])
-    meas = []
+    meas: List[Tuple[Optional[int], Optional[float], float]] = []
     for i, (z, x) in enumerate(((z1, x1), (z2, x2)), start=1):
         if z is None or (i == 2 and internal) or (x_split and (i == 2 or x_split != "x1")):
             # designed teeth or shifts (the core measures them with their defaults), or a ring
@@ -547,7 +553,7 @@ def _read_pair(sec):
                        backlash, share, drive, tip)
 
 
-def _read_generation(sec):
+def _read_generation(sec: Section) -> GenerationProblem:
     z = _teeth(sec, "z")
     ts = _tooth_system(sec)
     raw = sec.raw("x", None)
@@ -572,7 +578,7 @@ def _read_generation(sec):
                              teeth, animate, points)
 
 
-def _read_helical(sec):
+def _read_helical(sec: Section) -> HelicalProblem:
     z1, z2 = _tooth_numbers(sec)
     mn = sec.length("mn")
     an = _pressure_angle(sec, "alpha_n_deg")
@@ -617,7 +623,7 @@ def _read_helical(sec):
                             "(inv a_wt = 2 tan an (xn1 + xn2)/(z1 + z2) + inv at > 0)",
                             f"xn1 + xn2 = {xn1 + xn2:g}")
     beta_rad = None if beta is None else math.radians(beta)
-    meas = []
+    meas: List[Tuple[Optional[int], Optional[float], float]] = []
     for i, (z, x) in enumerate(((z1, xn1), (z2, xn2)), start=1):
         if x_split and (i == 2 or x_split != "x1"):   # a designed shift: default measures
             for key in (f"k{i}", f"pin_diameter{i}", f"thickness_allowance{i}"):
@@ -642,7 +648,7 @@ def _read_helical(sec):
 WORM_Q = (1.0, 100.0)
 
 
-def _read_worm(sec):
+def _read_worm(sec: Section) -> WormProblem:
     z1, z2 = _tooth_numbers(sec)
     m = sec.length("m", None)
     d2 = sec.length("d2", None)
@@ -673,7 +679,9 @@ WORM_MU = (0.0, 1.0)
 WORM_FRICTION_DEG = (0.0, 45.0)
 
 
-def _worm_friction(sec, z1, z2, m, d2, q, d1, alpha, drive):
+def _worm_friction(sec: Section, z1: int, z2: int, m: Optional[float], d2: Optional[float],
+                   q: Optional[float], d1: Optional[float], alpha: float,
+                   drive: Optional[Drive]) -> Optional[float]:
     """``mu`` or ``friction_angle_deg`` (at most one; one is required with power_kW):
     the friction coefficient, or None.
 
@@ -694,8 +702,9 @@ def _worm_friction(sec, z1, z2, m, d2, q, d1, alpha, drive):
             raise sec.error("mu", "the flank friction (mu or friction_angle_deg) with "
                             "power_kW: the loads of a worm drive depend on it", "nothing")
         return None
-    m = d2 / z2 if m is None else m
-    q = d1 / m if q is None else q
+    # (_exactly_one in _read_worm: d2 is given without m, d1 without q)
+    m = d2 / z2 if m is None else m   # type: ignore[operator]
+    q = d1 / m if q is None else q    # type: ignore[operator]
     gamma = math.atan(z1 / q)
     alpha_n = math.atan(math.tan(alpha) * math.cos(gamma))
     if mu is None:
@@ -716,7 +725,7 @@ def _worm_friction(sec, z1, z2, m, d2, q, d1, alpha, drive):
     return mu
 
 
-def _read_bevel(sec):
+def _read_bevel(sec: Section) -> BevelProblem:
     z1, z2 = _tooth_numbers(sec)
     m = _module(sec)
     alpha = _pressure_angle(sec)
@@ -747,7 +756,7 @@ READERS = {"involute": _read_involute, "inverse_involute": _read_inverse, "spur"
            "worm": _read_worm, "bevel": _read_bevel}
 
 
-def read_gear_spec(path, overrides=()):
+def read_gear_spec(path: Union[str, os.PathLike], overrides: Iterable[str] = ()) -> GearSpec:
     """Read and validate a gear problem file.
 
     Returns

@@ -9,11 +9,15 @@ file (:func:`quick_spec`).
 from __future__ import annotations
 
 from pathlib import Path
+from typing import TYPE_CHECKING, Any, Collection, Iterable, Optional, Sequence, Tuple, Union
 
 from mechcli.core.records import record
 from mechcli.spec.common import Header, read_expected, read_header
 from mechcli.spec.errors import SpecError
-from mechcli.spec.reader import LENGTH_UNITS, MAX_LENGTH, MIN_LENGTH, load_spec
+from mechcli.spec.reader import LENGTH_UNITS, MAX_LENGTH, MIN_LENGTH, Section, load_spec
+
+if TYPE_CHECKING:
+    from mechcli.core.linkage.force_model import Pair
 
 PROBLEMS = ("fourbar", "slider_crank", "guide_bar", "fivebar", "rrrrp", "mobility")
 
@@ -91,7 +95,7 @@ class GrashofSpec:
     path: Path | None
 
 
-def _check_length(file, key, value, scale, signed=False):
+def _check_length(file: str, key: str, value: float, scale: float, signed: bool = False) -> float:
     """The one range check of a grashof length (a spec array item, a ``--lengths`` item,
     ``--offset``): within the lengths every reader accepts, ``reader.MIN_LENGTH`` …
     ``MAX_LENGTH`` metres (far outside, sums of squares of lengths under- or overflow and
@@ -105,27 +109,27 @@ def _check_length(file, key, value, scale, signed=False):
                     + (" in size" if signed else ""), f"{value:g} ({value * scale:g} m)")
 
 
-def _lengths(sec, name, size):
+def _lengths(sec: Section, name: str, size: int) -> Tuple[float, ...]:
     """An array of *size* lengths in the spec's unit, in metres."""
     return tuple(_check_length(sec.file, sec.key(f"{name}[{i}]"), v, sec.unit)
                  for i, v in enumerate(sec.numbers(name, size=size, positive=True)))
 
 
-def _rtol(sec):
+def _rtol(sec: Section) -> float:
     return sec.number("change_point_rtol", 1e-9, lo=0.0, hi=1e-2)
 
 
-def _curve_step(sec):
+def _curve_step(sec: Section) -> Optional[float]:
     """``curve_step`` [deg] -> radians, or None (no transmission-angle curve)."""
     step = sec.number("curve_step", None, lo=0.01, hi=90.0)
     return None if step is None else step * 3.141592653589793 / 180.0
 
 
-def _link_number(sec, name, default, n):
+def _link_number(sec: Section, name: str, default: Optional[int], n: int) -> Any:
     return sec.integer(name, default, lo=1, hi=n)
 
 
-def _read_fourbar(sec):
+def _read_fourbar(sec: Section) -> FourBarProblem:
     lengths = _lengths(sec, "lengths", 4)
     frame = _link_number(sec, "frame", 4, 4)
     neighbours = ((frame % 4) + 1, ((frame + 2) % 4) + 1)
@@ -149,7 +153,7 @@ def _read_fourbar(sec):
                           draw)
 
 
-def _read_slider(sec):
+def _read_slider(sec: Section) -> SliderCrankProblem:
     prob = SliderCrankProblem(sec.length("crank"), sec.length("coupler"),
                               sec.length("offset", 0.0, positive=False) or 0.0, _rtol(sec),
                               _curve_step(sec))
@@ -157,7 +161,7 @@ def _read_slider(sec):
     return prob
 
 
-def _read_guide(sec):
+def _read_guide(sec: Section) -> GuideBarProblem:
     prob = GuideBarProblem(sec.length("crank"), sec.length("frame"),
                            sec.length("offset", 0.0, nonneg=True) or 0.0, _rtol(sec),
                            _curve_step(sec))
@@ -165,7 +169,7 @@ def _read_guide(sec):
     return prob
 
 
-def _read_fivebar(sec):
+def _read_fivebar(sec: Section) -> FiveBarProblem:
     lengths = _lengths(sec, "lengths", 5)
     frame = _link_number(sec, "frame", 5, 5)
     nb = sorted(((frame % 5) + 1, ((frame + 3) % 5) + 1))
@@ -180,14 +184,14 @@ def _read_fivebar(sec):
     return prob
 
 
-def _read_rrrrp(sec):
+def _read_rrrrp(sec: Section) -> RRRRPProblem:
     prob = RRRRPProblem(sec.length("l1"), sec.length("l2"), sec.length("l3"),
                         sec.length("offset", 0.0, positive=False) or 0.0, _rtol(sec))
     sec.finish()
     return prob
 
 
-def _read_mobility(sec, spec_dir):
+def _read_mobility(sec: Section, spec_dir: Path) -> MobilityProblem:
     local = sec.integer("local_dof", 0, lo=0)
     redundant = sec.integer("redundant", 0, lo=0)
     kin = sec.string("kin", None)
@@ -203,9 +207,9 @@ def _read_mobility(sec, spec_dir):
         if why is not None:   # name this spec and key, not the folder or file it points to
             raise sec.error("kin", "the path of a `mechcli kin` spec (relative to this file)",
                             f"'{kin}'{why}")
-        joints, frame, drivers = _joints_from_kin(path)
+        kin_joints, frame, drivers = _joints_from_kin(path)
         sec.finish()
-        return MobilityProblem(joints, frame, local, redundant, str(kin), drivers)
+        return MobilityProblem(kin_joints, frame, local, redundant, str(kin), drivers)
     frame = sec.integer("frame", lo=0)
     if sec.has("link"):
         return _read_mobility_links(sec, frame, local, redundant)
@@ -228,7 +232,8 @@ def _read_mobility(sec, spec_dir):
     return _mobility_problem(sec, joints, frame, local, redundant, "joints")
 
 
-def _mobility_problem(sec, joints, frame, local, redundant, source):
+def _mobility_problem(sec: Section, joints: Sequence[JointSpec], frame: int, local: int,
+                      redundant: int, source: str) -> MobilityProblem:
     """The problem of the joints read (the frame among their links, the drivers checked)."""
     used = sorted({ln for j in joints for ln in j.links})
     if frame not in used:
@@ -238,7 +243,7 @@ def _mobility_problem(sec, joints, frame, local, redundant, source):
     return MobilityProblem(tuple(joints), frame, local, redundant, source, drivers)
 
 
-def _read_mobility_links(sec, frame, local, redundant):
+def _read_mobility_links(sec: Section, frame: int, local: int, redundant: int) -> MobilityProblem:
     """``[[mobility.link]]`` (number, joints) and ``[[mobility.slider]]`` (block, guide,
     name): the joints form of ``kin``'s ``type = "joints"`` without the positions (the
     structure does not depend on them); the same rule makes the pairs."""
@@ -279,7 +284,8 @@ def _read_mobility_links(sec, frame, local, redundant):
     return _mobility_problem(sec, joints, frame, local, redundant, "links")
 
 
-def _drivers(sec, joints, frame, used):
+def _drivers(sec: Section, joints: Sequence[JointSpec], frame: int,
+             used: Collection[int]) -> Tuple[int, ...]:
     """``drivers = [1, ...]``: the driving links, each joined to the frame by one lower
     pair (optional: without it only the mobility is counted)."""
     raw = sec.raw("drivers", None)
@@ -301,7 +307,7 @@ def _drivers(sec, joints, frame, used):
     return tuple(raw)
 
 
-def _joints_from_kin(path):
+def _joints_from_kin(path: Path) -> Tuple[Tuple[JointSpec, ...], int, Tuple[int, ...]]:
     """Joints of a ``mechcli kin`` spec's linkage: its kinematic pairs, revolutes
     merged by point name.
 
@@ -314,7 +320,8 @@ def _joints_from_kin(path):
     lk = load_kin_spec(path, ()).linkage
     topo = topology(lk)
     hinges, others = [], []
-    def spec_order(pr):  # the spec's element order; a dyad's pairs to known points first
+    # the spec's element order; a dyad's pairs to known points first
+    def spec_order(pr: Pair) -> Tuple[int, bool]:
         made = lk.elements[pr.element].makes()[1]
         return pr.element, pr.i in made and pr.j in made
 
@@ -330,7 +337,7 @@ def _joints_from_kin(path):
     return tuple(joints + others), lk.frame, drivers
 
 
-def read_grashof_spec(path, overrides=()):
+def read_grashof_spec(path: Union[str, Path], overrides: Iterable[str] = ()) -> GrashofSpec:
     """Load and validate a ``mechcli grashof`` spec.
 
     Raises
@@ -349,6 +356,7 @@ def read_grashof_spec(path, overrides=()):
     sec = root.table(kind)
     readers = {"fourbar": _read_fourbar, "slider_crank": _read_slider,
                "guide_bar": _read_guide, "fivebar": _read_fivebar, "rrrrp": _read_rrrrp}
+    problem: object
     if kind == "mobility":
         problem = _read_mobility(sec, Path(path).resolve().parent)
     else:
@@ -358,7 +366,8 @@ def read_grashof_spec(path, overrides=()):
     return GrashofSpec(header, kind, problem, expected, Path(path))
 
 
-def quick_spec(lengths_text, frame=None, input_link=None, offset=None, units="mm"):
+def quick_spec(lengths_text: str, frame: Optional[int] = None, input_link: Optional[int] = None,
+               offset: Optional[float] = None, units: str = "mm") -> GrashofSpec:
     """The spec of the file-less quick form ``--lengths 100,150,170,110``.
 
     Two lengths with ``--offset`` (or two lengths alone) make a slider-crank
@@ -397,7 +406,7 @@ def quick_spec(lengths_text, frame=None, input_link=None, offset=None, units="mm
         fr = 4 if frame is None else frame
         if not 1 <= fr <= 4:
             raise SpecError(where, "--frame", "a link number 1..4", repr(fr))
-        nb = ((fr % 4) + 1, ((fr + 2) % 4) + 1)
+        nb: Tuple[int, ...] = ((fr % 4) + 1, ((fr + 2) % 4) + 1)
         inp = input_link if input_link is not None else (1 if 1 in nb else nb[0])
         if inp not in nb:
             raise SpecError(where, "--input", f"a link joined to the frame {fr}: "
@@ -428,7 +437,7 @@ class BatchSpec:
     path: Path
 
 
-def read_batch_csv(path, units="mm"):
+def read_batch_csv(path: Union[str, Path], units: str = "mm") -> BatchSpec:
     """Read ``l1,l2,l3,l4[,frame,input]`` rows (an optional header line) from a CSV file.
 
     Raises
@@ -451,7 +460,7 @@ def read_batch_csv(path, units="mm"):
     numbered = [(k, ln) for k, ln in enumerate(text.splitlines(), start=1)
                 if ln.strip() and not ln.lstrip().startswith("#")]
 
-    def is_number(cell):
+    def is_number(cell: str) -> bool:
         try:
             float(cell)
         except ValueError:

@@ -23,6 +23,7 @@ from __future__ import annotations
 import functools
 import re
 from pathlib import Path
+from typing import Any, Dict, Iterable, List, Optional, Set, Tuple, Union
 
 #: the catalogue's tables that each command's keys are looked up in, first match first
 SECTIONS = {
@@ -45,13 +46,13 @@ TEMPLATES = Path(__file__).resolve().parent.parent / "templates"
 
 
 @functools.cache
-def catalogue():
+def catalogue() -> Dict[str, Any]:
     """``{table: {dotted path: text or {type: text}}}`` of ``templates/keys.toml``."""
     from mechcli.spec.reader import _toml
     return _toml().loads((TEMPLATES / "keys.toml").read_text(encoding="utf-8"))
 
 
-def entry(command, path):
+def entry(command: str, path: Iterable[str]) -> Union[str, Dict[str, str], None]:
     """The catalogue's entry (a text, or ``{type: text}``) for the key at *path* (a
     tuple of keys, no array indices) of a ``mechcli COMMAND`` spec, or None.
 
@@ -71,7 +72,7 @@ def entry(command, path):
     return None
 
 
-def text(found, tags=()):
+def text(found: Union[str, Dict[str, str], None], tags: Iterable[str] = ()) -> Optional[str]:
     """The words of a catalogue entry: for a type-dependent one, the text of the first
     of *tags* it has, else every type's text (``four_bar: …; guide_bar: …``; types of
     one text together, and one text alone when all are the same)."""
@@ -80,7 +81,7 @@ def text(found, tags=()):
     for tag in tags:
         if tag in found:
             return found[tag]
-    groups = {}
+    groups: Dict[str, List[str]] = {}
     for kind, words in found.items():
         groups.setdefault(words, []).append(kind)
     if len(groups) == 1:
@@ -88,27 +89,27 @@ def text(found, tags=()):
     return "; ".join(f"{', '.join(kinds)}: {words}" for words, kinds in groups.items())
 
 
-def describe(command, path, tags=()):
+def describe(command: str, path: Iterable[str], tags: Iterable[str] = ()) -> Optional[str]:
     """The description of the key at *path* of a ``mechcli COMMAND`` spec, or None."""
     return text(entry(command, path), tags)
 
 
 # -- the schema -----------------------------------------------------------------------
-def describe_schema(schema, command):
+def describe_schema(schema: Dict[str, Any], command: str) -> List[str]:
     """Put a ``description`` into every property of *schema* (in place); return the
     dotted paths that the catalogue does not describe."""
-    missing = []
+    missing: List[str] = []
     _describe_node(schema, command, (), missing)
     return missing
 
 
-def _alternatives(node):
+def _alternatives(node: Any) -> List[Dict[str, Any]]:
     if not isinstance(node, dict):
         return []
     return [node] + [a for a in node.get("anyOf", ()) if isinstance(a, dict)]
 
 
-def _describe_node(node, command, path, missing):
+def _describe_node(node: Any, command: str, path: Tuple[str, ...], missing: List[str]) -> None:
     for alt in _alternatives(node):
         props = alt.get("properties")
         if isinstance(props, dict):
@@ -138,7 +139,7 @@ def _describe_node(node, command, path, missing):
             _describe_node(alt["additionalProperties"], command, here, missing)
 
 
-def used_paths(schema, path=()):
+def used_paths(schema: Any, path: Tuple[str, ...] = ()) -> Set[str]:
     """Every dotted key path of *schema* (free-form keys as ``*``)."""
     out = set()
     for alt in _alternatives(schema):
@@ -159,7 +160,7 @@ _COMMENTED_HEADER = re.compile(r"^# (\[\[?)\s*([A-Za-z0-9_.]+)\s*(\]\]?)\s*$")
 _KEY = re.compile(r"^(# )?([A-Za-z_][A-Za-z0-9_]*)(\s*=\s*)(.*)$")
 
 
-def _split_comment(rest):
+def _split_comment(rest: str) -> Tuple[str, str]:
     """``(value, comment)`` of the text after ``key =``: the comment starts at the
     first ``#`` outside a string."""
     quote = None
@@ -179,7 +180,7 @@ def _split_comment(rest):
     return rest.rstrip(), ""
 
 
-def _is_value(value):
+def _is_value(value: str) -> bool:
     from mechcli.spec.reader import _toml
     tomllib = _toml()
     try:
@@ -189,7 +190,7 @@ def _is_value(value):
     return True
 
 
-def _comment(base, words):
+def _comment(base: str, words: str) -> List[str]:
     """*base* (a key line without its comment) with *words* as its comment from column
     :data:`COLUMN` (or two spaces after a longer *base*), wrapped to :data:`WIDTH`
     columns on continuation lines ``#   …`` at :data:`COLUMN`; a bracketed unit or
@@ -197,7 +198,8 @@ def _comment(base, words):
     col = COLUMN if len(base) < COLUMN - 1 else len(base) + 2
     tokens = re.sub(r"\[[^\]]*\]", lambda m: m.group(0).replace(" ", "\0"),
                     words).split(" ")
-    lines, room = [[]], max(WIDTH - col - 2, 20)
+    lines: List[List[str]] = [[]]
+    room = max(WIDTH - col - 2, 20)
     for tok in tokens:
         if lines[-1] and len(" ".join(lines[-1] + [tok])) > room:
             lines.append([])
@@ -207,7 +209,7 @@ def _comment(base, words):
     return [base.ljust(col) + "# " + text_[0]] + [" " * COLUMN + "#   " + t for t in text_[1:]]
 
 
-def _tags(text_):
+def _tags(text_: str) -> Tuple[str, ...]:
     """The string values of a template (its problem's type: ``slider_crank``,
     ``oscillating``, ``function`` …) that pick a type-dependent description."""
     from mechcli.spec.reader import _toml
@@ -217,7 +219,7 @@ def _tags(text_):
         return ()
     out = []
 
-    def walk(node):
+    def walk(node: Any) -> None:
         if isinstance(node, dict):
             for v in node.values():
                 walk(v)
@@ -230,7 +232,7 @@ def _tags(text_):
     return tuple(dict.fromkeys(out))
 
 
-def annotate(text_, command):
+def annotate(text_: str, command: str) -> str:
     """*text_* (a template of ``mechcli COMMAND``) with the catalogue's description as
     the comment of every key line and table header: live keys, and commented-out keys
     ``# key = value`` (a single space after ``#``, a valid TOML value).  The comments
@@ -286,7 +288,7 @@ def annotate(text_, command):
     return "\n".join(out) + "\n"
 
 
-def template_files():
+def template_files() -> Dict[Path, str]:
     """``{path: command}`` of the shipped templates (``<command>.toml`` and
     ``<command>.<type>.toml``)."""
     out = {}
@@ -297,7 +299,7 @@ def template_files():
     return out
 
 
-def main():
+def main() -> None:
     """Rewrite the comments of every shipped template from the catalogue."""
     for path, command in template_files().items():
         old = path.read_text(encoding="utf-8")

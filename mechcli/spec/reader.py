@@ -12,13 +12,20 @@ from __future__ import annotations
 import math
 import re
 import sys
+from typing import TYPE_CHECKING, Any, Collection, Dict, Iterable, List, Optional, Tuple, Union
 
 from mechcli.spec.errors import SpecError, closest, slip
+
+if TYPE_CHECKING:
+    import os
+    from types import ModuleType
+
+    from mechcli.spec.schema import Recorder
 
 REQUIRED = object()
 
 
-def _toml():
+def _toml() -> ModuleType:
     """``tomllib`` (``tomli`` before Python 3.11), imported on first use: the quick forms
     (``grashof --lengths``) read no file and skip its ~3 ms of import."""
     if sys.version_info >= (3, 11):
@@ -28,7 +35,7 @@ def _toml():
     return tomllib
 
 
-def __getattr__(name):
+def __getattr__(name: str) -> Any:
     # ``from mechcli.spec.reader import tomllib`` (spec/schema.py) still works
     if name == "tomllib":
         return _toml()
@@ -46,7 +53,7 @@ NAME_RULE = (f"a name of 1 to {NAME_MAX} letters (any script: Latin, Greek, CJK)
              "digits 0-9 or '_'")
 
 
-def is_name(value):
+def is_name(value: object) -> bool:
     """Is *value* a name: 1 to :data:`NAME_MAX` characters, each a Unicode letter,
     an ASCII digit or ``_``?
 
@@ -59,7 +66,7 @@ def is_name(value):
             and all(c == "_" or "0" <= c <= "9" or c.isalpha() for c in value))
 
 
-def _describe_name(value, limit=40):
+def _describe_name(value: object, limit: int = 40) -> str:
     """*value* for a message: a string escaped (one line) and cut after *limit* characters."""
     if not isinstance(value, str):
         return _describe(value)
@@ -70,7 +77,7 @@ def _describe_name(value, limit=40):
     return f"{value[:limit]!r}... (a string of {len(value):,} characters)"
 
 
-def _describe(value):
+def _describe(value: object) -> str:
     if isinstance(value, bool):
         return f"{str(value).lower()} (a boolean)"
     if isinstance(value, str):
@@ -84,14 +91,14 @@ def _describe(value):
     return repr(value)
 
 
-def _symbol(key):
+def _symbol(key: str) -> Optional[Tuple[str, str]]:
     """``(first letter, trailing digits)`` of a key such as ``l2`` or ``omega1``, or None
     when the key does not end in digits."""
     m = re.fullmatch(r"([^\W\d_]).*?(\d+)", str(key))
     return (m.group(1).lower(), m.group(2)) if m else None
 
 
-def _same_symbol(name, candidates):
+def _same_symbol(name: str, candidates: Iterable[str]) -> List[str]:
     """``[candidate]`` when exactly one of *candidates* spells *name* out with the same
     first letter and the same link number (``lenght2``, ``length2``, ``len2`` for ``l2``),
     where :func:`difflib.get_close_matches` finds them too far apart; else ``[]``."""
@@ -112,7 +119,7 @@ _ANGLE_UNITS = {"deg", "degree", "degrees", "°", "rad", "radian", "radians"}
 _RPM_KEYS = ("n1", "n1_rpm", "n0_rpm", "n_end_rpm", "n_mean_rpm")
 
 
-def _unit_words(sec, name, value, length):
+def _unit_words(sec: Section, name: str, value: object, length: bool) -> Optional[str]:
     """What a valid value looks like when *value* is a number with a unit inside a string
     (``"101.6 mm"``, ``"250 rpm"``): units are not written in values, so say how they are
     given (lengths in the file's ``units``, angles in degrees, a speed in rpm by its own
@@ -150,7 +157,7 @@ def _unit_words(sec, name, value, length):
             f"the comments of `mechcli new` give)")
 
 
-def _other_form_key(path, name):
+def _other_form_key(path: str, name: str) -> bool:
     """Is *name* a key that another form of the table at *path* takes (the shipped
     schemas: :func:`mechcli.spec.unknown.taken_by_another_form`)?"""
     from mechcli.spec.unknown import taken_by_another_form
@@ -160,7 +167,7 @@ def _other_form_key(path, name):
         return False
 
 
-def parse_override(file, text):
+def parse_override(file: str, text: str) -> Tuple[str, Any]:
     """Split ``KEY=VALUE``; VALUE in TOML syntax (bare words become strings)."""
     key, sep, raw = text.partition("=")
     key = key.strip()
@@ -180,10 +187,10 @@ def parse_override(file, text):
     return key, value
 
 
-def apply_override(file, data, key, value):
+def apply_override(file: str, data: Dict[str, Any], key: str, value: object) -> None:
     """Set ``data[a][b][c] = value`` for key ``a.b.c``; integers index arrays."""
     parts = key.split(".")
-    node = data
+    node: Any = data
     for i, part in enumerate(parts[:-1]):
         if isinstance(node, list):
             if not part.isdigit() or int(part) >= len(node):
@@ -206,7 +213,7 @@ def apply_override(file, data, key, value):
         node[last] = value
 
 
-def load_spec(path, overrides=()):
+def load_spec(path: Union[str, os.PathLike], overrides: Iterable[str] = ()) -> Section:
     """Read a TOML problem file and apply ``--set`` overrides.
 
     Parameters
@@ -251,9 +258,10 @@ def load_spec(path, overrides=()):
     return root
 
 
-def _recorded_root(file, overrides):
+def _recorded_root(file: str, overrides: Iterable[str]) -> Section:
     """The root of the in-memory spec that :mod:`mechcli.spec.schema` is probing."""
     import copy
+    assert Section.recorder is not None   # (load_spec calls it only while recording)
     root = Section(copy.deepcopy(Section.recorder.data), file, "")
     root.overridden = frozenset()
     return root
@@ -279,36 +287,37 @@ class Section:
 
     #: a recorder while :mod:`mechcli.spec.schema` runs a reader to learn its keys
     #: (``None`` otherwise: then every accessor costs one attribute test more)
-    recorder = None
+    recorder: Optional[Recorder] = None
 
-    def __init__(self, data, file, path, unit=1.0):
+    def __init__(self, data: Dict[str, Any], file: str, path: str, unit: float = 1.0) -> None:
         self.data = data
         self.file = file
         self.path = path
         self.unit = unit
-        self._known = set()
-        self._declared = set()
-        self.overridden = frozenset()  # dotted keys set by --set (shared by sub-tables)
+        self._known: set[str] = set()
+        self._declared: set[str] = set()
+        #: dotted keys set by --set (shared by sub-tables)
+        self.overridden: frozenset[str] = frozenset()
 
-    def declare(self, *names):
+    def declare(self, *names: str) -> None:
         """Name keys that a later accessor will read (so a missing key is not
         mistaken for a misspelling of one of them)."""
         self._declared.update(names)
 
     # -- helpers ---------------------------------------------------------
-    def key(self, name):
+    def key(self, name: str) -> str:
         return f"{self.path}.{name}" if self.path else name
 
-    def error(self, name, expected, got):
+    def error(self, name: str, expected: str, got: str) -> SpecError:
         return SpecError(self.file, self.key(name), expected, got)
 
-    def has(self, name):
+    def has(self, name: str) -> bool:
         if self.recorder is not None:
             self.recorder.key(self, name, "has", None)
         self._known.add(name)
         return name in self.data
 
-    def _get(self, name, default):
+    def _get(self, name: str, default: Any) -> Any:
         self._known.add(name)
         if name in self.data:
             return self.data[name]
@@ -329,8 +338,9 @@ class Section:
         return default
 
     # -- typed accessors ---------------------------------------------------
-    def number(self, name, default=REQUIRED, *, positive=False, nonneg=False,
-               lo=None, hi=None, expected=None):
+    def number(self, name: str, default: Any = REQUIRED, *, positive: bool = False,
+               nonneg: bool = False, lo: Optional[float] = None, hi: Optional[float] = None,
+               expected: Optional[str] = None) -> Any:
         """A finite real number (int or float) with optional bounds."""
         if self.recorder is not None:
             self.recorder.key(self, name, "number", default, positive=positive, nonneg=nonneg,
@@ -338,8 +348,9 @@ class Section:
         return self._number(name, default, positive=positive, nonneg=nonneg, lo=lo, hi=hi,
                             expected=expected)
 
-    def _number(self, name, default=REQUIRED, *, positive=False, nonneg=False,
-                lo=None, hi=None, expected=None, length=False):
+    def _number(self, name: str, default: Any = REQUIRED, *, positive: bool = False,
+                nonneg: bool = False, lo: Optional[float] = None, hi: Optional[float] = None,
+                expected: Optional[str] = None, length: bool = False) -> Any:
         value = self._get(name, default)
         if value is None or (value is default and default is not REQUIRED):
             return value
@@ -358,7 +369,8 @@ class Section:
             raise self.error(name, want, _describe(value))
         return value
 
-    def length(self, name, default=REQUIRED, *, positive=True, nonneg=False):
+    def length(self, name: str, default: Any = REQUIRED, *, positive: bool = True,
+               nonneg: bool = False) -> Any:
         """A length in the spec's unit, returned in metres.
 
         Lengths must lie within [MIN_LENGTH, MAX_LENGTH] metres (zero allowed
@@ -378,7 +390,7 @@ class Section:
                              f"{value:g} ({metres:g} m)")
         return metres
 
-    def coordinate(self, name, default=REQUIRED):
+    def coordinate(self, name: str, default: Any = REQUIRED) -> Any:
         """A signed length or coordinate in the spec's unit, returned in metres
         (|value| at most MAX_LENGTH metres)."""
         if self.recorder is not None:
@@ -389,7 +401,8 @@ class Section:
             return value
         return value * self.unit
 
-    def integer(self, name, default=REQUIRED, *, lo=None, hi=None):
+    def integer(self, name: str, default: Any = REQUIRED, *, lo: Optional[int] = None,
+                hi: Optional[int] = None) -> Any:
         if self.recorder is not None:
             self.recorder.key(self, name, "integer", default, lo=lo, hi=hi)
         value = self._get(name, default)
@@ -404,7 +417,8 @@ class Section:
             raise self.error(name, want, _describe(value))
         return value
 
-    def string(self, name, default=REQUIRED, *, choices=None):
+    def string(self, name: str, default: Any = REQUIRED, *,
+               choices: Optional[Collection[str]] = None) -> Any:
         if self.recorder is not None:
             self.recorder.key(self, name, "string", default, choices=choices)
         value = self._get(name, default)
@@ -421,7 +435,7 @@ class Section:
                             closest(value, choices))
         return value
 
-    def name(self, name, default=REQUIRED):
+    def name(self, name: str, default: Any = REQUIRED) -> Any:
         """A name that becomes a file name, a CSV column or a JSON key: see
         :func:`is_name` (:data:`NAME_RULE`)."""
         if self.recorder is not None:
@@ -431,18 +445,18 @@ class Section:
             return value
         return self.check_name(name, value)
 
-    def check_name(self, key, value):
+    def check_name(self, key: Optional[str], value: object) -> str:
         """*value* if it is a name (:func:`is_name`); else a :class:`SpecError` naming
         *key* (an array item such as ``points[0]``), or with *key* ``None`` naming this
         table, whose keys are the names (``[mechanism.ground]``)."""
         if is_name(value):
-            return value
+            return value   # type: ignore[return-value]  # (is_name: a str)
         if key is None:
             raise SpecError(self.file, self.path, "keys that are names: " + NAME_RULE,
                             _describe_name(value))
         raise self.error(key, NAME_RULE, _describe_name(value))
 
-    def boolean(self, name, default=REQUIRED):
+    def boolean(self, name: str, default: Any = REQUIRED) -> Any:
         if self.recorder is not None:
             self.recorder.key(self, name, "boolean", default)
         value = self._get(name, default)
@@ -450,7 +464,8 @@ class Section:
             raise self.error(name, "true or false", _describe(value))
         return value
 
-    def numbers(self, name, default=REQUIRED, *, size=None, positive=False):
+    def numbers(self, name: str, default: Any = REQUIRED, *, size: Optional[int] = None,
+                positive: bool = False) -> Any:
         """An array of finite numbers, of exactly *size* items if given."""
         if self.recorder is not None:
             self.recorder.key(self, name, "numbers", default, size=size, positive=positive)
@@ -472,8 +487,9 @@ class Section:
             out.append(float(item))
         return out
 
-    def rows(self, name, default=REQUIRED, *, width=2, count=None, lo=None, hi=None,
-             row=None):
+    def rows(self, name: str, default: Any = REQUIRED, *, width: int = 2,
+             count: Union[int, Tuple[int, Optional[int]], None] = None, lo: Optional[float] = None,
+             hi: Optional[float] = None, row: Optional[str] = None) -> Any:
         """An array of rows of *width* finite numbers (points ``[x, y]``, poses
         ``[x, y, phi]``): ``count`` rows exactly (an int), or between ``count[0]``
         and ``count[1]``; *lo*/*hi* bound every number; *row* names a row's items
@@ -507,7 +523,8 @@ class Section:
             out.append([float(x) for x in items])
         return out
 
-    def strings(self, name, default=REQUIRED, *, choices=None):
+    def strings(self, name: str, default: Any = REQUIRED, *,
+                choices: Optional[Collection[str]] = None) -> Any:
         if self.recorder is not None:
             self.recorder.key(self, name, "strings", default, choices=choices)
         value = self._get(name, default)
@@ -523,7 +540,7 @@ class Section:
                                     _describe(v), closest(v, choices))
         return list(value)
 
-    def table(self, name, default=REQUIRED):
+    def table(self, name: str, default: Any = REQUIRED) -> Any:
         """A sub-table as a :class:`Section` (``None`` if absent and optional)."""
         if self.recorder is not None:
             self.recorder.key(self, name, "table", default)
@@ -536,11 +553,11 @@ class Section:
         sub.overridden = self.overridden
         return sub
 
-    def is_overridden(self, name):
+    def is_overridden(self, name: str) -> bool:
         """Was this key given by ``--set`` (rather than the file)?"""
         return self.key(name) in self.overridden
 
-    def tables(self, name, default=REQUIRED):
+    def tables(self, name: str, default: Any = REQUIRED) -> Any:
         """An array of tables, as a list of :class:`Section`."""
         if self.recorder is not None:
             self.recorder.key(self, name, "tables", default)
@@ -557,18 +574,18 @@ class Section:
             sub.overridden = self.overridden
         return out
 
-    def raw(self, name, default=REQUIRED):
+    def raw(self, name: str, default: Any = REQUIRED) -> Any:
         """The untyped value (the caller validates it)."""
         if self.recorder is not None:
             self.recorder.key(self, name, "raw", default)
         return self._get(name, default)
 
-    def keys(self):
+    def keys(self) -> List[str]:
         if self.recorder is not None:
             self.recorder.freeform(self)
         return list(self.data)
 
-    def finish(self):
+    def finish(self) -> None:
         """Reject every key that no accessor asked for."""
         if self.recorder is not None:
             self.recorder.finished(self)
@@ -584,14 +601,14 @@ class Section:
                                 "a known key" + (f" of [{self.path}]" if self.path else ""),
                                 f"unknown key '{name}'", hint)
 
-    def _discriminated(self):
+    def _discriminated(self) -> Optional[Tuple[str, str]]:
         """The ``(key, value)`` of this table's form (``type = "slider_crank"``, ``kind =
         "function"``), when the reader has read one; else None."""
         return next(((k, v) for k, v in self.data.items()
                      if k in ("type", "kind") and isinstance(v, str) and k in self._known),
                     None)
 
-    def _other_form(self, name):
+    def _other_form(self, name: str) -> SpecError:
         """The error for *name*, a key this table takes in another of its forms (``l3``
         of a four-bar in a slider-crank's ``[mechanism]``): "slider_crank has no l3",
         with the keys this form reads, and no did-you-mean of a different key."""
@@ -605,7 +622,7 @@ class Section:
                          f"a key of {kind[0]} = \"{kind[1]}\" ({keys})",
                          f"'{name}': {kind[1]} has no {name}")
 
-    def set_unit_from(self, name="units", default="mm"):
+    def set_unit_from(self, name: str = "units", default: Any = "mm") -> str:
         """Read the declared length unit and set it for this and later sub-tables."""
         unit = self.string(name, default, choices=list(LENGTH_UNITS))
         if unit not in LENGTH_UNITS:   # a default handed on from another spec (a base)

@@ -33,6 +33,19 @@ import copy
 import json
 import warnings
 from pathlib import Path
+from typing import (
+    Any,
+    Callable,
+    Collection,
+    Dict,
+    Iterable,
+    List,
+    Optional,
+    Sequence,
+    Set,
+    Tuple,
+    Union,
+)
 
 from mechcli.spec.errors import SpecError
 from mechcli.spec.reader import REQUIRED, Section
@@ -52,27 +65,33 @@ _JSON_TYPE = {bool: "boolean", int: "integer", float: "number", str: "string", l
 DRAFT = "http://json-schema.org/draft-07/schema#"
 
 
-def _json_type(value):
+def _json_type(value: object) -> str:
     return _JSON_TYPE.get(type(value), "string")
 
 
 class Recorder:
     """Collects what the accessors of :class:`Section` see during the probe runs."""
 
-    def __init__(self):
+    #: the key each run was refused at ("" the whole file, None refused by the core)
+    errors: Dict[int, Optional[str]]
+    #: the runs read without error
+    ok: Set[int]
+
+    def __init__(self) -> None:
         self.file = PROBE_FILE
-        self.data = None
+        self.data: Any = None
         self.run = -1
-        self.events = []       # (run, path, key, kind, default, present value type, opts)
-        self.finishes = set()  # (run, path)
-        self.free = set()      # paths of free-form tables
-        self.last_missing = None
+        #: (run, path, key, kind, default, present value type, opts)
+        self.events: List[tuple] = []
+        self.finishes: Set[tuple] = set()  # (run, path)
+        self.free: Set[Tuple[str, ...]] = set()      # paths of free-form tables
+        self.last_missing: Optional[tuple] = None
 
     @staticmethod
-    def _parts(sec):
+    def _parts(sec: Section) -> Tuple[str, ...]:
         return tuple(sec.path.split(".")) if sec.path else ()
 
-    def key(self, sec, name, kind, default, **opts):
+    def key(self, sec: Section, name: str, kind: str, default: Any, **opts: Any) -> None:
         if sec.file != self.file:
             return
         value = sec.data.get(name, None) if isinstance(sec.data, dict) else None
@@ -81,7 +100,7 @@ class Recorder:
                             REQUIRED if default is REQUIRED else default,
                             _json_type(value) if present else None, opts))
 
-    def missing(self, sec, name):
+    def missing(self, sec: Section, name: str) -> None:
         if sec.file == self.file:
             kind, opts = "raw", {}
             for ev in reversed(self.events):
@@ -90,17 +109,17 @@ class Recorder:
                     break
             self.last_missing = (self._parts(sec), name, kind, opts)
 
-    def freeform(self, sec):
+    def freeform(self, sec: Section) -> None:
         if sec.file == self.file and sec.path:
             self.free.add(self._parts(sec))
 
-    def finished(self, sec):
+    def finished(self, sec: Section) -> None:
         if sec.file == self.file:
             self.finishes.add((self.run, self._parts(sec)))
 
 
 # -- running a reader -----------------------------------------------------------------
-def _reader(command):
+def _reader(command: str) -> Callable[[str], Any]:
     if command == "kin":
         import functools
 
@@ -131,7 +150,7 @@ def _reader(command):
     raise KeyError(command)
 
 
-def _node(data, parts, create=False):
+def _node(data: Any, parts: Iterable[str], create: bool = False) -> Any:
     node = data
     for part in parts:
         if isinstance(node, list):
@@ -143,7 +162,8 @@ def _node(data, parts, create=False):
     return node
 
 
-def _synths(kind, opts, node, avoid=frozenset()):
+def _synths(kind: str, opts: Dict[str, Any], node: Any,
+            avoid: Collection[Any] = frozenset()) -> list:
     """Values the accessor *kind* accepts (bounds and choices respected), best first.
 
     A free string takes the strings of its table first (a point name already
@@ -215,7 +235,7 @@ PROBES = {"kin": [_SLIDER, _LADDER, _LADDER_ANGLE], "force": [_SLIDER, _LADDER, 
               "slider": [{"block": 3, "guide": 4, "name": "C"}]}}]}
 
 
-def _engine(form):
+def _engine(form: Any) -> Dict[str, Any]:
     """A slider-crank engine (stroke 200 mm) whose gas load has *form* on both sides."""
     return {"units": "mm", "mechanism": {"type": "slider_crank", "l1": 100, "l2": 400},
             "input": {"omega1": 100, "step": 10},
@@ -236,8 +256,10 @@ LATE_PROBES = {"force": [_engine(f) for f in (
 _SHARED_MECHANISM = ("force", "flywheel", "optimize")
 
 
-def _seeds(command, configs=None):
-    seeds = [(dict(copy.deepcopy(p), command=command), None) for p in PROBES.get(command, ())]
+def _seeds(command: str,
+           configs: Union[str, Path, None] = None) -> List[Tuple[Dict[str, Any], Optional[str]]]:
+    seeds: List[Tuple[Dict[str, Any], Optional[str]]] = [
+        (dict(copy.deepcopy(p), command=command), None) for p in PROBES.get(command, ())]
     here = Path(__file__).resolve().parent.parent
     template = here / "templates" / f"{command}.toml"
     files = [template] if template.is_file() else []
@@ -268,7 +290,7 @@ def _seeds(command, configs=None):
     return seeds
 
 
-def _refill(filled, err):
+def _refill(filled: Dict[str, Any], err: Optional[str]) -> Optional[str]:
     """The filled key to try another value of, after an error at *err* (or None)."""
     if not err:
         return None
@@ -281,13 +303,25 @@ def _refill(filled, err):
     return err if filled[err][3] + 1 < len(filled[err][2]) else None
 
 
-def explore(command, extra_seeds=(), configs=None):
-    """Run *command*'s reader over the probe specs; return the :class:`Recorder`."""
+#: a probe waiting in the queue: (spec data, depth of mutation, the (parts, name) just
+#: set or None, the keys filled in {dotted: (parts, name, values, index)} or None, folder)
+_Probe = Tuple[Dict[str, Any], int, Optional[Tuple[Tuple[str, ...], str]],
+               Optional[Dict[str, Any]], Optional[str]]
+
+
+def explore(command: str, extra_seeds: Iterable[dict] = (),
+            configs: Union[str, Path, None] = None) -> Recorder:
+    """Run *command*'s reader over the probe specs; return the :class:`Recorder`.
+
+    Each probe is read once (:func:`_probe`); what it refused is retried with another
+    value first (:func:`_retries`), then every key it read is varied
+    (:func:`_mutations`) up to three levels deep."""
     read = _reader(command)
     rec = Recorder()
-    queue = [(copy.deepcopy(s), 0, None, None, d) for s, d in
-             [(s, None) for s in extra_seeds] + _seeds(command, configs)]
-    seen, tried = set(), {}
+    queue: list[_Probe] = [(copy.deepcopy(s), 0, None, None, d) for s, d in
+                           [(s, None) for s in extra_seeds] + _seeds(command, configs)]
+    seen: set[str] = set()
+    tried: dict[tuple, int] = {}
     rec.errors = {}
     rec.ok = set()
     old = Section.recorder
@@ -299,99 +333,126 @@ def explore(command, extra_seeds=(), configs=None):
             if sig in seen:
                 continue
             seen.add(sig)
-            rec.run += 1
-            rec.data, rec.last_missing = data, None
-            # in the seed's folder, so that a path in the spec (mobility.kin) resolves
-            rec.file = str(Path(folder) / PROBE_FILE) if folder else PROBE_FILE
-            start = len(rec.events)
-            choices = {c for e in rec.events[-200:] for c in (e[6].get("choices") or ())}
-            try:
-                with warnings.catch_warnings():
-                    warnings.simplefilter("ignore")
-                    read(rec.file)
-                rec.ok.add(rec.run)
-            except SpecError as exc:
-                rec.errors[rec.run] = exc.key or ""
-            except Exception:  # noqa: BLE001  (a probe the core refuses: records stand)
-                rec.errors[rec.run] = None
-            front = []
-            err = rec.errors.get(rec.run)
-            if rec.last_missing is not None:
-                parts, name, kind, opts = rec.last_missing
-                try:
-                    node = _node(data, parts)
-                except (KeyError, IndexError, TypeError, ValueError):
-                    node = {}
-                values = _synths(kind, opts, node, choices)
-                new = copy.deepcopy(data)
-                _node(new, parts, create=True)[name] = copy.deepcopy(values[0])
-                fills = dict(filled or {})
-                fills[".".join(parts + (name,))] = (parts, name, values, 0)
-                front.append((new, depth, mutated, fills, folder))
-            elif filled and _refill(filled, err):
-                # a value filled in was refused (stop <= start, r0 <= e, no such point),
-                # or a key of its table was refused with it: the next value
-                err = _refill(filled, err)
-                parts, name, values, i = filled[err]
-                new = copy.deepcopy(data)
-                _node(new, parts)[name] = copy.deepcopy(values[i + 1])
-                fills = dict(filled)
-                fills[err] = (parts, name, values, i + 1)
-                front.append((new, depth, mutated, fills, folder))
-            if mutated is not None and err and err.startswith(".".join(mutated[0]) + "."):
-                # refused at the key just set, or at a sibling that excludes the new value
-                # (step or points, tol or rtol, a PRP dyad's branch): try again without
-                # the sibling (each optional one in turn)
-                parts, name = mutated[0], mutated[1]
-                node = _node(data, parts)
-                here = ".".join(parts + (name,))
-                for e in rec.events[start:]:
-                    sib = ".".join(parts + (e[2],))
-                    if e[1] == parts and e[2] != name and e[2] in node \
-                            and (err == sib or (err == here and e[4] is not REQUIRED)):
-                        alt = copy.deepcopy(data)
-                        del _node(alt, parts)[e[2]]
-                        front.append((alt, depth, mutated, filled, folder))
-            queue[:0] = front
+            start, choices = _probe(rec, read, data, folder)
+            queue[:0] = _retries(rec, data, start, choices, (depth, mutated, filled, folder))
             if depth >= 3:
                 continue
-            for ev in rec.events[start:]:
-                _, parts, name, kind, default, present, opts = ev
-                fold = _fold(parts, rec.free)
-                muts = []
-                if kind == "string" and opts.get("choices"):
-                    muts = [c for c in opts["choices"]]
-                elif kind in ("table", "tables") and present is None:
-                    muts = _synths(kind, opts, {})
-                elif kind in ("has", "raw"):
-                    muts = list(CANDIDATES)
-                for v in muts:
-                    tag = (fold, name, json.dumps(v))
-                    if tried.get(tag, 0) >= TRIES:
-                        continue
-                    tried[tag] = tried.get(tag, 0) + 1
-                    new = copy.deepcopy(data)
-                    try:
-                        _node(new, parts)[name] = copy.deepcopy(v)
-                    except (KeyError, IndexError, TypeError, ValueError):
-                        continue
-                    queue.append((new, depth + 1, (parts, name), None, folder))
-                    if kind == "has" and present is None and isinstance(v, dict):
-                        # mutually exclusive tables (gear/grashof problem tables)
-                        alt = copy.deepcopy(new)
-                        node = _node(alt, parts)
-                        for e in rec.events[start:]:
-                            if e[1] == parts and e[3] == "has" and e[2] != name \
-                                    and isinstance(node.get(e[2]), dict):
-                                del node[e[2]]
-                        queue.append((alt, depth + 1, None, None, folder))
+            queue.extend(_mutations(rec, data, start, tried, depth, folder))
     finally:
         Section.recorder = old
     return rec
 
 
+def _probe(rec: Recorder, read: Callable[[str], Any], data: dict,
+           folder: Optional[str]) -> tuple[int, set]:
+    """Read *data* as the spec file once, recording its keys and whether (and at which
+    key) it was refused; ``(index of its first event, the choices seen just before)``."""
+    rec.run += 1
+    rec.data, rec.last_missing = data, None
+    # in the seed's folder, so that a path in the spec (mobility.kin) resolves
+    rec.file = str(Path(folder) / PROBE_FILE) if folder else PROBE_FILE
+    start = len(rec.events)
+    choices = {c for e in rec.events[-200:] for c in (e[6].get("choices") or ())}
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            read(rec.file)
+        rec.ok.add(rec.run)
+    except SpecError as exc:
+        rec.errors[rec.run] = exc.key or ""
+    except Exception:  # noqa: BLE001  (a probe the core refuses: records stand)
+        rec.errors[rec.run] = None
+    return start, choices
+
+
+def _retries(rec: Recorder, data: dict, start: int, choices: set,
+             state: tuple) -> list[_Probe]:
+    """The probes to read next after *data* (*state*: its depth, mutated, filled and
+    folder): a missing key filled in, a refused filled-in value replaced by the next, a
+    refused mutation tried without each sibling that may exclude it."""
+    depth, mutated, filled, folder = state
+    front: list[_Probe] = []
+    err = rec.errors.get(rec.run)
+    if rec.last_missing is not None:
+        parts, name, kind, opts = rec.last_missing
+        try:
+            node = _node(data, parts)
+        except (KeyError, IndexError, TypeError, ValueError):
+            node = {}
+        values = _synths(kind, opts, node, choices)
+        new = copy.deepcopy(data)
+        _node(new, parts, create=True)[name] = copy.deepcopy(values[0])
+        fills = dict(filled or {})
+        fills[".".join(parts + (name,))] = (parts, name, values, 0)
+        front.append((new, depth, mutated, fills, folder))
+    elif filled and _refill(filled, err):
+        # a value filled in was refused (stop <= start, r0 <= e, no such point),
+        # or a key of its table was refused with it: the next value
+        err = _refill(filled, err)
+        parts, name, values, i = filled[err]
+        new = copy.deepcopy(data)
+        _node(new, parts)[name] = copy.deepcopy(values[i + 1])
+        fills = dict(filled)
+        fills[err] = (parts, name, values, i + 1)
+        front.append((new, depth, mutated, fills, folder))
+    if mutated is not None and err and err.startswith(".".join(mutated[0]) + "."):
+        # refused at the key just set, or at a sibling that excludes the new value
+        # (step or points, tol or rtol, a PRP dyad's branch): try again without
+        # the sibling (each optional one in turn)
+        parts, name = mutated[0], mutated[1]
+        node = _node(data, parts)
+        here = ".".join(parts + (name,))
+        for e in rec.events[start:]:
+            sib = ".".join(parts + (e[2],))
+            if e[1] == parts and e[2] != name and e[2] in node \
+                    and (err == sib or (err == here and e[4] is not REQUIRED)):
+                alt = copy.deepcopy(data)
+                del _node(alt, parts)[e[2]]
+                front.append((alt, depth, mutated, filled, folder))
+    return front
+
+
+def _mutations(rec: Recorder, data: dict, start: int, tried: dict[tuple, int],
+               depth: int, folder: Optional[str]) -> list[_Probe]:
+    """The probes one level deeper: every key the last read asked for set to each of its
+    choices (a string), a synthesised table or each candidate value (``has``, ``raw``),
+    at most :data:`TRIES` times per folded key and value."""
+    out: list[_Probe] = []
+    for ev in rec.events[start:]:
+        _, parts, name, kind, default, present, opts = ev
+        fold = _fold(parts, rec.free)
+        muts: list = []
+        if kind == "string" and opts.get("choices"):
+            muts = [c for c in opts["choices"]]
+        elif kind in ("table", "tables") and present is None:
+            muts = _synths(kind, opts, {})
+        elif kind in ("has", "raw"):
+            muts = list(CANDIDATES)
+        for v in muts:
+            tag = (fold, name, json.dumps(v))
+            if tried.get(tag, 0) >= TRIES:
+                continue
+            tried[tag] = tried.get(tag, 0) + 1
+            new = copy.deepcopy(data)
+            try:
+                _node(new, parts)[name] = copy.deepcopy(v)
+            except (KeyError, IndexError, TypeError, ValueError):
+                continue
+            out.append((new, depth + 1, (parts, name), None, folder))
+            if kind == "has" and present is None and isinstance(v, dict):
+                # mutually exclusive tables (gear/grashof problem tables)
+                alt = copy.deepcopy(new)
+                node = _node(alt, parts)
+                for e in rec.events[start:]:
+                    if e[1] == parts and e[3] == "has" and e[2] != name \
+                            and isinstance(node.get(e[2]), dict):
+                        del node[e[2]]
+                out.append((alt, depth + 1, None, None, folder))
+    return out
+
+
 # -- building the schema --------------------------------------------------------------
-def _fold(parts, free):
+def _fold(parts: Sequence[str], free: Collection[Tuple[str, ...]]) -> Tuple[str, ...]:
     out = []
     for i, part in enumerate(parts):
         if tuple(parts[:i]) in free:
@@ -403,8 +464,8 @@ def _fold(parts, free):
     return tuple(out)
 
 
-def _fragment(kind, default, opts):
-    frag = {}
+def _fragment(kind: str, default: Any, opts: Dict[str, Any]) -> Dict[str, Any]:
+    frag: Dict[str, Any] = {}
     if kind in ("number", "integer"):
         frag["type"] = kind
         if opts.get("positive"):
@@ -421,7 +482,7 @@ def _fragment(kind, default, opts):
     elif kind == "boolean":
         frag["type"] = "boolean"
     elif kind == "numbers":
-        item = {"type": "number"}
+        item: Dict[str, Any] = {"type": "number"}
         if opts.get("positive"):
             item["exclusiveMinimum"] = 0
         frag.update(type="array", items=item, minItems=opts.get("size") or 1)
@@ -430,7 +491,7 @@ def _fragment(kind, default, opts):
     elif kind == "rows":
         count = opts.get("count")
         few, many = (count, count) if isinstance(count, int) else (count or (1, None))
-        num = {"type": "number"}
+        num: Dict[str, Any] = {"type": "number"}
         for word, bound in (("lo", "minimum"), ("hi", "maximum")):
             if opts.get(word) is not None:
                 num[bound] = opts[word]
@@ -451,7 +512,7 @@ def _fragment(kind, default, opts):
     return frag
 
 
-def _merge(frags):
+def _merge(frags: List[Dict[str, Any]]) -> Dict[str, Any]:
     """One schema for several accessor records of a key (union when they differ)."""
     unique = []
     for f in frags:
@@ -469,16 +530,16 @@ def _merge(frags):
     if len(types) == 1 and types <= {"number", "integer"} and all(
             set(g) <= {"type", "minimum", "maximum", "exclusiveMinimum"} for g in bare):
         # the same number read with other bounds in other branches: the loosest bounds
-        loose = {"type": bare[0]["type"]}
+        loose: Dict[str, Any] = {"type": bare[0]["type"]}
         lows = [g.get("minimum", g.get("exclusiveMinimum")) for g in bare]
         if None not in lows:
-            low = min(lows)
+            low = min(v for v in lows if v is not None)   # (none is: typed for mypy)
             strict = all(g.get("exclusiveMinimum") == low for g in bare if
                          g.get("minimum", g.get("exclusiveMinimum")) == low)
             loose["exclusiveMinimum" if strict else "minimum"] = low
         highs = [g.get("maximum") for g in bare]
         if None not in highs:
-            loose["maximum"] = max(highs)
+            loose["maximum"] = max(h for h in highs if h is not None)
         bare = [loose]
     if len(bare) == 1:
         out = dict(bare[0])
@@ -488,7 +549,7 @@ def _merge(frags):
     return {"anyOf": bare}
 
 
-def _covered(json_type, frags):
+def _covered(json_type: str, frags: Iterable[Dict[str, Any]]) -> bool:
     for f in frags:
         t = f.get("type")
         if t == json_type or (t == "number" and json_type == "integer"):
@@ -499,10 +560,12 @@ def _covered(json_type, frags):
 
 
 class _Builder:
-    def __init__(self, rec):
+    def __init__(self, rec: Recorder) -> None:
         self.rec = rec
-        self.keys = {}    # folded table path -> key -> list of events
-        self.inst = {}    # folded table path -> {(run, concrete path)}
+        #: folded table path -> key -> list of events
+        self.keys: Dict[Tuple[str, ...], Dict[str, List[tuple]]] = {}
+        #: folded table path -> {(run, concrete path)}
+        self.inst: Dict[Tuple[str, ...], Set[tuple]] = {}
         for ev in rec.events:
             run, parts, name = ev[0], ev[1], ev[2]
             fold = _fold(parts, rec.free)
@@ -510,7 +573,7 @@ class _Builder:
             self.inst.setdefault(fold, set()).add((run, parts))
         self.free = {_fold(p, rec.free) for p in rec.free}
 
-    def _rejected(self, ev):
+    def _rejected(self, ev: tuple) -> bool:
         """Did the run of *ev* fail at this very key (the value was refused)?"""
         err = self.rec.errors.get(ev[0])
         if not err:
@@ -518,7 +581,7 @@ class _Builder:
         here = ".".join(ev[1] + (ev[2],))
         return err == here or err.startswith(here + "[") or err.startswith(here + ".")
 
-    def value_schema(self, fold, name, events):
+    def value_schema(self, fold: Tuple[str, ...], name: str, events: List[tuple]) -> Dict[str, Any]:
         frags = [_fragment(e[3], e[4], e[6]) for e in events if e[3] not in ("has", "raw")]
         frags = [f for f in frags if f]
         kinds = {e[3] for e in events}
@@ -542,8 +605,8 @@ class _Builder:
             return {}  # anything goes (the reader takes any value: description, note)
         return alts[0] if len(alts) == 1 else {"anyOf": alts}
 
-    def table(self, fold):
-        out = {"type": "object"}
+    def table(self, fold: Tuple[str, ...]) -> Dict[str, Any]:
+        out: Dict[str, Any] = {"type": "object"}
         if fold in self.free:
             evs = [e for es in self.keys.get(fold, {}).values() for e in es]
             out["additionalProperties"] = self.value_schema(fold, "*", evs) if evs else True
@@ -562,7 +625,8 @@ class _Builder:
         return out
 
 
-def command_schema(command, extra_seeds=(), configs=None):
+def command_schema(command: str, extra_seeds: Iterable[Dict[str, Any]] = (),
+                   configs: Union[str, Path, None] = None) -> Dict[str, Any]:
     """The JSON Schema (a dict) of ``mechcli COMMAND``'s spec, learnt from the reader.
 
     Parameters
@@ -578,7 +642,7 @@ def command_schema(command, extra_seeds=(), configs=None):
     """
     rec = explore(command, extra_seeds, configs)
     schema = _Builder(rec).table(())
-    out = {"$schema": DRAFT,
+    out: Dict[str, Any] = {"$schema": DRAFT,
            "title": f"mechcli {command} spec",
            "description": f"A problem file for `mechcli {command}` (generated by "
                           f"`mechcli schema {command}` from the spec reader)."}
@@ -596,7 +660,7 @@ def command_schema(command, extra_seeds=(), configs=None):
 SHIPPED = Path(__file__).resolve().parent.parent / "schemas"
 
 
-def shipped_schema_text(command):
+def shipped_schema_text(command: str) -> str:
     """The shipped schema of ``command`` as JSON text: learnt by :func:`command_schema`
     in the checkout (with every config as a seed) and kept equal to it by
     ``tests/cli/test_schema.py``, so an installed mechcli prints the same schema
@@ -604,6 +668,6 @@ def shipped_schema_text(command):
     return (SHIPPED / f"{command}.json").read_text(encoding="utf-8")
 
 
-def schema_text(schema):
+def schema_text(schema: Dict[str, Any]) -> str:
     """The canonical JSON text of a schema (what is shipped and printed)."""
     return json.dumps(schema, indent=2, ensure_ascii=False) + "\n"

@@ -14,11 +14,16 @@ from __future__ import annotations
 
 import functools
 import json
+from typing import TYPE_CHECKING, Any, Dict, Iterable, List, Optional, Tuple, Union
 
 from mechcli.spec.errors import SpecError, closest
 
+if TYPE_CHECKING:
+    import os
 
-def first_unknown_key(command, path, overrides=()):
+
+def first_unknown_key(command: str, path: Union[str, os.PathLike],
+                      overrides: Iterable[str] = ()) -> Optional[SpecError]:
     """A :class:`SpecError` naming the first key of the spec at *path* (with the
     ``--set`` *overrides*) that the command's schema does not know, or None."""
     from mechcli.spec.reader import load_spec
@@ -43,7 +48,8 @@ def first_unknown_key(command, path, overrides=()):
                      f"unknown key '{key}'", swapped[0] if swapped else closest(key, known))
 
 
-def _walk(node, schema, where):
+def _walk(node: Any, schema: Any,
+          where: Tuple[str, ...]) -> Optional[Tuple[Tuple[str, ...], str, List[str]]]:
     """(path, key, known keys) of the first unknown key under *node*, depth first in
     the spec's own order; None if every key is known."""
     schema = _for(node, schema)
@@ -72,7 +78,7 @@ def _walk(node, schema, where):
     return None
 
 
-def _for(node, schema):
+def _for(node: Any, schema: Any) -> Optional[Dict[str, Any]]:
     """The part of *schema* that describes *node* (a table or an array): its own, or
     the union of its ``anyOf`` alternatives of that type; None for a plain value."""
     if not isinstance(schema, dict) or not isinstance(node, (dict, list)):
@@ -95,7 +101,7 @@ def _for(node, schema):
             "additionalProperties": False if closed else (extra or True)}
 
 
-def taken_by_another_form(path, key):
+def taken_by_another_form(path: str, key: str) -> bool:
     """Does another form of the table at the dotted *path* (``mechanism``,
     ``mechanism.dyad.0``) take *key*: is *key* a key of that table in a command's shipped
     schema, whose tables are the union of their forms (``l3`` of a four-bar in a
@@ -111,7 +117,7 @@ def taken_by_another_form(path, key):
 
 
 @functools.lru_cache(maxsize=1)
-def _shipped_schemas():
+def _shipped_schemas() -> Tuple[Dict[str, Any], ...]:
     """Every command's shipped schema (read once, on the first error that needs them)."""
     from mechcli.spec.schema import COMMANDS, shipped_schema_text
     out = []
@@ -123,13 +129,13 @@ def _shipped_schemas():
     return tuple(out)
 
 
-def _alts(node):
+def _alts(node: Any) -> List[Dict[str, Any]]:
     if not isinstance(node, dict):
         return []
     return [node] + [a for a in node.get("anyOf", ()) if isinstance(a, dict)]
 
 
-def _step(nodes, part):
+def _step(nodes: Iterable[Any], part: str) -> List[Any]:
     """The schemas of the child *part* (a key, or an index of an array) of *nodes*."""
     out = []
     for node in nodes:

@@ -11,14 +11,18 @@ angles in radians.
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING, Tuple
 
 import numpy as np
 
 from mechcli.core.gear.spur import SpurGear
 from mechcli.core.records import record
 
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
 
-def rack_outline(g: SpurGear, teeth=5):
+
+def rack_outline(g: SpurGear, teeth: int = 5) -> Tuple[np.ndarray, np.ndarray]:
     """Outline of the rack cutter, *teeth* teeth centred on u = 0 (book: 5 teeth, 20 points).
 
     Returns
@@ -37,7 +41,8 @@ def rack_outline(g: SpurGear, teeth=5):
     return u.ravel(), d.ravel()
 
 
-def cutter_positions(g: SpurGear, phi, teeth=5, body=False):
+def cutter_positions(g: SpurGear, phi: ArrayLike, teeth: int = 5,
+                     body: bool = False) -> Tuple[np.ndarray, np.ndarray]:
     """The cutter outline at gear turns *phi*, in the gear's frame (eq. 5-18 … 5-21).
 
     Parameters
@@ -67,7 +72,7 @@ def cutter_positions(g: SpurGear, phi, teeth=5, body=False):
     return c * wx + s * wy, -s * wx + c * wy
 
 
-def swept_half_space(g: SpurGear, rho, phi):
+def swept_half_space(g: SpurGear, rho: ArrayLike, phi: ArrayLike) -> np.ndarray:
     """Half-angle of the space the cutter sweeps at radius rho, by brute force (rad).
 
     For every position phi, the circle of radius rho is intersected with the
@@ -133,7 +138,7 @@ class GenerationPlan:
     phi: np.ndarray
 
 
-def generation_plan(limit, step):
+def generation_plan(limit: float, step: float) -> GenerationPlan:
     """Rolling angles 0 .. +limit then 0 .. -limit by *step* (rad), as ``gear_cut``."""
     n = int(math.floor(limit / step + 1e-9))
     up = step * np.arange(n + 1)

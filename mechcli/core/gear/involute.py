@@ -16,13 +16,14 @@ numpy is imported only by the array functions: a Python float goes through
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, List, Tuple, Union, overload
 
 from mechcli.core.errors import ConvergenceError
 from mechcli.core.records import record
 
 if TYPE_CHECKING:  # annotations only: numpy is imported lazily
     import numpy as np
+    from numpy.typing import ArrayLike
 
 #: Taylor coefficients c_n of tan(a) - a = sum c_n a^(2n+1), n = 1, 2, ...
 #: (c_n = (-1)^n 2^(2n+2) (2^(2n+2) - 1) B_(2n+2) / (2n+2)!).
@@ -44,7 +45,15 @@ BOOK_START = 0.8
 BOOK_EPSILON = 1e-7
 
 
-def involute_function(alpha):
+@overload
+def involute_function(alpha: float) -> float: ...
+
+
+@overload
+def involute_function(alpha: ArrayLike) -> Union[float, np.ndarray]: ...
+
+
+def involute_function(alpha: ArrayLike) -> Union[float, np.ndarray]:
     """inv(alpha) = tan(alpha) - alpha, accurate also for tiny angles.
 
     Parameters
@@ -77,7 +86,7 @@ def involute_function(alpha):
     return out if out.ndim else float(out)
 
 
-def _involute_scalar(a):
+def _involute_scalar(a: float) -> float:
     """inv(a) of one float, the same series/difference as the array path (math only)."""
     if abs(a) < _SERIES_LIMIT:
         a2 = a * a
@@ -92,7 +101,7 @@ def _involute_scalar(a):
 _START_SWITCH = 0.5
 
 
-def _start(theta):
+def _start(theta: np.ndarray) -> np.ndarray:
     """A starting angle within ~1e-3 relative of inv^-1(theta) for every theta >= 0."""
     import numpy as np
     y = np.cbrt(3.0 * np.minimum(theta, _START_SWITCH))
@@ -112,7 +121,7 @@ def _start(theta):
 _cbrt = getattr(math, "cbrt", None) or (lambda x: math.copysign(abs(x) ** (1.0 / 3.0), x))
 
 
-def _start_scalar(theta):
+def _start_scalar(theta: float) -> float:
     """:func:`_start` for one float (math only)."""
     if theta < _START_SWITCH:
         y = _cbrt(3.0 * theta)
@@ -148,15 +157,15 @@ class InverseInvolute:
         The starting angles (rad).
     """
 
-    theta: np.ndarray
-    alpha: np.ndarray
-    iterations: np.ndarray
-    residual: np.ndarray
+    theta: Union[np.ndarray, tuple]
+    alpha: Union[np.ndarray, tuple]
+    iterations: Union[np.ndarray, tuple]
+    residual: Union[np.ndarray, tuple]
     method: str
-    start: np.ndarray
+    start: Union[np.ndarray, tuple]
 
     @property
-    def relative_residual(self):
+    def relative_residual(self) -> np.ndarray:
         """|inv(alpha) - theta| / theta (0 where theta = 0), an array."""
         import numpy as np
         theta = np.asarray(self.theta, dtype=float)
@@ -164,7 +173,7 @@ class InverseInvolute:
         return np.abs(np.asarray(self.residual, dtype=float)) / den
 
 
-def _left_message(start, theta):
+def _left_message(start: float, theta: float) -> str:
     why = ("its first step passes pi/2 for theta > 1.0468" if start == BOOK_START else
            "the start itself is outside" if not 0 < start < math.pi / 2 else
            "a Newton step passed a bound")
@@ -172,8 +181,8 @@ def _left_message(start, theta):
             "use method = \"auto\"")
 
 
-def inverse_involute(theta, method="auto", *, start=BOOK_START, epsilon=BOOK_EPSILON,
-                     max_iter=100):
+def inverse_involute(theta: ArrayLike, method: str = "auto", *, start: float = BOOK_START,
+                     epsilon: float = BOOK_EPSILON, max_iter: int = 100) -> InverseInvolute:
     """Pressure angle alpha with inv(alpha) = theta (Newton's method, eq. 5-3, 5-4).
 
     Parameters
@@ -264,8 +273,9 @@ def inverse_involute(theta, method="auto", *, start=BOOK_START, epsilon=BOOK_EPS
                            method=method, start=a0)
 
 
-def inverse_involute_scalar(theta, method="auto", *, start=BOOK_START, epsilon=BOOK_EPSILON,
-                            max_iter=100):
+def inverse_involute_scalar(theta: float, method: str = "auto", *, start: float = BOOK_START,
+                            epsilon: float = BOOK_EPSILON,
+                            max_iter: int = 100) -> Tuple[float, int, float]:
     """:func:`inverse_involute` of one float, with ``math`` only (no numpy import).
 
     The same start, iteration and stopping rules step for step.
@@ -310,14 +320,15 @@ def inverse_involute_scalar(theta, method="auto", *, start=BOOK_START, epsilon=B
                            f"(theta = {th:.6g}, method {method})")
 
 
-def involute_point(r_b, alpha):
+def involute_point(r_b: float, alpha: float) -> Tuple[float, float, float, float]:
     """:func:`involute_curve` at one pressure angle (floats, math only): (r, theta, x, y)."""
     r = r_b / math.cos(alpha)
     th = _involute_scalar(float(alpha))
     return r, th, r * math.sin(th), r * math.cos(th)
 
 
-def involute_curve(r_b, alpha):
+def involute_curve(r_b: float,
+                   alpha: ArrayLike) -> Tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Points of the involute of a base circle, polar and Cartesian (eq. 5-1, 5-2).
 
     Parameters
@@ -341,7 +352,8 @@ def involute_curve(r_b, alpha):
     return r, th, r * np.sin(th), r * np.cos(th)
 
 
-def involute_table(start_deg=10.0, stop_deg=30.0, step_deg=0.1, columns=10):
+def involute_table(start_deg: float = 10.0, stop_deg: float = 30.0, step_deg: float = 0.1,
+                   columns: int = 10) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The involute-function table of 表 5-1 (rows of *columns* values).
 
     Parameters
@@ -372,7 +384,9 @@ def involute_table(start_deg=10.0, stop_deg=30.0, step_deg=0.1, columns=10):
     return np.array(rows), np.array(ang), np.array(inv)
 
 
-def involute_table_rows(start_deg=10.0, stop_deg=30.0, step_deg=0.1, columns=10):
+def involute_table_rows(start_deg: float = 10.0, stop_deg: float = 30.0, step_deg: float = 0.1,
+                        columns: int = 10
+                        ) -> Tuple[List[float], List[List[float]], List[List[float]]]:
     """:func:`involute_table` as lists (math only): rows, angles (deg) and values per row."""
     row_step = step_deg * columns
     n = int(round((stop_deg - start_deg) / row_step)) + 1
@@ -381,7 +395,8 @@ def involute_table_rows(start_deg=10.0, stop_deg=30.0, step_deg=0.1, columns=10)
     return rows, ang, [[_involute_scalar(math.radians(a)) for a in line] for line in ang]
 
 
-def degrees_minutes_seconds(angle, seconds_digits=0, rounding="truncate"):
+def degrees_minutes_seconds(angle: float, seconds_digits: int = 0,
+                            rounding: str = "truncate") -> Tuple[int, int, float]:
     """Split an angle into degrees, minutes and seconds as the book prints it.
 
     Parameters
@@ -414,7 +429,7 @@ def degrees_minutes_seconds(angle, seconds_digits=0, rounding="truncate"):
     return deg, minutes, round(seconds, seconds_digits)
 
 
-def format_dms(angle, seconds_digits=0, rounding="truncate"):
+def format_dms(angle: float, seconds_digits: int = 0, rounding: str = "truncate") -> str:
     """``21°58′51″`` text for an angle in radians (see :func:`degrees_minutes_seconds`)."""
     d, m, s = degrees_minutes_seconds(angle, seconds_digits, rounding)
     sec = f"{s:.{seconds_digits}f}" if seconds_digits else f"{int(s)}"

@@ -46,6 +46,7 @@ T2 = T1 i eta).
 from __future__ import annotations
 
 import math
+from typing import Optional, Tuple
 
 from mechcli.core.gear.spur import GearError
 from mechcli.core.records import record
@@ -116,20 +117,21 @@ class ToothLoads:
     sliding_velocity: float | None = None
 
     @property
-    def power_out(self):
+    def power_out(self) -> float:
         """Output power T2 omega2 (W)."""
         return self.T2 * self.omega2
 
     @property
-    def self_locking(self):
+    def self_locking(self) -> Optional[bool]:
         """Worm: the wheel cannot drive the worm (None for other kinds)."""
         if self.efficiency_reverse is None:
             return None
         return self.efficiency_reverse <= 0
 
 
-def parallel_loads(power, omega1, z1, z2, d1, d2, dw1, dw2, alpha_wt, beta=0.0,
-                   internal=False):
+def parallel_loads(power: float, omega1: float, z1: int, z2: int, d1: float, d2: float, dw1: float,
+                   dw2: float, alpha_wt: float, beta: float = 0.0,
+                   internal: bool = False) -> ToothLoads:
     """Loads of a spur (``beta = 0``) or helical pair.
 
     Parameters
@@ -166,7 +168,8 @@ def parallel_loads(power, omega1, z1, z2, d1, d2, dw1, dw2, alpha_wt, beta=0.0,
                       math.hypot(ft, fr, fa))
 
 
-def bevel_mean_diameters(d1, d2, cone_distance, face_width):
+def bevel_mean_diameters(d1: float, d2: float, cone_distance: float,
+                         face_width: float) -> Tuple[float, float]:
     """Mean diameters dm_i = d_i (1 - 0.5 b / R) of a bevel pair of face width b (m).
 
     Raises
@@ -181,8 +184,9 @@ def bevel_mean_diameters(d1, d2, cone_distance, face_width):
     return d1 * k, d2 * k
 
 
-def bevel_loads(power, omega1, z1, z2, d1, d2, cone_distance, face_width, alpha, delta1,
-                delta2):
+def bevel_loads(power: float, omega1: float, z1: int, z2: int, d1: float, d2: float,
+                cone_distance: float, face_width: float, alpha: float, delta1: float,
+                delta2: float) -> ToothLoads:
     """Loads of a straight bevel pair, acting at the middle of the face width.
 
     dm_i = d_i (1 - 0.5 b / R); Ft = 2 T1 / dm1; on gear i Fr_i = Ft tan a cos d_i
@@ -205,13 +209,13 @@ def bevel_loads(power, omega1, z1, z2, d1, d2, cone_distance, face_width, alpha,
                       ft / math.cos(alpha))
 
 
-def worm_normal_pressure_angle(alpha_x, gamma):
+def worm_normal_pressure_angle(alpha_x: float, gamma: float) -> float:
     """Normal pressure angle of a worm of axial pressure angle *alpha_x* and lead angle
     *gamma*: tan an = tan a_x cos g (rad)."""
     return math.atan(math.tan(alpha_x) * math.cos(gamma))
 
 
-def worm_efficiency(gamma, alpha_n, mu):
+def worm_efficiency(gamma: float, alpha_n: float, mu: float) -> Tuple[float, float, float]:
     """Efficiencies of a worm drive (worm driving, wheel driving) and the friction angle.
 
     eta = (cos an - mu tan g)/(cos an + mu cot g), eta' = (cos an - mu cot g)/
@@ -228,7 +232,8 @@ def worm_efficiency(gamma, alpha_n, mu):
     return eta, eta_rev, math.atan(mu / ca)
 
 
-def worm_loads(power, omega1, z1, z2, d1, d2, gamma, alpha_x, mu):
+def worm_loads(power: float, omega1: float, z1: int, z2: int, d1: float, d2: float, gamma: float,
+               alpha_x: float, mu: float) -> ToothLoads:
     """Loads of a worm drive with the worm (gear 1) driving.
 
     Parameters

@@ -33,6 +33,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from typing import Callable, Iterable, Optional, Tuple
 
 from mechcli.core.gear.involute import inverse_involute_scalar, involute_function
 from mechcli.core.gear.spur import GearError
@@ -73,46 +74,46 @@ class ToothForm:
     allowance: float = 0.0
 
     @property
-    def alpha_t(self):
+    def alpha_t(self) -> float:
         """Transverse pressure angle arctan(tan an / cos beta) (rad)."""
         return math.atan(math.tan(self.alpha_n) / math.cos(self.beta))
 
     @property
-    def beta_b(self):
+    def beta_b(self) -> float:
         """Base helix angle arcsin(sin beta cos an) (rad)."""
         return math.asin(math.sin(self.beta) * math.cos(self.alpha_n))
 
     @property
-    def d(self):
+    def d(self) -> float:
         """Reference diameter z mn / cos beta (m)."""
         return self.z * self.mn / math.cos(self.beta)
 
     @property
-    def db(self):
+    def db(self) -> float:
         """Base diameter d cos(at) (m)."""
         return self.d * math.cos(self.alpha_t)
 
     @property
-    def s_n_nominal(self):
+    def s_n_nominal(self) -> float:
         """Normal arc tooth thickness on the reference circle mn (pi/2 + 2 xn tan an) (m)."""
         return self.mn * (math.pi / 2 + 2 * self.xn * math.tan(self.alpha_n))
 
     @property
-    def s_n(self):
+    def s_n(self) -> float:
         """Normal arc thickness with the allowance, s_n_nominal - E (m)."""
         return self.s_n_nominal - self.allowance
 
     @property
-    def s_t(self):
+    def s_t(self) -> float:
         """Transverse arc thickness on the reference circle s_n / cos beta (m)."""
         return self.s_n / math.cos(self.beta)
 
     @property
-    def zv(self):
+    def zv(self) -> float:
         """Virtual number of teeth z / cos^3 beta (SDP/SI Table 10-3)."""
         return self.z / math.cos(self.beta) ** 3
 
-    def thickness(self, radius):
+    def thickness(self, radius: float) -> float:
         """Transverse arc thickness at a radius >= rb (m), with the allowance."""
         ak = math.acos(min(1.0, self.db / (2 * radius)))
         return 2 * radius * (self.s_t / self.d + involute_function(self.alpha_t)
@@ -120,7 +121,7 @@ class ToothForm:
 
 
 # -- chordal thickness -----------------------------------------------------------
-def chordal(s, r, height):
+def chordal(s: float, r: float, height: float) -> Tuple[float, float]:
     """Chord of an arc thickness *s* on a circle of radius *r*, and its height.
 
     Returns
@@ -133,7 +134,7 @@ def chordal(s, r, height):
     return 2 * r * math.sin(psi), height + r * (1 - math.cos(psi))
 
 
-def chordal_at_reference(g: ToothForm):
+def chordal_at_reference(g: ToothForm) -> Tuple[float, float]:
     """Chordal thickness and chordal addendum at the reference circle (m).
 
     Helical gears: on the virtual spur gear of radius zv mn / 2 in the normal
@@ -143,7 +144,7 @@ def chordal_at_reference(g: ToothForm):
     return chordal(g.s_n, g.zv * g.mn / 2, g.ra - g.d / 2)
 
 
-def chordal_at_radius(g: ToothForm, radius):
+def chordal_at_radius(g: ToothForm, radius: float) -> Tuple[float, float]:
     """Chordal thickness and height over the tip at a radius of a spur gear (m)."""
     if g.beta:
         raise ValueError("chordal thickness at any radius is for spur gears")
@@ -151,7 +152,7 @@ def chordal_at_radius(g: ToothForm, radius):
 
 
 # -- span measurement ---------------------------------------------------------------
-def span_teeth(g: ToothForm):
+def span_teeth(g: ToothForm) -> int:
     """Number of teeth k in the span, as ISO 21771 chooses it.
 
     k = round(z/pi (tan a_Mt / cos^2 beta_b - 2 xn tan an / z - inv at) + 0.5), where
@@ -190,7 +191,7 @@ class Span:
     b_min: float
 
 
-def span(g: ToothForm, k=None):
+def span(g: ToothForm, k: Optional[int] = None) -> Span:
     """Base tangent length over *k* teeth (default :func:`span_teeth`) (ISO 21771).
 
     W = mn cos(an) [pi (k - 0.5) + z inv(at)] + 2 xn mn sin(an) - E cos(an);
@@ -206,7 +207,7 @@ def span(g: ToothForm, k=None):
 
 
 # -- measurement over pins (balls) --------------------------------------------------
-def ideal_pin_diameter(g: ToothForm):
+def ideal_pin_diameter(g: ToothForm) -> float:
     """Pin (ball) diameter touching the nominal flanks on the diameter d + 2 xn mn (m).
 
     With the contact pressure angle a_c (cos a_c = db / (d + 2 xn mn)), the pin
@@ -249,7 +250,7 @@ class OverPins:
     d_contact: float
 
 
-def over_pins(g: ToothForm, dp=None):
+def over_pins(g: ToothForm, dp: Optional[float] = None) -> OverPins:
     """Dimension over two pins (balls for helical gears) of diameter *dp* (m).
 
     inv phi = s_t / d + inv at + dp / (z mn cos an) - pi / z (with the
@@ -276,7 +277,8 @@ def over_pins(g: ToothForm, dp=None):
 
 
 # -- backlash ---------------------------------------------------------------------------
-def backlash_from_allowances(j0, alpha_t, alpha_wt, beta, e1, e2):
+def backlash_from_allowances(j0: float, alpha_t: float, alpha_wt: float, beta: float, e1: float,
+                             e2: float) -> float:
     """Circumferential backlash on the operating pitch circle with allowances (m).
 
     j_t = j0 + (E1 + E2) cos(at) / (cos(awt) cos(beta)): a normal thinning E on the
@@ -287,7 +289,8 @@ def backlash_from_allowances(j0, alpha_t, alpha_wt, beta, e1, e2):
     return j0 + (e1 + e2) * math.cos(alpha_t) / (math.cos(alpha_wt) * math.cos(beta))
 
 
-def allowances_for_backlash(j, j0, alpha_t, alpha_wt, beta, share1=0.5):
+def allowances_for_backlash(j: float, j0: float, alpha_t: float, alpha_wt: float, beta: float,
+                            share1: float = 0.5) -> Tuple[float, float]:
     """Allowances (E1, E2) giving the backlash *j* where the nominal teeth give *j0* (m).
 
     E1 + E2 = (j - j0) cos(awt) cos(beta) / cos(at), split *share1* : 1 - share1.
@@ -329,7 +332,7 @@ class GeneratingShift:
     x_E_tan: float
 
 
-def generating_shift(g: ToothForm):
+def generating_shift(g: ToothForm) -> GeneratingShift:
     """x_E of the gear *g* with its allowance, in both forms (:class:`GeneratingShift`).
 
     Notes
@@ -352,7 +355,8 @@ def generating_shift(g: ToothForm):
 
 
 # -- profile shifts of a pair for a centre distance -------------------------------------
-def shift_sum_for_centre_distance(z1, z2, alpha, a, a_w):
+def shift_sum_for_centre_distance(z1: int, z2: int, alpha: float, a: float,
+                                  a_w: float) -> Tuple[float, float]:
     """Sum x1 + x2 that makes a zero-backlash pair at the centre distance a' (ISO 21771).
 
     cos a' = a cos(alpha) / a',  x1 + x2 = (z1 + z2)(inv a' - inv alpha) / (2 tan alpha).
@@ -379,7 +383,8 @@ def shift_sum_for_centre_distance(z1, z2, alpha, a, a_w):
     return (z1 + z2) * inv / (2 * math.tan(alpha)), aw
 
 
-def normal_shift_sum_for_centre_distance(z1, z2, mn, alpha_n, beta, a_w):
+def normal_shift_sum_for_centre_distance(z1: int, z2: int, mn: float, alpha_n: float, beta: float,
+                                         a_w: float) -> Tuple[float, float]:
     """Sum xn1 + xn2 of a helical (or, beta = 0, spur) pair that gives the centre distance a'.
 
     With the transverse pressure angle at = arctan(tan an / cos beta) and the standard
@@ -403,7 +408,8 @@ def normal_shift_sum_for_centre_distance(z1, z2, mn, alpha_n, beta, a_w):
     return x_t * math.tan(at) / math.tan(alpha_n), awt
 
 
-def specific_sliding_at_roots(rb1, rb2, ra1, ra2, a_w, alpha_w, u):
+def specific_sliding_at_roots(rb1: float, rb2: float, ra1: float, ra2: float, a_w: float,
+                              alpha_w: float, u: float) -> Tuple[float, float]:
     """Specific sliding at the start and end of contact (the two roots).
 
     zeta1 = 1 - rho2 / (u rho1) at the pinion's root (where the wheel's tip
@@ -421,7 +427,8 @@ def specific_sliding_at_roots(rb1, rb2, ra1, ra2, a_w, alpha_w, u):
     return z1, z2
 
 
-def split_balanced_sliding(zeta, x_sum, lo=-1.5, hi=1.5, tol=1e-12):
+def split_balanced_sliding(zeta: Callable[[float], Tuple[float, float]], x_sum: float,
+                           lo: float = -1.5, hi: float = 1.5, tol: float = 1e-12) -> float:
     """x1 (and x2 = x_sum - x1) with equal specific sliding at the two roots.
 
     *zeta(x1)* returns (zeta1, zeta2) of the pair with shifts (x1, x_sum - x1);
@@ -436,7 +443,7 @@ def split_balanced_sliding(zeta, x_sum, lo=-1.5, hi=1.5, tol=1e-12):
     """
     a, b = max(lo, x_sum - hi), min(hi, x_sum - lo)
 
-    def f(x1):
+    def f(x1: float) -> float:
         z1, z2 = zeta(x1)
         if z1 == -math.inf and z2 == -math.inf:
             return math.nan
@@ -488,7 +495,8 @@ class GearMeasures:
     radii: tuple = ()
 
 
-def measure(form: ToothForm, k=None, dp=None, radii=()):
+def measure(form: ToothForm, k: Optional[int] = None, dp: Optional[float] = None,
+            radii: Iterable[float] = ()) -> GearMeasures:
     """Chordal thickness, span and over-pins dimension of one gear (:class:`GearMeasures`)."""
     s_chord, h_chord = chordal_at_reference(form)
     return GearMeasures(form, s_chord, h_chord, span(form, k), over_pins(form, dp),
@@ -520,6 +528,6 @@ class ShiftDesign:
     x_sum: float
     x1: float
     x2: float
-    zeta1: float
-    zeta2: float
+    zeta1: Optional[float]
+    zeta2: Optional[float]
     factors: tuple = ()

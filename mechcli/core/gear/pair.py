@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Optional, Sequence, Tuple
 
 from mechcli.core.gear.involute import inverse_involute_scalar, involute_function
 from mechcli.core.gear.spur import GearError, SpurGear
@@ -17,18 +17,19 @@ from mechcli.core.records import record
 
 if TYPE_CHECKING:  # annotations only: numpy is imported lazily
     import numpy as np
+    from numpy.typing import ArrayLike
 
 
 class MeshError(GearError):
     """Two gears cannot mesh as asked (numbers in ``reason``/``values``, see :class:`GearError`)."""
 
 
-def standard_centre_distance(g1: SpurGear, g2: SpurGear):
+def standard_centre_distance(g1: SpurGear, g2: SpurGear) -> float:
     """a = m (z1 + z2) / 2 (m); m (z2 - z1) / 2 when gear 2 is internal."""
     return g1.m * (g2.z + g2.sign * g1.z) / 2 if g2.internal else g1.m * (g1.z + g2.z) / 2
 
 
-def zero_backlash_pressure_angle(g1: SpurGear, g2: SpurGear):
+def zero_backlash_pressure_angle(g1: SpurGear, g2: SpurGear) -> float:
     """Operating pressure angle of the zero-backlash mesh (rad).
 
     inv alpha' = 2 tan(alpha) (x1 + x2) / (z1 + z2) + inv alpha (习题 5-3); for an
@@ -42,7 +43,7 @@ def zero_backlash_pressure_angle(g1: SpurGear, g2: SpurGear):
     return inverse_involute_scalar(theta)[0]
 
 
-def zero_backlash_distance(g1: SpurGear, g2: SpurGear):
+def zero_backlash_distance(g1: SpurGear, g2: SpurGear) -> Optional[float]:
     """Centre distance of the zero-backlash mesh (m), the bound below which the teeth jam.
 
     None for an external pair whose teeth are so thin (x1 + x2 strongly
@@ -59,12 +60,12 @@ def zero_backlash_distance(g1: SpurGear, g2: SpurGear):
     return centre_distance_from_pressure_angle(g1, g2, zero_backlash_pressure_angle(g1, g2))
 
 
-def centre_distance_from_pressure_angle(g1, g2, alpha_w):
+def centre_distance_from_pressure_angle(g1: SpurGear, g2: SpurGear, alpha_w: float) -> float:
     """a' = a cos(alpha) / cos(alpha') (m)."""
     return standard_centre_distance(g1, g2) * math.cos(g1.alpha) / math.cos(alpha_w)
 
 
-def pressure_angle_from_centre_distance(g1, g2, a_w):
+def pressure_angle_from_centre_distance(g1: SpurGear, g2: SpurGear, a_w: float) -> float:
     """alpha' = arccos(a cos(alpha) / a') (rad); needs a' >= rb1 + rb2."""
     c = standard_centre_distance(g1, g2) * math.cos(g1.alpha) / a_w
     if c > 1:
@@ -73,7 +74,8 @@ def pressure_angle_from_centre_distance(g1, g2, a_w):
     return math.acos(c)
 
 
-def check_mountings(g1: SpurGear, g2: SpurGear, a_w=(), alpha_w=()):
+def check_mountings(g1: SpurGear, g2: SpurGear, a_w: Sequence[float] = (),
+                    alpha_w: Sequence[float] = ()) -> None:
     """Refuse the first operating centre distance, then pressure angle, at which the
     teeth would jam (checked before any pair is mounted).
 
@@ -95,7 +97,7 @@ def check_mountings(g1: SpurGear, g2: SpurGear, a_w=(), alpha_w=()):
     a0 = zero_backlash_distance(g1, g2)
     base = standard_centre_distance(g1, g2) * math.cos(g1.alpha)   # rb1 + rb2 (rb2 - rb1)
     thin = a0 is None
-    if thin:   # thin teeth never jam: only the base circles bound a' (rb1 + rb2 < a')
+    if a0 is None:   # (thin) thin teeth never jam: only the base circles bound a' (rb1 + rb2 < a')
         a0 = base * (1 + 1e-9)
     lo = base if internal else None
     for given, values in (("a_w", a_w), ("alpha_w", alpha_w)):
@@ -115,7 +117,7 @@ def check_mountings(g1: SpurGear, g2: SpurGear, a_w=(), alpha_w=()):
                     a0=a0, lo=lo, internal=internal, thin=thin)
 
 
-def design_teeth_from_ratio(ratio, a_w, m):
+def design_teeth_from_ratio(ratio: float, a_w: float, m: float) -> Tuple[int, int]:
     """Tooth numbers of a standard pair from the ratio, centre distance and module.
 
     z1 + z2 = 2 a' / m, z2 = i z1 (习题 5-2).
@@ -166,26 +168,26 @@ class GearPair:
     alpha_w: float
 
     @property
-    def a(self):
+    def a(self) -> float:
         """Standard centre distance m (z1 + z2) / 2 (m)."""
         return standard_centre_distance(self.g1, self.g2)
 
     @property
-    def ratio(self):
+    def ratio(self) -> float:
         """i12 = z2 / z1."""
         return self.g2.z / self.g1.z
 
     @property
-    def dw1(self):
+    def dw1(self) -> float:
         """Operating pitch diameter d1' = db1 / cos alpha' (m)."""
         return self.g1.db / math.cos(self.alpha_w)
 
     @property
-    def dw2(self):
+    def dw2(self) -> float:
         return self.g2.db / math.cos(self.alpha_w)
 
     @property
-    def epsilon_alpha(self):
+    def epsilon_alpha(self) -> float:
         """Transverse contact ratio (表 5-2)::
 
             [z1 (tan aa1 - tan a') + z2 (tan aa2 - tan a')] / (2 pi)
@@ -198,17 +200,17 @@ class GearPair:
                 ) / (2 * math.pi)
 
     @property
-    def line_of_action(self):
+    def line_of_action(self) -> float:
         """Length N1N2 = a' sin alpha' of the theoretical line of action (m)."""
         return self.a_w * math.sin(self.alpha_w)
 
     @property
-    def contact_length(self):
+    def contact_length(self) -> float:
         """Length B1B2 of the actual path of contact (m); equals epsilon_alpha * pb."""
         return self.epsilon_alpha * self.g1.pb
 
     @property
-    def tip_reach(self):
+    def tip_reach(self) -> Tuple[float, float]:
         """(N2B1, N1B2): how far each tip circle cuts the line of action from the
         other gear's tangent point (m); above N1N2 means interference."""
         r1 = math.sqrt(max(self.g1.r_tip_effective ** 2 - self.g1.rb ** 2, 0.0))
@@ -216,7 +218,7 @@ class GearPair:
         return r2, r1
 
     @property
-    def interference(self):
+    def interference(self) -> bool:
         """True if a tip passes the other gear's tangent point N (meshes below its base circle).
 
         Internal pair: the ring's tip must stay beyond the pinion's point N1,
@@ -228,7 +230,7 @@ class GearPair:
         return any(r > n * (1 + 1e-12) for r in self.tip_reach)
 
     @property
-    def clearances(self):
+    def clearances(self) -> Tuple[float, float]:
         """Radial tip clearances (a' - ra1 - rf2, a' - ra2 - rf1) (m).
 
         Internal pair: (rf2 - a' - ra1, ra2 - a' - rf1).
@@ -238,7 +240,7 @@ class GearPair:
         return (self.a_w - self.g1.ra - self.g2.rf, self.a_w - self.g2.ra - self.g1.rf)
 
     @property
-    def backlash(self):
+    def backlash(self) -> float:
         """Circumferential backlash on the operating pitch circle (m).
 
         j = 2 pi r1' / z1 - s1' - s2', zero at the zero-backlash a'.
@@ -248,23 +250,23 @@ class GearPair:
                 - self.g2.tooth_thickness(rw2))
 
     @property
-    def y(self):
+    def y(self) -> float:
         """Centre-distance modification coefficient (a' - a) / m."""
         return (self.a_w - self.a) / self.g1.m
 
     @property
-    def delta_y(self):
+    def delta_y(self) -> float:
         """Tip-shortening coefficient x1 + x2 - y (external pairs)."""
         return self.g1.x + self.g2.x - self.y
 
     @property
-    def a_zero_backlash(self):
+    def a_zero_backlash(self) -> Optional[float]:
         """Centre distance of the zero-backlash mesh (m) (习题 5-3); None if no a' jams
         (see :func:`zero_backlash_distance`)."""
         return zero_backlash_distance(self.g1, self.g2)
 
 
-def tip_shortened(pair):
+def tip_shortened(pair: GearPair) -> Tuple[GearPair, float]:
     """The pair with both tips shortened by Δy m to keep the standard clearance c* m.
 
     y = (a' - a) / m, Δy = (x1 + x2) - y (表 of shifted gears; 0 for standard
@@ -287,7 +289,8 @@ def tip_shortened(pair):
                      pair.a_w, pair.alpha_w), dy)
 
 
-def gear_pair(g1: SpurGear, g2: SpurGear, a_w=None, alpha_w=None):
+def gear_pair(g1: SpurGear, g2: SpurGear, a_w: Optional[float] = None,
+              alpha_w: Optional[float] = None) -> GearPair:
     """Mount two gears: from a', from alpha', or (neither) at zero backlash.
 
     Parameters
@@ -321,16 +324,17 @@ def gear_pair(g1: SpurGear, g2: SpurGear, a_w=None, alpha_w=None):
         raise ValueError("give a_w or alpha_w, not both")
     if a_w is None and alpha_w is None:
         alpha_w = zero_backlash_pressure_angle(g1, g2)
-    if a_w is None:
-        a_w = centre_distance_from_pressure_angle(g1, g2, alpha_w)
+    if a_w is None:   # (alpha_w is given or was just found)
+        a_w = centre_distance_from_pressure_angle(g1, g2, alpha_w)  # type: ignore[arg-type]
     else:
         alpha_w = pressure_angle_from_centre_distance(g1, g2, a_w)
-    pair = GearPair(g1, g2, float(a_w), float(alpha_w))
+    pair = GearPair(g1, g2, float(a_w), float(alpha_w))  # type: ignore[arg-type]
     a0 = pair.a_zero_backlash
     if a0 is not None and not g2.internal and pair.a_w < a0 * (1 - 1e-12):
         raise MeshError("the centre distance is below the zero-backlash distance: the teeth "
                         "would jam", "jam", a_w=pair.a_w, a0=a0, internal=False)
-    if g2.internal and pair.a_w > a0 * (1 + 1e-12):
+    # (an internal pair has a0: zero_backlash_distance raises otherwise)
+    if g2.internal and pair.a_w > a0 * (1 + 1e-12):  # type: ignore[operator]
         raise MeshError("the centre distance is above the zero-backlash distance of the "
                         "internal pair: the teeth would jam", "jam", a_w=pair.a_w, a0=a0,
                         internal=True)
@@ -376,16 +380,16 @@ class MeshPositions:
     n2: np.ndarray
 
     @property
-    def count(self):
+    def count(self) -> np.ndarray:
         """Number of tooth pairs in contact at each position."""
         return self.in_contact.sum(axis=1)
 
-    def contact(self, i):
+    def contact(self, i: int) -> np.ndarray:
         """The points of contact at position *i* (k x 2, m)."""
         return self.points[i][self.in_contact[i]]
 
 
-def mesh_positions(pair: GearPair, phi1):
+def mesh_positions(pair: GearPair, phi1: ArrayLike) -> MeshPositions:
     """Positions of an external pair through pinion angles *phi1* (rad), with contacts.
 
     Notes

@@ -10,9 +10,21 @@ inverse involute, pair, helical, worm, bevel) never import numpy.
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING, Any, Callable, Dict, Optional, Sequence, Tuple, Union
+
+if TYPE_CHECKING:   # annotations only: each kind imports its modules when solved
+    from mechcli.core.gear.bevel import BevelPair
+    from mechcli.core.gear.helical import HelicalPair
+    from mechcli.core.gear.involute import InverseInvolute
+    from mechcli.core.gear.loads import ToothLoads
+    from mechcli.core.gear.measurement import GearMeasures, GeneratingShift, ShiftDesign, ToothForm
+    from mechcli.core.gear.pair import MeshError
+    from mechcli.core.gear.spur import SpurGear
+    from mechcli.core.gear.strength import RootFactors
+    from mechcli.core.gear.worm import WormDrive
 
 
-def solve_involute(p):
+def solve_involute(p: Any) -> Dict[str, Any]:
     """Involute curve from 0 to ``p.alpha_max`` every ``p.curve_step`` and the table
     of inv(α) (【例 5-1】).
 
@@ -30,7 +42,7 @@ def solve_involute(p):
     return {"alpha": alpha, "curve": curve, "table": table}
 
 
-def solve_inverse_involute(p):
+def solve_inverse_involute(p: Any) -> InverseInvolute:
     """α = inv⁻¹(θ) for each ``p.theta`` (【例 5-2】): an :class:`~.involute.InverseInvolute`
     of tuples."""
     from mechcli.core.gear.involute import (
@@ -48,7 +60,8 @@ def solve_inverse_involute(p):
                            method=p.method, start=tuple(f[2] for f in found))
 
 
-def _gear(teeth, z, x, internal=False, ha_star=None):
+def _gear(teeth: Any, z: int, x: float, internal: bool = False,
+          ha_star: Optional[float] = None) -> SpurGear:
     """A gear cut by the tooth system's rack; *ha_star* (not None) sets its own tip
     (h_a = (ha_star + x) m: unequal addenda) while the cutter, and so the root,
     stays the tooth system's."""
@@ -66,12 +79,12 @@ def _gear(teeth, z, x, internal=False, ha_star=None):
     return g
 
 
-def _form(g, allowance=0.0):
+def _form(g: SpurGear, allowance: float = 0.0) -> ToothForm:
     from mechcli.core.gear.measurement import ToothForm
     return ToothForm(g.z, g.m, g.alpha, g.x, 0.0, g.ra, allowance)
 
 
-def solve_spur(p):
+def solve_spur(p: Any) -> Dict[str, Any]:
     """One spur gear (【例 5-3】): dict of ``gear`` (SpurGear), ``tooth`` (the
     rack-generated tooth), ``outline`` (GearOutline of ``p.points``, ``p.root``),
     ``measures`` and ``generating`` (:class:`~.measurement.GeneratingShift` of a gear
@@ -110,21 +123,21 @@ class PairSolution(list):
         allowance (given, or both gears when found from ``p.backlash``), else None.
     """
 
-    measures = (None, None)
-    generating = (None, None)
-    allowances = (0.0, 0.0)
-    backlash = ()
-    shift = None
-    loads = None
+    measures: Tuple[Optional[GearMeasures], ...] = (None, None)
+    generating: Tuple[Optional[GeneratingShift], ...] = (None, None)
+    allowances: Tuple[float, ...] = (0.0, 0.0)
+    backlash: Sequence[Tuple[float, float]] = ()
+    shift: Optional[ShiftDesign] = None
+    loads: Optional[ToothLoads] = None
 
 
-def _refuse(message, given, **values):
+def _refuse(message: str, given: str, **values: Any) -> MeshError:
     """A spec value no mounting accepts: MeshError reason ``"mounting"`` naming it."""
     from mechcli.core.gear.pair import MeshError
     return MeshError(message, "mounting", given=given, **values)
 
 
-def _design_shifts(p, z1, z2):
+def _design_shifts(p: Any, z1: int, z2: int) -> ShiftDesign:
     """x1, x2 for the one centre distance ``p.a_w[0]`` (``p.x_split``): ShiftDesign."""
     from mechcli.core.gear import measurement as ms
     t = p.teeth
@@ -138,13 +151,13 @@ def _design_shifts(p, z1, z2):
     hs = (_ha(p, 1), _ha(p, 2))
     dy = (x_sum - (a_w - a) / t.m) if p.tip_shortening else 0.0
 
-    def zeta(x1):
+    def zeta(x1: float) -> Tuple[float, float]:
         x = (x1, x_sum - x1)
         rb = [t.m * z * math.cos(t.alpha) / 2 for z in (z1, z2)]
         ra = [t.m * z / 2 + (h + xi - max(dy, 0.0)) * t.m for z, h, xi in zip((z1, z2), hs, x)]
         return ms.specific_sliding_at_roots(rb[0], rb[1], ra[0], ra[1], a_w, aw, z2 / z1)
 
-    def factors(x1):
+    def factors(x1: float) -> Tuple[RootFactors, ...]:
         from mechcli.core.gear.strength import full_radius, root_factors
         x = (x1, x_sum - x1)
         return tuple(root_factors(z, t.m, t.alpha, xi, t.m * z + 2 * (h + xi - max(dy, 0.0)) * t.m,
@@ -152,7 +165,7 @@ def _design_shifts(p, z1, z2):
                                   rho_fP=full_radius(t.c_star, t.alpha) * t.m)
                      for z, h, xi in zip((z1, z2), hs, x))
 
-    def reject(x1):
+    def reject(x1: float) -> Optional[dict]:
         """Why the split (x1, x_sum - x1) is no usable pair (None: it is)."""
         import dataclasses
 
@@ -172,7 +185,7 @@ def _design_shifts(p, z1, z2):
     return _split_shifts(p.x_split, p.x1, x_sum, a_w, zeta, factors, reject)
 
 
-def _unusable(z1, z2, gears, n):
+def _unusable(z1: int, z2: int, gears: Sequence[tuple], n: float) -> Optional[dict]:
     """Why a designed pair is not usable, or None: a gear undercut, a pointed tip, or a
     tip circle cutting the line of action beyond the other gear's tangent point N
     (interference).
@@ -193,7 +206,10 @@ def _unusable(z1, z2, gears, n):
     return None
 
 
-def _split_shifts(rule, x1_given, x_sum, a_w, zeta, factors, reject=None):
+def _split_shifts(rule: str, x1_given: float, x_sum: float, a_w: float,
+                  zeta: Callable[[float], Tuple[float, float]],
+                  factors: Callable[[float], Tuple[RootFactors, ...]],
+                  reject: Optional[Callable[[float], Optional[dict]]] = None) -> ShiftDesign:
     """x1, x2 of the sum *x_sum* by *rule* (``"x1"``, ``"sliding"``, ``"strength"``):
     :class:`~.measurement.ShiftDesign`; *zeta(x1)* gives the specific sliding,
     *factors(x1)* the two gears' root factors, *reject(x1)* why a split is no usable pair
@@ -236,12 +252,12 @@ def _split_shifts(rule, x1_given, x_sum, a_w, zeta, factors, reject=None):
                           factors(x1) if rule == "strength" else ())
 
 
-def _ha(p, i):
+def _ha(p: Any, i: int) -> float:
     value = getattr(p, f"ha_star{i}", None)
     return p.teeth.ha_star if value is None else value
 
 
-def solve_pair(p):
+def solve_pair(p: Any) -> PairSolution:
     """A pair at each mounting (``p.a_w``, then ``p.alpha_w``; zero backlash if none)
     (【例 5-4】): :class:`PairSolution` (a list of :class:`~.pair.GearPair`), tips
     shortened when asked, with the measurements of both gears.
@@ -319,7 +335,7 @@ def solve_pair(p):
     return out
 
 
-def solve_generation(p):
+def solve_generation(p: Any) -> Dict[str, Any]:
     """Rack-cutter generation for each shift ``p.shifts``: dict of ``teeth``
     (generated teeth), ``outlines`` (GearOutline of ``p.points`` each) and ``plan``
     (cutter positions up to ``p.limit`` every ``p.step``)."""
@@ -330,7 +346,7 @@ def solve_generation(p):
             "plan": generation_plan(p.limit, p.step)}
 
 
-def solve_helical(p):
+def solve_helical(p: Any) -> HelicalSolution:
     """A helical pair (习题 5-6, 5-7): :class:`~.helical.HelicalPair` with ``measures``
     (:class:`~.measurement.GearMeasures` of both gears, in the normal plane) and
     ``generating`` (:class:`~.measurement.GeneratingShift` of a gear with an allowance,
@@ -364,7 +380,7 @@ def solve_helical(p):
     return out
 
 
-def _design_helical_shifts(p):
+def _design_helical_shifts(p: Any) -> ShiftDesign:
     """xn1, xn2 of a helical pair of helix angle ``p.beta`` for the centre distance
     ``p.a_w`` (``p.x_split``): :class:`~.measurement.ShiftDesign` of normal shifts.
 
@@ -384,20 +400,20 @@ def _design_helical_shifts(p):
     at = math.atan(math.tan(an) / math.cos(beta))
     d = [mn * z / math.cos(beta) for z in (z1, z2)]
 
-    def zeta(x1):
+    def zeta(x1: float) -> Tuple[float, float]:
         x = (x1, x_sum - x1)
         rb = [di * math.cos(at) / 2 for di in d]
         ra = [di / 2 + (p.han_star + xi) * mn for di, xi in zip(d, x)]
         return ms.specific_sliding_at_roots(rb[0], rb[1], ra[0], ra[1], a_w, awt, z2 / z1)
 
-    def factors(x1):
+    def factors(x1: float) -> Tuple[RootFactors, ...]:
         x = (x1, x_sum - x1)
         return tuple(root_factors(z, mn, an, xi, di + 2 * (p.han_star + xi) * mn, beta,
                                   h_fP=(p.han_star + p.cn_star) * mn,
                                   rho_fP=full_radius(p.cn_star, an) * mn)
                      for z, di, xi in zip((z1, z2), d, x))
 
-    def reject(x1):
+    def reject(x1: float) -> Optional[dict]:
         """Why the split is no usable pair (None: it is), in the transverse plane: undercut
         when (han* - xn) mn > r sin^2 at (x_min = han* - z sin^2 at / (2 cos beta)), the
         transverse tip thickness da (st/d + inv at - inv a_at) <= 0, or a tip passing N."""
@@ -422,13 +438,14 @@ class HelicalSolution:
     None, ``generating``: GeneratingShift or None per gear); attributes not found here
     are the pair's."""
 
-    shift = None
-    generating = (None, None)
+    shift: Optional[ShiftDesign] = None
+    generating: Tuple[Optional[GeneratingShift], ...] = (None, None)
 
-    def __init__(self, pair, measures, loads=None):
+    def __init__(self, pair: HelicalPair, measures: Sequence[GearMeasures],
+                 loads: Optional[ToothLoads] = None) -> None:
         self.pair, self.measures, self.loads = pair, measures, loads
 
-    def __getattr__(self, name):
+    def __getattr__(self, name: str) -> Any:
         return getattr(self.pair, name)
 
 
@@ -439,16 +456,18 @@ class Loaded:
     (dm1, dm2: :func:`~.loads.bevel_mean_diameters`); attributes not found here are the
     drive's."""
 
-    def __init__(self, drive, loads=None, efficiency=None, face_width=None,
-                 mean_diameters=None):
+    def __init__(self, drive: Any, loads: Optional[ToothLoads] = None,
+                 efficiency: Optional[Tuple[float, float, float]] = None,
+                 face_width: Optional[float] = None,
+                 mean_diameters: Optional[Tuple[float, float]] = None) -> None:
         self.drive, self.loads, self.efficiency = drive, loads, efficiency
         self.face_width, self.mean_diameters = face_width, mean_diameters
 
-    def __getattr__(self, name):
+    def __getattr__(self, name: str) -> Any:
         return getattr(self.drive, name)
 
 
-def solve_worm(p):
+def solve_worm(p: Any) -> Union[WormDrive, Loaded]:
     """A worm drive (习题 5-8): :class:`~.worm.WormDrive`, or with power and speed
     (``p.drive``) or a friction (``p.mu``) a :class:`Loaded` one."""
     from mechcli.core.gear.worm import worm_drive
@@ -458,15 +477,17 @@ def solve_worm(p):
     if drive is None and mu is None:
         return w
     from mechcli.core.gear import loads as ld
-    eff = ld.worm_efficiency(w.gamma, ld.worm_normal_pressure_angle(w.alpha, w.gamma), mu)
+    # (mu is given with a drive: the spec requires it)
+    eff = ld.worm_efficiency(w.gamma, ld.worm_normal_pressure_angle(w.alpha, w.gamma),
+                             mu)  # type: ignore[arg-type]
     loads = None
     if drive is not None:
         loads = ld.worm_loads(drive.power, drive.omega1, w.z1, w.z2, w.d1, w.d2, w.gamma,
-                              w.alpha, mu)
+                              w.alpha, mu)  # type: ignore[arg-type]
     return Loaded(w, loads, eff)
 
 
-def solve_bevel(p):
+def solve_bevel(p: Any) -> Union[BevelPair, Loaded]:
     """A straight bevel pair (习题 5-9): :class:`~.bevel.BevelPair`, or with power and
     speed (``p.drive``) a :class:`Loaded` one."""
     from mechcli.core.gear.bevel import bevel_pair
@@ -475,9 +496,11 @@ def solve_bevel(p):
     if drive is None and width is None:
         return b
     from mechcli.core.gear.loads import bevel_loads, bevel_mean_diameters
-    dm = bevel_mean_diameters(b.d(b.z1), b.d(b.z2), b.R, width)
+    # (the face width is given with a drive: the spec requires it)
+    dm = bevel_mean_diameters(b.d(b.z1), b.d(b.z2), b.R, width)  # type: ignore[arg-type]
     loads = None if drive is None else bevel_loads(drive.power, drive.omega1, b.z1, b.z2,
-                                                   b.d(b.z1), b.d(b.z2), b.R, width, b.alpha,
+                                                   b.d(b.z1), b.d(b.z2), b.R, width,  # type: ignore[arg-type]
+                                                   b.alpha,
                                                    b.delta1, b.delta2)
     return Loaded(b, loads, face_width=width, mean_diameters=dm)
 
@@ -487,7 +510,7 @@ SOLVERS = {"involute": solve_involute, "inverse_involute": solve_inverse_involut
            "helical": solve_helical, "worm": solve_worm, "bevel": solve_bevel}
 
 
-def solve_gear(kind, problem):
+def solve_gear(kind: str, problem: Any) -> Any:
     """Solve a gear problem of a kind in :data:`SOLVERS`.
 
     Raises

@@ -20,6 +20,7 @@ angles in radians.
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING, Any, Tuple
 
 import numpy as np
 from scipy.optimize import brentq
@@ -27,8 +28,11 @@ from scipy.optimize import brentq
 from mechcli.core.gear.spur import GearGeometryError, SpurGear
 from mechcli.core.records import record
 
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
 
-def rack_corner(g: SpurGear):
+
+def rack_corner(g: SpurGear) -> Tuple[float, float]:
     """Tip corner of the cutter tooth: (u_c, depth below the rolling line) (m).
 
     u_c = pi m / 4 - (ha* + c*) m tan(alpha) is the half width of the rack
@@ -38,7 +42,7 @@ def rack_corner(g: SpurGear):
     return uc, (g.ha_star + g.c_star - g.x) * g.m
 
 
-def trochoid_half_space(g: SpurGear, rho):
+def trochoid_half_space(g: SpurGear, rho: ArrayLike) -> np.ndarray:
     """Half-angle of the space swept by the cutter's tip corner at radius rho (rad).
 
     With w = sqrt(rho^2 - rf^2) the corner's offset along the rolling line,
@@ -51,7 +55,7 @@ def trochoid_half_space(g: SpurGear, rho):
     return uc / g.r + np.arctan(w / g.rf) - w / g.r
 
 
-def involute_half_space(g: SpurGear, rho):
+def involute_half_space(g: SpurGear, rho: ArrayLike) -> Any:
     """Half-angle of the space bounded by the involute flanks at radius rho >= rb (rad)."""
     return math.pi / g.z - g.half_tooth_angle(rho)
 
@@ -91,7 +95,7 @@ class GeneratedTooth:
     tip_pointed: bool
     r_top: float
 
-    def half_tooth(self, rho):
+    def half_tooth(self, rho: ArrayLike) -> np.ndarray:
         """Tooth half-angle psi(rho) of the finished gear, rf <= rho <= r_top (rad)."""
         g = self.gear
         rho = np.asarray(rho, dtype=float)
@@ -101,7 +105,7 @@ class GeneratedTooth:
         return math.pi / g.z - eta
 
 
-def generated_tooth(g: SpurGear):
+def generated_tooth(g: SpurGear) -> GeneratedTooth:
     """Analyse the tooth that the book's rack cutter generates on *g*.
 
     Raises
@@ -126,7 +130,7 @@ def generated_tooth(g: SpurGear):
         pointed = True
         r_top = g.pointed_radius
     if under:
-        def gap(rho):
+        def gap(rho: ArrayLike) -> float:
             return float(trochoid_half_space(g, rho) - involute_half_space(g, rho))
         lo, hi = g.rb, r_top
         if gap(hi) >= 0:
@@ -167,7 +171,7 @@ class GearOutline:
     flank_psi: np.ndarray
 
 
-def _roll_grid(rb, r0, r1, n):
+def _roll_grid(rb: float, r0: float, r1: float, n: int) -> np.ndarray:
     """n radii from r0 to r1 uniform in the involute's arc length (roll angle^2)."""
     t0 = math.sqrt(max(r0 * r0 - rb * rb, 0.0)) / rb
     t1 = math.sqrt(max(r1 * r1 - rb * rb, 0.0)) / rb
@@ -175,7 +179,8 @@ def _roll_grid(rb, r0, r1, n):
     return rb * np.sqrt(1.0 + s)
 
 
-def gear_outline(tooth: GeneratedTooth, points=40, root="generated", arc_step=math.radians(1.0)):
+def gear_outline(tooth: GeneratedTooth, points: int = 40, root: str = "generated",
+                 arc_step: float = math.radians(1.0)) -> GearOutline:
     """Outline points of the whole gear (【例 5-3】, 图 5-7).
 
     Parameters
@@ -216,7 +221,7 @@ def gear_outline(tooth: GeneratedTooth, points=40, root="generated", arc_step=ma
     return _assemble(g, fr, np.maximum(psi, 0.0), arc_step)
 
 
-def ring_outline(g: SpurGear, points=40, arc_step=math.radians(1.0)):
+def ring_outline(g: SpurGear, points: int = 40, arc_step: float = math.radians(1.0)) -> GearOutline:
     """Outline of an internal gear (ring): involute flanks from the tip circle (inside)
     out to the root circle, arcs at both; tooth 0 centred on +y.
 
@@ -235,11 +240,11 @@ def ring_outline(g: SpurGear, points=40, arc_step=math.radians(1.0)):
     return _assemble(g, fr, psi, arc_step)
 
 
-def _assemble(g, fr, psi, arc_step):
+def _assemble(g: SpurGear, fr: np.ndarray, psi: np.ndarray, arc_step: float) -> GearOutline:
     """Whole outline from one flank: radii *fr* from root to tip, half-angles *psi*."""
     half_pitch = math.pi / g.z
 
-    def arc(radius, s0, s1):
+    def arc(radius: float, s0: float, s1: float) -> Tuple[np.ndarray, np.ndarray]:
         n = max(2, int(math.ceil(abs(s1 - s0) / arc_step)) + 1)
         s = np.linspace(s0, s1, n)
         return np.full(n, radius), s
@@ -266,7 +271,8 @@ def _assemble(g, fr, psi, arc_step):
     return GearOutline(np.append(x, x[0]), np.append(y, y[0]), fr, psi)
 
 
-def flank_chordal_deviation(g: SpurGear, r0, r1, points, fine=64):
+def flank_chordal_deviation(g: SpurGear, r0: float, r1: float, points: int,
+                            fine: int = 64) -> float:
     """Largest distance between the exact involute and its polyline of *points* (m).
 
     The polyline uses the same radii as :func:`gear_outline` (uniform in arc

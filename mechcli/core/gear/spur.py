@@ -11,10 +11,14 @@ path starts fast); arrays of radii go through numpy.
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING, Any
 
 from mechcli.core.errors import DescribedError
 from mechcli.core.gear.involute import inverse_involute_scalar, involute_function
 from mechcli.core.records import record
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
 
 
 class GearError(DescribedError):
@@ -68,94 +72,94 @@ class SpurGear:
     nominal_tip: bool = False
 
     @property
-    def sign(self):
+    def sign(self) -> int:
         """+1 for an external gear, -1 for an internal one (tips inwards)."""
         return -1 if self.internal else 1
 
     # -- circles (m) -----------------------------------------------------
     @property
-    def d(self):
+    def d(self) -> float:
         """Reference (pitch) diameter m z (m)."""
         return self.m * self.z
 
     @property
-    def r(self):
+    def r(self) -> float:
         return self.d / 2
 
     @property
-    def db(self):
+    def db(self) -> float:
         """Base diameter d cos(alpha) (m), eq. (5-5)."""
         return self.d * math.cos(self.alpha)
 
     @property
-    def rb(self):
+    def rb(self) -> float:
         return self.db / 2
 
     @property
-    def ha(self):
+    def ha(self) -> float:
         """Addendum (ha* + x) m - Δy m (m); ha* m for the standard gear."""
         return (self.ha_star + self.x) * self.m - self.tip_reduction
 
     @property
-    def hf(self):
+    def hf(self) -> float:
         """Dedendum (ha* + c* - x) m (m)."""
         return (self.ha_star + self.c_star - self.x) * self.m
 
     @property
-    def h(self):
+    def h(self) -> float:
         """Whole depth ha + hf (m)."""
         return self.ha + self.hf
 
     @property
-    def da(self):
+    def da(self) -> float:
         """Tip diameter d + 2 ha (m), eq. (5-6); d - 2 ha for an internal gear."""
         return self.d + 2 * self.sign * self.ha
 
     @property
-    def ra(self):
+    def ra(self) -> float:
         return self.da / 2
 
     @property
-    def df(self):
+    def df(self) -> float:
         """Root diameter d - 2 hf (m), eq. (5-7); d + 2 hf for an internal gear."""
         return self.d - 2 * self.sign * self.hf
 
     @property
-    def rf(self):
+    def rf(self) -> float:
         return self.df / 2
 
     @property
-    def p(self):
+    def p(self) -> float:
         """Circular pitch pi m (m)."""
         return math.pi * self.m
 
     @property
-    def pb(self):
+    def pb(self) -> float:
         """Base pitch p cos(alpha) (m)."""
         return self.p * math.cos(self.alpha)
 
     @property
-    def s(self):
+    def s(self) -> float:
         """Tooth thickness on the reference circle m (pi/2 + 2 x tan alpha) (m)."""
         return self.m * (math.pi / 2 + 2 * self.x * math.tan(self.alpha))
 
     @property
-    def e(self):
+    def e(self) -> float:
         """Space width on the reference circle p - s (m)."""
         return self.p - self.s
 
     @property
-    def c(self):
+    def c(self) -> float:
         """Bottom clearance c* m (m)."""
         return self.c_star * self.m
 
     @property
-    def alpha_a(self):
+    def alpha_a(self) -> float:
         """Pressure angle at the tip circle arccos(rb / ra) (rad), eq. (5-8)."""
         return math.acos(self.rb / self.ra)
 
     # -- thickness -------------------------------------------------------
-    def tooth_thickness(self, radius):
+    def tooth_thickness(self, radius: ArrayLike) -> Any:
         """Arc tooth thickness at a radius >= rb (m).
 
         s_K = s r_K / r - 2 r_K (inv alpha_K - inv alpha), alpha_K = arccos(rb / r_K)
@@ -173,7 +177,7 @@ class SpurGear:
                     * (involute_function(ak) - involute_function(self.alpha)))
         return out if np.ndim(out) else float(out)
 
-    def space_width(self, radius):
+    def space_width(self, radius: ArrayLike) -> Any:
         """Arc space width 2 pi r_K / z - s_K at a radius >= rb (m)."""
         if isinstance(radius, (int, float)):
             return 2 * math.pi * radius / self.z - self.tooth_thickness(radius)
@@ -182,7 +186,7 @@ class SpurGear:
         out = 2 * np.pi * rk / self.z - self.tooth_thickness(rk)
         return out if np.ndim(out) else float(out)
 
-    def half_tooth_angle(self, radius):
+    def half_tooth_angle(self, radius: ArrayLike) -> Any:
         """Half the angle the tooth subtends at a radius >= rb (rad): s_K / (2 r_K)."""
         if isinstance(radius, (int, float)):
             ak = math.acos(min(max(self.rb / radius, -1.0), 1.0))
@@ -193,7 +197,7 @@ class SpurGear:
                                                     - involute_function(ak))
 
     @property
-    def pointed_radius(self):
+    def pointed_radius(self) -> float:
         """Radius where the two flanks meet (tooth thickness 0) (m).
 
         inv alpha_p = s / d + inv alpha, r_p = rb / cos alpha_p (习题 5-1).  For an
@@ -207,7 +211,7 @@ class SpurGear:
         return self.rb / math.cos(ap)
 
     @property
-    def r_tip_effective(self):
+    def r_tip_effective(self) -> float:
         """Where the tooth really ends (m): the tip circle, or the pointed radius
         if the flanks meet before it (external: below ra; internal: above ra).
         With :attr:`nominal_tip` the tip circle always."""
@@ -219,19 +223,19 @@ class SpurGear:
         return max(self.ra, rp) if rp > self.rb else self.ra
 
     @property
-    def alpha_a_effective(self):
+    def alpha_a_effective(self) -> float:
         """Pressure angle at :attr:`r_tip_effective` (rad); equals ``alpha_a``
         unless the tip is pointed below the tip circle."""
         return math.acos(min(1.0, self.rb / self.r_tip_effective))
 
     # -- undercut ----------------------------------------------------------
     @property
-    def z_min(self):
+    def z_min(self) -> float:
         """Fewest teeth without undercut by the standard rack, 2 ha* / sin^2 alpha."""
         return 2 * self.ha_star / math.sin(self.alpha) ** 2
 
     @property
-    def x_min(self):
+    def x_min(self) -> float:
         """Least profile shift against undercut, ha* (z_min - z) / z_min.
 
         Computed as ha* - z sin^2(alpha) / 2 (the same, and defined for ha* = 0).
@@ -239,7 +243,7 @@ class SpurGear:
         return self.ha_star - self.z * math.sin(self.alpha) ** 2 / 2
 
     @property
-    def undercut(self):
+    def undercut(self) -> bool:
         """True if the standard rack undercuts this gear (x < x_min); False for internal gears.
 
         This is mechcli's undercut criterion (issue 20).  The standard rack cutter's tip
@@ -253,7 +257,8 @@ class SpurGear:
         return (not self.internal) and self.x < self.x_min - 1e-12
 
 
-def spur_gear(z, m, alpha, ha_star=1.0, c_star=0.25, x=0.0, internal=False):
+def spur_gear(z: int, m: float, alpha: float, ha_star: float = 1.0, c_star: float = 0.25,
+              x: float = 0.0, internal: bool = False) -> SpurGear:
     """Build a :class:`SpurGear` and check that it can exist.
 
     Parameters

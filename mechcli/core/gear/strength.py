@@ -23,13 +23,14 @@ equal bending strength when Y_Fa1 Y_Sa1 = Y_Fa2 Y_Sa2.
 from __future__ import annotations
 
 import math
+from typing import Callable, List, Optional, Tuple
 
 from mechcli.core.gear.involute import involute_function
 from mechcli.core.gear.measurement import MeasurementError
 from mechcli.core.records import record
 
 
-def full_radius(c_star, alpha):
+def full_radius(c_star: float, alpha: float) -> float:
     """Tip radius coefficient of a rack whose tip is one full round between its flanks,
     rho_fP / m = c* / (1 - sin alpha) (0.380 for c* = 0.25, alpha = 20 deg: the 0.38 m of
     the standard basic rack)."""
@@ -62,12 +63,13 @@ class RootFactors:
     Y_Sa: float
 
     @property
-    def Y_FaSa(self):
+    def Y_FaSa(self) -> float:
         """Y_Fa Y_Sa: the root stress per Ft / (b mn)."""
         return self.Y_Fa * self.Y_Sa
 
 
-def root_factors(z, mn, alpha_n, x, da, beta=0.0, h_fP=None, rho_fP=None):
+def root_factors(z: int, mn: float, alpha_n: float, x: float, da: float, beta: float = 0.0,
+                 h_fP: Optional[float] = None, rho_fP: Optional[float] = None) -> RootFactors:
     """Y_Fa and Y_Sa of an external gear of z teeth, shift x and tip diameter da.
 
     Parameters
@@ -136,7 +138,9 @@ def root_factors(z, mn, alpha_n, x, da, beta=0.0, h_fP=None, rho_fP=None):
     return RootFactors(zn, s_fn, h_fa, rho_f, alpha_fan, y_fa, y_sa)
 
 
-def strength_roots(factors, x_sum, lo=-1.5, hi=1.5, samples=600, tol=1e-12):
+def strength_roots(factors: Callable[[float], Tuple[RootFactors, ...]], x_sum: float,
+                   lo: float = -1.5, hi: float = 1.5, samples: int = 600,
+                   tol: float = 1e-12) -> List[Tuple[float, float]]:
     """Every x1 in [max(lo, x_sum - hi), min(hi, x_sum - lo)] at which the two gears
     of the pair (x1, x_sum - x1) have the same Y_Fa Y_Sa.
 
@@ -156,7 +160,7 @@ def strength_roots(factors, x_sum, lo=-1.5, hi=1.5, samples=600, tol=1e-12):
     if a > b:
         return []
 
-    def f(x1):
+    def f(x1: float) -> float:
         try:
             r1, r2 = factors(x1)
         except MeasurementError:
@@ -200,8 +204,10 @@ def strength_roots(factors, x_sum, lo=-1.5, hi=1.5, samples=600, tol=1e-12):
     return out
 
 
-def split_equal_strength(factors, x_sum, lo=-1.5, hi=1.5, reject=None, samples=600,
-                         tol=1e-12):
+def split_equal_strength(factors: Callable[[float], Tuple[RootFactors, ...]], x_sum: float,
+                         lo: float = -1.5, hi: float = 1.5,
+                         reject: Optional[Callable[[float], Optional[dict]]] = None,
+                         samples: int = 600, tol: float = 1e-12) -> float:
     """x1 (and x2 = x_sum - x1) giving both gears the same Y_Fa Y_Sa, the strongest such
     split that is a usable pair.
 
@@ -224,10 +230,12 @@ def split_equal_strength(factors, x_sum, lo=-1.5, hi=1.5, reject=None, samples=6
     if not roots:
         raise MeasurementError("no split of the shift sum in [-1.5, 1.5] gives both gears the "
                                "same Y_Fa Y_Sa", "no_strength_split", x_sum=x_sum, lo=a, hi=b)
-    usable, refused = [], []
+    usable: List[Tuple[float, float]] = []
+    refused: List[Tuple[float, Optional[dict]]] = []
     for x1, y in roots:
         why = reject(x1) if reject is not None else None
-        (refused if why else usable).append((x1, why) if why else (x1, y))
+        # (a refused split with why, a usable one with its common Y_Fa Y_Sa)
+        (refused if why else usable).append((x1, why) if why else (x1, y))  # type: ignore[arg-type]
     if not usable:
         raise MeasurementError("every split giving both gears the same Y_Fa Y_Sa is refused "
                                "(x1 = " + ", ".join(f"{x1:.4f}" for x1, _ in refused) + ")",

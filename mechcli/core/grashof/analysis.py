@@ -9,13 +9,16 @@ imported only for a transmission-angle curve, a five-bar or a batch.
 from __future__ import annotations
 
 import dataclasses
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any, Tuple
 
 from mechcli.core.grashof import chain
 from mechcli.core.records import record
 
 if TYPE_CHECKING:   # numpy is imported only when a curve is made
-    from mechcli.core.grashof.fourbar import TransmissionCurve
+    import numpy as np
+    from numpy.typing import ArrayLike
+
+    from mechcli.core.grashof.fourbar import FourBarAnalysis, TransmissionCurve
 
 #: kinds of problem :func:`solve_grashof` accepts
 KINDS = ("fourbar", "slider_crank", "guide_bar", "fivebar", "rrrrp", "mobility")
@@ -50,7 +53,7 @@ class GrashofSolution:
     curve: TransmissionCurve | None = None
 
 
-def transmission_curve(kind, problem, step):
+def transmission_curve(kind: str, problem: Any, step: float) -> TransmissionCurve:
     """γ over one turn of the input, every *step* [rad] (lengths [m]).
 
     Parameters
@@ -78,7 +81,7 @@ def transmission_curve(kind, problem, step):
     return gf.guide_transmission(p.crank, p.frame, p.offset, th)
 
 
-def solve_grashof(kind, problem, scale=1.0):
+def solve_grashof(kind: str, problem: Any, scale: float = 1.0) -> GrashofSolution:
     """Classify the linkage of one problem and compute its figures of merit.
 
     Parameters
@@ -118,7 +121,7 @@ def solve_grashof(kind, problem, scale=1.0):
     return dataclasses.replace(solution, curve=transmission_curve(kind, problem, step))
 
 
-def _solve(kind, p, scale):
+def _solve(kind: str, p: Any, scale: float) -> GrashofSolution:
     if kind in ("fourbar", "fivebar"):
         chain.check_chain_closure([x / scale for x in p.lengths])
     if kind == "fourbar":
@@ -158,7 +161,8 @@ def _solve(kind, p, scale):
     raise ValueError(f"unknown kind {kind!r}: one of {', '.join(KINDS)}")
 
 
-def classify_batch(lengths, frame, input_link):
+def classify_batch(lengths: ArrayLike, frame: ArrayLike,
+                   input_link: ArrayLike) -> Tuple[FourBarAnalysis, np.ndarray]:
     """Four-bars of a batch that may hold sets that cannot close.
 
     Returns

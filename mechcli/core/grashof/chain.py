@@ -18,7 +18,7 @@ angles counter-clockwise from +x, in radians.
 from __future__ import annotations
 
 import math
-from typing import NamedTuple
+from typing import List, NamedTuple, Optional, Sequence, Tuple
 
 from mechcli.core.errors import UnsolvableError
 
@@ -63,7 +63,8 @@ class ClosureError(UnsolvableError):
         1-based length set, when a batch of several sets was checked.
     """
 
-    def __init__(self, chain, length, limit, link=None, set_index=None):
+    def __init__(self, chain: str, length: float, limit: float, link: Optional[int] = None,
+                 set_index: Optional[int] = None) -> None:
         what = f"link {link}" if link is not None else "the offset"
         super().__init__(f"the {chain} cannot close: {what} is not shorter than "
                          + ("the sum of the other links" if chain == "chain" else
@@ -73,7 +74,7 @@ class ClosureError(UnsolvableError):
         self.link, self.set_index = link, set_index
 
 
-def check_chain_closure(lengths):
+def check_chain_closure(lengths: Sequence[float]) -> bool:
     """Raise :class:`ClosureError` if one link of a chain is at least as long as the others.
 
     Parameters
@@ -96,7 +97,7 @@ def check_chain_closure(lengths):
     return True
 
 
-def driven_links(frame, input_link):
+def driven_links(frame: int, input_link: int) -> Tuple[int, int, int]:
     """(input, coupler, output) link numbers for a frame and an input next to it.
 
     Raises
@@ -142,12 +143,13 @@ class ChainType(NamedTuple):
     excess: float
 
     @property
-    def type(self):
+    def type(self) -> str:
         """Type name, one of :data:`TYPES`."""
         return TYPES[self.code]
 
 
-def classify_chain(lengths, frame=4, crossed=False, rtol=CHANGE_POINT_RTOL):
+def classify_chain(lengths: Sequence[float], frame: int = 4, crossed: bool = False,
+                   rtol: float = CHANGE_POINT_RTOL) -> ChainType:
     """Classify one four-bar chain (crank-rocker, double-crank, double-rocker, ...).
 
     Parameters
@@ -197,7 +199,8 @@ def classify_chain(lengths, frame=4, crossed=False, rtol=CHANGE_POINT_RTOL):
                      excess=excess)
 
 
-def chain_inversions(lengths, rtol=CHANGE_POINT_RTOL, crossed=False):
+def chain_inversions(lengths: Sequence[float], rtol: float = CHANGE_POINT_RTOL,
+                     crossed: bool = False) -> Tuple[ChainType, ...]:
     """The type of one chain for each of the four choices of frame.
 
     Returns
@@ -209,11 +212,11 @@ def chain_inversions(lengths, rtol=CHANGE_POINT_RTOL, crossed=False):
 
 
 # --------------------------------------------------------- figures of merit
-def _acos(x):
+def _acos(x: float) -> float:
     return math.acos(min(1.0, max(-1.0, x)))
 
 
-def _output_angle(ac, phi, d):
+def _output_angle(ac: float, phi: float, d: float) -> float:
     """Angle of DC [rad, 0..2π) for C at distance *ac* from A in direction *phi*."""
     return math.atan2(ac * math.sin(phi), ac * math.cos(phi) - d) % _TWO_PI
 
@@ -251,7 +254,8 @@ class FigureOfMerit(NamedTuple):
     dead_theta3: tuple
 
 
-def figures_of_merit(a, b, c, d, input_turns, output_turns):
+def figures_of_merit(a: float, b: float, c: float, d: float, input_turns: bool,
+                     output_turns: bool) -> FigureOfMerit:
     """Limit positions, θ, ψ, K, transmission angles and dead points of one four-bar.
 
     Parameters
@@ -302,7 +306,7 @@ def figures_of_merit(a, b, c, d, input_turns, output_turns):
     th_hi = _acos((a ** 2 + d ** 2 - hi ** 2) / two_ad)
     input_lo, input_hi = (0.0, 2 * pi) if tin else (th_lo, th_hi)
 
-    def gamma_of(bd):
+    def gamma_of(bd: float) -> float:
         delta = _acos((b ** 2 + c ** 2 - bd ** 2) / (2 * b * c))
         return min(delta, pi - delta)
 
@@ -356,7 +360,8 @@ class FourBarChain(NamedTuple):
     merit: FigureOfMerit
 
 
-def analyse_chain(lengths, frame=4, input_link=1, crossed=False, rtol=CHANGE_POINT_RTOL):
+def analyse_chain(lengths: Sequence[float], frame: int = 4, input_link: int = 1,
+                  crossed: bool = False, rtol: float = CHANGE_POINT_RTOL) -> FourBarChain:
     """Classify one four-bar and compute its figures of merit (the scalar
     :func:`.fourbar.analyse_fourbar`).
 
@@ -425,7 +430,8 @@ _BASIC = {"change_point_crank_rocker": "crank_rocker",
           "change_point_double_rocker": "double_rocker"}
 
 
-def length_ranges(lengths, vary, frame=4, rtol=CHANGE_POINT_RTOL):
+def length_ranges(lengths: Sequence[float], vary: int, frame: int = 4,
+                  rtol: float = CHANGE_POINT_RTOL) -> List[LengthRange]:
     """Intervals of one link's length giving each type, the other three fixed.
 
     Parameters
@@ -465,7 +471,7 @@ def length_ranges(lengths, vary, frame=4, rtol=CHANGE_POINT_RTOL):
     pts = sorted(cand)
     base = [float(x) for x in lengths]
 
-    def label(x):
+    def label(x: float) -> Tuple[str, Optional[int]]:
         L = list(base)
         L[vary - 1] = x
         kl = classify_chain(L, frame=frame, rtol=rtol)
@@ -479,7 +485,7 @@ def length_ranges(lengths, vary, frame=4, rtol=CHANGE_POINT_RTOL):
             seq.append(("open", u, v, label((u + v) / 2)))
         if 0 < v < total:
             seq.append(("point", v, v, label(v)))
-    out = []
+    out: List[LengthRange] = []
     for kind, u, v, lab in seq:
         if out and (out[-1].type, out[-1].crank) == lab:
             prev = out[-1]
@@ -529,7 +535,8 @@ class SliderCrank(NamedTuple):
     alpha_max_at: float
 
 
-def analyse_slider_crank(a, b, e=0.0, rtol=CHANGE_POINT_RTOL):
+def analyse_slider_crank(a: float, b: float, e: float = 0.0,
+                         rtol: float = CHANGE_POINT_RTOL) -> SliderCrank:
     """Crank condition, stroke, θ, K and pressure angle of an offset slider-crank.
 
     Parameters
@@ -605,7 +612,8 @@ class GuideBar(NamedTuple):
     gamma_max: float
 
 
-def analyse_guide_bar(a, d, e=0.0, rtol=CHANGE_POINT_RTOL):
+def analyse_guide_bar(a: float, d: float, e: float = 0.0,
+                      rtol: float = CHANGE_POINT_RTOL) -> GuideBar:
     """Oscillating or rotating guide, θ = ψ, K and transmission angle.
 
     Parameters

@@ -8,6 +8,8 @@ inputs are the links joined to the frame (1 and 4).  Only numpy is used.
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING, List, Tuple
+
 import numpy as np
 
 from mechcli.core.errors import UnsolvableError
@@ -15,10 +17,13 @@ from mechcli.core.grashof.chain import CHANGE_POINT_RTOL, ClosureError
 from mechcli.core.grashof.fourbar import check_closure
 from mechcli.core.records import record
 
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
+
 FIVEBAR_TYPES = ("triple_crank", "double_crank", "single_crank", "no_crank")
 
 
-def fivebar_roles(frame):
+def fivebar_roles(frame: int) -> Tuple[int, int, int, int]:
     """(input_1, input_2, coupler_1, coupler_2) link numbers for a frame link.
 
     ``input_1`` is the link after the frame in the loop, ``coupler_1`` is
@@ -28,7 +33,8 @@ def fivebar_roles(frame):
     return ((f0 + 1) % 5 + 1, (f0 + 4) % 5 + 1, (f0 + 2) % 5 + 1, (f0 + 3) % 5 + 1)
 
 
-def joint_revolvable(lengths, j, k, rtol=CHANGE_POINT_RTOL):
+def joint_revolvable(lengths: ArrayLike, j: int, k: int,
+                     rtol: float = CHANGE_POINT_RTOL) -> np.ndarray:
     """Whether adjacent links *j* and *k* of a closed 5R chain turn fully relative to each other.
 
     Parameters
@@ -100,14 +106,15 @@ class FiveBarClass:
     inputs_independent: np.ndarray
 
     @property
-    def types(self):
+    def types(self) -> List[str]:
         return [FIVEBAR_TYPES[c] for c in self.code.tolist()]
 
-    def cranks(self, i=0):
+    def cranks(self, i: int = 0) -> List[int]:
         return [k + 1 for k in np.flatnonzero(self.crank_mask[i]).tolist()]
 
 
-def classify_fivebar(lengths, frame=5, rtol=CHANGE_POINT_RTOL):
+def classify_fivebar(lengths: ArrayLike, frame: int = 5,
+                     rtol: float = CHANGE_POINT_RTOL) -> FiveBarClass:
     """Class (I/II) and type of 5R five-bars with the two frame links as inputs.
 
     Parameters
@@ -225,7 +232,8 @@ class RRRRPCrank:
     slider_inner_hi: float = 0.0
 
 
-def rrrrp_crank(l1, l2, l3, e=0.0, rtol=CHANGE_POINT_RTOL):
+def rrrrp_crank(l1: float, l2: float, l3: float, e: float = 0.0,
+                rtol: float = CHANGE_POINT_RTOL) -> RRRRPCrank:
     """Crank condition of the RRRRP five-bar (the paper's §4), with slider offset.
 
     Parameters

@@ -18,6 +18,8 @@ assembly).  Angles are counter-clockwise from +x, in radians.
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING, List, Union
+
 import numpy as np
 
 from mechcli.core.errors import UnsolvableError
@@ -36,8 +38,14 @@ from mechcli.core.grashof.chain import (
 )
 from mechcli.core.records import record
 
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
 
-def _lengths_array(lengths, n):
+    #: a length or angle, or an array of them (broadcast together)
+    FloatOrArray = Union[float, np.ndarray]
+
+
+def _lengths_array(lengths: ArrayLike, n: int) -> np.ndarray:
     arr = np.asarray(lengths, dtype=float)
     if arr.ndim == 1:
         arr = arr[None, :]
@@ -46,7 +54,7 @@ def _lengths_array(lengths, n):
     return arr
 
 
-def check_closure(lengths):
+def check_closure(lengths: ArrayLike) -> bool:
     """Raise :class:`ClosureError` if some link is at least as long as all the others.
 
     Parameters
@@ -73,7 +81,7 @@ def check_closure(lengths):
     return True
 
 
-def closes(lengths):
+def closes(lengths: ArrayLike) -> np.ndarray:
     """Boolean array: True where every link is shorter than the sum of the others."""
     arr = _lengths_array(lengths, np.asarray(lengths).shape[-1])
     longest = arr.max(axis=1)
@@ -110,16 +118,17 @@ class FourBarClass:
     excess: np.ndarray
 
     @property
-    def types(self):
+    def types(self) -> List[str]:
         """Type names as a list of str."""
         return [TYPES[c] for c in self.code.tolist()]
 
-    def cranks(self, i=0):
+    def cranks(self, i: int = 0) -> List[int]:
         """Link numbers of the cranks of length set *i*."""
         return [k + 1 for k in np.flatnonzero(self.crank_mask[i]).tolist()]
 
 
-def classify_fourbar(lengths, frame=4, crossed=False, rtol=CHANGE_POINT_RTOL):
+def classify_fourbar(lengths: ArrayLike, frame: ArrayLike = 4, crossed: ArrayLike = False,
+                     rtol: float = CHANGE_POINT_RTOL) -> FourBarClass:
     """Classify four-bar chains (crank-rocker, double-crank, double-rocker, ...).
 
     Parameters
@@ -191,7 +200,8 @@ def classify_fourbar(lengths, frame=4, crossed=False, rtol=CHANGE_POINT_RTOL):
                         shortest=np.argmin(L, axis=1) + 1, excess=excess)
 
 
-def classify_inversions(lengths, rtol=CHANGE_POINT_RTOL, crossed=False):
+def classify_inversions(lengths: ArrayLike, rtol: float = CHANGE_POINT_RTOL,
+                        crossed: bool = False) -> List[FourBarClass]:
     """The type of the chain for each of the four choices of frame.
 
     Parameters
@@ -215,11 +225,11 @@ def classify_inversions(lengths, rtol=CHANGE_POINT_RTOL, crossed=False):
     return [classify_fourbar(lengths, frame=k, crossed=crossed, rtol=rtol) for k in (1, 2, 3, 4)]
 
 
-def _acos(x):
+def _acos(x: ArrayLike) -> np.ndarray:
     return np.arccos(np.clip(x, -1.0, 1.0))
 
 
-def _wrap(angle):
+def _wrap(angle: ArrayLike) -> np.ndarray:
     return np.mod(angle, 2 * np.pi)
 
 
@@ -295,14 +305,15 @@ class FourBarMerit:
     dead_theta3: np.ndarray
 
 
-def _output_angle(ac, phi, c, d):
+def _output_angle(ac: np.ndarray, phi: ArrayLike, c: ArrayLike, d: ArrayLike) -> np.ndarray:
     """Angle of DC [rad] for C at distance *ac* from A in direction *phi*."""
     cx = ac * np.cos(phi) - d
     cy = ac * np.sin(phi)
     return _wrap(np.arctan2(cy, cx))
 
 
-def fourbar_merit(a, b, c, d, input_turns, output_turns):
+def fourbar_merit(a: ArrayLike, b: ArrayLike, c: ArrayLike, d: ArrayLike, input_turns: ArrayLike,
+                  output_turns: ArrayLike) -> FourBarMerit:
     """Limit positions, θ, ψ, K, transmission angles and dead points.
 
     Parameters
@@ -365,7 +376,7 @@ def fourbar_merit(a, b, c, d, input_turns, output_turns):
     input_lo = np.where(tin, 0.0, th_lo)
     input_hi = np.where(tin, 2 * np.pi, th_hi)
 
-    def gamma_of(bd):
+    def gamma_of(bd: np.ndarray) -> np.ndarray:
         delta = _acos((b ** 2 + c ** 2 - bd ** 2) / (2 * b * c))
         return np.minimum(delta, np.pi - delta)
 
@@ -423,8 +434,9 @@ class FourBarAnalysis:
     merit: FourBarMerit
 
 
-def analyse_fourbar(lengths, frame=4, input_link=1, crossed=False, rtol=CHANGE_POINT_RTOL,
-                    require_closure=True):
+def analyse_fourbar(lengths: ArrayLike, frame: ArrayLike = 4, input_link: ArrayLike = 1,
+                    crossed: ArrayLike = False, rtol: float = CHANGE_POINT_RTOL,
+                    require_closure: bool = True) -> FourBarAnalysis:
     """Classify four-bars and compute their figures of merit (vectorized).
 
     Parameters
@@ -493,7 +505,8 @@ class TransmissionCurve:
     feasible: np.ndarray
 
 
-def fourbar_transmission(a, b, c, d, theta1):
+def fourbar_transmission(a: FloatOrArray, b: FloatOrArray, c: FloatOrArray, d: FloatOrArray,
+                         theta1: ArrayLike) -> TransmissionCurve:
     """γ(θ1) of a four-bar: input a, coupler b, output c, frame d [m].
 
     Notes
@@ -510,7 +523,8 @@ def fourbar_transmission(a, b, c, d, theta1):
     return TransmissionCurve(th, gamma, ok)
 
 
-def slider_transmission(a, b, e, theta1):
+def slider_transmission(a: FloatOrArray, b: FloatOrArray, e: FloatOrArray,
+                        theta1: ArrayLike) -> TransmissionCurve:
     """γ(θ1) on the slider of an offset slider-crank (γ = 90° − pressure angle).
 
     Notes
@@ -524,7 +538,8 @@ def slider_transmission(a, b, e, theta1):
     return TransmissionCurve(th, gamma, ok)
 
 
-def guide_transmission(a, d, e, theta1):
+def guide_transmission(a: FloatOrArray, d: FloatOrArray, e: float,
+                       theta1: ArrayLike) -> TransmissionCurve:
     """γ(θ1) on the guide of a guide-bar, crank a about A = (0, 0), guide pivot C = (d, 0).
 
     Notes

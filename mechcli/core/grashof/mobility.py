@@ -5,6 +5,8 @@ Pure Python (no numpy needed): a mechanism is a short list of joints.
 
 from __future__ import annotations
 
+from typing import Iterable, Set
+
 from mechcli.core.records import record
 
 LOWER = ("R", "P")
@@ -31,7 +33,7 @@ class Joint:
     name: str = ""
 
     @property
-    def pairs(self):
+    def pairs(self) -> int:
         """Pairs this joint counts: m − 1 for m links at a lower pair, 1 for a higher pair."""
         return 1 if self.kind in HIGHER else len(self.links) - 1
 
@@ -78,7 +80,8 @@ class MobilityError(ValueError):
     """A joint list that does not describe a mechanism."""
 
 
-def count_mobility(joints, frame, local_dof=0, redundant=0):
+def count_mobility(joints: Iterable[Joint], frame: int, local_dof: int = 0,
+                   redundant: int = 0) -> Mobility:
     """Degrees of freedom of a planar mechanism by the Grübler–Kutzbach count.
 
     Parameters
@@ -110,7 +113,7 @@ def count_mobility(joints, frame, local_dof=0, redundant=0):
     constraints added back: F = 3n − (2P_L + P_H − p') − F'.
     """
     joints = tuple(joints)
-    links = set()
+    links: Set[int] = set()
     for j in joints:
         if len(set(j.links)) != len(j.links):
             raise MobilityError(f"joint {j.name or j.kind} lists a link twice: {list(j.links)}")

@@ -21,8 +21,9 @@ pairs class IV; the mechanism's class is that of its highest group.
 from __future__ import annotations
 
 from itertools import combinations
+from typing import Collection, Dict, Iterable, List, Optional, Sequence, Set, Tuple
 
-from mechcli.core.grashof.mobility import LOWER, MobilityError
+from mechcli.core.grashof.mobility import LOWER, Joint, MobilityError
 from mechcli.core.records import record
 
 #: the largest group searched for (links); every textbook group has at most 6
@@ -68,7 +69,7 @@ class Structure:
     mechanism_class: int
 
 
-def decompose(joints, frame, drivers):
+def decompose(joints: Iterable[Joint], frame: int, drivers: Iterable[int]) -> Structure:
     """Decompose a mechanism into its drivers and Assur groups.
 
     Parameters
@@ -119,7 +120,9 @@ def decompose(joints, frame, drivers):
     return Structure(tuple(groups), max(g.klass for g in groups))
 
 
-def _pairs(joints, group, known):
+def _pairs(joints: Sequence[Joint], group: Sequence[int],
+           known: Collection[int]
+           ) -> Tuple[List[Tuple[Joint, List[int]]], List[Tuple[Joint, List[int]]]]:
     """The pairs that join the links of *group* to each other and to *known*
     links: ``(outer, inner)`` lists of ``(joint, links of the group there)``."""
     outer, inner = [], []
@@ -134,13 +137,13 @@ def _pairs(joints, group, known):
     return outer, inner
 
 
-def _count(outer, inner):
+def _count(outer: List[Tuple[Joint, List[int]]], inner: List[Tuple[Joint, List[int]]]) -> int:
     # an outer hinge fixes every group link at it to a known link; an inner one
     # joining m group links makes m - 1 pairs
     return sum(len(h) for _, h in outer) + sum(len(h) - 1 for _, h in inner)
 
 
-def _connected(group, inner):
+def _connected(group: Sequence[int], inner: List[Tuple[Joint, List[int]]]) -> bool:
     group = list(group)
     seen, todo = {group[0]}, [group[0]]
     while todo:
@@ -154,7 +157,8 @@ def _connected(group, inner):
     return len(seen) == len(group)
 
 
-def _next_group(joints, known, unknown):
+def _next_group(joints: Sequence[Joint], known: Collection[int],
+                unknown: Sequence[int]) -> Optional[Group]:
     """The smallest Assur group on the known links (the first by link number)."""
     for n in range(2, min(MAX_GROUP, len(unknown)) + 1, 2):
         for group in combinations(unknown, n):
@@ -166,7 +170,8 @@ def _next_group(joints, known, unknown):
     return None
 
 
-def _describe(group, outer, inner):
+def _describe(group: Sequence[int], outer: List[Tuple[Joint, List[int]]],
+              inner: List[Tuple[Joint, List[int]]]) -> Group:
     names = tuple(j.name for j, _ in outer) + tuple(j.name for j, _ in inner)
     a_outer = [j for j, h in outer if group[0] in h]
     b_outer = [j for j, h in outer if group[-1] in h]
@@ -184,19 +189,19 @@ def _describe(group, outer, inner):
     return Group(kind, klass, tuple(group), names)
 
 
-def _klass(group, inner):
+def _klass(group: Sequence[int], inner: List[Tuple[Joint, List[int]]]) -> int:
     """The number of sides of the largest closed contour of inner pairs: the
     inner pairs on one link (a ternary link's three make a triangle), or a
     cycle of links joined by inner pairs."""
     on_link = {k: sum(1 for _, h in inner if k in h) for k in group}
     best = max(on_link.values())
-    adj = {k: set() for k in group}
+    adj: Dict[int, Set[int]] = {k: set() for k in group}
     for _, here in inner:
         for a, b in combinations(here, 2):
             adj[a].add(b)
             adj[b].add(a)
 
-    def longest_cycle(start, node, seen):
+    def longest_cycle(start: int, node: int, seen: Set[int]) -> int:
         best_len = 0
         for m in adj[node]:
             if m == start and len(seen) >= 3:
