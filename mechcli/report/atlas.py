@@ -10,13 +10,10 @@ from __future__ import annotations
 import math
 
 from mechcli.report.table import Block
+from mechcli.report.words import say
 
 KINDS = ("atlas_page", "type_chart", "atlas_build", "path")
 REGIONS = ("crank_rocker", "double_crank", "double_rocker", "change_point")
-
-
-def _label(lang, en, zh):
-    return zh if lang == "zh" else en
 
 
 def _f(x, nd=4):
@@ -90,34 +87,32 @@ def blocks(prob, sol, u, unit, lang, prefix=""):
     out = []
     if sol.kind == "atlas_page":
         rows = [["A, B, C", f"{r['A']:g}, {r['B']:g}, {r['C']:g}"],
-                [_label(lang, "type", "类型"), r["type"]],
-                [_label(lang, "curves drawn", "连杆曲线数"), f"{r['curves']} / {r['points']}"],
-                [_label(lang, "dashes per curve", "每条曲线短线数"), str(r["positions"])]]
+                [say(lang, "atlas.type"), r["type"]],
+                [say(lang, "atlas.curves_drawn"), f"{r['curves']} / {r['points']}"],
+                [say(lang, "atlas.dashes_per_curve"), str(r["positions"])]]
         if not r["drawn"]:
-            rows.append([_label(lang, "not drawn", "未绘制"), WHY[r["reason"]]])
-        out.append(Block(prefix + _label(lang, "Atlas page (crank = 1)", "图谱页 (曲柄 = 1)"),
-                         rows=rows))
+            rows.append([say(lang, "atlas.not_drawn"), WHY[r["reason"]]])
+        out.append(Block(prefix + say(lang, "atlas.page"), rows=rows))
     elif sol.kind == "type_chart":
         rows = [["A", ", ".join(f"{a:g}" for a in r["A"])]]
         rows += [[name.replace("_", "-"), f"{100 * v:.1f} %"] for name, v in
                  r["fractions"].items()]
         if "mark_type" in r:
-            rows.append([_label(lang, "marked point B, C", "标记点 B, C"),
+            rows.append([say(lang, "atlas.marked_point"),
                          f"{r['mark_B']:g}, {r['mark_C']:g}: {r['mark_type']}"])
         for k in ("A", "B", "C"):
             if f"{k}_min" in r:
-                rows.append([_label(lang, f"{k} may vary within", f"{k} 的变化范围"),
+                rows.append([say(lang, "atlas.may_vary", k=k),
                              f"{r[k + '_min']:g} ... {r[k + '_max']:g}"])
-        out.append(Block(prefix + _label(lang, "Type chart (图 7)", "机构类型图 (图 7)"),
-                         rows=rows))
+        out.append(Block(prefix + say(lang, "atlas.type_chart"), rows=rows))
     elif sol.kind == "atlas_build":
-        rows = [[_label(lang, "curves kept", "曲线数"), str(r["curves"])],
-                [_label(lang, "designs swept", "扫描设计数"), str(r["candidates"])],
-                [_label(lang, "chunks", "数据块"), str(r["chunks"])],
-                [_label(lang, "complete", "完成"), "yes" if r["complete"] else "no"],
-                [_label(lang, "time [s]", "时间/s"), f"{r['time_s']:.2f}"],
-                [_label(lang, "directory", "目录"), r["directory"]]]
-        out.append(Block(prefix + _label(lang, "Atlas build", "图谱生成"), rows=rows))
+        rows = [[say(lang, "atlas.curves_kept"), str(r["curves"])],
+                [say(lang, "atlas.designs_swept"), str(r["candidates"])],
+                [say(lang, "atlas.chunks"), str(r["chunks"])],
+                [say(lang, "atlas.complete"), "yes" if r["complete"] else "no"],
+                [say(lang, "atlas.time"), f"{r['time_s']:.2f}"],
+                [say(lang, "atlas.directory"), r["directory"]]]
+        out.append(Block(prefix + say(lang, "atlas.build"), rows=rows))
     elif sol.kind == "path":
         heads = ["#", "A", "B", "C", "gx", "gy", f"crank [{unit}]",
                  f"rms err [{unit}]", f"max err [{unit}]", "γmin [°]", "type"]
@@ -125,17 +120,15 @@ def blocks(prob, sol, u, unit, lang, prefix=""):
                  _f(c["crank"]), f"{c['error_rms']:.3g}", f"{c['error_max']:.3g}",
                  _f(c["gamma_min_deg"], 2), c["type"]]
                 for i, c in enumerate(r["candidates_list"])]
-        out.append(Block(prefix + _label(lang, "Path synthesis by atlas search, refined",
-                                         "图谱检索轨迹综合 (优化后)"), heads, rows))
+        out.append(Block(prefix + say(lang, "atlas.path"), heads, rows))
         if r["candidates_list"] and "theta0_deg" in r["candidates_list"][0]:
-            out.append(Block(prefix + _label(lang, "Timing", "时序"), rows=[
-                [_label(lang, f"crank angle at target 1 (candidate {i + 1}) [°]",
-                        f"第 1 点曲柄转角 (方案 {i + 1})/(°)"), _f(c["theta0_deg"], 3)]
+            out.append(Block(prefix + say(lang, "atlas.timing"), rows=[
+                [say(lang, "atlas.crank_at_target_1", i=i + 1), _f(c["theta0_deg"], 3)]
                 for i, c in enumerate(r["candidates_list"])]))
-        out.append(Block(prefix + _label(lang, "Cost", "耗时"), rows=[
-            [_label(lang, "atlas curves searched", "检索曲线数"), str(r["atlas_curves"])],
-            [_label(lang, "search [s]", "检索/s"), f"{r['search_s']:.3f}"],
-            [_label(lang, "refinement [s]", "优化/s"), f"{r['refine_s']:.3f}"]]))
+        out.append(Block(prefix + say(lang, "atlas.cost"), rows=[
+            [say(lang, "atlas.curves_searched"), str(r["atlas_curves"])],
+            [say(lang, "atlas.search"), f"{r['search_s']:.3f}"],
+            [say(lang, "atlas.refinement"), f"{r['refine_s']:.3f}"]]))
     return out
 
 

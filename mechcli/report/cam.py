@@ -15,54 +15,7 @@ from mechcli.core.cam.motion import LAW_ALIASES, POLYNOMIAL_LAWS, PolynomialLaw
 from mechcli.report.files import Outputs
 from mechcli.report.run import finish
 from mechcli.report.table import Block, Report, book_title
-
-LABELS = {
-    "en": {
-        "table": "Follower motion and cam profile",
-        "delta": "δ/(°)", "s": "s/({u})", "psi": "ψ/(°)", "v": "ds/dδ/({u}/rad)",
-        "vpsi": "dψ/dδ", "a": "d²s/dδ²/({u}/rad²)", "apsi": "d²ψ/dδ²/(1/rad)",
-        "alpha": "α/(°)", "x": "x/({u})", "y": "y/({u})", "xw": "x'/({u})", "yw": "y'/({u})",
-        "rho": "ρ'/({u})",
-        "summary": "Results", "r0": "base radius r0", "r0_sized": "base radius r0 (sized)",
-        "phi0": "initial arm angle φ0", "h": "lift h", "psi_s": "swing ψ",
-        "a_rise": "max pressure angle, rise", "a_ret": "max pressure angle, return",
-        "at": "at δ =", "rho_p": "min radius of curvature, pitch curve (convex)",
-        "rho_w": "min radius of curvature, working curve",
-        "rr_max": "largest roller radius without undercut",
-        "undercut": "undercut", "yes": "yes", "no": "no",
-        "face": "minimum face width (no margin)",
-        "r0_min": "smallest base radius for [α]", "r0_min_flat": "smallest base radius (convex)",
-        "r0_other": "smallest base radius, offset on the other side",
-        "best_side": "better offset side", "right": "right", "left": "left",
-        "impacts": "Impacts", "rigid": "rigid impact (velocity jump)",
-        "soft": "soft impact (acceleration jump)", "none": "none (velocity and acceleration "
-        "continuous)",
-        "title_default": "Disc cam",
-        "program": "Motion program", "rise": "rise", "return": "return", "dwell": "dwell",
-        "lift": "lift", "polynomial": "polynomial", "inside": "inside",
-    },
-    "zh": {
-        "table": "推杆运动规律与凸轮廓线",
-        "delta": "凸轮转角 δ/(°)", "s": "位移 s/({u})", "psi": "摆角 ψ/(°)",
-        "v": "类速度 ds/dδ/({u}/rad)", "vpsi": "类角速度 dψ/dδ",
-        "a": "类加速度 d²s/dδ²/({u}/rad²)", "apsi": "类角加速度 d²ψ/dδ²/(1/rad)",
-        "alpha": "压力角 α/(°)", "x": "理论廓线 x/({u})", "y": "理论廓线 y/({u})",
-        "xw": "实际廓线 x'/({u})", "yw": "实际廓线 y'/({u})", "rho": "曲率半径 ρ'/({u})",
-        "summary": "计算结果", "r0": "基圆半径 r0", "r0_sized": "基圆半径 r0 (按计算选取)",
-        "phi0": "推杆初始位置角 φ0", "h": "推杆升程 h", "psi_s": "推杆摆角 ψ",
-        "a_rise": "推程最大压力角", "a_ret": "回程最大压力角", "at": "对应凸轮转角 δ =",
-        "rho_p": "理论廓线最小曲率半径 (外凸)", "rho_w": "实际廓线最小曲率半径",
-        "rr_max": "不失真的最大滚子半径", "undercut": "运动失真 (根切)", "yes": "是",
-        "no": "否", "face": "平底最小宽度 (不含余量)",
-        "r0_min": "满足许用压力角的最小基圆半径", "r0_min_flat": "凸轮廓线全外凸的最小基圆半径",
-        "r0_other": "偏置于另一侧时的最小基圆半径", "best_side": "合理的偏置方位",
-        "right": "右侧", "left": "左侧", "impacts": "冲击",
-        "rigid": "刚性冲击 (速度突变)", "soft": "柔性冲击 (加速度突变)",
-        "none": "无冲击 (速度、加速度连续)", "title_default": "盘形凸轮",
-        "program": "推杆运动规律", "rise": "推程", "return": "回程", "dwell": "休止",
-        "lift": "行程", "polynomial": "多项式", "inside": "内部",
-    },
-}
+from mechcli.report.words import say, table
 
 
 def _f(x, nd=4):
@@ -88,7 +41,7 @@ def law_text(law, lang="en", width=60):
     if law is None:
         return "", []
     if isinstance(law, PolynomialLaw):
-        name, poly = LABELS[lang]["polynomial"], law
+        name, poly = say(lang, "cam.polynomial"), law
     else:
         name = LAW_ALIASES.get(law, law)
         if name not in POLYNOMIAL_LAWS:
@@ -135,7 +88,7 @@ def _jump_text(cs, imp):
 
 
 def _impact_where(design, imp, lang):
-    L = LABELS[lang]
+    L = table(lang, "cam")
     segs = design.program.segments
     i, j = _impact_segments(design.program, imp.delta)
 
@@ -237,7 +190,6 @@ def results_dict(cs, design):
 
 def warnings_for(cs, design, lang="en"):
     """One-line warnings: undercut, pressure angle over the limit, rigid impacts."""
-    zh = lang == "zh"
     ch, fol = design.checks, design.follower
     u, unit = cs.header.scale, cs.header.unit
     out = []
@@ -245,43 +197,29 @@ def warnings_for(cs, design, lang="en"):
     if ch.distorted:
         where = ", ".join(f"{deg(d):.4g}°" for d in ch.distorted)
         if fol.contact == "roller":
-            out.append(f"motion distortion at δ = {where}: the pitch curve has a convex corner "
-                       "(velocity jump) that no roller can follow; it rolls round the cam's "
-                       "sharp edge" if not zh else
-                       f"运动失真: δ = {where} 处理论廓线有外凸尖角 (速度突变), 滚子无法实现")
+            out.append(say(lang, "cam.distorted_roller", where=where))
         else:
-            out.append(f"motion distortion at δ = {where}: ds/dδ drops, the flat-faced cam "
-                       "would need a cusp" if not zh else
-                       f"运动失真: δ = {where} 处类速度突降, 平底推杆凸轮廓线出现尖点")
+            out.append(say(lang, "cam.distorted_flat", where=where))
     rho_cut = ((fol.contact == "flat" and ch.rho_work_min.value <= 0)
                or (fol.contact == "roller" and ch.rho_pitch_min.value <= fol.rr))
     if rho_cut:
         where = deg(ch.rho_work_min.delta)
         if fol.contact == "flat":
-            out.append(f"the working profile has a cusp near δ = {where:.4g}° "
-                       f"(r0 + s + s'' = {ch.rho_work_min.value / u:.4g} {unit} <= 0); "
-                       "increase r0" if not zh else
-                       f"凸轮实际廓线在 δ = {where:.4g}° 附近出现尖点 (r0 + s + s'' <= 0), "
-                       "应增大基圆半径")
+            out.append(say(lang, "cam.cusp", where=f"{where:.4g}",
+                           rho=f"{ch.rho_work_min.value / u:.4g}", unit=unit))
         else:
-            out.append(f"undercut: roller radius {fol.rr / u:g} {unit} >= pitch-curve radius of "
-                       f"curvature {ch.rho_pitch_min.value / u:.4g} {unit} near δ = {where:.4g}°"
-                       if not zh else
-                       f"运动失真: 滚子半径 {fol.rr / u:g} {unit} >= 理论廓线曲率半径 "
-                       f"{ch.rho_pitch_min.value / u:.4g} {unit} (δ = {where:.4g}°)")
+            out.append(say(lang, "cam.roller_undercut", rr=f"{fol.rr / u:g}", unit=unit,
+                           rho=f"{ch.rho_pitch_min.value / u:.4g}", where=f"{where:.4g}"))
     for name, ext, lim in (("rise", ch.alpha_rise, cs.limits.alpha_rise),
                            ("return", ch.alpha_return, cs.limits.alpha_return)):
         # a sized cam meets [α] with equality: do not warn on round-off (1e-9 rad)
         if ext is not None and ext.value > lim + 1e-9:
-            out.append(f"max pressure angle in the {name} {deg(ext.value):.4f}° exceeds "
-                       f"[α] = {deg(lim):g}°" if not zh else
-                       f"{'推' if name == 'rise' else '回'}程最大压力角 {deg(ext.value):.4f}° "
-                       f"超过许用值 {deg(lim):g}°")
+            out.append(say(lang, f"cam.alpha_over_{name}", alpha=f"{deg(ext.value):.4f}",
+                           limit=f"{deg(lim):g}"))
     rigid = [deg(i.delta) for i in design.impacts if i.kind == "rigid"]
     if rigid:
         where = ", ".join(f"{d:.4g}°" for d in rigid)
-        out.append(f"rigid impact (velocity jump) at δ = {where}" if not zh else
-                   f"刚性冲击 (速度突变) 位于 δ = {where}")
+        out.append(say(lang, "cam.rigid_at", where=where))
     return out
 
 
@@ -362,7 +300,7 @@ def csv_columns(cs, design):
 
 def build_report(cs, design, lang="en"):
     """The book-style text report (table every ``table_step`` plus results)."""
-    L = LABELS[lang]
+    L = table(lang, "cam")
     unit, u = cs.header.unit, cs.header.scale
     p, fol, ch = design.profile, design.follower, design.checks
     deg = math.degrees

@@ -30,6 +30,7 @@ from mechcli.report.kin import (  # noqa: F401
     table_rows,
 )
 from mechcli.report.table import Block, Report
+from mechcli.report.words import say, section
 
 
 @record
@@ -44,16 +45,17 @@ class Extra:
     exact: Optional[dict] = None
 
 
-#: the engine's named results, in report order, with their descriptions
+#: the engine's named results, in report order, with their descriptions (their Chinese
+#: names in the tables: the catalogue's ``force.head_<symbol>``)
 ENGINE_NAMES = {
-    "FL": ("gas force on the piston (toward the crank)", "活塞上的气体力"),
-    "FI": ("inertia force of the reciprocating mass, m·a", "往复质量惯性力"),
-    "FP": ("piston effort (piston on the rod, along the stroke)", "活塞推力"),
-    "FQ": ("force along the connecting rod (compression +)", "连杆力"),
-    "FN": ("thrust on the cylinder walls", "气缸壁侧压力"),
-    "FT": ("crank effort (tangential force at the crank pin)", "曲柄销切向力"),
-    "Frad": ("radial force on the crank (toward its axis)", "曲柄径向力"),
-    "T": ("turning moment on the crank", "曲轴转矩"),
+    "FL": "gas force on the piston (toward the crank)",
+    "FI": "inertia force of the reciprocating mass, m·a",
+    "FP": "piston effort (piston on the rod, along the stroke)",
+    "FQ": "force along the connecting rod (compression +)",
+    "FN": "thrust on the cylinder walls",
+    "FT": "crank effort (tangential force at the crank pin)",
+    "Frad": "radial force on the crank (toward its axis)",
+    "T": "turning moment on the crank",
 }
 
 
@@ -245,19 +247,20 @@ def _cycle_warnings(spec):
     return out
 
 
-_ZH_HEAD = {"Mb": "平衡力矩", "Fb": "平衡力", "Fsh": "机架总反力", "Msh": "机架总力矩"}
+def _head_name(lang, sym):
+    """The name before a force table header's symbol (``平衡力矩 Mb``); none in English."""
+    return say(lang, f"force.head_{sym}") if f"head_{sym}" in section("force") else ""
 
 
 def build_report(spec, res, lang="en", extra=None):
     """The book-style report: reactions and Mb every ``table_step``, extremes, loads;
     the engine's named results and the values at ``output.at`` when asked."""
-    zh = lang == "zh"
     digits = spec.output.digits
     fin = input_factor(spec)
     at_u = "°" if spec.input.rotary else spec.header.unit
     shown = [s for s in res.series if s not in ("P",) and not s.startswith("Fsh")
              and s != "Msh"]
-    headers = [input_header(spec, zh)] + [header(s, _PRETTY[_unit(s)]) for s in shown]
+    headers = [input_header(spec, lang)] + [header(s, _PRETTY[_unit(s)]) for s in shown]
     rows = []
     for i in table_rows(spec, res, spec.output.table_step):
         rows.append([fixed(res.q[i] * fin, 2)] + [fixed(res.series[s][i], digits)
@@ -269,10 +272,9 @@ def build_report(spec, res, lang="en", extra=None):
     step_txt = f"{spec.output.table_step * fin:g}"
     torque = any(s.startswith("Mb") for s in res.series)
     report.blocks.append(Block(
-        heading=(f"运动副反力与平衡{'力矩' if torque else '力'} (每 {step_txt}{at_u} 一行; "
-                 "F_Rij 为构件 i 对构件 j 的作用力)" if zh else
-                 f"Pair reactions and balancing {'torque' if torque else 'force'} (every "
-                 f"{step_txt}{at_u}; F_Rij = force of link i on link j)"),
+        heading=say(lang, "force.reactions", step=step_txt, unit=at_u,
+                    what=say(lang, "force.balancing_torque" if torque
+                             else "force.balancing_force")),
         headers=headers, rows=rows))
     ext = []
     flat = _constant(res)
@@ -280,35 +282,31 @@ def build_report(spec, res, lang="en", extra=None):
         u = _PRETTY[_unit(sym)]
         signed = not (sym.startswith("FR") or sym == "Fsh")
         name = sym if not sym.startswith("FR") else f"|{sym}|"
-        label = header(name, u, _ZH_HEAD.get(sym, "") if zh else "")
+        label = header(name, u, _head_name(lang, sym))
         if sym in flat:     # constant to round-off: no location
-            ext.append([label, fixed(hi.value, digits), "常量" if zh else "constant",
+            ext.append([label, fixed(hi.value, digits), say(lang, "common.constant"),
                         fixed(lo.value, digits) if signed else "", ""])
             continue
         ext.append([label, fixed(hi.value, digits), fixed(hi.at * fin, 4),
                     fixed(lo.value, digits) if signed else "", fixed(lo.at * fin, 4)
                     if signed else ""])
     report.blocks.append(Block(
-        heading=(f"极值 (位置精确到 ±{_extreme_tol(res) * fin:.0e}{input_suffix(spec)})" if zh
-                 else f"Extremes (refined by golden-section search, input located to "
-                      f"±{_extreme_tol(res) * fin:.0e}{input_suffix(spec)})"),
-        headers=["量" if zh else "quantity", "最大值" if zh else "max",
-                 header("位置" if zh else "at", at_u), "最小值" if zh else "min",
-                 header("位置" if zh else "at", at_u)],
-        rows=ext))
+        heading=say(lang, "force.extremes", tol=f"{_extreme_tol(res) * fin:.0e}",
+                    unit=input_suffix(spec)),
+        headers=_extreme_headers(lang, at_u), rows=ext))
     lines = []
     for sym in res.mean:
         u = _PRETTY[_unit(sym)]
-        lines.append([("平均 " if zh else "mean ") + sym, f"{res.mean[sym]:.{digits + 2}f} {u}"])
-        lines.append([("均方根 " if zh else "RMS ") + sym, f"{res.rms[sym]:.{digits + 2}f} {u}"])
+        lines.append([say(lang, "force.mean", sym=sym), f"{res.mean[sym]:.{digits + 2}f} {u}"])
+        lines.append([say(lang, "force.rms", sym=sym), f"{res.rms[sym]:.{digits + 2}f} {u}"])
     fr = res.forces
     peak = max(float(np.max(np.abs(v))) for v in fr.balancing.values())
-    lines.append(["功率平衡残差 (相对)" if zh else "power balance residual (relative)",
+    lines.append([say(lang, "force.power_residual"),
                   f"{float(np.max(np.abs(fr.power_residual))) / max(peak, 1e-300):.1e}"])
     k = int(np.argmax(fr.cond))
-    lines.append(["最大条件数" if zh else "largest condition number",
+    lines.append([say(lang, "force.largest_cond"),
                   f"{fr.cond[k]:.3g} at {res.q[k] * fin:.2f}{at_u}"])
-    report.blocks.append(Block(heading="汇总" if zh else "Summary", rows=lines))
+    report.blocks.append(Block(heading=say(lang, "common.summary"), rows=lines))
     loads = []
     for p in spec.loads:
         ld = p.load
@@ -317,9 +315,9 @@ def build_report(spec, res, lang="en", extra=None):
         if p.conditional:
             iv = res.active.get(ld.name, [])
             where = ", ".join(f"{a * fin:.4f} … {b * fin:.4f}{at_u}" for a, b in iv) or \
-                ("从不" if zh else "never")
+                say(lang, "force.never")
         else:
-            where = "全程" if zh else "always"
+            where = say(lang, "force.always")
         if p.source is not None and hasattr(p.source, "piston"):
             g = p.source
             what = (f"gas pressure on piston {ld.link}, area {g.area:.6g} m²"
@@ -329,88 +327,73 @@ def build_report(spec, res, lang="en", extra=None):
             what = "piston inertia force from the series in 1/n"
         loads.append([f"{ld.name} (link {ld.link}): {what}", where])
     if loads:
-        report.blocks.append(Block(heading="外载荷作用区间" if zh else "Loads and where they act",
-                                   rows=loads))
+        report.blocks.append(Block(heading=say(lang, "force.loads"), rows=loads))
     if extra is not None:
-        _engine_blocks(spec, res, extra, report, zh, digits)
-    n = res.q.size
-    report.notes.append((f"共 {n} 个位置" if zh else f"{n} positions analysed")
+        _engine_blocks(spec, res, extra, report, lang, digits)
+    report.notes.append(say(lang, "common.positions", n=res.q.size)
                         + (f"; ω1 = {spec.input.omega:g} rad/s" if spec.input.rotary else ""))
     if res.accuracy is not None:
-        report.notes.append(accuracy_note(res.accuracy, zh))
-    if dead_point_note(spec, res.kin, zh):
-        report.notes.append(dead_point_note(spec, res.kin, zh))
+        report.notes.append(accuracy_note(res.accuracy, lang))
+    if dead_point_note(spec, res.kin, lang):
+        report.notes.append(dead_point_note(spec, res.kin, lang))
     return report
 
 
-def _engine_blocks(spec, res, extra, report, zh, digits):
+def _extreme_headers(lang, at_u):
+    """The headers of an extremes table: quantity, max, at, min, at."""
+    at = header(say(lang, "common.at"), at_u)
+    return [say(lang, "common.quantity"), say(lang, "common.max"), at,
+            say(lang, "common.min"), at]
+
+
+def _engine_blocks(spec, res, extra, report, lang, digits):
     fin = input_factor(spec)
     at_u = "°" if spec.input.rotary else spec.header.unit
     eng = extra.engine
     if eng is not None:
         syms = list(eng.series)
-        headers = [input_header(spec, zh)] + [header(s, _PRETTY[_unit(s)]) for s in syms]
+        headers = [input_header(spec, lang)] + [header(s, _PRETTY[_unit(s)]) for s in syms]
         rows = [[fixed(res.q[i] * fin, 2)] + [fixed(eng.series[s][i], digits) for s in syms]
                 for i in table_rows(spec, res, spec.output.table_step)]
         pst = spec.piston
         report.blocks.append(Block(
-            heading=("活塞与曲柄上的力 (F_L 气体力, F_I = m·a, F_P 活塞推力, F_Q 连杆力, "
-                     "F_N 侧压力, F_T 切向力, T 转矩)" if zh else
-                     "Engine forces (FL gas force, FI = m·a of the reciprocating mass, FP "
-                     "piston effort, FQ along the rod, FN on the cylinder wall, FT crank "
-                     "effort, Frad radial, T turning moment)"),
+            heading=say(lang, "force.engine_forces"),
             headers=headers, rows=rows))
         ext = []
         for sym, (hi, lo) in eng.extremes.items():
             u = _PRETTY[_unit(sym)]
-            label = header(sym, u, ENGINE_NAMES[sym][1] if zh else "")
+            label = header(sym, u, _head_name(lang, sym))
             if hi[1] is None:
-                ext.append([label, fixed(hi[0], digits), "常量" if zh else "constant",
+                ext.append([label, fixed(hi[0], digits), say(lang, "common.constant"),
                             fixed(lo[0], digits), ""])
             else:
                 ext.append([label, fixed(hi[0], digits), fixed(hi[1] * fin, 4),
                             fixed(lo[0], digits), fixed(lo[1] * fin, 4)])
         tols = [e[2] for pair in eng.extremes.values() for e in pair if e[1] is not None]
         report.blocks.append(Block(
-            heading=(f"活塞力极值 (位置精确到 ±{max(tols) * fin:.0e}{input_suffix(spec)})"
-                     if zh else f"Engine forces: extremes (input located to "
-                     f"±{max(tols) * fin:.0e}{input_suffix(spec)})") if tols else
-            ("活塞力极值" if zh else "Engine forces: extremes"),
-            headers=["量" if zh else "quantity", "最大值" if zh else "max",
-                     header("位置" if zh else "at", at_u), "最小值" if zh else "min",
-                     header("位置" if zh else "at", at_u)], rows=ext))
-        report.notes.append(
-            f"活塞 {pst.link}: 行程 {pst.stroke / spec.header.scale:.6g} "
-             f"{spec.header.unit}, 外止点 θ = {np.degrees(pst.theta_head):.4f}°" if zh else
-             f"piston {pst.link}: stroke {pst.stroke / spec.header.scale:.6g} "
-             f"{spec.header.unit}, head-end dead centre at {np.degrees(pst.theta_head):.4f}°, "
-             f"crank end at {np.degrees(pst.theta_crank):.4f}°; the signs: see docs/force.md")
+            heading=say(lang, "force.engine_extremes_located", tol=f"{max(tols) * fin:.0e}",
+                        unit=input_suffix(spec)) if tols else
+            say(lang, "force.engine_extremes"),
+            headers=_extreme_headers(lang, at_u), rows=ext))
+        report.notes.append(say(lang, "force.piston", link=pst.link,
+                                stroke=f"{pst.stroke / spec.header.scale:.6g}",
+                                unit=spec.header.unit, head=f"{np.degrees(pst.theta_head):.4f}",
+                                crank=f"{np.degrees(pst.theta_crank):.4f}"))
     for x, values in extra.at.items():
         shown = at_text(x * fin).replace("p", ".").replace("m", "-")
         rows = [[header(sym, _PRETTY[_unit(sym)]), fixed(v, digits)]
                 for sym, v in values.items() if not sym.endswith(("x", "y"))
                 or sym in ENGINE_NAMES]
         report.blocks.append(Block(
-            heading=(f"{input_symbol(spec)} = {shown}{at_u} 时的值" if zh else
-                     f"Values at {input_symbol(spec)} = {shown}{at_u}"),
-            headers=["量" if zh else "quantity", "值" if zh else "value"], rows=rows))
+            heading=say(lang, "force.values_at", sym=input_symbol(spec), x=shown, unit=at_u),
+            headers=[say(lang, "common.quantity"), say(lang, "common.value")], rows=rows))
     if extra.exact is not None:
         diffs = {}
         _approx_results(spec, res, extra, diffs)
         parts = [f"{k[len('approx_error_'):-len('_max_rel')]} {v:.2%}"
                  for k, v in diffs.items() if k.endswith("_max_rel")]
-        if spec.piston.moment_arm == "series":
-            head = ("模型: 近似 (活塞惯性力与 T、FT 的力臂 r(sin θ + sin 2θ/2n) 按 1/n 级数), "
-                    "与精确模型的最大相对差: " if zh else
-                    "model: approximate (the piston's inertia force and the moment arm of T "
-                    "and FT, r (sin θ + sin 2θ / 2n), from the series in 1/n, the rest "
-                    "exact); largest differences to the exact model, relative to its peak: ")
-        else:
-            head = ("模型: 近似 (活塞惯性力按 1/n 级数), 与精确模型的最大相对差: " if zh else
-                    "model: approximate (the piston's inertia force from the series in 1/n, "
-                    "the rest exact); largest differences to the exact model, relative to "
-                    "its peak: ")
-        report.notes.append(head + ", ".join(parts))
+        key = "force.approx_arm" if spec.piston.moment_arm == "series" else "force.approx"
+        report.notes.append(say(lang, key, diffs=", ".join(parts)))
 
 
 def _constant(res):

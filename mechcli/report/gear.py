@@ -21,6 +21,7 @@ import re
 from mechcli.core.errors import UnsolvableError
 from mechcli.report.files import DEFAULT_DIGITS, OutputError, format_number
 from mechcli.report.table import Block, Report, book_title, unit_header
+from mechcli.report.words import say
 
 
 def csv_text(columns, digits=DEFAULT_DIGITS):
@@ -182,10 +183,9 @@ def undercut_margin_text(g, tooth, sc, u, lang="en"):
     measure beside the criterion x >= x_min (a standard cutter's tip rounding spares
     what it cuts below the depth ha* m)."""
     if tooth is None or not tooth.undercut:
-        return _t(lang, "0 (none)", "0 (无)")
+        return say(lang, "gear.undercut_none")
     return (f"{(tooth.r_form - g.rb) / sc:.4f} {u} ("
-            + _t(lang, f"{100 * tooth.undercut_fraction:.2f}% of its length)",
-                 f"渐开线长度的 {100 * tooth.undercut_fraction:.2f}%)"))
+            + say(lang, "gear.undercut_percent", percent=f"{100 * tooth.undercut_fraction:.2f}"))
 
 
 def undercut_message(g, tooth, sc, u):
@@ -203,15 +203,15 @@ def undercut_message(g, tooth, sc, u):
 
 
 def undercut_rows(g, tooth, sc, u, lang):
-    """Report rows (en, zh, symbol, text) of the undercut: the criterion and its margin
+    """Report rows (label, symbol, text) of the undercut: the criterion and its margin
     x - x_min, then the sharp-cornered cutter's cut as the measure beside it."""
-    verdict = _t(lang, "yes" if g.undercut else "no", "有" if g.undercut else "无")
+    verdict = say(lang, "gear.undercut_yes" if g.undercut else "gear.undercut_no")
     return [
-        ("undercut (standard rack: x < xmin)", "根切 (标准齿条刀具: x < xmin)", "x − xmin",
+        ("gear.undercut_criterion", "x − xmin",
          f"{g.x - g.x_min:+.4f} ({verdict})"),
-        ("involute starts at (sharp-cornered cutter)", "渐开线起始圆半径 (尖角刀具)", "r_form",
+        ("gear.involute_start", "r_form",
          f"{tooth.r_form / sc:.4f} {u}"),
-        ("involute cut by a sharp-cornered cutter", "尖角刀具切去的渐开线", "Δr",
+        ("gear.involute_cut", "Δr",
          undercut_margin_text(g, tooth, sc, u, lang)),
     ]
 
@@ -325,22 +325,20 @@ def measurement_results(m, sfx, L):
 
 
 def measurement_rows(m, sfx, f3, helical=False, lang="en"):
-    """Report rows (en, zh, symbol, text) of one gear's measurements."""
-    n = "normal " if helical else ""
-    on = _t(lang, "touching on", "切点在")
+    """Report rows (label, symbol, text) of one gear's measurements."""
+    kind = "helical" if helical else "spur"    # a helical gear's measures are normal ones
+    on = say(lang, "gear.touching_on")
     rows = [
-        (f"{n}tooth thickness with allowance", "齿厚 (计入减薄量)", f"s{sfx} - E{sfx}",
+        (f"gear.thickness_allowance_{kind}", f"s{sfx} - E{sfx}",
          f"{f3(m.form.s_n)} (E = {f3(m.form.allowance)})"),
-        ("chordal thickness / addendum" + (" (zv)" if helical else ""), "分度圆弦齿厚 / 弦齿高",
-         f"s̄{sfx}, h̄{sfx}", f"{f3(m.s_chord)}, {f3(m.h_chord)}"),
-        (f"{n}base tangent length over k teeth", "公法线长度 / 跨齿数", f"W{sfx} (k)",
+        (f"gear.chordal_{kind}", f"s̄{sfx}, h̄{sfx}", f"{f3(m.s_chord)}, {f3(m.h_chord)}"),
+        (f"gear.span_{kind}", f"W{sfx} (k)",
          f"{f3(m.span.W)} (k = {m.span.k}, {on} d = {f3(m.span.d_contact)})"),
-        ("dimension over pins" + (" (balls)" if helical else ""), "量柱(球)测量距",
-         f"M{sfx} (dp)", f"{f3(m.pins.M)} (dp = {f3(m.pins.dp)}, {on} "
+        (f"gear.pins_{kind}", f"M{sfx} (dp)", f"{f3(m.pins.M)} (dp = {f3(m.pins.dp)}, {on} "
                          f"d = {f3(m.pins.d_contact)})"),
     ]
     if helical:
-        rows.append(("face width the span needs", "测公法线所需齿宽", f"b_min{sfx}",
+        rows.append(("gear.face_width_for_span", f"b_min{sfx}",
                      f3(m.span.b_min)))
     return rows
 
@@ -353,9 +351,9 @@ def generating_results(gs, x="x", sfx=""):
 
 
 def generating_row(gs, x="x", sfx=""):
-    """The report row (en, zh, symbol, text) of a gear's shift and its generating
+    """The report row (label, symbol, text) of a gear's shift and its generating
     shifts: 'x1 → x_E1 = 0.3000 → 0.2904, 0.2904' (the sin form, then the tan form)."""
-    return ("generating profile shift (sin, tan)", "切齿变位系数 (sin 式, tan 式)",
+    return ("gear.generating_shift",
             f"{x}{sfx} → {x}_E{sfx}", f"{_num4(gs.x)} → {_num4(gs.x_E)}, {_num4(gs.x_E_tan)}")
 
 
@@ -416,45 +414,40 @@ def worm_efficiency_results(eff, mu):
 
 
 def loads_rows(ld, f3):
-    """Report rows (en, zh, symbol, text) of a pair's tooth loads; *f3* words a length."""
+    """Report rows (label, symbol, text) of a pair's tooth loads; *f3* words a length."""
     rpm = 30 / math.pi
-    where = {"spur": ("operating pitch circle", "节圆"), "helical": ("operating pitch circle",
-                                                                    "节圆"),
-             "bevel": ("mean cone", "齿宽中点"), "worm": ("worm reference cylinder",
-                                                        "蜗杆分度圆")}[ld.kind]
+    speed = {"spur": "gear.speed_pitch_circle", "helical": "gear.speed_pitch_circle",
+             "bevel": "gear.speed_mean_cone", "worm": "gear.speed_worm"}[ld.kind]
     rows = [
-        ("input power / speeds", "输入功率 / 转速", "P1, n1, n2",
+        ("gear.power_speeds", "P1, n1, n2",
          f"{ld.power / 1e3:.4g} kW, {ld.omega1 * rpm:.4g} rpm, {ld.omega2 * rpm:.4g} rpm"),
-        ("torques (input, output)", "转矩 (主动轴, 从动轴)", "T1, T2",
+        ("gear.torques", "T1, T2",
          f"{ld.T1:.4g} N·m, {ld.T2:.4g} N·m"),
-        (f"pitch-point speed ({where[0]})", f"圆周速度 ({where[1]})", "v",
+        (speed, "v",
          f"{ld.v:.4g} m/s (d = {f3(ld.d_force1)})"),
-        ("forces on gear 1: tangential, radial, axial", "齿轮 1 受力: 圆周力, 径向力, 轴向力",
-         "Ft1, Fr1, Fa1", f"{ld.Ft1:.4g} N, {ld.Fr1:.4g} N, {ld.Fa1:.4g} N"),
-        ("forces on gear 2: tangential, radial, axial", "齿轮 2 受力: 圆周力, 径向力, 轴向力",
-         "Ft2, Fr2, Fa2", f"{ld.Ft2:.4g} N, {ld.Fr2:.4g} N, {ld.Fa2:.4g} N"),
-        ("normal tooth force", "法向力", "Fn", f"{ld.Fn:.4g} N"),
+        ("gear.forces_gear_1", "Ft1, Fr1, Fa1", f"{ld.Ft1:.4g} N, {ld.Fr1:.4g} N, {ld.Fa1:.4g} N"),
+        ("gear.forces_gear_2", "Ft2, Fr2, Fa2", f"{ld.Ft2:.4g} N, {ld.Fr2:.4g} N, {ld.Fa2:.4g} N"),
+        ("gear.normal_tooth_force", "Fn", f"{ld.Fn:.4g} N"),
     ]
     if ld.kind == "bevel":
-        rows.insert(3, ("mean diameters", "齿宽中点分度圆直径", "dm1, dm2",
+        rows.insert(3, ("gear.mean_diameters", "dm1, dm2",
                         f"{f3(ld.d_force1)}, {f3(ld.d_force2)}"))
     return rows
 
 
 def worm_efficiency_rows(eff, mu, ld=None, lang="en"):
-    """Report rows (en, zh, symbol, text) of a worm's efficiency and self-locking (η' shown
+    """Report rows (label, symbol, text) of a worm's efficiency and self-locking (η' shown
     as 0 when the wheel cannot drive)."""
     eta, eta_rev, phi = eff
-    rows = [("flank friction coefficient / friction angle", "摩擦系数 / 当量摩擦角", "μ, φv",
+    rows = [("gear.friction", "μ, φv",
              f"{mu:.4g}, {math.degrees(phi):.4f}°"),
-            ("efficiency, worm driving", "啮合效率 (蜗杆主动)", "η = tanγ/tan(γ+φv)",
+            ("gear.efficiency_worm", "η = tanγ/tan(γ+φv)",
              f"{eta:.4f}"),
-            ("efficiency, wheel driving", "啮合效率 (蜗轮主动)", "η' = tan(γ-φv)/tanγ",
+            ("gear.efficiency_wheel", "η' = tan(γ-φv)/tanγ",
              f"{max(eta_rev, 0.0):.4f}"
-             + (_t(lang, " (self-locking: γ ≤ φv, the wheel cannot drive the worm)",
-                   " (自锁: γ ≤ φv, 蜗轮不能驱动蜗杆)") if eta_rev <= 0 else ""))]
+             + (say(lang, "gear.self_locking") if eta_rev <= 0 else ""))]
     if ld is not None:
-        rows.append(("sliding speed", "相对滑动速度", "vs = v1/cosγ",
+        rows.append(("gear.sliding_speed", "vs = v1/cosγ",
                      f"{ld.sliding_velocity:.4g} m/s"))
     return rows
 
@@ -594,8 +587,10 @@ def split_refusal(why, sc, u):
     return why.get("text", w)
 
 
-def _t(lang, en, zh):
-    return zh if lang == "zh" else en
+def _word(lang, word):
+    """A row's label: a catalogue key (``"gear.module"``), or ``(key, fields)``."""
+    key, fields = (word, {}) if isinstance(word, str) else word
+    return say(lang, key, **fields)
 
 
 def _suffix(k):
@@ -603,8 +598,8 @@ def _suffix(k):
 
 
 def _kv_block(heading, rows, lang):
-    """rows: (en, zh, symbol, text) -> Block of [label, 'symbol = text']."""
-    return Block(heading, [], [[_t(lang, en, zh), f"{sym} = {txt}"] for en, zh, sym, txt in rows])
+    """rows: (label, symbol, text) -> Block of [label, 'symbol = text'] (label: see _word)."""
+    return Block(heading, [], [[_word(lang, w), f"{sym} = {txt}"] for w, sym, txt in rows])
 
 
 # -- involute (【例 5-1】) -----------------------------------------------------------
@@ -631,18 +626,17 @@ def present_involute(spec, sol, run, outputs):
         (f"r_K_{u}", [v / sc for v in r]), ("theta_K_rad", th),
         (f"x_{u}", [v / sc for v in x]), (f"y_{u}", [v / sc for v in y])], outputs.digits))
     cols = [f"{k * p.table_step_deg:.1f}" for k in range(p.columns)]
-    table = Block(_t(lang, "Table 5-1  involute function inv α = tan α − α",
-                     "表 5-1 渐开线函数值"),
-                  [unit_header("α", "°", _t(lang, "", "压力角"))] + cols,
+    table = Block(say(lang, "gear.table_5_1"),
+                  [unit_header("α", "°", say(lang, "gear.alpha_name"))] + cols,
                   [[f"{row:.4f}"] + [f"{v:.{p.digits}f}" for v in line]
                    for row, line in zip(rows, inv)])
-    curve = _kv_block(_t(lang, "Involute curve (eq. 5-1, 5-2)", "渐开线曲线"), [
-        ("base radius", "基圆半径", "rb", f"{p.rb / sc:.3f} {u}"),
-        ("pressure angle range", "压力角范围", "αK",
+    curve = _kv_block(say(lang, "gear.involute_curve"), [
+        ("gear.base_radius", "rb", f"{p.rb / sc:.3f} {u}"),
+        ("gear.pressure_angle_range", "αK",
          f"0 … {math.degrees(p.alpha_max):g}°"),
-        ("end point radius", "终点向径", "r_K", f"{r[-1] / sc:.3f} {u}"),
-        ("end point roll angle", "终点展角", "θK", f"{th[-1]:.6f} rad"),
-        ("end point", "终点坐标", "(x, y)", f"({x[-1] / sc:.3f}, {y[-1] / sc:.3f}) {u}"),
+        ("gear.end_point_radius", "r_K", f"{r[-1] / sc:.3f} {u}"),
+        ("gear.end_point_roll_angle", "θK", f"{th[-1]:.6f} rad"),
+        ("gear.end_point", "(x, y)", f"({x[-1] / sc:.3f}, {y[-1] / sc:.3f}) {u}"),
     ], lang)
     report = Report(spec.header.title, [table, curve])
     if run.plot:
@@ -671,16 +665,16 @@ def present_inverse_involute(spec, sol, run, outputs):
                         f"relative_residual{sfx}": float(rel)})
         sec = f"{s:.{p.dms_seconds_digits}f}" if p.dms_seconds_digits else f"{int(s)}"
         blocks.append(Block("", [], [
-            [_t(lang, "involute function", "渐开线函数值"), f"θ = {th:g}"],
-            [_t(lang, "pressure angle", "渐开线压力角"),
-             f"α = {a:8.7f} " + _t(lang, "rad", "弧度")],
-            [_t(lang, "in degrees, minutes, seconds", "转换成度分秒后的值"),
-             _t(lang, f"α = {d} deg {mnt} min {sec} s  ({dms})", f"α = {d} 度 {mnt} 分 {sec} 秒")],
-            [_t(lang, "Newton iterations", "迭代次数"),
-             f"{it} (" + (_t(lang, f"book start {p.start:g}, ε = {p.epsilon:g}",
-                             f"书中初值 {p.start:g}, ε = {p.epsilon:g}") if p.method == "book"
-                          else _t(lang, "auto start", "自动初值")) + ")"],
-            [_t(lang, "residual inv(α) − θ", "残差"), f"{res:.3e}"],
+            [say(lang, "gear.involute_function"), f"θ = {th:g}"],
+            [say(lang, "gear.involute_pressure_angle"),
+             f"α = {a:8.7f} " + say(lang, "gear.rad")],
+            [say(lang, "gear.in_dms"),
+             say(lang, "gear.dms", d=d, mnt=mnt, sec=sec, dms=str(dms))],
+            [say(lang, "gear.newton_iterations"),
+             f"{it} (" + (say(lang, "gear.book_start", start=f"{p.start:g}",
+                              epsilon=f"{p.epsilon:g}") if p.method == "book"
+                          else say(lang, "gear.auto_start")) + ")"],
+            [say(lang, "gear.residual"), f"{res:.3e}"],
         ]))
         if p.method == "book" and rel > 1e-6:
             warnings.append(f"theta = {th:g}: the book's absolute stop |f| < {p.epsilon:g} "
@@ -728,42 +722,41 @@ def present_spur(spec, sol, run, outputs):
         results[f"h_chord_r{k + 1}"] = L(hc_r)
     f3 = lambda v: f"{v / sc:.3f} {u}"  # noqa: E731
     rows = [
-        ("number of teeth", "齿数", "z", f"{g.z}"),
-        ("module", "模数", "m", f3(g.m)),
-        ("pressure angle", "压力角", "α", f"{math.degrees(g.alpha):.3f}°"),
-        ("profile shift coefficient", "变位系数", "x", f"{g.x:.4f}"),
+        ("gear.number_of_teeth", "z", f"{g.z}"),
+        ("gear.module", "m", f3(g.m)),
+        ("gear.pressure_angle", "α", f"{math.degrees(g.alpha):.3f}°"),
+        ("gear.profile_shift_coefficient", "x", f"{g.x:.4f}"),
         *([] if gen is None else [generating_row(gen)]),
-        ("reference diameter", "分度圆直径", "d", f3(g.d)),
-        ("base diameter", "基圆直径", "db", f3(g.db)),
-        ("tip diameter", "齿顶圆直径", "da", f3(g.da)),
-        ("root diameter", "齿根圆直径", "df", f3(g.df)),
-        ("addendum", "齿顶高", "ha", f3(g.ha)),
-        ("dedendum", "齿根高", "hf", f3(g.hf)),
-        ("whole depth", "齿全高", "h", f3(g.h)),
-        ("pitch", "齿距", "p", f3(g.p)),
-        ("base pitch", "基圆齿距", "pb", f3(g.pb)),
-        ("tooth thickness", "齿厚", "s", f3(g.s)),
-        ("space width", "齿槽宽", "e", f3(g.e)),
-        ("tip pressure angle", "齿顶圆压力角", "αa", f"{math.degrees(g.alpha_a):.3f}°"),
-        ("tooth thickness at tip", "齿顶圆齿厚", "sa", f3(s_a)),
-        ("space width at tip", "齿顶圆齿槽宽", "ea", f3(g.space_width(g.ra))),
-        ("tooth thickness at base circle", "基圆齿厚", "sb", f3(s_b)),
-        ("space width at base circle", "基圆齿槽宽", "eb", f3(g.space_width(g.rb))),
-        ("radius of the pointed tip", "齿顶变尖时的齿顶圆半径", "rp", f3(g.pointed_radius)),
-        ("fewest teeth without undercut", "不根切最少齿数", "zmin", f"{g.z_min:.3f}"),
-        ("least shift against undercut", "最小变位系数", "xmin", f"{g.x_min:.4f}"),
+        ("gear.reference_diameter", "d", f3(g.d)),
+        ("gear.base_diameter", "db", f3(g.db)),
+        ("gear.tip_diameter", "da", f3(g.da)),
+        ("gear.root_diameter", "df", f3(g.df)),
+        ("gear.addendum", "ha", f3(g.ha)),
+        ("gear.dedendum", "hf", f3(g.hf)),
+        ("gear.whole_depth", "h", f3(g.h)),
+        ("gear.pitch", "p", f3(g.p)),
+        ("gear.base_pitch", "pb", f3(g.pb)),
+        ("gear.tooth_thickness", "s", f3(g.s)),
+        ("gear.space_width", "e", f3(g.e)),
+        ("gear.tip_pressure_angle", "αa", f"{math.degrees(g.alpha_a):.3f}°"),
+        ("gear.tooth_thickness_at_tip", "sa", f3(s_a)),
+        ("gear.space_width_at_tip", "ea", f3(g.space_width(g.ra))),
+        ("gear.tooth_thickness_at_base_circle", "sb", f3(s_b)),
+        ("gear.space_width_at_base_circle", "eb", f3(g.space_width(g.rb))),
+        ("gear.radius_of_the_pointed_tip", "rp", f3(g.pointed_radius)),
+        ("gear.fewest_teeth_without_undercut", "zmin", f"{g.z_min:.3f}"),
+        ("gear.least_shift_against_undercut", "xmin", f"{g.x_min:.4f}"),
         *undercut_rows(g, tooth, sc, u, lang),
     ]
     for k, r in enumerate(p.radii):
-        rows.append((f"thickness at r = {r / sc:g}", f"r = {r / sc:g} 处齿厚", f"s_r{k + 1}",
+        rows.append((("gear.thickness_at_r", {"r": f"{r / sc:g}"}), f"s_r{k + 1}",
                      f3(g.tooth_thickness(r))))
     rows += measurement_rows(ms, "", f3, lang=lang)
     for k, (r, (sc_r, hc_r)) in enumerate(zip(p.radii, ms.radii)):
-        rows.append((f"chordal thickness / height at r = {r / sc:g}",
-                     f"r = {r / sc:g} 处弦齿厚 / 弦齿高", f"s̄_r{k + 1}, h̄_r{k + 1}",
-                     f"{f3(sc_r)}, {f3(hc_r)}"))
+        rows.append((("gear.chordal_at_r", {"r": f"{r / sc:g}"}),
+                     f"s̄_r{k + 1}, h̄_r{k + 1}", f"{f3(sc_r)}, {f3(hc_r)}"))
     report = Report(spec.header.title,
-                    [_kv_block(_t(lang, "Spur gear geometry", "渐开线直齿圆柱齿轮几何尺寸"), rows,
+                    [_kv_block(say(lang, "gear.spur_geometry"), rows,
                                lang)])
     outputs.csv("gear.csv", [(f"x_{u}", outline.x / sc), (f"y_{u}", outline.y / sc)])
     if run.plot:
@@ -772,17 +765,12 @@ def present_spur(spec, sol, run, outputs):
     return report, results, warnings
 
 
-#: the symbols of 【例 5-4】's printout (its MATLAB names), kept in the Chinese listing
-_BOOK_5_4_NAMES = {"a'": "aT", "αa1": "alpha1", "αa2": "alpha2", "α'": "alpha", "εα": "epsilon"}
-
-
 # -- a pair (【例 5-4】, 习题 5-2 … 5-5) ----------------------------------------------
-def present_pair(spec, pairs, run, outputs):
-    p, u, sc, lang = spec.problem, spec.header.unit, spec.header.scale, run.lang
+def _pair_results(p, pairs, L):
+    """The JSON results of a spur pair that do not change with the mounting (the gears, the
+    shift design, the generating shifts, the measurements, the loads)."""
     first = pairs[0]
     g1, g2 = first.g1, first.g2
-    L = lambda v: float(v / sc)  # noqa: E731
-    warnings = []
     results = {"z1": g1.z, "z2": g2.z, "m": L(g1.m), "i12": first.ratio, "a": L(first.a),
                "d1": L(g1.d), "d2": L(g2.d), "db1": L(g1.db), "db2": L(g2.db),
                "da1": L(g1.da), "da2": L(g2.da), "df1": L(g1.df), "df2": L(g2.df),
@@ -808,93 +796,126 @@ def present_pair(spec, pairs, run, outputs):
     a0 = first.a_zero_backlash
     if a0 is not None:   # None: teeth so thin that no a' jams
         results["a_zero_backlash"] = L(a0)
+    return results
+
+
+def _mounting_results(pairs, k, sc):
+    """The JSON results of mounting *k* (suffix ``_2``, … after the first) and its CSV row."""
+    pr, sfx, g2 = pairs[k], _suffix(k), pairs[0].g2
+    L = lambda v: float(v / sc)  # noqa: E731
+    eps, cl = pr.epsilon_alpha, pr.clearances
+    results = {f"a_w{sfx}": L(pr.a_w), f"alpha_w_deg{sfx}": math.degrees(pr.alpha_w),
+               f"dw1{sfx}": L(pr.dw1), f"dw2{sfx}": L(pr.dw2),
+               f"epsilon_alpha{sfx}": eps,
+               f"backlash{sfx}": L(pairs.backlash[k][0]),
+               f"backlash_n{sfx}": L(pairs.backlash[k][1]),
+               f"clearance1{sfx}": L(cl[0]), f"clearance2{sfx}": L(cl[1]),
+               f"interference{sfx}": pr.interference,
+               f"y{sfx}": pr.y, f"delta_y{sfx}": pr.delta_y if not g2.internal else 0.0,
+               f"continuous{sfx}": eps >= 1}
+    row = [pr.a_w / sc, math.degrees(pr.alpha_w), pr.dw1 / sc, pr.dw2 / sc, eps,
+           pairs.backlash[k][0] / sc, cl[0] / sc, cl[1] / sc]
+    return results, row
+
+
+def _pair_rows(pairs, k, sc, u, lang):
+    """The geometry rows of mounting *k* (in Chinese 【例 5-4】's printout line for line:
+    its MATLAB names, lengths as "250.000mm")."""
+    pr, g1, g2 = pairs[k], pairs[0].g1, pairs[0].g2
+    f3 = lambda v: say(lang, "gear.pair_length", value=f"{v / sc:.3f}", unit=u)  # noqa: E731
+    return [
+        ("gear.standard_centre_distance", "a", f3(pr.a)),
+        ("gear.operating_centre_distance", say(lang, "gear.pair_a_w"), f3(pr.a_w)),
+        ("gear.pinion_reference_diameter", "d1", f3(g1.d)),
+        ("gear.wheel_reference_diameter", "d2", f3(g2.d)),
+        ("gear.pinion_base_diameter", "db1", f3(g1.db)),
+        ("gear.wheel_base_diameter", "db2", f3(g2.db)),
+        ("gear.pinion_tip_diameter", "da1", f3(g1.da)),
+        ("gear.wheel_tip_diameter", "da2", f3(g2.da)),
+        ("gear.pinion_root_diameter", "df1", f3(g1.df)),
+        ("gear.wheel_root_diameter", "df2", f3(g2.df)),
+        ("gear.pinion_tip_pressure_angle", say(lang, "gear.pair_alpha_a1"),
+         f"{math.degrees(g1.alpha_a):.3f}°"),
+        ("gear.wheel_tip_pressure_angle", say(lang, "gear.pair_alpha_a2"),
+         f"{math.degrees(g2.alpha_a):.3f}°"),
+        ("gear.operating_pressure_angle", say(lang, "gear.pair_alpha_w"),
+         f"{math.degrees(pr.alpha_w):.3f}°"),
+        ("gear.contact_ratio", say(lang, "gear.pair_epsilon"), f"{pr.epsilon_alpha:.3f}"),
+    ]
+
+
+def _pair_extra(p, pairs, k, sc_u, lang):
+    """The rows below mounting *k*'s geometry: its pitch circles, backlash, clearances; after
+    the first mounting also the shift design, generating shifts, measurements, loads and
+    where the contact ends."""
+    pr, (g1, g2), (sc, u) = pairs[k], (pairs[0].g1, pairs[0].g2), sc_u
     f3 = lambda v: f"{v / sc:.3f} {u}"  # noqa: E731
+    cl, a0 = pr.clearances, pairs[0].a_zero_backlash
+    extra = [
+        ("gear.operating_pitch_diameters", "d1', d2'",
+         f"{pr.dw1 / sc:.3f} {u}, {pr.dw2 / sc:.3f} {u}"),
+        ("gear.backlash", "j, jn",
+         f"{f3(pairs.backlash[k][0])}, {f3(pairs.backlash[k][1])}"),
+        ("gear.tip_clearances", "c1', c2'", f"{cl[0] / sc:.3f} {u}, {cl[1] / sc:.3f} {u}"),
+        ("gear.zero_backlash_a", "a0'",
+         f3(a0) if a0 is not None else say(lang, "gear.no_zero_backlash")),
+        ("gear.y_delta_y", "y, Δy", f"{pr.y:.4f}, {pr.delta_y if not g2.internal else 0.0:.4f}"
+         + (" (tips shortened)" if p.tip_shortening and pr.delta_y > 1e-12 else "")),
+        ("gear.base_pitches", "pb1, pb2", f"{g1.pb / sc:.3f} {u}, {g2.pb / sc:.3f} {u}"),
+        ("gear.ratio", "i12", f"{pr.ratio:.4f}"),
+    ]
+    if k == 0 and (g1.x or g2.x or p.designed or g2.internal):
+        extra.insert(0, ("gear.teeth", "z1, z2", f"{g1.z}, {g2.z}"))
+    if k == 0 and pairs.shift is not None:
+        sh = pairs.shift
+        rule = {"x1": "x1 given", "sliding": "balanced specific sliding",
+                "strength": "equal Y_Fa Y_Sa"}[sh.rule]
+        extra.insert(0, (("gear.shifts", {"rule": rule}), "x1 + x2", shift_text(sh)))
+    if k == 0:
+        extra += _pair_first_extra(pairs, f3, lang)
+    if g2.internal:
+        extra.insert(0, ("gear.internal_gear_2", "x2 (ISO: + thickens)",
+                         f"{g2.x:g}"))
+    return extra
+
+
+def _pair_first_extra(pairs, f3, lang):
+    """The rows only the first mounting shows: generating shifts, measurements, loads and
+    where the contact of a pointed (or nominal) tip ends."""
+    g1, g2 = pairs[0].g1, pairs[0].g2
+    extra = [generating_row(gen, sfx=str(i))
+             for i, gen in enumerate(pairs.generating, start=1) if gen is not None]
+    for i, m in enumerate(pairs.measures, start=1):
+        if m is not None:
+            extra += measurement_rows(m, str(i), f3, lang=lang)
+    if pairs.loads is not None:
+        extra += loads_rows(pairs.loads, f3)
+    pointed = [g for g in (g1, g2) if not g.internal and g.tooth_thickness(g.ra) <= 0]
+    if pointed or g1.nominal_tip:
+        extra.append(("gear.pointed_contact_end", "tip",
+                      say(lang, "gear.nominal_tip") if g1.nominal_tip else
+                      say(lang, "gear.flanks_meet", radii=", ".join(
+                          f"r_p{1 if g is g1 else 2} = {f3(g.pointed_radius)}"
+                          for g in pointed))))
+    return extra
+
+
+def present_pair(spec, pairs, run, outputs):
+    p, u, sc, lang = spec.problem, spec.header.unit, spec.header.scale, run.lang
+    first = pairs[0]
+    L = lambda v: float(v / sc)  # noqa: E731
+    warnings = []
+    results = _pair_results(p, pairs, L)
     blocks = []
     rows_csv = []
-    for k, pr in enumerate(pairs):
-        sfx = _suffix(k)
-        eps = pr.epsilon_alpha
-        cl = pr.clearances
-        results.update({f"a_w{sfx}": L(pr.a_w), f"alpha_w_deg{sfx}": math.degrees(pr.alpha_w),
-                        f"dw1{sfx}": L(pr.dw1), f"dw2{sfx}": L(pr.dw2),
-                        f"epsilon_alpha{sfx}": eps,
-                        f"backlash{sfx}": L(pairs.backlash[k][0]),
-                        f"backlash_n{sfx}": L(pairs.backlash[k][1]),
-                        f"clearance1{sfx}": L(cl[0]), f"clearance2{sfx}": L(cl[1]),
-                        f"interference{sfx}": pr.interference,
-                        f"y{sfx}": pr.y, f"delta_y{sfx}": pr.delta_y if not g2.internal else 0.0,
-                        f"continuous{sfx}": eps >= 1})
-        rows_csv.append([pr.a_w / sc, math.degrees(pr.alpha_w), pr.dw1 / sc, pr.dw2 / sc, eps,
-                         pairs.backlash[k][0] / sc, cl[0] / sc, cl[1] / sc])
-        rows = [
-            ("standard centre distance", "标准中心距", "a", f3(pr.a)),
-            ("operating centre distance", "实际中心距", "a'", f3(pr.a_w)),
-            ("pinion reference diameter", "小齿轮分度圆直径", "d1", f3(g1.d)),
-            ("wheel reference diameter", "大齿轮分度圆直径", "d2", f3(g2.d)),
-            ("pinion base diameter", "小齿轮基圆直径", "db1", f3(g1.db)),
-            ("wheel base diameter", "大齿轮基圆直径", "db2", f3(g2.db)),
-            ("pinion tip diameter", "小齿轮齿顶圆直径", "da1", f3(g1.da)),
-            ("wheel tip diameter", "大齿轮齿顶圆直径", "da2", f3(g2.da)),
-            ("pinion root diameter", "小齿轮齿根圆直径", "df1", f3(g1.df)),
-            ("wheel root diameter", "大齿轮齿根圆直径", "df2", f3(g2.df)),
-            ("pinion tip pressure angle", "小齿轮齿顶圆压力角", "αa1",
-             f"{math.degrees(g1.alpha_a):.3f}°"),
-            ("wheel tip pressure angle", "大齿轮齿顶圆压力角", "αa2",
-             f"{math.degrees(g2.alpha_a):.3f}°"),
-            ("operating pressure angle", "啮合角", "α'", f"{math.degrees(pr.alpha_w):.3f}°"),
-            ("contact ratio", "重合度", "εα", f"{eps:.3f}"),
-        ]
-        if lang == "zh":   # 【例 5-4】's printout line for line: its MATLAB names, "250.000mm"
-            rows = [(en, zh, _BOOK_5_4_NAMES.get(sym, sym), txt.replace(f" {u}", u))
-                    for en, zh, sym, txt in rows]
-        extra = [
-            ("operating pitch diameters", "节圆直径", "d1', d2'",
-             f"{pr.dw1 / sc:.3f} {u}, {pr.dw2 / sc:.3f} {u}"),
-            ("backlash on the pitch circle / normal", "齿侧间隙 (圆周 / 法向)", "j, jn",
-             f"{f3(pairs.backlash[k][0])}, {f3(pairs.backlash[k][1])}"),
-            ("tip clearances", "顶隙", "c1', c2'", f"{cl[0] / sc:.3f} {u}, {cl[1] / sc:.3f} {u}"),
-            ("zero-backlash centre distance", "无侧隙中心距", "a0'",
-             f3(a0) if a0 is not None else _t(lang, "none (backlash at every a')",
-                                              "无 (任何中心距均有侧隙)")),
-            ("centre-distance / tip-shortening coefficients", "中心距变动系数 / 齿顶高降低系数",
-             "y, Δy", f"{pr.y:.4f}, {pr.delta_y if not g2.internal else 0.0:.4f}"
-             + (" (tips shortened)" if p.tip_shortening and pr.delta_y > 1e-12 else "")),
-            ("base pitches", "基圆齿距", "pb1, pb2", f"{g1.pb / sc:.3f} {u}, {g2.pb / sc:.3f} {u}"),
-            ("ratio", "传动比", "i12", f"{pr.ratio:.4f}"),
-        ]
-        if k == 0 and (g1.x or g2.x or p.designed or g2.internal):
-            extra.insert(0, ("teeth", "齿数", "z1, z2", f"{g1.z}, {g2.z}"))
-        if k == 0 and pairs.shift is not None:
-            sh = pairs.shift
-            rule = {"x1": "x1 given", "sliding": "balanced specific sliding",
-                    "strength": "equal Y_Fa Y_Sa"}[sh.rule]
-            extra.insert(0, ("profile shifts for a' (" + rule + ")", "按中心距设计变位系数",
-                             "x1 + x2", shift_text(sh)))
-        if k == 0:
-            extra += [generating_row(gen, sfx=str(i))
-                      for i, gen in enumerate(pairs.generating, start=1) if gen is not None]
-            for i, m in enumerate(pairs.measures, start=1):
-                if m is not None:
-                    extra += measurement_rows(m, str(i), f3, lang=lang)
-            if pairs.loads is not None:
-                extra += loads_rows(pairs.loads, f3)
-            pointed = [g for g in (g1, g2) if not g.internal and g.tooth_thickness(g.ra) <= 0]
-            if pointed or g1.nominal_tip:
-                extra.append(("a pointed tooth's contact ends at", "齿顶变尖时啮合终止于", "tip",
-                              _t(lang, "the nominal tip circle ra (tip = \"nominal\")",
-                                 "名义齿顶圆 ra") if g1.nominal_tip else
-                              _t(lang, "the radius where its flanks meet, "
-                                 + ", ".join(f"r_p{1 if g is g1 else 2} = {f3(g.pointed_radius)}"
-                                             for g in pointed),
-                                 "两侧齿廓交点 " + ", ".join(
-                                     f"r_p{1 if g is g1 else 2} = {f3(g.pointed_radius)}"
-                                     for g in pointed))))
-        if g2.internal:
-            extra.insert(0, ("gear 2 is internal (ring)", "齿轮 2 为内齿轮", "x2 (ISO: + thickens)",
-                             f"{g2.x:g}"))
-        blocks.append(_kv_block(_t(lang, "Spur gear pair geometry", "直齿圆柱齿轮几何尺寸")
-                                + ("" if len(pairs) == 1 else f" ({k + 1})"), rows, lang))
-        blocks.append(_kv_block("", extra, lang))
+    for k in range(len(pairs)):
+        mounting, row = _mounting_results(pairs, k, sc)
+        results.update(mounting)
+        rows_csv.append(row)
+        blocks.append(_kv_block(say(lang, "gear.pair_geometry")
+                                + ("" if len(pairs) == 1 else f" ({k + 1})"),
+                                _pair_rows(pairs, k, sc, u, lang), lang))
+        blocks.append(_kv_block("", _pair_extra(p, pairs, k, (sc, u), lang), lang))
     cols = list(zip(*rows_csv))
     names = [f"a_w_{u}", "alpha_w_deg", f"dw1_{u}", f"dw2_{u}", "epsilon_alpha",
              f"backlash_{u}", f"clearance1_{u}", f"clearance2_{u}"]
@@ -902,7 +923,7 @@ def present_pair(spec, pairs, run, outputs):
     outputs.text("gear.csv", wide_csv(list(zip(names, cols)), results, u, len(pairs),
                                       outputs.digits))
     animate = p.animate if run.animate is None else run.animate
-    if animate and g2.internal:
+    if animate and first.g2.internal:
         warnings.append("no mesh animation for internal pairs (pair.png only)")
         animate = False
     _pictures(run, animate, "pair", first, spec, outputs)
@@ -951,17 +972,16 @@ def present_generation(spec, sol, run, outputs):
                             f"{g.pointed_radius / sc:.3f} {u} below ra = {g.ra / sc:.3f} {u}")
         if g.undercut:
             warnings.append(undercut_message(g, tooth, sc, u))
-        blocks.append(_kv_block(_t(lang, f"Generation by rack cutter, x = {g.x:g}",
-                                   f"齿条刀具范成, x = {g.x:g}"), [
-            ("module, teeth, pressure angle", "模数, 齿数, 压力角", "m, z, α",
+        blocks.append(_kv_block(say(lang, "gear.generation", x=f"{g.x:g}"), [
+            ("gear.module_teeth_pressure_angle", "m, z, α",
              f"{g.m / sc:g} {u}, {g.z}, {math.degrees(g.alpha):g}°"),
-            ("reference / base radius", "分度圆 / 基圆半径", "r, rb",
+            ("gear.reference_base_radius", "r, rb",
              f"{g.r / sc:.3f}, {g.rb / sc:.3f} {u}"),
-            ("tip / root radius", "齿顶圆 / 齿根圆半径", "ra, rf",
+            ("gear.tip_root_radius", "ra, rf",
              f"{g.ra / sc:.3f}, {g.rf / sc:.3f} {u}"),
-            ("least shift against undercut (ha*)", "最小变位系数 (ha*)", "xmin", f"{g.x_min:.4f}"),
+            ("gear.least_shift_ha", "xmin", f"{g.x_min:.4f}"),
             *undercut_rows(g, tooth, sc, u, lang),
-            ("least shift for this sharp cutter", "本刀具不根切最小变位系数", "xmin'",
+            ("gear.least_shift_sharp_cutter", "xmin'",
              f"{x_rack:.4f}"),
         ], lang))
         out = sol["outlines"][k]
@@ -1012,26 +1032,25 @@ def present_helical(spec, sol, run, outputs):
                                 "of the line of action (transverse plane): the contact starts "
                                 f"below the base circle of gear {i}, zeta{i} is undefined")
         results.update(root_factor_results(sh))
-        extra.insert(0, ("normal shifts for a' (" + rule + ")", "按中心距设计法面变位系数",
-                         "xn1 + xn2", shift_text(sh)))
+        extra.insert(0, (("gear.normal_shifts", {"rule": rule}), "xn1 + xn2", shift_text(sh)))
     if sol.loads is not None:
         results.update(loads_results(sol.loads, spec.problem.drive))
         extra += loads_rows(sol.loads, f3)
-    return _simple(spec, run, outputs, _t(lang, "Helical gear pair", "斜齿圆柱齿轮传动"), results, [
-        ("helix angle", "螺旋角", "β", "beta_deg", "°"),
-        ("transverse module", "端面模数", "mt", "mt", u),
-        ("transverse pressure angle", "端面压力角", "αt", "alpha_t_deg", "°"),
-        ("reference diameters", "分度圆直径", "d1", "d1", u), ("", "", "d2", "d2", u),
-        ("tip diameters", "齿顶圆直径", "da1", "da1", u), ("", "", "da2", "da2", u),
-        ("root diameters", "齿根圆直径", "df1", "df1", u), ("", "", "df2", "df2", u),
-        ("centre distance", "中心距", "a", "a", u),
-        ("transverse contact ratio", "端面重合度", "εα", "epsilon_alpha", ""),
-        ("overlap ratio", "轴向重合度", "εβ", "epsilon_beta", ""),
-        ("total contact ratio", "总重合度", "εγ", "epsilon_gamma", ""),
-        ("virtual teeth", "当量齿数", "zv1", "zv1", ""), ("", "", "zv2", "zv2", ""),
-        ("normal profile shifts", "法面变位系数", "xn1", "xn1", ""), ("", "", "xn2", "xn2", ""),
-        ("operating centre distance", "实际中心距", "a'", "a_w", u),
-        ("operating transverse pressure angle", "端面啮合角", "αwt", "alpha_wt_deg", "°"),
+    return _simple(spec, run, outputs, say(lang, "gear.helical_pair"), results, [
+        ("gear.helix_angle", "β", "beta_deg", "°"),
+        ("gear.transverse_module", "mt", "mt", u),
+        ("gear.transverse_pressure_angle", "αt", "alpha_t_deg", "°"),
+        ("gear.reference_diameters", "d1", "d1", u), ("gear.blank", "d2", "d2", u),
+        ("gear.tip_diameters", "da1", "da1", u), ("gear.blank", "da2", "da2", u),
+        ("gear.root_diameters", "df1", "df1", u), ("gear.blank", "df2", "df2", u),
+        ("gear.centre_distance", "a", "a", u),
+        ("gear.transverse_contact_ratio", "εα", "epsilon_alpha", ""),
+        ("gear.overlap_ratio", "εβ", "epsilon_beta", ""),
+        ("gear.total_contact_ratio", "εγ", "epsilon_gamma", ""),
+        ("gear.virtual_teeth", "zv1", "zv1", ""), ("gear.blank", "zv2", "zv2", ""),
+        ("gear.normal_profile_shifts", "xn1", "xn1", ""), ("gear.blank", "xn2", "xn2", ""),
+        ("gear.operating_centre_distance", "a'", "a_w", u),
+        ("gear.operating_transverse_pressure_angle", "αwt", "alpha_wt_deg", "°"),
     ], warnings, extra)
 
 
@@ -1051,20 +1070,20 @@ def present_worm(spec, w, run, outputs):
             extra += loads_rows(ld, lambda v: f"{v / sc:.3f} {u}")
         results.update(worm_efficiency_results(w.efficiency, spec.problem.mu))
         extra += worm_efficiency_rows(w.efficiency, spec.problem.mu, ld, lang)
-    return _simple(spec, run, outputs, _t(lang, "Worm drive", "蜗杆传动"), results, [
-        ("wheel transverse = worm axial module", "蜗轮端面模数 = 蜗杆轴面模数", "m", "m", u),
-        ("diameter factor", "蜗杆直径系数", "q", "q", ""),
-        ("worm reference diameter", "蜗杆分度圆直径", "d1", "d1", u),
-        ("wheel reference diameter", "蜗轮分度圆直径", "d2", "d2", u),
-        ("worm axial pitch", "蜗杆轴面齿距", "px1", "px", u),
-        ("lead", "导程", "l", "lead", u),
-        ("lead angle", "导程角", "γ", "gamma_deg", "°"),
-        ("centre distance", "中心距", "a", "a", u),
-        ("ratio", "传动比", "i12", "i12", ""),
-        ("worm tip / root diameter", "蜗杆齿顶圆 / 齿根圆直径", "da1", "da1", u),
-        ("", "", "df1", "df1", u),
-        ("wheel tip / root diameter", "蜗轮齿顶圆 / 齿根圆直径", "da2", "da2", u),
-        ("", "", "df2", "df2", u),
+    return _simple(spec, run, outputs, say(lang, "gear.worm_drive"), results, [
+        ("gear.worm_module", "m", "m", u),
+        ("gear.diameter_factor", "q", "q", ""),
+        ("gear.worm_reference_diameter", "d1", "d1", u),
+        ("gear.worm_wheel_reference_diameter", "d2", "d2", u),
+        ("gear.worm_axial_pitch", "px1", "px", u),
+        ("gear.lead", "l", "lead", u),
+        ("gear.lead_angle", "γ", "gamma_deg", "°"),
+        ("gear.centre_distance", "a", "a", u),
+        ("gear.ratio", "i12", "i12", ""),
+        ("gear.worm_tip_root_diameter", "da1", "da1", u),
+        ("gear.blank", "df1", "df1", u),
+        ("gear.wheel_tip_root_diameter", "da2", "da2", u),
+        ("gear.blank", "df2", "df2", u),
     ], [], extra)
 
 
@@ -1088,7 +1107,7 @@ def present_bevel(spec, b, run, outputs):
         dm1, dm2 = b.mean_diameters
         results.update({"b": L(width), "dm1": L(dm1), "dm2": L(dm2)})
         if b.loads is None:
-            extra.append(("face width / mean diameters", "齿宽 / 齿宽中点分度圆直径",
+            extra.append(("gear.face_width_mean_diameters",
                           "b, dm1, dm2", f"{width / sc:.3f}, {dm1 / sc:.3f}, {dm2 / sc:.3f} {u}"))
         if width > b.R / 3 * (1 + 1e-12):
             warnings.append(f"face width b = {width / sc:.6g} {u} is above R/3 = "
@@ -1096,33 +1115,33 @@ def present_bevel(spec, b, run, outputs):
     if getattr(b, "loads", None) is not None:
         results.update(loads_results(b.loads, spec.problem.drive))
         extra += loads_rows(b.loads, lambda v: f"{v / sc:.3f} {u}")
-    return _simple(spec, run, outputs, _t(lang, "Straight bevel gear pair", "直齿圆锥齿轮传动"),
+    return _simple(spec, run, outputs, say(lang, "gear.bevel_pair"),
                    results, [
-        ("pitch-cone angles", "分度圆锥角", "δ1", "delta1_deg", "°"),
-        ("", "", "δ2", "delta2_deg", "°"),
-        ("reference diameters", "分度圆直径", "d1", "d1", u), ("", "", "d2", "d2", u),
-        ("cone distance", "锥距", "R", "R", u),
-        ("addendum angle", "齿顶角", "θa", "theta_a_deg", "°"),
-        ("dedendum angle", "齿根角", "θf", "theta_f_deg", "°"),
-        ("tip-cone angles", "顶锥角", "δa1", "delta_a1_deg", "°"),
-        ("", "", "δa2", "delta_a2_deg", "°"),
-        ("tip diameters", "齿顶圆直径", "da1", "da1", u), ("", "", "da2", "da2", u),
-        ("root diameters", "齿根圆直径", "df1", "df1", u), ("", "", "df2", "df2", u),
-        ("virtual teeth", "当量齿数", "zv1", "zv1", ""), ("", "", "zv2", "zv2", ""),
+        ("gear.pitch_cone_angles", "δ1", "delta1_deg", "°"),
+        ("gear.blank", "δ2", "delta2_deg", "°"),
+        ("gear.reference_diameters", "d1", "d1", u), ("gear.blank", "d2", "d2", u),
+        ("gear.cone_distance", "R", "R", u),
+        ("gear.addendum_angle", "θa", "theta_a_deg", "°"),
+        ("gear.dedendum_angle", "θf", "theta_f_deg", "°"),
+        ("gear.tip_cone_angles", "δa1", "delta_a1_deg", "°"),
+        ("gear.blank", "δa2", "delta_a2_deg", "°"),
+        ("gear.tip_diameters", "da1", "da1", u), ("gear.blank", "da2", "da2", u),
+        ("gear.root_diameters", "df1", "df1", u), ("gear.blank", "df2", "df2", u),
+        ("gear.virtual_teeth", "zv1", "zv1", ""), ("gear.blank", "zv2", "zv2", ""),
     ], warnings, extra)
 
 
 def _simple(spec, run, outputs, heading, results, rows, warnings, extra=()):
-    """Key/value table of *rows* (en, zh, symbol, result key, unit) and a one-row CSV;
-    *extra* rows (en, zh, symbol, text) are shown below, not written to the CSV."""
+    """Key/value table of *rows* (label, symbol, result key, unit) and a one-row CSV;
+    *extra* rows (label, symbol, text) are shown below, not written to the CSV."""
     lang = run.lang
-    block = Block(heading, [], [[_t(lang, en, zh), f"{sym} = {results[key]:.3f}"
+    block = Block(heading, [], [[_word(lang, w), f"{sym} = {results[key]:.3f}"
                                  + ("" if not un else (un if un == "°" else f" {un}"))]
-                                for en, zh, sym, key, un in rows]
-                  + [[_t(lang, en, zh), f"{sym} = {txt}"] for en, zh, sym, txt in extra])
+                                for w, sym, key, un in rows]
+                  + [[_word(lang, w), f"{sym} = {txt}"] for w, sym, txt in extra])
     u = spec.header.unit
     cols = [(key if un in ("", "°") else f"{key}_{u}", [results[key]])
-            for _, _, _, key, un in rows]
+            for _, _, key, un in rows]
     # the table's columns first, then every other result
     outputs.text("gear.csv", wide_csv(cols, results, u, 1, outputs.digits))
     return Report(spec.header.title, [block]), results, warnings

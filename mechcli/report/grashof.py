@@ -14,18 +14,15 @@ import re
 
 from mechcli.report.files import DEFAULT_DIGITS
 from mechcli.report.table import Block, Report, book_title
+from mechcli.report.words import CJK, say, section, table
 
-ZH_TYPES = {
-    "crank_rocker": "曲柄摇杆机构", "double_crank": "双曲柄机构", "double_rocker": "双摇杆机构",
-    "parallelogram": "平行四边形机构", "antiparallelogram": "反平行四边形机构",
-    "change_point_crank_rocker": "曲柄摇杆机构(变点机构)",
-    "change_point_double_crank": "双曲柄机构(变点机构)",
-    "change_point_double_rocker": "双摇杆机构(变点机构)",
-    "triple_crank": "三曲柄机构", "single_crank": "单曲柄机构", "no_crank": "无曲柄机构",
-    "oscillating": "摆动导杆机构", "rotating": "转动导杆机构",
-    "boundary": "临界(变点)导杆机构", "rocker_slider": "摇杆滑块机构(无曲柄)",
-    "crank_slider": "曲柄滑块机构", "crank_slider_boundary": "曲柄滑块机构(临界: a + e = b)",
-}
+
+def __getattr__(name):
+    """``ZH_TYPES`` (synth's atlas): the linkage types' Chinese names, from the catalogue."""
+    if name == "ZH_TYPES":
+        return {k[len("type_"):]: v for k, v in table("zh", "grashof").items()
+                if k.startswith("type_")}
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 def _deg(x):
@@ -40,12 +37,11 @@ def _g(x):
     return f"{x:.6g}"
 
 
-def _label(lang, en, zh):
-    return zh if lang == "zh" else en
-
-
 def _type_text(lang, t):
-    return ZH_TYPES.get(t, t) if lang == "zh" else t.replace("_", " ")
+    """A linkage type in words: ``crank rocker``, ``曲柄摇杆机构``."""
+    if f"type_{t}" in section("grashof"):
+        return say(lang, f"grashof.type_{t}")
+    return t.replace("_", " ")
 
 
 def interval_text(ranges):
@@ -113,34 +109,35 @@ def fourbar_results(prob, an, inversions, ranges, scale):
 
 
 def fourbar_report(title, lang, r, unit, ranges_present):
-    zh = lang == "zh"
     rep = Report(title)
     # the two lines 【例 3-1】 prints, as printed ("最长杆 170.00")
-    rows = [[_label(lang, "longest link", "最长杆"), _f(r["longest"])],
-            [_label(lang, "shortest link", "最短杆"), _f(r["shortest"])]]
+    rows = [[say(lang, "grashof.longest_link"), _f(r["longest"])],
+            [say(lang, "grashof.shortest_link"), _f(r["shortest"])]]
     rep.blocks.append(Block("", rows=rows))
-    statement = ("该机构是" + ZH_TYPES[r["type"]]) if zh else \
-        f"The linkage is a {r['type'].replace('_', ' ')}" + (
-            f" (crank: link {r['crank']})" if r["crank"] is not None else "") + "."
+    if r["crank"] is None:
+        statement = say(lang, "grashof.statement", type=_type_text(lang, r["type"]))
+    else:
+        statement = say(lang, "grashof.statement_crank", type=_type_text(lang, r["type"]),
+                        crank=str(r["crank"]))
     facts = [
-        [_label(lang, "Grashof (s + l <= p + q)", "满足杆长之和条件"),
-         _label(lang, "yes" if r["grashof"] else "no", "是" if r["grashof"] else "否")],
-        [_label(lang, f"s + l − (p + q)/({unit})", f"s + l − (p + q)/({unit})"),
+        [say(lang, "grashof.grashof_condition"),
+         say(lang, "common.yes" if r["grashof"] else "common.no")],
+        [say(lang, "grashof.grashof_margin", unit=unit),
          _f(r["excess"])],
-        [_label(lang, "frame / input / output", "机架 / 原动件 / 从动件"),
+        [say(lang, "grashof.frame_input_output"),
          f"{r['frame']} / {r['input']} / {r['output']}"],
-        [_label(lang, "cranks", "曲柄"), ", ".join(map(str, r["cranks"])) or "-"],
+        [say(lang, "grashof.cranks"), ", ".join(map(str, r["cranks"])) or "-"],
     ]
     rep.blocks.append(Block(statement, rows=facts))
     merit = []
     if "theta_deg" in r:
         merit += [
-            [_label(lang, "limit-position angle θ/(°)", "极位夹角 θ/(°)"), _f(r["theta_deg"])],
-            [_label(lang, "output swing ψ/(°)", "摆角 ψ/(°)"), _f(r["psi_deg"])],
-            [_label(lang, "time ratio K", "行程速比系数 K"), f"{r['K']:.4f}"],
-            [_label(lang, "limit positions θ1/(°)", "极限位置 θ1/(°)"),
+            [say(lang, "grashof.limit_position_angle"), _f(r["theta_deg"])],
+            [say(lang, "grashof.output_swing"), _f(r["psi_deg"])],
+            [say(lang, "grashof.time_ratio_k"), f"{r['K']:.4f}"],
+            [say(lang, "grashof.limit_positions_1"),
              f"{_f(r['theta1_ext_deg'])}, {_f(r['theta1_fold_deg'])}"],
-            [_label(lang, "limit positions θ3/(°)", "极限位置 θ3/(°)"),
+            [say(lang, "grashof.limit_positions_3"),
              f"{_f(r['theta3_ext_deg'])}, {_f(r['theta3_fold_deg'])}"],
         ]
     if "input_min_deg" in r:
@@ -151,32 +148,29 @@ def fourbar_report(title, lang, r, unit, ranges_present):
             span = f"[{_f(-hi)}, {_f(hi)}]"
         else:
             span = f"[{_f(lo)}, {_f(hi)}] | [{_f(-hi)}, {_f(-lo)}]"
-        merit.append([_label(lang, "input range θ1/(°)", "原动件摆动范围 θ1/(°)"), span])
+        merit.append([say(lang, "grashof.input_range_1"), span])
     merit += [
-        [_label(lang, "minimum transmission angle γmin/(°)", "最小传动角 γmin/(°)"),
+        [say(lang, "grashof.gamma_min"),
          f"{_f(r['gamma_min_deg'])} (θ1 = {_f(r['gamma_min_at_deg'])})"],
-        [_label(lang, "maximum transmission angle γmax/(°)", "最大传动角 γmax/(°)"),
+        [say(lang, "grashof.gamma_max"),
          f"{_f(r['gamma_max_deg'])} (θ1 = {_f(r['gamma_max_at_deg'])})"],
     ]
     if "gamma_at_0_deg" in r:
-        merit.append([_label(lang, "transmission angle γ1/(°) at θ1 = 0° (eq. 3-49)",
-                             "传动角 γ1/(°) (θ1 = 0°)"),
+        merit.append([say(lang, "grashof.gamma1_at_0"),
                       _f(r["gamma_at_0_deg"])])
     if "gamma_at_180_deg" in r:
-        merit.append([_label(lang, "transmission angle γ2/(°) at θ1 = 180° (eq. 3-49)",
-                             "传动角 γ2/(°) (θ1 = 180°)"),
+        merit.append([say(lang, "grashof.gamma2_at_180"),
                       _f(r["gamma_at_180_deg"])])
     dead = r["dead_points_output_driving"]
-    merit.append([_label(lang, "dead points, output driving θ3/(°)",
-                         "从动件主动时的死点 θ3/(°)"),
-                  ", ".join(_f(x) for x in dead) if dead else _label(lang, "none", "无")])
-    rep.blocks.append(Block(_label(lang, "Figures of merit", "运动特性"), rows=merit))
+    merit.append([say(lang, "grashof.dead_points_output"),
+                  ", ".join(_f(x) for x in dead) if dead else say(lang, "grashof.none")])
+    rep.blocks.append(Block(say(lang, "grashof.figures_of_merit"), rows=merit))
     inv_rows = [[str(k), _type_text(lang, r[f"inversion_frame{k}"]),
                  ", ".join(map(str, r[f"inversion_frame{k}_cranks"])) or "-"]
                 for k in (1, 2, 3, 4)]
-    rep.blocks.append(Block(_label(lang, "Inversions", "取不同构件为机架"),
-                            headers=[_label(lang, "frame", "机架"), _label(lang, "type", "类型"),
-                                     _label(lang, "cranks", "曲柄")], rows=inv_rows))
+    rep.blocks.append(Block(say(lang, "grashof.inversions"),
+                            headers=[say(lang, "grashof.frame"), say(lang, "grashof.type"),
+                                     say(lang, "grashof.cranks")], rows=inv_rows))
     if ranges_present:
         rows = []
         for k, v in r.items():
@@ -187,12 +181,12 @@ def fourbar_report(title, lang, r, unit, ranges_present):
             base, crank = (m.group(1), m.group(2)) if m else (name, "")
             text = _type_text(lang, base)
             if crank:
-                text += _label(lang, f" (crank {crank})", f" (曲柄 {crank})")
+                text += say(lang, "grashof.crank", crank=crank)
             rows.append([link, text, v])
         rows.sort(key=lambda row: (row[0], row[1]))
-        rep.blocks.append(Block(_label(lang, "Length ranges", "杆长范围"),
-                                headers=[_label(lang, "link", "杆"), _label(lang, "type", "类型"),
-                                         _label(lang, f"range/({unit})", f"范围/({unit})")],
+        rep.blocks.append(Block(say(lang, "grashof.length_ranges"),
+                                headers=[say(lang, "grashof.link"), say(lang, "grashof.type"),
+                                         say(lang, "grashof.range", unit=unit)],
                                 rows=rows))
     return rep
 
@@ -277,14 +271,12 @@ def batch_report(title, lang, res, unit=None):
     ``l1…l4`` of ``grashof.csv`` (named as the input's columns, see docs/grashof.md)."""
     rep = Report(title)
     if unit:
-        rep.notes.append(_label(lang, f"grashof.csv: lengths l1…l4 in {unit}, as given",
-                                f"grashof.csv: 杆长 l1…l4 的单位为 {unit} (与输入相同)"))
+        rep.notes.append(say(lang, "grashof.csv_note", unit=unit))
     rows = [[_type_text(lang, k), str(v)] for k, v in res["counts"].items()]
     if res["cannot_close"]:
-        rows.append([_label(lang, "cannot close", "不能构成闭环"), str(res["cannot_close"])])
-    rep.blocks.append(Block(_label(lang, f"{res['sets']} length sets",
-                                   f"共 {res['sets']} 组杆长"),
-                            headers=[_label(lang, "type", "类型"), _label(lang, "count", "数目")],
+        rows.append([say(lang, "grashof.cannot_close"), str(res["cannot_close"])])
+    rep.blocks.append(Block(say(lang, "grashof.length_sets", n=res['sets']),
+                            headers=[say(lang, "grashof.type"), say(lang, "grashof.count")],
                             rows=rows))
     return rep
 
@@ -306,26 +298,21 @@ def slider_results(sc, scale):
 
 def slider_report(title, lang, r, unit):
     rep = Report(title)
-    rows = [[_label(lang, "crank exists (a + |e| <= b)", "存在曲柄 (a + e ≤ b)"),
-             _label(lang, "yes" if r["crank_exists"] else "no",
-                    "是" if r["crank_exists"] else "否")]]
+    rows = [[say(lang, "grashof.crank_exists"),
+             say(lang, "common.yes" if r["crank_exists"] else "common.no")]]
     if r["crank_exists"]:
         rows += [
-            [_label(lang, f"stroke H/({unit})", f"行程 H/({unit})"), _f(r["stroke"])],
-            [_label(lang, "limit-position angle θ/(°)", "极位夹角 θ/(°)"), _f(r["theta_deg"])],
-            [_label(lang, "time ratio K", "行程速比系数 K"), f"{r['K']:.4f}"],
-            [_label(lang, "max pressure angle on the slider αmax/(°)",
-                    "滑块最大压力角 αmax/(°)"),
+            [say(lang, "grashof.stroke_h", unit=unit), _f(r["stroke"])],
+            [say(lang, "grashof.limit_position_angle"), _f(r["theta_deg"])],
+            [say(lang, "grashof.time_ratio_k"), f"{r['K']:.4f}"],
+            [say(lang, "grashof.alpha_max_slider"),
              f"{_f(r['pressure_angle_max_deg'])} (θ1 = {_f(r['pressure_angle_max_at_deg'])})"],
-            [_label(lang, f"dead points, slider driving x/({unit})",
-                    f"滑块主动时的死点 x/({unit})"),
+            [say(lang, "grashof.dead_points_slider", unit=unit),
              ", ".join(_f(x) for x in r["dead_points_slider_driving"])],
         ]
     rep.blocks.append(Block(_type_text(lang, r["type"]), rows=rows))
     if r.get("boundary"):
-        rep.notes.append(_label(lang, "a + |e| = b: the coupler stands normal to the slider path "
-                                "once a turn (pressure angle 90°).",
-                                "a + e = b: 连杆每转一次垂直于导路 (压力角 90°)。"))
+        rep.notes.append(say(lang, "grashof.coupler_normal"))
     return rep
 
 
@@ -344,12 +331,12 @@ def guide_report(title, lang, r):
     rep = Report(title)
     rows = []
     if "theta_deg" in r:
-        rows += [[_label(lang, "θ = ψ/(°)", "极位夹角 θ = 摆角 ψ/(°)"), _f(r["theta_deg"])],
-                 [_label(lang, "time ratio K", "行程速比系数 K"),
+        rows += [[say(lang, "grashof.theta_psi"), _f(r["theta_deg"])],
+                 [say(lang, "grashof.time_ratio_k"),
                   f"{r['K']:.4f}" if "K" in r else "∞"]]
     if "gamma_min_deg" in r:
-        rows += [[_label(lang, "γmin/(°)", "最小传动角 γmin/(°)"), _f(r["gamma_min_deg"])],
-                 [_label(lang, "γmax/(°)", "最大传动角 γmax/(°)"), _f(r["gamma_max_deg"])]]
+        rows += [[say(lang, "grashof.gamma_min_short"), _f(r["gamma_min_deg"])],
+                 [say(lang, "grashof.gamma_max_short"), _f(r["gamma_max_deg"])]]
     rep.blocks.append(Block(_type_text(lang, r["type"]), rows=rows))
     return rep
 
@@ -369,16 +356,15 @@ def fivebar_results(prob, kl, scale):
 def fivebar_report(title, lang, r):
     rep = Report(title)
     rows = [
-        [_label(lang, "class (L_max + L_min1 + L_min2 <= a + b)", "类别"),
-         ("Ⅰ" if r["class"] == "I" else "Ⅱ") if lang == "zh" else r["class"]],
-        [_label(lang, "frame / inputs", "机架 / 输入杆"),
+        [say(lang, "grashof.fivebar_class"),
+         say(lang, f"grashof.class_{r['class']}")],
+        [say(lang, "grashof.frame_inputs"),
          f"{r['frame']} / {r['inputs'][0]}, {r['inputs'][1]}"],
-        [_label(lang, "shortest links", "最短杆 / 次短杆"),
+        [say(lang, "grashof.shortest_links"),
          f"{r['shortest'][0]}, {r['shortest'][1]}"],
-        [_label(lang, "cranks", "曲柄"), ", ".join(map(str, r["cranks"])) or "-"],
-        [_label(lang, "both inputs turn independently", "两输入杆可独立整周转动"),
-         _label(lang, "yes" if r["inputs_independent"] else "no",
-                "是" if r["inputs_independent"] else "否")],
+        [say(lang, "grashof.cranks"), ", ".join(map(str, r["cranks"])) or "-"],
+        [say(lang, "grashof.inputs_independent"),
+         say(lang, "common.yes" if r["inputs_independent"] else "common.no")],
     ]
     rep.blocks.append(Block(_type_text(lang, r["type"]), rows=rows))
     return rep
@@ -395,15 +381,12 @@ def rrrrp_results(rc, scale):
 
 def rrrrp_report(title, lang, r, unit):
     rep = Report(title)
-    rows = [[_label(lang, "l1 + |e| <= |l2 - l3| (paper eq. 20)", "l1 + e ≤ |l2 − l3| (式 20)"),
-             _label(lang, "yes" if r["crank_any_fold"] else "no",
-                    "是" if r["crank_any_fold"] else "否")],
-            [_label(lang, f"slider positions where link 1 turns/({unit})",
-                    f"杆 1 可整周转动的滑块位置/({unit})"),
+    rows = [[say(lang, "grashof.rrrrp_condition"),
+             say(lang, "common.yes" if r["crank_any_fold"] else "common.no")],
+            [say(lang, "grashof.slider_positions_crank", unit=unit),
              f"±[{_f(r['slider_lo'])}, {_f(r['slider_hi'])}]" if r["slider_hi"] > 0 else "-"]]
     if "slider_inner_hi" in r:
-        rows.append([_label(lang, f"... slider inside the crank circle/({unit})",
-                            f"... 滑块在曲柄圆内/({unit})"),
+        rows.append([say(lang, "grashof.slider_inside_crank_circle", unit=unit),
                      f"[{_f(-r['slider_inner_hi'])}, {_f(r['slider_inner_hi'])}]"])
     rep.blocks.append(Block("RRRRP", rows=rows))
     return rep
@@ -425,29 +408,27 @@ def mobility_report(title, lang, mob):
     rep = Report(title)
     rows = []
     for j in mob.joints:
-        kind = {"R": _label(lang, "revolute", "转动副"), "P": _label(lang, "prismatic", "移动副"),
-                "H": _label(lang, "higher pair", "高副")}[j.kind]
+        kind = {"R": say(lang, "grashof.revolute"), "P": say(lang, "grashof.prismatic"),
+                "H": say(lang, "grashof.higher_pair")}[j.kind]
         why = ""
         if j.kind == "R" and len(j.links) > 2:
-            why = _label(lang, f"compound hinge of {len(j.links)} links",
-                         f"{len(j.links)} 个构件的复合铰链")
+            why = say(lang, "grashof.compound_hinge_of_links", n=len(j.links))
         rows.append([j.name or "-", kind, ", ".join(map(str, j.links)), str(j.pairs), why])
-    rep.blocks.append(Block(_label(lang, "Pairs", "运动副"),
-                            headers=[_label(lang, "joint", "运动副"), _label(lang, "kind", "类型"),
-                                     _label(lang, "links", "构件"), _label(lang, "pairs", "计数"),
+    rep.blocks.append(Block(say(lang, "grashof.pairs"),
+                            headers=[say(lang, "grashof.joint"), say(lang, "grashof.kind"),
+                                     say(lang, "grashof.links"), say(lang, "grashof.pair_count"),
                                      ""], rows=rows))
     expl = [
-        [_label(lang, "moving links n", "活动构件数 n"),
+        [say(lang, "grashof.moving_links_n"),
          f"{mob.n} ({', '.join(map(str, mob.moving))}; frame {mob.frame})"],
-        [_label(lang, "lower pairs P_L", "低副数 P_L"), str(mob.P_L)],
-        [_label(lang, "higher pairs P_H", "高副数 P_H"), str(mob.P_H)],
-        [_label(lang, "local DOF F'", "局部自由度 F'"), str(mob.local_dof)],
-        [_label(lang, "redundant constraints p'", "虚约束 p'"), str(mob.redundant)],
+        [say(lang, "grashof.lower_pairs"), str(mob.P_L)],
+        [say(lang, "grashof.higher_pairs"), str(mob.P_H)],
+        [say(lang, "grashof.local_dof"), str(mob.local_dof)],
+        [say(lang, "grashof.redundant"), str(mob.redundant)],
         ["F", f"3×{mob.n} − 2×{mob.P_L} − {mob.P_H} − {mob.local_dof} + {mob.redundant}"
               f" = {mob.F}"],
     ]
-    rep.blocks.append(Block(_label(lang, "Mobility F = 3n − 2P_L − P_H − F' + p'",
-                                   "自由度 F = 3n − 2P_L − P_H − F' + p'"), rows=expl))
+    rep.blocks.append(Block(say(lang, "grashof.mobility"), rows=expl))
     if mob.structure is not None:
         from mechcli.report.structure import structure_block
         rep.blocks.append(structure_block(lang, mob.structure, mob.frame))
@@ -465,10 +446,9 @@ def curve_outputs(curve, step, lang):
     every = max(1, int(round(np.radians(30.0) / step)))
     rows = [[_f(np.degrees(t)), _f(np.degrees(g)) if k else "-"]
             for t, g, k in zip(curve.theta1[::every], curve.gamma[::every], ok[::every])]
-    block = Block(_label(lang, "Transmission angle γ against the input angle",
-                         "传动角的变化规律"),
-                  headers=[_label(lang, "θ1/(°)", "原动件转角 θ1/(°)"),
-                           _label(lang, "γ/(°)", "传动角 γ/(°)")],
+    block = Block(say(lang, "grashof.gamma_curve"),
+                  headers=[say(lang, "grashof.input_angle"),
+                           say(lang, "grashof.gamma")],
                   rows=rows)
     return cols, block
 
@@ -484,9 +464,9 @@ def write_curve_png(curve, outputs, lang, title):
     th = np.degrees(curve.theta1)
     g = np.where(curve.feasible, np.degrees(curve.gamma), np.nan)
     ax.plot(th, g)
-    ax.set_xlabel(_label(used, "input angle θ1 / °", "原动件转角 θ1 / °"))
-    ax.set_ylabel(_label(used, "transmission angle γ / °", "传动角 γ / °"))
-    if used == "zh" or title.isascii():   # no tofu boxes without a CJK font
+    ax.set_xlabel(say(used, "grashof.plot_input_angle"))
+    ax.set_ylabel(say(used, "grashof.plot_gamma"))
+    if used in CJK or title.isascii():   # no tofu boxes without a CJK font
         ax.set_title(title)
     ax.set_xlim(th.min(), th.max())
     plotting.save_png(fig, outputs, "transmission.png")
@@ -516,8 +496,7 @@ def write_limits_png(r, scale_unit, outputs, lang, title):
         B = a * np.exp(1j * t1)
         C = D + c * np.exp(1j * t3)
         pts = np.array([A, B, C, D])
-        label = _label(used, "extended" if name == "ext" else "folded",
-                       "极限位置 1 (拉直共线)" if name == "ext" else "极限位置 2 (重叠共线)")
+        label = say(used, f"grashof.limit_{name}")
         ax.plot(pts.real, pts.imag, style, marker="o", label=label)
         ax.annotate("C1" if name == "ext" else "C2", (C.real, C.imag),
                     textcoords="offset points", xytext=(4, 4))
@@ -528,7 +507,7 @@ def write_limits_png(r, scale_unit, outputs, lang, title):
     ax.set_xlabel(plotting.axis_label("x", unit))
     ax.set_ylabel(plotting.axis_label("y", unit))
     ax.legend(title=f"θ = {r['theta_deg']:.2f}°, ψ = {r['psi_deg']:.2f}°, K = {r['K']:.4f}")
-    if used == "zh" or title.isascii():
+    if used in CJK or title.isascii():
         ax.set_title(title)
     plotting.save_png(fig, outputs, "limits.png")
     return [] if used == lang else ["no CJK font installed: plot labels in English"]

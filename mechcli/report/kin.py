@@ -7,6 +7,7 @@ import math
 import numpy as np
 
 from mechcli.report.table import Block, Report, book_title
+from mechcli.report.words import language, say, table
 
 # kind -> (unit suffix template, factor template); {u} = spec length unit
 _UNITS = {
@@ -20,11 +21,9 @@ _UNITS = {
 }
 _PRETTY_UNIT = {"deg": "°", "rad_s": "rad/s", "rad_s2": "rad/s²"}
 
-_ZH = {
-    "theta": "角位移", "omega": "角速度", "alpha": "角加速度", "gamma": "传动角",
-    "s": "位移", "v": "速度", "a": "加速度", "x": "x 坐标", "y": "y 坐标",
-    "vx": "x 向速度", "vy": "y 向速度", "ax": "x 向加速度", "ay": "y 向加速度",
-}
+#: the symbols whose quantity has a name in the catalogue (``kin.name_<prefix>``), longest first
+_NAMED = tuple(sorted(("theta", "omega", "alpha", "gamma", "s", "v", "a", "x", "y",
+                       "vx", "vy", "ax", "ay"), key=len, reverse=True))
 
 
 def unit_of(kind, length_unit):
@@ -81,12 +80,13 @@ def greek(symbol, kind):
     return symbol
 
 
-def input_header(spec, zh=False):
-    """The input column's header: ``θ1/(°)`` (``曲柄转角 θ1/(°)``) or ``s1/(mm)``."""
-    n = spec.input.driver
+def input_header(spec, lang="en"):
+    """The input column's header: ``θ1/(°)`` (``曲柄转角 θ1/(°)``) or ``s1/(mm)``.
+    *lang* may also be the older ``zh`` flag (True/False)."""
+    n, lang = spec.input.driver, language(lang)
     if spec.input.rotary:
-        return header(f"θ{n}", "°", "曲柄转角" if zh else "")
-    return header(f"s{n}", spec.header.unit, "滑块位移" if zh else "")
+        return header(f"θ{n}", "°", say(lang, "kin.crank_angle"))
+    return header(f"s{n}", spec.header.unit, say(lang, "kin.slider_position"))
 
 
 def input_symbol(spec):
@@ -178,20 +178,16 @@ def singular_groups(spec, intervals, toggles=(), dead_points=()):
     return [(why, joint, pts) for (why, joint), pts in groups.items()]
 
 
-_ZH_WHY = {"cannot assemble": "无法装配", "dead point": "死点"}
-#: the words of an excluded interval narrowed to one position: a ``cannot assemble``
-#: interval of no width is the sweep ending on a limit of assembly (docs/accuracy.md §4)
-_AT_ONE = {"cannot assemble": ("limit of assembly", "limits of assembly", "装配极限")}
+def _why_words(why, lang):
+    """An excluded interval's reason (``cannot assemble``, ``dead point``) in *lang*."""
+    return say(lang, f"kin.why_{why.replace(' ', '_')}")
 
 
-def _one_position_words(why, n, zh=False):
-    """``dead point(s)`` or ``limit(s) of assembly``: a group of *n* single positions."""
-    if why in _AT_ONE:
-        one, many, chinese = _AT_ONE[why]
-        return chinese if zh else (many if n > 1 else one)
-    if zh:
-        return _ZH_WHY.get(why, why)
-    return why + ("s" if n > 1 else "")
+def _one_position_words(why, n, lang="en"):
+    """``dead point(s)`` or ``limit(s) of assembly``: a group of *n* single positions (a
+    ``cannot assemble`` interval of no width is the sweep ending on a limit of assembly,
+    docs/accuracy.md §4)."""
+    return say(lang, f"kin.{'many' if n > 1 else 'one'}_{why.replace(' ', '_')}")
 
 
 def _item_text(spec, item, seam_note=True):
@@ -262,17 +258,15 @@ def dead_point_results(spec, result):
     }
 
 
-def dead_point_note(spec, result, zh=False):
+def dead_point_note(spec, result, lang="en"):
     """One line naming every refined dead point with its uncertainty, or None."""
     deads = getattr(result, "dead_points", []) or []
     if not deads:
         return None
     sym = input_symbol(spec)
-    parts = [f"{sym} = {located(spec, d.at, d.tol)} ({'杆组' if zh else 'dyad'} {d.joint})"
+    parts = [f"{sym} = {located(spec, d.at, d.tol)} ({say(lang, 'kin.dyad', joint=d.joint)})"
              for d in deads]
-    if zh:
-        return "死点 (sin γ = 0 处, 精确到所示误差): " + ", ".join(parts)
-    return "dead points (where sin γ reaches 0, to the uncertainty shown): " + ", ".join(parts)
+    return say(lang, "kin.dead_points", points=", ".join(parts))
 
 
 def assembly_message(spec, exc):
@@ -504,7 +498,7 @@ def slider_results(spec, quantities, result, approx=None):
     return out
 
 
-def slider_note(spec, quantities, result, zh=False, approx=None):
+def slider_note(spec, quantities, result, lang="en", approx=None):
     """One line per slider: its greatest speed each way and where its acceleration is 0."""
     res = slider_results(spec, quantities, result, approx)
     unit = spec.header.unit
@@ -516,22 +510,21 @@ def slider_note(spec, quantities, result, zh=False, approx=None):
             continue
         u = unit_of(q.kind, unit)
         parts = []
-        for name, word, zh_word in (("forward", "s growing", "s 增大"),
-                                    ("backward", "s falling", "s 减小")):
+        for name in ("forward", "backward"):
             base = f"{q.symbol}_max_{name}"
             if f"{base}_{u}" in res:
                 at = input_value(spec, res[f"{base}_at_{at_unit}"] / input_factor(spec))
-                parts.append(f"{res[f'{base}_{u}']:.6g} {pretty_unit(q.kind, unit)} "
-                             f"({zh_word if zh else word}) {'于' if zh else 'at'} {sym} = {at}")
+                parts.append(say(lang, "kin.slider_speed", value=f"{res[f'{base}_{u}']:.6g}",
+                                 unit=pretty_unit(q.kind, unit),
+                                 way=say(lang, f"kin.slider_{name}"), sym=sym, at=at))
         acc = "a" + q.symbol[1:]
         zeros = res.get(f"{acc}_zero_at_{at_unit}")
         if not parts and not zeros:
             continue
-        text = (f"滑块 {q.symbol[1:]}: 最大速度 " if zh else
-                f"slider {q.symbol[1:]}: greatest speed ") + ", ".join(parts)
+        text = say(lang, "kin.slider", n=q.symbol[1:], speeds=", ".join(parts))
         if zeros:
             where = ", ".join(input_value(spec, z / input_factor(spec)) for z in zeros)
-            text += (f"; {acc} = 0 于 {sym} = {where}" if zh else f"; {acc} = 0 at {sym} = {where}")
+            text += say(lang, "kin.slider_zero", acc=acc, sym=sym, where=where)
         lines.append(text)
     return lines
 
@@ -544,12 +537,8 @@ def pretty_unit(kind, length_unit):
 def _label(q, unit, lang):
     """The header of quantity *q*: ``θ3/(°)``, ``vxF/(mm/s)``; in Chinese with its
     name first, ``角速度 ω3/(rad/s)``."""
-    name = ""
-    if lang == "zh":
-        for key in sorted(_ZH, key=len, reverse=True):
-            if q.symbol.startswith(key):
-                name = _ZH[key]
-                break
+    key = next((k for k in _NAMED if q.symbol.startswith(k)), None)
+    name = say(lang, f"kin.name_{key}") if key else ""
     return header(greek(q.symbol, q.kind), pretty_unit(q.kind, unit), name)
 
 
@@ -577,7 +566,7 @@ def _extreme_tol(result):
     return max(tols) if tols else 0.0
 
 
-def _grid_error_note(spec, quantities, result, zh):
+def _grid_error_note(spec, quantities, result, lang):
     """The largest relative grid error of the CSV rows' peaks, with its quantity."""
     worst, sym = 0.0, None
     for q in quantities:
@@ -597,19 +586,16 @@ def _grid_error_note(spec, quantities, result, zh):
     if getattr(spec.input, "count", 0):   # streamed: the CSV has every row, finer than q's
         step = (spec.input.stop - spec.input.start) / (spec.input.count - 1) * input_factor(spec)
     at_u = input_suffix(spec)
-    if zh:
-        return f"{step:g}{at_u} CSV 行上的峰值误差 ≤ 峰值的 {worst:.1e} ({sym})"
-    return f"peaks of the {step:g}{at_u} CSV rows are off by ≤ {worst:.1e} of the peak ({sym})"
+    return say(lang, "kin.grid_error", step=f"{step:g}", unit=at_u, error=f"{worst:.1e}", sym=sym)
 
 
 def build_report(spec, quantities, result, lang="en", approx=None):
     """The book-style text report: table every ``table_step``, extremes, flags;
     with *approx* (``model = "approximate"``) a note of the model and its differences."""
-    zh = lang == "zh"
     unit, digits = spec.header.unit, spec.output.digits
     fin = input_factor(spec)
     cols = columns(spec, quantities, result)
-    headers = [input_header(spec, zh)] + [_label(q, unit, lang) for q in quantities]
+    headers = [input_header(spec, lang)] + [_label(q, unit, lang) for q in quantities]
     rows = []
     for i in table_rows(spec, result, spec.output.table_step):
         rows.append([fixed(cols[0][1][i], 2)] + [fixed(c[1][i], digits) for c in cols[1:]])
@@ -619,9 +605,8 @@ def build_report(spec, quantities, result, lang="en", approx=None):
         report.blocks.append(structure_block(lang, spec.linkage.structure, spec.linkage.frame))
     step_txt = f"{spec.output.table_step * fin:g}"
     report.blocks.append(Block(
-        heading=(f"计算结果 (每 {step_txt}° 一行，长度单位 {unit})" if zh else
-                 f"Results (every {step_txt}{'°' if spec.input.rotary else ' ' + unit}, "
-                 f"lengths in {unit})"),
+        heading=say(lang, "kin.results_rotary" if spec.input.rotary else "kin.results_slider",
+                    step=step_txt, unit=unit),
         headers=headers, rows=rows))
     ext_rows = []
     at_u = "°" if spec.input.rotary else unit
@@ -635,36 +620,34 @@ def build_report(spec, quantities, result, lang="en", approx=None):
             if e.bounded:
                 cells += [fixed(e.value * f, digits), fixed(e.at * fin, 4)]
             else:
-                cells += ["无界" if zh else "unbounded", "→ " + fixed(e.at * fin, 4)]
+                cells += [say(lang, "kin.unbounded"), "→ " + fixed(e.at * fin, 4)]
         ext_rows.append(cells)
     if ext_rows:
         report.blocks.append(Block(
-            heading=(f"极值 (位置精确到 ±{_extreme_tol(result) * fin:.0e}{input_suffix(spec)})"
-                     if zh else f"Extremes (input located to "
-                                f"±{_extreme_tol(result) * fin:.0e}{input_suffix(spec)})"),
-            headers=["量" if zh else "quantity", "最大值" if zh else "max",
-                     header("位置" if zh else "at", at_u), "最小值" if zh else "min",
-                     header("位置" if zh else "at", at_u)],
+            heading=say(lang, "kin.extremes", tol=f"{_extreme_tol(result) * fin:.0e}",
+                        unit=input_suffix(spec)),
+            headers=[say(lang, "common.quantity"), say(lang, "common.max"),
+                     header(say(lang, "common.at"), at_u), say(lang, "common.min"),
+                     header(say(lang, "common.at"), at_u)],
             rows=ext_rows))
-    report.blocks += flags_blocks(spec, result, zh)
-    n = result.q.size
-    report.notes.append((f"共 {n} 个位置" if zh else f"{n} positions analysed")
+    report.blocks += flags_blocks(spec, result, lang)
+    report.notes.append(say(lang, "common.positions", n=result.q.size)
                         + (f"; ω1 = {spec.input.omega:g} rad/s" if spec.input.rotary else ""))
     if approx is not None:
-        report.notes.append(approx_note(spec, approx, zh))
-    note = _grid_error_note(spec, quantities, result, zh)
+        report.notes.append(approx_note(spec, approx, lang))
+    note = _grid_error_note(spec, quantities, result, lang)
     if note:
         report.notes.append(note)
     if result.accuracy is not None and result.accuracy.digits:
-        report.notes.append(accuracy_note(result.accuracy, zh))
-    note = dead_point_note(spec, result, zh)
+        report.notes.append(accuracy_note(result.accuracy, lang))
+    note = dead_point_note(spec, result, lang)
     if note:
         report.notes.append(note)
-    report.notes.extend(slider_note(spec, quantities, result, zh, approx))
+    report.notes.extend(slider_note(spec, quantities, result, lang, approx))
     return report
 
 
-def approx_note(spec, approx, zh=False):
+def approx_note(spec, approx, lang="en"):
     """One line: the approximate model and its largest differences to the exact one."""
     unit = spec.header.unit
     parts = []
@@ -672,15 +655,10 @@ def approx_note(spec, approx, zh=False):
         diff, rel = approx[key]
         parts.append(f"{key} {diff * factor_of(kind, spec.header.scale):.4g} "
                      f"{pretty_unit(kind, unit)} ({rel:.2%})")
-    if zh:
-        return ("模型: 近似 (1/n 级数, n = l2/l1); 滑块 s/v/a 与精确解的最大差: "
-                + ", ".join(parts) + "; 其余构件为精确解")
-    return ("model: approximate (series in 1/n, n = l2/l1) for the slider's s, v, a; "
-            "largest difference to the exact model: " + ", ".join(parts)
-            + "; the other links are exact")
+    return say(lang, "kin.approx", diffs=", ".join(parts))
 
 
-def flags_blocks(spec, result, zh=False):
+def flags_blocks(spec, result, lang="en"):
     """The ``Flags`` block: the excluded positions merged and grouped by reason and
     dyad (:func:`singular_groups`), then the near-dead positions they do not
     already name, each once and rounded."""
@@ -688,11 +666,11 @@ def flags_blocks(spec, result, zh=False):
     groups = singular_groups(spec, result.excluded, result.toggles, result.dead_points)
     for why, joint, items in groups:
         if all(len(it) == 1 for it in items):
-            label = _one_position_words(why, len(items), zh)
+            label = _one_position_words(why, len(items), lang)
         else:
-            label = _ZH_WHY[why] if zh else why
+            label = _why_words(why, lang)
         if joint:
-            label += f" (杆组 {joint})" if zh else f" (dyad {joint})"
+            label += f" ({say(lang, 'kin.dyad', joint=joint)})"
         flags.append([label, ", ".join(_item_text(spec, it) for it in items)])
     span = abs(spec.input.stop - spec.input.start)
     tol = 1e-5 * span
@@ -705,17 +683,14 @@ def flags_blocks(spec, result, zh=False):
             continue
         seen.add((t.joint, at))
         g = math.degrees(math.asin(min(1.0, t.sin_gamma)))
-        flags.append([("接近死点" if zh else "near dead point") + f" ({t.kind} {t.joint})",
+        flags.append([say(lang, "kin.near_dead") + f" ({t.kind} {t.joint})",
                       f"{input_symbol(spec)} = {at}, γ = {g:.4f}°"])
-    return [Block(heading="标记" if zh else "Flags", rows=flags)] if flags else []
+    return [Block(heading=say(lang, "kin.flags"), rows=flags)] if flags else []
 
 
-_ZH_CLASS = {"positions": "位置", "velocities": "速度", "accelerations": "加速度",
-             "forces": "力"}
-
-
-def accuracy_note(accuracy, zh=False):
+def accuracy_note(accuracy, lang="en"):
     """One line: the fewest estimated correct significant digits of each class."""
-    parts = ", ".join(f"{_ZH_CLASS.get(k, k) if zh else k} {v:.1f}"
+    words = table(lang, "kin")
+    parts = ", ".join(f"{words.get(f'digits_{k}', k)} {v:.1f}"
                       for k, v in accuracy.minimum().items())
-    return f"估计有效数字 (最少): {parts}" if zh else f"estimated correct digits: {parts}"
+    return say(lang, "kin.accuracy", digits=parts)

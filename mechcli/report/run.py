@@ -7,6 +7,7 @@ import click
 
 from mechcli.report import jsonout
 from mechcli.report.table import Block, Report, print_rich, render_text, terminal_width
+from mechcli.report.words import say
 
 
 def _is_terminal():
@@ -206,16 +207,14 @@ def given_block(run, command):
     if data is None:
         return None
     info = manifest_info(run, command)
-    zh = run.lang == "zh"
     unit = data.get("units", "mm" if command != "flywheel" else "m")
     sets = ", ".join(info["sets"])
-    head = [f"{'题目文件' if zh else 'spec'} {info['spec']}",
+    head = [say(run.lang, "run.spec", path=info["spec"]),
             f"SHA-256 {(info['spec_sha256'] or '?')[:16]}…"]
     if sets:
         head.append(f"--set {sets}")
-    head.append(f"长度单位 {unit}, 角的单位 °, 其余为国际单位" if zh
-                else f"lengths in {unit}, angles in °, the rest in SI units")
-    return Block(heading=("已知条件 (" if zh else "Given (") + "; ".join(head) + ")",
+    head.append(say(run.lang, "run.units", unit=unit))
+    return Block(heading=say(run.lang, "run.given", items="; ".join(head)),
                  rows=_given_rows(data))
 
 

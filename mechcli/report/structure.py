@@ -4,10 +4,7 @@
 from __future__ import annotations
 
 from mechcli.report.table import Block
-
-
-def _label(lang, en, zh):
-    return zh if lang == "zh" else en
+from mechcli.report.words import say
 
 
 def structure_results(st):
@@ -28,20 +25,16 @@ def structure_block(lang, st, frame):
     rows = []
     for g in st.groups:
         if g.type == "driver":
-            what = _label(lang, f"driver {g.links[0]} with the frame {frame}",
-                          f"原动件 {g.links[0]} 与机架 {frame}")
+            what = say(lang, "structure.driver", link=g.links[0], frame=frame)
         elif g.klass == 2:
-            what = _label(lang, f"dyad {g.type}", f"{g.type} 型 II 级杆组")
+            what = say(lang, "structure.dyad", type=g.type)
         else:
-            kind = {"triad": _label(lang, "triad", "三级杆组")}.get(
-                g.type, _label(lang, "group", "杆组"))
-            what = _label(lang, f"{kind} (class {_ROMAN.get(g.klass, g.klass)})",
-                          f"{_ROMAN.get(g.klass, g.klass)} 级{kind}")
+            kind = say(lang, "structure.triad" if g.type == "triad" else "structure.group")
+            what = say(lang, "structure.higher_group", kind=kind,
+                       klass=_ROMAN.get(g.klass, g.klass))
         rows.append([what, ", ".join(map(str, g.links)), ", ".join(g.joints),
                      _ROMAN.get(g.klass, str(g.klass))])
-    title = _label(lang, f"Structural analysis: a class {_ROMAN.get(st.mechanism_class)} "
-                         f"mechanism (groups in solving order)",
-                   f"杆组分解: {_ROMAN.get(st.mechanism_class)} 级机构 (按求解顺序)")
-    return Block(title, headers=[_label(lang, "group", "杆组"), _label(lang, "links", "构件"),
-                                 _label(lang, "pairs", "运动副"), _label(lang, "class", "级别")],
+    title = say(lang, "structure.title", klass=_ROMAN.get(st.mechanism_class))
+    return Block(title, headers=[say(lang, "structure.group"), say(lang, "structure.links"),
+                                 say(lang, "structure.pairs"), say(lang, "structure.class")],
                  rows=rows)

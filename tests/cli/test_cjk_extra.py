@@ -92,12 +92,14 @@ def test_a_zh_run_draws_its_chinese_from_the_packaged_font(tmp_path, monkeypatch
 
 
 def _report_characters():
-    """Every non-ASCII character of the report modules' string literals (the labels,
-    titles and legends of ``--lang zh``)."""
+    """Every non-ASCII character of the report modules' string literals and of the wording
+    catalogue (the labels, titles and legends of ``--lang zh``)."""
     import mechcli   # the installed package's modules (CI runs the suite against the wheel)
 
     chars = set()
-    for path in sorted((Path(mechcli.__file__).parent / "report").glob("*.py")):
+    # the report modules and the wording catalogue (mechcli/report/words/*.py), where
+    # most labels live
+    for path in sorted((Path(mechcli.__file__).parent / "report").rglob("*.py")):
         for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
             if isinstance(node, ast.Constant) and isinstance(node.value, str):
                 chars |= {c for c in node.value if ord(c) > 0x7F}
