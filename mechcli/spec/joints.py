@@ -53,7 +53,7 @@ def read_joints(mech):
     drawing : FromDrawing
         The structure, the drawing's input angles and the links' angle offsets.
     """
-    from mechcli.core.linkage.drawing import Drawing, DrawingError, Slider, from_drawing
+    from mechcli.core.linkage.drawing import Drawing, DrawingError, Slider
 
     frame = mech.integer("frame", lo=1)
     jt = mech.table("joints")
@@ -145,7 +145,7 @@ def read_joints(mech):
     drawing = Drawing(frame, joints, links, tuple(sliders), tuple(drivers), actuators,
                       dict(followers))
     try:
-        result = from_drawing(drawing)
+        result = _solved_drawing(drawing)
     except DrawingError as exc:
         raise SpecError(mech.file, _where(mech, exc, link_paths, slider_paths, driver_paths,
                                           drivers),
@@ -171,3 +171,28 @@ def _where(mech, exc, link_paths, slider_paths, driver_paths, drivers):
     if exc.what == "drivers":
         return mech.key("driver")
     return mech.path
+
+
+#: drawings already turned into linkages in this process, newest last (a drawing's
+#: continuation tables take ~0.1-0.5 s; `mechcli schema --learn` reads one spec hundreds
+#: of times with only other keys changed, an optimize run one drawing per design)
+_SOLVED: dict = {}
+_SOLVED_MAX = 8
+
+
+def _solved_drawing(drawing):
+    """:func:`~mechcli.core.linkage.drawing.from_drawing`, remembered for the last few
+    drawings (the result is immutable records; the same drawing gives the same linkage)."""
+    from mechcli.core.linkage.drawing import from_drawing
+
+    key = repr((drawing.frame, sorted(drawing.joints.items()),
+                sorted((k, tuple(v)) for k, v in drawing.links.items()), drawing.sliders,
+                drawing.drivers, sorted(drawing.actuators.items()),
+                sorted(drawing.followers.items())))
+    hit = _SOLVED.pop(key, None)
+    if hit is None:
+        hit = from_drawing(drawing)       # a DrawingError is not remembered
+    _SOLVED[key] = hit
+    while len(_SOLVED) > _SOLVED_MAX:
+        _SOLVED.pop(next(iter(_SOLVED)))
+    return hit

@@ -53,7 +53,7 @@ from mechcli.spec.reader import REQUIRED, Section
 COMMANDS = ("kin", "force", "grashof", "cam", "gear", "synth", "flywheel", "optimize")
 PROBE_FILE = "<mechcli-schema-probe>.toml"
 #: most reader runs per command (each takes well under a millisecond to a few ms)
-MAX_RUNS = 1500
+MAX_RUNS = 3000
 #: values tried for an untyped key, one per JSON type
 #: seeds a mutation (a choice, a value of an untyped key) is applied to, at most
 TRIES = 3
@@ -256,6 +256,19 @@ LATE_PROBES = {"force": [_engine(f) for f in (
 _SHARED_MECHANISM = ("force", "flywheel", "optimize")
 
 
+def _key_paths(node: Any, prefix: str = "") -> frozenset:
+    """The dotted key paths of a table (lists of tables merged): its shape, not its values."""
+    out: set = set()
+    items = node if isinstance(node, list) else [node]
+    for item in items:
+        if isinstance(item, dict):
+            for k, v in item.items():
+                out.add(prefix + k)
+                if isinstance(v, (dict, list)) and k != "joints":
+                    out |= _key_paths(v, prefix + k + ".")
+    return frozenset(out)
+
+
 def _seeds(command: str,
            configs: Union[str, Path, None] = None) -> List[Tuple[Dict[str, Any], Optional[str]]]:
     seeds: List[Tuple[Dict[str, Any], Optional[str]]] = [
@@ -269,6 +282,7 @@ def _seeds(command: str,
     if configs.is_dir():
         files += sorted(configs.rglob("*.toml"))
     from mechcli.spec.reader import tomllib
+    shapes: set = set()
     for f in files:
         try:
             data = tomllib.loads(f.read_text(encoding="utf-8"))
@@ -279,9 +293,12 @@ def _seeds(command: str,
             seeds.append((data, str(f.parent)))
         elif (command in _SHARED_MECHANISM and data.get("command") == "kin"
               and isinstance(data.get("mechanism"), dict)
-              and data["mechanism"].get("type") == "joints"):
+              and data["mechanism"].get("type") == "joints"
+              and _key_paths(data["mechanism"]) not in shapes):
             # the joints form is read by the same reader for every command that moves a
-            # linkage: learnt from kin's examples too (its keys, not its other tables)
+            # linkage: learnt from kin's examples too (its keys, not its other tables;
+            # one example per set of keys, so the run budget reaches the late probes)
+            shapes.add(_key_paths(data["mechanism"]))
             seeds.append(({"command": command, "units": data.get("units", "mm"),
                            "mechanism": data["mechanism"]}, str(f.parent)))
     seeds += [(dict(copy.deepcopy(p), command=command), None)

@@ -177,6 +177,34 @@ class JointsLinkage:
         return {j: tuple(np.array(x) for x in v) for j, v in out.items()}
 
 
+    def slides_at(self, u, q):
+        """Each slider's slide [m]: its block's first joint along the line of sliding,
+        from the ``through`` point (both as the guide carries them)."""
+        pos = self.positions(u, q)
+        out = []
+        for blk, guide, through, ang in self.sliders:
+            p, a = self._line(pos, guide, through, ang)
+            out.append(float(np.dot(pos[self.links[blk][0]] - p, [math.cos(a), math.sin(a)])))
+        return np.array(out)
+
+    def slide_motion(self, qs):
+        """``[(s, v, a)]`` per slider (spec order) at the crank angles ``qs``, by the
+        same continuation and central differences as :meth:`motion`."""
+        U = self.sweep(qs)
+        rows = []
+        for q, u in zip(qs, U):
+            h1, h2 = 1e-5, 1e-3
+            f = {d: self.slides_at(self.solve_at(q + d, u), q + d)
+                 for d in (h1, -h1, h2, -h2, 2 * h2, -2 * h2)}
+            s = self.slides_at(u, q)
+            d1 = (f[h2] - 2 * s + f[-h2]) / h2 ** 2
+            d2 = (f[2 * h2] - 2 * s + f[-2 * h2]) / (2 * h2) ** 2
+            rows.append((s, (f[h1] - f[-h1]) / (2 * h1) * self.omega1,
+                         (4 * d1 - d2) / 3 * self.omega1 ** 2))
+        return [tuple(np.array([r[i][k] for r in rows]) for i in range(3))
+                for k in range(len(self.sliders))]
+
+
 if __name__ == "__main__":
     lk = JointsLinkage(sys.argv[1])
     qs = np.radians(np.arange(0.0, 361.0, 30.0))

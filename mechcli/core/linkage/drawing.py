@@ -416,6 +416,7 @@ class _Builder:
             NewtonGroup,
             best_conditioning,
             continuation_table,
+            drawn_conditioning,
             local,
         )
 
@@ -509,8 +510,19 @@ class _Builder:
             ins.update({k: DriverMotion(r * q + ph) for k, (r, ph) in follow.items()})
             return solve(lk, ins, order=0)
 
-        table, period = continuation_table(proto, known_motion, q0, pose0, self.scale,
-                                           self.frame)
+        at_drawing = drawn_conditioning(proto, known_motion(np.array([q0])), pose0,
+                                        self.scale, self.frame)
+        if at_drawing < TOGGLE_TOL:
+            raise DrawingError(f"the {g.type} of links {', '.join(map(str, g.links))} is drawn "
+                               f"at its dead point (its Jacobian is singular there): the "
+                               f"drawing fixes no assembly branch; draw it off the dead point",
+                               "link", g.links[0])
+        try:
+            table, period = continuation_table(proto, known_motion, q0, pose0, self.scale,
+                                               self.frame)
+        except ValueError as exc:
+            raise DrawingError(f"the {g.type} of links {', '.join(map(str, g.links))}: {exc}",
+                               "link", g.links[0]) from None
         well = best_conditioning(proto, known_motion(table[0]), table, self.scale, self.frame)
         self.elements.append(dataclasses.replace(proto, table=table, period=period, well=well))
         self.known.update(proto.inner_joints)

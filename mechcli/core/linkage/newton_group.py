@@ -350,7 +350,8 @@ class _System:
             pa, pb = ea.point(ax, ay), eb.point(bx, by)
             tx, ty = np.cos(eb.phi + beta), np.sin(eb.phi + beta)
             dx, dy = pa[0] - pb[0], pa[1] - pb[1]
-            g += [L * (ea.phi - eb.phi - c0), -ty * dx + tx * dy - h0]
+            # the angle difference wrapped: a known link's angle may jump by a turn
+            g += [L * _wrap(ea.phi - eb.phi - c0), -ty * dx + tx * dy - h0]
             if a >= 0:
                 J[..., r, 3 * a + 2] = L
                 J[..., r + 1, 3 * a] = -ty
@@ -546,6 +547,17 @@ def best_conditioning(group: NewtonGroup, motion: Any, table: tuple, scale: floa
     return best if best > 0.0 else 1.0
 
 
+def drawn_conditioning(group: NewtonGroup, motion: Any, pose: Sequence[float], scale: float,
+                       frame: int) -> float:
+    """1/κ₁ at one pose (``motion``: the known part solved at its angle, one position):
+    the drawing's, whose dead point fixes no branch."""
+    P = {k: _Pt(p.x[0], p.y[0]) for k, p in motion.points.items()}
+    L = {k: _Ln(lm.theta[0]) for k, lm in motion.links.items()}
+    sys = _System(group, P, L, frame, scale)
+    _g, J = sys.residual([np.asarray(v, dtype=float) for v in pose])
+    return float(sys.conditioning(J))
+
+
 def table_from_marches(known: Callable, advance: Callable, q0: float,
                        pose0: Sequence[float], scale: float, step: float = TABLE_STEP,
                        predict: bool = False):
@@ -603,7 +615,7 @@ def table_from_marches(known: Callable, advance: Callable, q0: float,
     qf, fwd, stopped_f = march(1)
     width = len(pose0)
     if not stopped_f and not _jumped(_unturned(fwd[-1], fwd[0]), fwd[0], 1e-6 * scale):
-        return _columns(qf[:n], fwd[:n], width), 2 * math.pi
+        return _columns(qf[:-1], fwd[:-1], width), 2 * math.pi   # all but q0 + 2π
     qb, bwd, stopped_b = march(-1)
     qs = qb[1:][::-1] + qf
     rows = bwd[1:][::-1] + fwd
