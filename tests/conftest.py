@@ -116,6 +116,7 @@ SLOW_MODULES = {
     "test_progress_and_pipes", "test_check", "test_flywheel_motion", "test_student_outputs",
     "test_engine_loads", "test_grashof_property", "test_notebook", "test_student_clip_notice",
     "test_synth_quick_return_props", "test_outputs_stay", "test_own_problem_doc",
+    "test_newton_group_cases", "test_newton_group",
 }
 
 
