@@ -151,7 +151,6 @@ def run_spec(path, *sets, lang="en"):
 
 def _run_kin(path, sets, lang):
     """``mechcli kin``'s steps (mechcli/commands/kin.py) without its files."""
-    from mechcli.commands.kin import _model
     from mechcli.core.errors import AssemblyError
     from mechcli.core.linkage.kinematics import analyse_sweep, default_quantities
     from mechcli.report import kin as report
@@ -167,7 +166,7 @@ def _run_kin(path, sets, lang):
     except AssemblyError as exc:
         raise AssemblyError(report.assembly_message(spec, exc), exc.intervals) from None
     approx = None
-    if spec.mechanism == "slider_crank" and _model(path, sets) == "approximate":
+    if spec.mechanism == "slider_crank" and spec.model == "approximate":
         from mechcli.core.linkage import approximate
         result, approx = approximate.apply(spec.linkage, sweep, result)
     return Result("kin", path, spec, result,

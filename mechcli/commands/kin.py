@@ -40,7 +40,7 @@ def kin(spec_path, accuracy_warn=None, **opts):
     except AssemblyError as exc:   # worded in the spec's units
         raise AssemblyError(report.assembly_message(spec, exc), exc.intervals) from None
     approx = None
-    if spec.mechanism == "slider_crank" and _model(spec_path, run.sets) == "approximate":
+    if spec.mechanism == "slider_crank" and spec.model == "approximate":
         if streamed:
             from mechcli.spec.errors import SpecError
             from mechcli.spec.kin import MAX_POSITIONS
@@ -185,9 +185,3 @@ def _streamed_warnings(spec, quantities, result, rows, report):
                        f"(the analysed rows may miss a narrow peak; use a larger step)")
     return out
 
-
-def _model(spec_path, sets):
-    """``[mechanism] model`` of a slider-crank spec (validated by the spec reader)."""
-    from mechcli.spec.reader import load_spec
-    mech = load_spec(spec_path, sets).data.get("mechanism", {})
-    return mech.get("model", "exact") if isinstance(mech, dict) else "exact"

@@ -1,58 +1,20 @@
 """Spec pieces shared by every command: the header and ``[expected]``.
 
-What an ``[expected]`` value means (tolerances, comparison) lives in
-:mod:`mechcli.spec.expected`; :func:`read_expected` is re-exported here for the
-spec readers.
+What an ``[expected]`` value means (tolerances, comparison, the check that every
+key names a result) lives in :mod:`mechcli.spec.expected`; :func:`read_expected`
+and :func:`check_expected` are re-exported here for the spec readers and
+``report.run`` (this module imports ``expected``, never the other way round).
 """
 
 from __future__ import annotations
 
 from mechcli.core.records import record
-from mechcli.spec.errors import SpecError, closest
-from mechcli.spec.expected import Expected, read_expected  # noqa: F401 (re-exported)
-from mechcli.spec.reader import load_spec
-
-
-def check_expected(path, overrides, results):
-    """Reject an ``[expected]`` key that names no result of the run (exit 2).
-
-    The keys of ``[expected]`` are compared with the keys of *results* (the
-    ``--json`` ``"results"`` object), so a misspelled name fails the run
-    instead of passing unchecked.  The spec is read again (a few hundred
-    microseconds) so that every command gets the check from
-    :func:`mechcli.report.run.finish` without passing its spec along.
-
-    Parameters
-    ----------
-    path : str or pathlib.Path or None
-        The spec file of the run; None for file-less runs (nothing to check).
-    overrides : sequence of str
-        The run's ``--set KEY=VALUE`` overrides (they may add expected keys).
-    results : dict
-        The scalar results of the run.
-
-    Raises
-    ------
-    SpecError
-        On the first key of ``[expected]`` that is not a key of *results*,
-        with the nearest result name as a suggestion.
-    """
-    if path is None:
-        return
-    try:
-        root = load_spec(path, overrides)
-    except SpecError:
-        # the command has read this file already, so it is not a TOML spec
-        # (``grashof --batch`` reads a CSV): there is no [expected] table
-        return
-    from mechcli.spec.expected import has_result
-    sec = root.table("expected", None)
-    names = sorted(map(str, results))
-    for name in [] if sec is None else sec.keys():
-        if not has_result(results, name):
-            raise SpecError(sec.file, sec.key(name),
-                            "the name of a result of this run (a key of --json \"results\")",
-                            f"unknown key '{name}'", closest(name, names))
+from mechcli.spec.errors import SpecError
+from mechcli.spec.expected import (  # noqa: F401 (re-exported)
+    Expected,
+    check_expected,
+    read_expected,
+)
 
 
 @record

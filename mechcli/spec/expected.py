@@ -26,7 +26,8 @@ import math
 import re
 
 from mechcli.core.records import record
-from mechcli.spec.errors import SpecError
+from mechcli.spec.errors import SpecError, closest
+from mechcli.spec.reader import load_spec
 
 #: a TOML decimal number literal (no inf/nan/hex: those take the fallback)
 _NUMBER = re.compile(r"[+-]?(\d[\d_]*)(?:\.([\d_]*))?(?:[eE]([+-]?[\d_]+))?")
@@ -463,8 +464,46 @@ def evaluate(path, sets, results):
     """Read the ``[expected]`` table of the spec at *path* (with *sets*) and
     compare it with *results*; an expected key that names no result is a
     :class:`SpecError` (exit 2, with did-you-mean), as in every command."""
-    from mechcli.spec.common import check_expected
-    from mechcli.spec.reader import load_spec
-
     check_expected(path, sets, results)
     return compare(read_expected(load_spec(path, sets), sets), results)
+
+
+def check_expected(path, overrides, results):
+    """Reject an ``[expected]`` key that names no result of the run (exit 2).
+
+    The keys of ``[expected]`` are compared with the keys of *results* (the
+    ``--json`` ``"results"`` object), so a misspelled name fails the run
+    instead of passing unchecked.  The spec is read again (a few hundred
+    microseconds) so that every command gets the check from
+    :func:`mechcli.report.run.finish` without passing its spec along.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path or None
+        The spec file of the run; None for file-less runs (nothing to check).
+    overrides : sequence of str
+        The run's ``--set KEY=VALUE`` overrides (they may add expected keys).
+    results : dict
+        The scalar results of the run.
+
+    Raises
+    ------
+    SpecError
+        On the first key of ``[expected]`` that is not a key of *results*,
+        with the nearest result name as a suggestion.
+    """
+    if path is None:
+        return
+    try:
+        root = load_spec(path, overrides)
+    except SpecError:
+        # the command has read this file already, so it is not a TOML spec
+        # (``grashof --batch`` reads a CSV): there is no [expected] table
+        return
+    sec = root.table("expected", None)
+    names = sorted(map(str, results))
+    for name in [] if sec is None else sec.keys():
+        if not has_result(results, name):
+            raise SpecError(sec.file, sec.key(name),
+                            "the name of a result of this run (a key of --json \"results\")",
+                            f"unknown key '{name}'", closest(name, names))

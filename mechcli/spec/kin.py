@@ -16,7 +16,8 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from typing import Optional, Tuple
+from pathlib import Path
+from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -36,7 +37,7 @@ from mechcli.core.linkage import (
 from mechcli.core.records import record
 from mechcli.spec.common import Header, read_expected, read_header
 from mechcli.spec.errors import SpecError
-from mechcli.spec.reader import MAX_LENGTH, MIN_LENGTH, load_spec
+from mechcli.spec.reader import MAX_LENGTH, MIN_LENGTH, Section, load_spec
 
 MECHANISMS = ("four_bar", "slider_crank", "guide_bar", "shaper", "general", "joints")
 QUANTITIES = ("position", "velocity", "acceleration")
@@ -84,13 +85,13 @@ class InputSpec:
     #: rows are ``np.linspace(start, stop, count)``; 0 when ``q`` is the whole sweep
     count: int = 0
 
-    def sweep(self):
+    def sweep(self) -> Any:
         """The core's :class:`~mechcli.core.linkage.kinematics.Sweep` of this program."""
         from mechcli.core.linkage.kinematics import Sweep
         return Sweep(self.driver, self.q, self.omega, self.alpha, self.followers, self.periodic)
 
     @property
-    def periodic(self):
+    def periodic(self) -> bool:
         if not self.rotary:
             return False
         turns = (self.stop - self.start) / (2 * math.pi)
@@ -121,10 +122,13 @@ class KinSpec:
     output: OutputSpec
     expected: dict
     guide_length: Optional[float] = None  # drawing only (guide-bar l3) [m]
+    #: a slider-crank's ``[mechanism] model``: "exact" (the engine) or "approximate"
+    #: (kin reports the books' series in 1/n for the slide)
+    model: str = "exact"
 
 
 # ---------------------------------------------------------------------------
-def _branch(sec, name, default, named):
+def _branch(sec: Section, name: str, default: Union[str, int], named: Dict[str, int]) -> int:
     raw = sec.raw(name, default)
     if isinstance(raw, str) and raw in named:
         return named[raw]
@@ -134,7 +138,7 @@ def _branch(sec, name, default, named):
     raise SpecError(sec.file, sec.key(name), f"one of {opts}", repr(raw))
 
 
-def _preset(mech, kind):
+def _preset(mech: Section, kind: str) -> Tuple[int, List[Any], Optional[float]]:
     """Expand a preset into (frame, elements, guide_length) with the core's presets."""
     mech.declare("l1", "l2", "l3", "l4", "l6", "l6p", "e", "branch", "point")
     guide_length = None
@@ -171,10 +175,11 @@ def _preset(mech, kind):
     return linkage.frame, list(linkage.elements), guide_length
 
 
-def _general(mech):
+def _general(mech: Section) -> Tuple[int, List[Any], dict, List[str]]:
     """Read the general form: ground, driver, dyad tables."""
     frame = mech.integer("frame", lo=1)
-    elements, paths = [], []
+    elements: List[Any] = []
+    paths: List[str] = []
     ground = mech.table("ground")
     for name in ground.keys():
         ground.check_name(None, name)
@@ -215,16 +220,16 @@ def _general(mech):
 MAX_RATIO = 1e4
 
 
-def follower_ratio(d):
+def follower_ratio(d: Section) -> float:
     """A secondary driver's ``ratio`` to the primary one, in [-MAX_RATIO, MAX_RATIO]."""
     return d.number("ratio", 1.0, lo=-MAX_RATIO, hi=MAX_RATIO)
 
 
-def _dyad_branch(dy):
+def _dyad_branch(dy: Section) -> int:
     return _branch(dy, "branch", 1, {"left": 1, "right": -1})
 
 
-def _rrr(dy, unit):
+def _rrr(dy: Section, unit: float) -> RRR:
     br = _dyad_branch(dy)
     pts = dy.strings("points")
     links = dy.raw("links")
@@ -244,7 +249,7 @@ def _rrr(dy, unit):
                pts[1], links[1], lengths[1] * unit, br)
 
 
-def _rrp(dy, unit):
+def _rrp(dy: Section, unit: float) -> RRP:
     br = _dyad_branch(dy)
     return RRP(dy.name("joint"), dy.name("point"), dy.integer("link", lo=1),
                dy.length("length"), dy.integer("slider", lo=1), dy.integer("guide_link", lo=1),
@@ -252,14 +257,14 @@ def _rrp(dy, unit):
                dy.coordinate("offset", 0.0), br, dy.name("name", None))
 
 
-def _rpr(dy, unit):
+def _rpr(dy: Section, unit: float) -> RPR:
     br = _dyad_branch(dy)
     return RPR(dy.name("point"), dy.integer("block", lo=1), dy.name("pivot"),
                dy.integer("guide", lo=1), dy.coordinate("offset", 0.0), br,
                dy.name("name", None))
 
 
-def _prp(dy, unit):
+def _prp(dy: Section, unit: float) -> PRP:
     """RRP's guide keys twice, suffixed ``_a`` and ``_b`` (the keys are the fields)."""
     if dy.has("branch"):
         raise dy.error("branch", "no branch (a PRP dyad's joint is the one intersection of "
@@ -280,7 +285,7 @@ def _prp(dy, unit):
 DYADS = {"RRR": _rrr, "RRP": _rrp, "RPR": _rpr, "PRP": _prp}
 
 
-def _points(mech, elements, paths):
+def _points(mech: Section, elements: List[Any], paths: List[str]) -> List[Tracer]:
     """``[[mechanism.point]]``: points fixed on links; traced unless ``trace = false``."""
     tracers = []
     for pt in mech.tables("point", []):
@@ -310,7 +315,8 @@ _SPEC_KEY = {"point_a": "points", "point_b": "points", "link_a": "links", "link_
 _KIND_KEY = {("slider", "origin"): "origin"}
 
 
-def _build_linkage(mech, frame, elements, paths):
+def _build_linkage(mech: Section, frame: int, elements: List[Any],
+                   paths: List[str]) -> Linkage:
     try:
         return Linkage(frame=frame, elements=tuple(elements))
     except LinkageDefinitionError as exc:
@@ -332,7 +338,7 @@ def _build_linkage(mech, frame, elements, paths):
                         msg) from None
 
 
-def _one_of(sec, first, second):
+def _one_of(sec: Section, first: str, second: str) -> str:
     """Two keys of which a spec gives one (``omega1``/``n1``, ``step``/``count``),
     both given: a ``--set`` of one replaces the other from the file (returns the key
     kept); both in the file, or both set, is an error."""
@@ -350,7 +356,7 @@ def _one_of(sec, first, second):
 _RADIAN_LIKE_DEG = 2 * math.pi * 1.02
 
 
-def _degrees_hint(rotary, start, stop):
+def _degrees_hint(rotary: bool, start: float, stop: float) -> str:
     """`` (angles are in degrees ...)`` when a crank's range [rad] looks like it was
     given in radians, else ''."""
     a, b = math.degrees(start), math.degrees(stop)
@@ -360,8 +366,8 @@ def _degrees_hint(rotary, start, stop):
             f"stop = {a + 360:g})")
 
 
-def _input(sec, linkage, followers, max_positions=MAX_POSITIONS, why=POSITIONS_WHY,
-           stream_max=None):
+def _input(sec: Section, linkage: Linkage, followers: dict, max_positions: int = MAX_POSITIONS,
+           why: str = POSITIONS_WHY, stream_max: Optional[int] = None) -> InputSpec:
     in_memory = max_positions
     if stream_max is not None and stream_max > max_positions:  # kin: longer sweeps stream
         max_positions, why = stream_max, STREAMED_WHY
@@ -425,7 +431,7 @@ def _input(sec, linkage, followers, max_positions=MAX_POSITIONS, why=POSITIONS_W
                      streamed)
 
 
-def _output(sec, inp):
+def _output(sec: Section, inp: InputSpec) -> OutputSpec:
     unit = math.pi / 180 if inp.rotary else sec.unit
     if sec is None:
         return None
@@ -453,7 +459,7 @@ def _output(sec, inp):
                       accuracy_warn)
 
 
-def read_mechanism(root):
+def read_mechanism(root: Section) -> Tuple[Any, ...]:
     """Read ``[mechanism]`` (a preset or the general form) into a linkage.
 
     Returns ``(kind, linkage, tracers, followers, guide_length)``; shared by
@@ -461,7 +467,7 @@ def read_mechanism(root):
     """
     mech = root.table("mechanism")
     kind = mech.string("type", choices=list(MECHANISMS))
-    followers = {}
+    followers: dict = {}
     guide_length = None
     drawn = None
     if kind == "general":
@@ -489,7 +495,7 @@ def read_mechanism(root):
     return kind, linkage, tuple(tracers), followers, guide_length
 
 
-def _turned(point, offset):
+def _turned(point: PointOnLink, offset: float) -> PointOnLink:
     """A :class:`PointOnLink` whose ``along``/``normal`` are given from its link's
     drawn direction, re-measured from the engine's (``offset`` = drawn − engine)."""
     if offset == 0.0:
@@ -499,8 +505,9 @@ def _turned(point, offset):
                                normal=point.along * s + point.normal * c)
 
 
-def read_input(root, linkage, followers, max_positions=MAX_POSITIONS, why=POSITIONS_WHY,
-               stream_max=None):
+def read_input(root: Section, linkage: Linkage, followers: dict,
+               max_positions: int = MAX_POSITIONS, why: str = POSITIONS_WHY,
+               stream_max: Optional[int] = None) -> InputSpec:
     """Read ``[input]`` (the primary driver's program) for *linkage*.
 
     *max_positions* caps ``count`` (and the count a ``step`` gives); *why* is said
@@ -512,7 +519,8 @@ def read_input(root, linkage, followers, max_positions=MAX_POSITIONS, why=POSITI
                   linkage, followers, max_positions, why, stream_max)
 
 
-def load_kin_spec(path, overrides=(), stream=False) -> KinSpec:
+def load_kin_spec(path: Union[str, Path], overrides: Sequence[str] = (),
+                  stream: bool = False) -> KinSpec:
     """Read and validate a ``mechcli kin`` spec (*stream*: accept a sweep of up to
     ``MAX_STREAMED`` rows, streamed to the CSV; see ``InputSpec.count``).
 
@@ -524,7 +532,7 @@ def load_kin_spec(path, overrides=(), stream=False) -> KinSpec:
     return read_kin_root(load_spec(path, overrides), stream)
 
 
-def read_kin_root(root, stream=False) -> KinSpec:
+def read_kin_root(root: Section, stream: bool = False) -> KinSpec:
     """:func:`load_kin_spec` on a root table already loaded (``optimize``
     reads its problem's tables this way)."""
     header = read_header(root, "kin", default_unit="mm")
@@ -534,17 +542,24 @@ def read_kin_root(root, stream=False) -> KinSpec:
     output = _output(out_sec, inp)
     expected = read_expected(root)
     root.finish()
-    return KinSpec(header, kind, linkage, tracers, inp, output, expected, guide_length)
+    return KinSpec(header, kind, linkage, tracers, inp, output, expected, guide_length,
+                   _model(root))
 
 
-def _empty(root, name):
+def _model(root: Section) -> str:
+    """``[mechanism] model`` of a slider-crank (validated by :func:`_preset`)."""
+    mech = root.data.get("mechanism", {})
+    return str(mech.get("model", "exact")) if isinstance(mech, dict) else "exact"
+
+
+def _empty(root: Section, name: str) -> Section:
     from mechcli.spec.reader import Section
     sec = Section({}, root.file, name, root.unit)
     sec.overridden = root.overridden
     return sec
 
 
-def refuse_approximate(root, command):
+def refuse_approximate(root: Section, command: str) -> None:
     """``[mechanism] model = "approximate"`` is kin's (the piston's series in 1/n): the
     other commands that read a linkage solve it exactly, so they refuse the key rather
     than ignore it."""

@@ -21,7 +21,7 @@ from __future__ import annotations
 import copy
 import math
 from pathlib import Path
-from typing import Optional, Tuple
+from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -47,6 +47,8 @@ GOAL_VARIABLES = {"phi0": True, "psi0": True, "theta0": True, "delta": True}
 #: keys that hold a choice, not a measure: never design variables
 DISCRETE = ("branch", "link", "links", "frame", "block", "slider", "guide", "guide_link",
             "count", "step", "table_step", "digits", "frames", "ratio", "samples")
+#: a design: the variables' values, in order (a sequence or an array)
+Design = Union[Sequence[float], np.ndarray]
 #: most design variables (a DE population is 15 x n designs per generation)
 MAX_VARIABLES = 32
 
@@ -92,7 +94,7 @@ class OptimizeSpec:
     unit: float                  # metres per length unit of the problem
 
 
-def _merge(base, over):
+def _merge(base: dict, over: dict) -> dict:
     out = copy.deepcopy(base)
     for k, v in over.items():
         if isinstance(v, dict) and isinstance(out.get(k), dict):
@@ -102,7 +104,7 @@ def _merge(base, over):
     return out
 
 
-def _resolve(data, key):
+def _resolve(data: Any, key: str) -> Any:
     """The value at dotted ``key`` of ``data``, or raise KeyError with the part
     that is missing."""
     node = data
@@ -118,7 +120,7 @@ def _resolve(data, key):
     return node
 
 
-def _numeric_paths(data, prefix=""):
+def _numeric_paths(data: Any, prefix: str = "") -> List[str]:
     out = []
     if isinstance(data, dict):
         for k, v in data.items():
@@ -131,14 +133,14 @@ def _numeric_paths(data, prefix=""):
     return out
 
 
-def problem_root(spec_file, data, unit_name=None):
+def problem_root(spec_file: str, data: dict, unit_name: Optional[str] = None) -> Section:
     """A root Section over a deep copy of the problem's tables."""
     root = Section(copy.deepcopy(data), spec_file, "")
     root.overridden = frozenset()
     return root
 
 
-def read_problem(problem, root):
+def read_problem(problem: str, root: Section) -> Any:
     """The problem command's spec read from ``root`` (full validation)."""
     if problem == "kin":
         from mechcli.spec.kin import read_kin_root
@@ -150,7 +152,8 @@ def read_problem(problem, root):
     return read_force_root(root)
 
 
-def _variables(root, problem_file, data, objective_data):
+def _variables(root: Section, problem_file: str, data: dict,
+               objective_data: dict) -> Tuple[VariableSpec, ...]:
     out = []
     tables = root.tables("variable")
     if not tables:
@@ -205,13 +208,14 @@ def _variables(root, problem_file, data, objective_data):
     return tuple(out)
 
 
-def _deg(sec, name, default=REQUIRED, lo=-36000.0, hi=36000.0):
+def _deg(sec: Section, name: str, default: Any = REQUIRED, lo: float = -36000.0,
+         hi: float = 36000.0) -> Optional[float]:
     v = sec.number(name, default, lo=lo, hi=hi)
     return None if v is None else math.radians(v)
 
 
-def _function_objective(sec):
-    data = {"kind": "function"}
+def _function_objective(sec: Section) -> dict:
+    data: Dict[str, Any] = {"kind": "function"}
     out = sec.raw("output", 3)
     if isinstance(out, bool) or not isinstance(out, (int, str)) or (
             isinstance(out, int) and out < 1):
@@ -270,7 +274,7 @@ def _function_objective(sec):
     return data
 
 
-def _path_objective(sec):
+def _path_objective(sec: Section) -> dict:
     data = {"kind": "path", "point": sec.name("point")}
     xs = sec.numbers("x")
     ys = sec.numbers("y", size=len(xs))
@@ -289,12 +293,12 @@ def _path_objective(sec):
     return data
 
 
-def _result_objective(sec):
+def _result_objective(sec: Section) -> dict:
     return {"kind": "result", "key": sec.string("key"),
             "goal": sec.string("goal", "minimize", choices=["minimize", "maximize"])}
 
 
-def _constraint(t):
+def _constraint(t: Section) -> dict:
     kind = t.string("kind", choices=list(CONSTRAINTS))
     c = {"kind": kind, "path": t.path}
     if kind == "transmission":
@@ -314,7 +318,7 @@ def _constraint(t):
     return c
 
 
-def _method(sec, nvar, kind=None):
+def _method(sec: Section, nvar: int, kind: Optional[str] = None) -> MethodSpec:
     name = sec.string("name", "slsqp" if nvar > 1 else "brent", choices=list(METHODS))
     if name in ("golden", "brent") and nvar != 1:
         raise sec.error("name", "a method for several variables (slsqp, trust-constr, "
@@ -344,9 +348,44 @@ def _method(sec, nvar, kind=None):
     )
 
 
-def read_optimize_spec(path, overrides=()) -> OptimizeSpec:
+def read_optimize_spec(path: str | Path, overrides: Sequence[str] = ()) -> OptimizeSpec:
     """Read and validate a ``mechcli optimize`` spec (exit 2 on any error)."""
     root = load_spec(path, overrides)
+    file = root.file
+    problem, data, problem_file, base_path, own = _problem_tables(root)
+    header = read_header(root, "optimize", default_unit=data.get("units", "mm"))
+    if problem != "cam":    # optimize moves the exact linkage
+        from mechcli.spec.kin import refuse_approximate
+        refuse_approximate(Section(data, problem_file, ""), "optimize")
+    # the problem itself must be a valid spec of its command; a key this file gives
+    # (or --set) is reported against this file, a key of the base against the base
+    try:
+        prob = read_problem(problem, problem_root(problem_file, data))
+    except SpecError as exc:
+        if base_path is not None and (exc.key or "").split(".")[0].split("[")[0] in own:
+            raise SpecError(file, exc.key, exc.expected, exc.got, exc.suggestion) from None
+        raise
+    obj_sec = root.table("objective")
+    obj_sec.unit = prob.header.scale
+    kind = obj_sec.string("kind", choices=list(OBJECTIVES))
+    variables = _variables(root, problem_file, data, obj_sec.data)
+    objective = _objective(root, obj_sec, kind, problem, variables)
+    _check_goal_variables(file, variables, kind, objective)
+    constraints = _constraints(root, problem, prob.header.scale)
+    method_sec = root.table("method") if root.has("method") else Section({}, file, "method")
+    method = _method(method_sec, len(variables), kind)
+    method_sec.finish()
+    expected = read_expected(root, overrides)
+    root.finish()
+    spec = OptimizeSpec(header, problem, problem_file, data, base_path, variables, objective,
+                        tuple(constraints), method, expected, Path(file), prob.header.scale)
+    _check_bounds(spec)
+    return spec
+
+
+def _problem_tables(root: Section) -> Tuple[str, dict, str, Optional[Path], dict]:
+    """The problem's command, its tables (this file's over ``base``'s, ``command``
+    set), the file they come from, the base's path and this file's own tables."""
     file = root.file
     problem = root.string("problem", None, choices=list(PROBLEMS))
     base = root.string("base", None)
@@ -383,23 +422,12 @@ def read_optimize_spec(path, overrides=()) -> OptimizeSpec:
             data = dict(data, units=root.data["units"])
     if "units" not in data and "units" in root.data:
         data["units"] = root.data["units"]
-    data = dict(data, command=problem)
-    header = read_header(root, "optimize", default_unit=data.get("units", "mm"))
-    if problem != "cam":    # optimize moves the exact linkage
-        from mechcli.spec.kin import refuse_approximate
-        refuse_approximate(Section(data, problem_file, ""), "optimize")
-    # the problem itself must be a valid spec of its command; a key this file gives
-    # (or --set) is reported against this file, a key of the base against the base
-    try:
-        prob = read_problem(problem, problem_root(problem_file, data))
-    except SpecError as exc:
-        if base_path is not None and (exc.key or "").split(".")[0].split("[")[0] in own:
-            raise SpecError(file, exc.key, exc.expected, exc.got, exc.suggestion) from None
-        raise
-    obj_sec = root.table("objective")
-    obj_sec.unit = prob.header.scale
-    kind = obj_sec.string("kind", choices=list(OBJECTIVES))
-    variables = _variables(root, problem_file, data, obj_sec.data)
+    return problem, dict(data, command=problem), problem_file, base_path, own
+
+
+def _objective(root: Section, obj_sec: Section, kind: str, problem: str,
+               variables: Tuple[VariableSpec, ...]) -> dict:
+    """``[objective]`` of its *kind*, converted (rad, m); ``path`` = "objective"."""
     if kind == "function":
         objective = _function_objective(obj_sec)
     elif kind == "path":
@@ -421,6 +449,13 @@ def read_optimize_spec(path, overrides=()) -> OptimizeSpec:
         raise obj_sec.error("kind", "'pressure_angle' for a cam problem", f"'{kind}'")
     objective["path"] = "objective"
     obj_sec.finish()
+    return objective
+
+
+def _check_goal_variables(file: str, variables: Tuple[VariableSpec, ...], kind: str,
+                          objective: dict) -> None:
+    """A variable of ``[objective]`` (phi0, psi0, theta0, delta) must be one the goal
+    uses, else it would not move (exit 2)."""
     for i, v in enumerate(variables):
         if not v.goal:
             continue
@@ -436,25 +471,21 @@ def read_optimize_spec(path, overrides=()) -> OptimizeSpec:
                     "delta": "kind = \"pressure_angle\""}[name]
             raise SpecError(file, f"variable[{i}].key", f"a goal parameter the goal uses "
                             f"({v.key} needs {need})", f"'{v.key}', which would not move")
+
+
+def _constraints(root: Section, problem: str, scale: float) -> List[dict]:
+    """Every ``[[constraint]]`` (none for a cam problem), lengths in metres."""
     constraints = []
     if problem == "cam" and root.has("constraint"):
         raise root.error("constraint", "no constraints for a cam problem (the cam angle's "
                          "bounds are the variable's lo and hi)", "[[constraint]] tables")
     for t in root.tables("constraint", []):
-        t.unit = prob.header.scale
+        t.unit = scale
         constraints.append(_constraint(t))
-    method_sec = root.table("method") if root.has("method") else Section({}, file, "method")
-    method = _method(method_sec, len(variables), kind)
-    method_sec.finish()
-    expected = read_expected(root, overrides)
-    root.finish()
-    spec = OptimizeSpec(header, problem, problem_file, data, base_path, variables, objective,
-                        tuple(constraints), method, expected, Path(file), prob.header.scale)
-    _check_bounds(spec)
-    return spec
+    return constraints
 
 
-def _check_bounds(spec):
+def _check_bounds(spec: OptimizeSpec) -> None:
     """Each variable's lo and hi (the others at their starts) must be values the
     problem's reader accepts: a bound outside a key's own range is exit 2 here,
     never a failed design deep inside the search."""
@@ -473,7 +504,7 @@ def _check_bounds(spec):
                                 f"{exc.expected} expected there") from None
 
 
-def with_values(data, values):
+def with_values(data: dict, values: Dict[str, float]) -> dict:
     """A deep copy of the problem's tables with ``{dotted key: value}`` set."""
     d = copy.deepcopy(data)
     for key, value in values.items():
@@ -490,7 +521,7 @@ class Candidates:
     problem tables read (as ``--set`` would) into a linkage, the linkages
     stacked into one batched linkage.  Picklable (for ``--workers``)."""
 
-    def __init__(self, spec: OptimizeSpec):
+    def __init__(self, spec: OptimizeSpec) -> None:
         self.problem = spec.problem
         self.file = spec.problem_file
         self.data = spec.problem_data
@@ -499,8 +530,8 @@ class Candidates:
         self.starts = [v.start for v in spec.variables]
         self.lo = np.array([v.lo for v in spec.variables])
         self.hi = np.array([v.hi for v in spec.variables])
-        self.affine = None
-        self.followers = {}
+        self.affine: Any = None         # (base, slots, x0, p0, J) of the fast path
+        self.followers: dict = {}
         if self.problem != "cam":
             # secondary drivers (a five-bar's second crank) follow the first by
             # their ratio and phase, which are not design variables (DISCRETE)
@@ -509,15 +540,15 @@ class Candidates:
 
     # -- the fast path: parameters affine in the variables --------------------
     @staticmethod
-    def _slots(linkage):
+    def _slots(linkage: Any) -> List[Tuple[int, str]]:
         return [(i, f) for i, el in enumerate(linkage.elements)
                 for f in el.lengths_ + el.angles_ + ("branch",) if hasattr(el, f)]
 
-    def _params(self, x):
+    def _params(self, x: Design) -> Tuple[Any, np.ndarray]:
         lk = self.linkage_of(x)
         return lk, np.array([float(getattr(lk.elements[i], f)) for i, f in self._slots(lk)])
 
-    def _probe(self):
+    def _probe(self) -> None:
         """Most readers map a variable to the engine's parameters by a constant
         factor (a unit, degrees to radians): then a population's linkages are
         ``p0 + J (x - x0)``, one matrix product, instead of one reading per
@@ -549,13 +580,13 @@ class Candidates:
             return
         self.affine = (base, slots, x0, p0, J)
 
-    def _affine_linkage(self, X):
+    def _affine_linkage(self, X: np.ndarray) -> Any:
         import dataclasses as dc
 
         from mechcli.core.linkage import Linkage
         base, slots, x0, p0, J = self.affine
         P = p0[None, :] + (X - x0[None, :]) @ J.T          # (M, parameters)
-        fields = {}
+        fields: Dict[int, Dict[str, Any]] = {}
         for k, (i, f) in enumerate(slots):
             if f != "branch" and np.any(J[k] != 0):
                 fields.setdefault(i, {})[f] = P[:, k][:, None]
@@ -565,20 +596,20 @@ class Candidates:
                for i, el in enumerate(base.elements)]
         return Linkage(base.frame, tuple(els))
 
-    def linkage_of(self, x):
+    def linkage_of(self, x: Design) -> Any:
         return self._read(x)[1]
 
-    def _read(self, x):
+    def _read(self, x: Design) -> Tuple[str, Any, tuple, dict, Optional[float]]:
         from mechcli.spec.kin import read_mechanism
         root = problem_root(self.file, with_values(self.data, dict(zip(self.keys, x))))
         read_header(root, self.problem, default_unit="mm")
         return read_mechanism(root)
 
-    def parameters(self, x):
+    def parameters(self, x: Design) -> np.ndarray:
         """The engine's numbers of the design x (every element parameter)."""
         return self._params(x)[1]
 
-    def __call__(self, X):
+    def __call__(self, X: np.ndarray) -> Tuple[Any, np.ndarray, Dict[str, np.ndarray]]:
         from mechcli.core.linkage import stack
         X = np.atleast_2d(X)
         params = {}
@@ -600,3 +631,122 @@ class Candidates:
             fallback = self.linkage_of(self.starts)
         linkages = [lk if lk is not None else fallback for lk in linkages]
         return stack(linkages), ok, params
+
+
+# ---------------------------------------------------------------------------
+# the checks of a linkage problem against its linkage, before it is built
+# (mechcli.core.optimize.build): exit 2 naming the spec's key
+
+def check_linkage_problem(spec: OptimizeSpec,
+                          cands: Candidates) -> Optional[Tuple[np.ndarray, np.ndarray]]:
+    """What the linkage of *cands* cannot give the goal and constraints of *spec*
+    (exit 2): a variable that moves nothing, a function output it does not report
+    (or a named function's bad interval), a transmission angle without an RRR
+    dyad, crank conditions without a four-bar.  Returns a function goal's
+    :func:`function_targets` (None for another goal)."""
+    obj, file = spec.objective, str(spec.path)
+    base = cands.linkage_of(cands.starts)
+    if obj["kind"] in ("function", "path"):
+        _check_variables_move(spec, cands)
+    if obj["kind"] == "function":
+        out = obj["output"]
+        names = (base.rotating_links if not isinstance(out, str) else base.slide_names)
+        if out not in names:
+            raise SpecError(file, "objective.output",
+                            "a link whose angle the linkage reports, or a slide: one of "
+                            + ", ".join(repr(n) for n in base.rotating_links + base.slide_names),
+                            repr(out))
+    targets = function_targets(spec) if obj["kind"] == "function" else None
+    for c in spec.constraints:
+        if c["kind"] == "transmission":
+            rrr = base.transmission_joints
+            if not rrr:
+                raise SpecError(file, f"{c['path']}.kind", "a linkage with an RRR dyad "
+                                "(the transmission angle is the angle at its joint)",
+                                "no RRR dyad in the mechanism")
+            bad = [j for j in c["joints"] if j not in rrr]
+            if bad:
+                raise SpecError(file, f"{c['path']}.joints", "joints of RRR dyads: "
+                                + ", ".join(rrr), ", ".join(bad))
+        elif c["kind"] == "crank":
+            from mechcli.core.errors import DescribedError
+            from mechcli.core.optimize.terms import four_bar_lengths
+            try:
+                four_bar_lengths(base)
+            except DescribedError:
+                raise SpecError(file, f"{c['path']}.kind", "a four-bar (one crank and one RRR "
+                                "dyad) for the book's g1 ... g6; use kind = \"assembly\" for "
+                                "other linkages", "'crank'") from None
+    return targets
+
+
+def _check_variables_move(spec: OptimizeSpec, cands: Candidates) -> None:
+    """A variable of the problem's tables must move the linkage (input.omega1 does not
+    change a position goal): exit 2 instead of a variable that stays at its start."""
+    x0 = np.array(cands.starts, dtype=float)
+    base = cands.parameters(x0)
+    for i, v in enumerate(spec.variables):
+        if v.goal:
+            continue
+        x = x0.copy()
+        x[i] = v.hi if v.hi != x0[i] else v.lo
+        if np.array_equal(cands.parameters(x), base):
+            raise SpecError(str(spec.path), f"variable[{i}].key", "a number that changes the "
+                            "linkage (a length, coordinate or angle of [mechanism])",
+                            f"'{v.key}', which moves nothing the goal depends on")
+
+
+def function_targets(spec: OptimizeSpec) -> Tuple[np.ndarray, np.ndarray]:
+    """(dphi, dpsi) [rad] of a function goal: given (``dphi``/``dpsi``), or of a named
+    function, x from x0 to xm mapped linearly onto the input swing phi_m, y onto the
+    output swing psi_m (§3.5's scaling)."""
+    obj = spec.objective
+    if "dphi" in obj:
+        return (np.asarray(obj["dphi"], dtype=float), np.asarray(obj["dpsi"], dtype=float))
+    from mechcli.core.errors import DescribedError
+    from mechcli.core.synth.functions import make_function
+    f = make_function(obj["function"], exponent=obj.get("exponent"), coeffs=obj.get("coeffs"))
+    try:
+        f.check_domain(obj["x0"], obj["xm"])
+    except DescribedError as exc:
+        raise SpecError(str(spec.path), "objective.x0", "an interval inside the function's "
+                        "domain", str(exc)) from None
+    n = obj["n"]
+    x = obj["x0"] + (obj["xm"] - obj["x0"]) * np.arange(1, n + 1) / n
+    y0, ym = float(f(obj["x0"])), float(f(obj["xm"]))
+    if not np.isfinite(y0) or not np.isfinite(ym) or y0 == ym:
+        raise SpecError(str(spec.path), "objective.xm", "an interval where f(x0) != f(xm)",
+                        f"f(x0) = {y0:g}, f(xm) = {ym:g}")
+    dphi = obj["phi_m"] * np.arange(1, n + 1) / n
+    dpsi = obj["psi_m"] * (f(x) - y0) / (ym - y0)
+    return np.asarray(dphi, dtype=float), np.asarray(dpsi, dtype=float)
+
+
+def result_bounds(spec: OptimizeSpec) -> List[Tuple[str, Optional[float], Optional[float]]]:
+    """``(key, min, max)`` of every ``kind = "result"`` constraint, in order."""
+    return [(c["key"], c["min"], c["max"]) for c in spec.constraints if c["kind"] == "result"]
+
+
+def result_objective(spec: OptimizeSpec) -> Optional[Tuple[str, float]]:
+    """``(key, sign)`` of a result objective (sign -1 to maximize), else None."""
+    obj = spec.objective
+    if obj["kind"] != "result":
+        return None
+    return obj["key"], -1.0 if obj["goal"] == "maximize" else 1.0
+
+
+def check_result_keys(spec: OptimizeSpec, results: Dict[str, object]) -> None:
+    """Every result key of *spec* names a numeric result of its problem (*results*:
+    the problem's ``--json`` results at the start design); exit 2 otherwise."""
+    import difflib
+    wanted = ([("objective.key", spec.objective["key"])] if spec.objective["kind"] == "result"
+              else []) + [(f"{c['path']}.key", c["key"]) for c in spec.constraints
+                          if c["kind"] == "result"]
+    numeric = [k for k, v in results.items()
+               if isinstance(v, (int, float)) and not isinstance(v, bool)]
+    for where, key in wanted:
+        if key not in numeric:
+            near = difflib.get_close_matches(key, numeric, n=1, cutoff=0.5)
+            raise SpecError(str(spec.path), where,
+                            f"a numeric result of `mechcli {spec.problem} --json`",
+                            f"'{key}'" + (f"; did you mean '{near[0]}'?" if near else ""))

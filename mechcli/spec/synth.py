@@ -10,12 +10,12 @@ from __future__ import annotations
 
 import math
 from pathlib import Path
-from typing import Optional, Tuple
+from typing import Any, Dict, Optional, Sequence, Tuple, Union
 
 from mechcli.core.records import record
 from mechcli.spec.common import Header, read_expected, read_header
 from mechcli.spec.errors import SpecError
-from mechcli.spec.reader import MAX_LENGTH, REQUIRED, load_spec
+from mechcli.spec.reader import MAX_LENGTH, REQUIRED, Section, load_spec
 
 KINDS = ("two_positions", "three_positions", "moving_pivots", "coupler_poses", "burmester",
          "function", "slider_function", "rocker_slider", "quick_return",
@@ -63,7 +63,8 @@ class SynthSpec:
     draw: bool                # pictures of the design in its positions
 
 
-def _points(sec, name, count, default=REQUIRED):
+def _points(sec: Section, name: str, count: Any,
+            default: Any = REQUIRED) -> Optional[Tuple[Tuple[float, float], ...]]:
     """Rows [x, y] in the spec's unit -> tuples in metres (*default* if absent)."""
     lim = MAX_LENGTH / sec.unit
     rows = sec.rows(name, default, width=2, count=count, lo=-lim, hi=lim, row="[x, y]")
@@ -72,7 +73,7 @@ def _points(sec, name, count, default=REQUIRED):
     return tuple((x * sec.unit, y * sec.unit) for x, y in rows)
 
 
-def _point(sec, name, default=...):
+def _point(sec: Section, name: str, default: Any = ...) -> Optional[Tuple[float, float]]:
     """One point [x, y] -> metres (None if absent and optional)."""
     lim = MAX_LENGTH / sec.unit
     xy = sec.numbers(name, size=2) if default is ... else sec.numbers(name, default, size=2)
@@ -85,7 +86,7 @@ def _point(sec, name, default=...):
     return (xy[0] * sec.unit, xy[1] * sec.unit)
 
 
-def _line(sec, name):
+def _line(sec: Section, name: str) -> Optional[Tuple[float, float, float]]:
     """``[a, b, c]``: the line a x + b y = c (c in the spec's unit) -> (a, b, c [m])."""
     abc = sec.numbers(name, None, size=3)
     if abc is None:
@@ -97,7 +98,8 @@ def _line(sec, name):
     return (a, b, c * sec.unit)
 
 
-def _poses(sec, name, count):
+def _poses(sec: Section, name: str,
+           count: Any) -> Tuple[Tuple[Tuple[float, float], ...], Tuple[float, ...]]:
     """Rows [x, y, phi_deg] -> ((x [m], y [m]), ...), (phi [rad], ...)."""
     lim = MAX_LENGTH / sec.unit
     rows = sec.rows(name, width=3, count=count, lo=-lim, hi=lim, row="[x, y, phi_deg]")
@@ -109,7 +111,8 @@ def _poses(sec, name, count):
             tuple(math.radians(p) for _, _, p in rows))
 
 
-def _angles(sec, name, count, default=...):
+def _angles(sec: Section, name: str, count: Any,
+            default: Any = ...) -> Optional[Tuple[float, ...]]:
     """An array of angles in degrees -> radians."""
     vals = sec.numbers(name) if default is ... else sec.numbers(name, default)
     if vals is None:
@@ -125,13 +128,15 @@ def _angles(sec, name, count, default=...):
     return tuple(math.radians(v) for v in vals)
 
 
-def _deg(sec, name, default=..., lo=-36000.0, hi=36000.0):
+def _deg(sec: Section, name: str, default: Any = ..., lo: float = -36000.0,
+         hi: float = 36000.0) -> Optional[float]:
     v = sec.number(name, lo=lo, hi=hi) if default is ... else \
         sec.number(name, default, lo=lo, hi=hi)
     return None if v is None else math.radians(v)
 
 
-def _misspelt(sec, names, want, got="nothing"):
+def _misspelt(sec: Section, names: Sequence[str], want: str,
+              got: str = "nothing") -> SpecError:
     """A SpecError for a missing choice among *names*: it names a stray key of the table
     that is close to one of them (``pivot_lin`` for ``pivot_line``) when there is one."""
     import difflib
@@ -144,7 +149,8 @@ def _misspelt(sec, names, want, got="nothing"):
     return sec.error(names[0], want, got)
 
 
-def _pivot(sec, name):
+def _pivot(sec: Section,
+           name: str) -> Tuple[Optional[Tuple[float, float]], Optional[Tuple[float, float, float]]]:
     """A fixed pivot given as a point ``name`` or a line ``name_line``."""
     point = _point(sec, name, None)
     line = _line(sec, f"{name}_line")
@@ -154,7 +160,7 @@ def _pivot(sec, name):
 
 
 # --------------------------------------------------------------------- the kinds
-def _two_positions(sec):
+def _two_positions(sec: Section) -> Dict[str, Any]:
     B, C = _points(sec, "B", 2), _points(sec, "C", 2)
     shared = _line(sec, "pivot_line")
     A, A_line = _pivot(sec, "A")
@@ -171,22 +177,22 @@ def _two_positions(sec):
                 line_D=D_line or (shared if D is None else None), rigid_tol=_rigid_tol(sec))
 
 
-def _rigid_tol(sec):
+def _rigid_tol(sec: Section) -> float:
     """How much |BC| may vary between the given positions, relative to their size: the
     book's program allows 1e-2 mm (1e-4 of ~100 mm); 1e-12 is round-off of exact data."""
     return sec.number("rigid_tol", 1e-4, lo=1e-12, hi=1e-1)
 
 
-def _three_positions(sec):
+def _three_positions(sec: Section) -> Dict[str, Any]:
     return dict(B=_points(sec, "B", 3), C=_points(sec, "C", 3), rigid_tol=_rigid_tol(sec))
 
 
-def _moving_pivots(sec):
+def _moving_pivots(sec: Section) -> Dict[str, Any]:
     M, phi = _poses(sec, "poses", 3)
     return dict(A=_point(sec, "A"), D=_point(sec, "D"), M=M, phi=phi)
 
 
-def _coupler_poses(sec):
+def _coupler_poses(sec: Section) -> Dict[str, Any]:
     M, phi = _poses(sec, "poses", 3)
     method = sec.string("method", "matrix", choices=["matrix", "nonlinear"])
     data = dict(A=_point(sec, "A"), D=_point(sec, "D"), M=M, phi=phi, method=method)
@@ -198,7 +204,7 @@ def _coupler_poses(sec):
     return data
 
 
-def _burmester(sec):
+def _burmester(sec: Section) -> Dict[str, Any]:
     M, phi = _poses(sec, "poses", (4, 5))
     data = dict(M=M, phi=phi)
     if len(M) == 5:
@@ -215,7 +221,7 @@ def _burmester(sec):
     return data
 
 
-def _function(sec):
+def _function(sec: Section) -> Dict[str, Any]:
     method = sec.string("method", "precision", choices=["precision", "chebyshev",
                                                         "least_squares"])
     data = dict(method=method, crank=sec.length("crank", 1.0 * sec.unit))
@@ -288,7 +294,8 @@ def _function(sec):
     return data
 
 
-def _origins(sec, count, both):
+def _origins(sec: Section, count: int,
+             both: bool) -> Tuple[Optional[float], Optional[float]]:
     """alpha0, phi0 [rad]: 3 precision points (or least squares, *both*) need both,
     4 exactly one (the other is solved), 5 neither (both are solved)."""
     a0, p0 = _deg(sec, "alpha0", None), _deg(sec, "phi0", None)
@@ -306,7 +313,7 @@ def _origins(sec, count, both):
     return a0, p0
 
 
-def _lengths_list(sec, name, size):
+def _lengths_list(sec: Section, name: str, size: Any) -> Tuple[float, ...]:
     """*size* slider positions in the spec's unit -> metres (each within ±MAX_LENGTH)."""
     vals = sec.numbers(name, size=size)
     lim = MAX_LENGTH / sec.unit
@@ -317,7 +324,7 @@ def _lengths_list(sec, name, size):
     return tuple(v * sec.unit for v in vals)
 
 
-def _slider_function(sec):
+def _slider_function(sec: Section) -> Dict[str, Any]:
     """Crank angle <-> slider position: 3 pairs (the offset e is found), or 2 pairs
     with a given offset e (习题 3-12)."""
     e = sec.coordinate("e", None)
@@ -326,13 +333,13 @@ def _slider_function(sec):
     return dict(theta1=theta1, s=_lengths_list(sec, "s", count), e=e)
 
 
-def _rocker_slider(sec):
+def _rocker_slider(sec: Section) -> Dict[str, Any]:
     """Rocker angle <-> slider position, 3 pairs, the guide's offset e given (习题 3-9)."""
     return dict(phi=_angles(sec, "phi", (3, 3)), s=_lengths_list(sec, "s", 3),
                 e=sec.coordinate("e"))
 
 
-def _quick_return(sec):
+def _quick_return(sec: Section) -> Dict[str, Any]:
     linkage = sec.string("linkage", "crank_rocker",
                          choices=["crank_rocker", "slider_crank", "guide_bar"])
     # K > 1 (K = 1 has no quick return) up to 1e3 (θ within 0.4° of 180°)
@@ -389,11 +396,11 @@ def _quick_return(sec):
 
 
 # -- the atlas -------------------------------------------------------------------------
-def _ratio(sec, name, default=REQUIRED):
+def _ratio(sec: Section, name: str, default: Any = REQUIRED) -> float:
     return sec.number(name, default, lo=1e-3, hi=RATIO_MAX)
 
 
-def _span(sec, name, default, count=False):
+def _span(sec: Section, name: str, default: Any, count: bool = False) -> Tuple[Any, ...]:
     """``[lo, hi]`` (or ``[lo, hi, count]``) of a ratio or a grid coordinate."""
     vals = sec.numbers(name, default)
     want = 3 if count else 2
@@ -411,7 +418,7 @@ def _span(sec, name, default, count=False):
     return (float(lo), float(hi))
 
 
-def _grid(sec):
+def _grid(sec: Section) -> Tuple[Tuple[Any, ...], Tuple[Any, ...], float]:
     """The coupler-plane grid of a page: x, y spans and a spacing (crank lengths)."""
     gx = _span(sec, "grid_x", [-1.0, 3.0])
     gy = _span(sec, "grid_y", [-1.0, 1.0])
@@ -424,15 +431,16 @@ def _grid(sec):
     return gx, gy, h
 
 
-def _atlas_page(sec):
-    data = {k: _ratio(sec, k) for k in ("A", "B", "C")}
+def _atlas_page(sec: Section) -> Dict[str, Any]:
+    data: Dict[str, Any] = {k: _ratio(sec, k) for k in ("A", "B", "C")}
     data["grid_x"], data["grid_y"], data["spacing"] = _grid(sec)
     data["step"] = _deg(sec, "step", 5.0, lo=0.1, hi=45.0)
     return data
 
 
-def _type_chart(sec):
+def _type_chart(sec: Section) -> Dict[str, Any]:
     raw = sec.raw("A")
+    data: Dict[str, Any]
     if isinstance(raw, list):
         data = {"A": tuple(sec.numbers("A"))}
         if not 1 <= len(data["A"]) <= 12 or not all(0 < a <= RATIO_MAX for a in data["A"]):
@@ -451,7 +459,8 @@ def _type_chart(sec):
     return data
 
 
-def _atlas_build(sec):
+def _atlas_build(sec: Section) -> Dict[str, Any]:
+    data: Dict[str, Any]
     data = {"A": _span(sec, "A", [1.5, 4.5, 9], True), "B": _span(sec, "B", [1.5, 4.5, 9], True),
             "C": _span(sec, "C", [1.5, 4.5, 9], True),
             "grid_x": _span(sec, "grid_x", [-1.5, 3.5, 21], True),
@@ -477,7 +486,7 @@ def _atlas_build(sec):
     return data
 
 
-def _inside_out(sec, key):
+def _inside_out(sec: Section, key: str) -> Optional[str]:
     """A folder for the atlas *inside* ``--out``: a relative path without ``..``.  A
     spec is data (a teacher's CI runs students' specs): it never chooses where mechcli
     writes; the command line's ``--atlas DIR`` does."""
@@ -495,10 +504,10 @@ def _inside_out(sec, key):
     return raw
 
 
-def _path(sec):
+def _path(sec: Section) -> Dict[str, Any]:
     lim = MAX_LENGTH / sec.unit
     if sec.has("points"):
-        data = {"points": _points(sec, "points", (3, PATH_POINTS_MAX))}
+        data: Dict[str, Any] = {"points": _points(sec, "points", (3, PATH_POINTS_MAX))}
     else:
         xs = sec.numbers("x")
         ys = sec.numbers("y", size=len(xs))
@@ -532,7 +541,7 @@ DRIVEN_EITHER_WAY = ("two_positions", "three_positions", "moving_pivots", "coupl
                      "burmester")
 
 
-def _problem(sec):
+def _problem(sec: Section) -> Problem:
     kind = sec.string("kind", choices=list(KINDS))
     sec.string("name", None)
     data = READERS[kind](sec)
@@ -543,7 +552,7 @@ def _problem(sec):
     return Problem(kind, sec.path, data, tuple(sec.data))
 
 
-def read_synth_spec(path, overrides=()) -> SynthSpec:
+def read_synth_spec(path: Union[str, Path], overrides: Sequence[str] = ()) -> SynthSpec:
     """Read and validate a ``mechcli synth`` spec (SpecError on the first bad key)."""
     root = load_spec(path, overrides)
     header = read_header(root, "synth")
@@ -551,6 +560,7 @@ def read_synth_spec(path, overrides=()) -> SynthSpec:
     if has_one == has_many:
         raise SpecError(root.file, "synthesis", "a [synthesis] table or [[case]] tables "
                         "(exactly one of them)", "both" if has_one else "neither")
+    cases: Tuple[Problem, ...]
     if has_one:
         cases = (_problem(root.table("synthesis")),)
     else:

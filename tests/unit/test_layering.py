@@ -1,6 +1,6 @@
 """The layers keep their import contract; the core stays pure; start-up stays light.
 
-``cli -> commands -> {spec, report} -> core`` (DESIGN.md §1).  The contract is
+``cli -> commands -> {spec, report} -> core`` (docs/DESIGN.md §1).  The contract is
 checked on the AST of every module (module-level and function-level imports
 alike), not on its text:
 
@@ -18,6 +18,14 @@ alike), not on its text:
   the core only classes (result types) and constants, plus the functions
   named per module in :data:`REPORT_CORE_FUNCTIONS`, each of which must live
   in the core package of the report module's own command.
+* ``mechcli.runner`` (the batch behind ``mechcli check``, the atlas on disk,
+  another command's results in process) is orchestration beside ``commands``:
+  each of its modules imports of mechcli only the packages named in
+  :data:`RUNNER_IMPORTS`, and no user interface or plotting library; no other
+  layer (core, spec, report) imports it.  ``mechcli.batch`` and
+  ``mechcli.atlas_store`` are its modules' former names (aliases).
+* No two modules import each other (not even inside a function): the pairs
+  left are :data:`KNOWN_MUTUAL_IMPORTS`, to be emptied.
 
 What breaks the contract today is listed in :data:`KNOWN_VIOLATIONS`, to be
 emptied; an entry that no longer occurs fails the test, so the list only
@@ -56,6 +64,11 @@ SPEC_CORE_FUNCTIONS = {
     # the elements a drawing describes (type = "joints", issue 30): its Assur groups and
     # each group's branch as drawn, checked on the engine at the drawing's one position
     "from_drawing",
+    # optimize's checks before its problem is built (issue 32): the named function of
+    # a function goal (evaluated at x0 and xm for its targets) and the four links of a
+    # four-bar (the crank constraint needs one); models, not solves
+    "make_function",
+    "four_bar_lengths",
 }
 
 #: what every layer may take from the core besides classes and constants: the decorator
@@ -115,6 +128,34 @@ REPORT_SPEC_IMPORTS = {
 
 #: what breaks the contract today, as "importer -> imported"; empty it, never grow it
 KNOWN_VIOLATIONS: set = set()
+
+#: runner module -> the mechcli packages it may import (besides its own package)
+RUNNER_IMPORTS = {
+    "mechcli.runner": set(),
+    # runs each spec through the CLI in this process; compares with spec.expected
+    "mechcli.runner.batch": {"mechcli.cli", "mechcli.spec"},
+    # writes and reads what the core's atlas computes
+    "mechcli.runner.atlas_store": {"mechcli.core"},
+    # synth's atlas problems run on the store: the pool or Dask client, the folder, the
+    # core's search and refinement, the progress lines (report.console)
+    "mechcli.runner.atlas": {"mechcli.core", "mechcli.spec", "mechcli.report"},
+    # reads a kin/force problem and computes its --json results as the command does
+    "mechcli.runner.results": {"mechcli.spec", "mechcli.core", "mechcli.commands",
+                               "mechcli.report"},
+    # the former names, aliases of the runner's modules
+    "mechcli.batch": set(),
+    "mechcli.atlas_store": set(),
+}
+#: ... and the libraries none of them imports
+RUNNER_FORBIDDEN_LIBRARIES = {"click", "rich", "matplotlib", "PIL"}
+
+#: pairs of modules that import each other today; empty it, never grow it
+KNOWN_MUTUAL_IMPORTS = {
+    ("mechcli.core.linkage.accuracy", "mechcli.core.linkage.sweep"),
+    ("mechcli.spec.joints", "mechcli.spec.kin"),
+    ("mechcli.spec.reader", "mechcli.spec.schema"),
+    ("mechcli.spec.reader", "mechcli.spec.unknown"),
+}
 
 
 def _module_name(path):
@@ -202,9 +243,18 @@ def _violations():
                 if top in CORE_FORBIDDEN_LIBRARIES:
                     out.add(label)
                 continue
+            if name in RUNNER_IMPORTS:
+                if top in RUNNER_FORBIDDEN_LIBRARIES:
+                    out.add(label)
+                if top == "mechcli" and not any(
+                        _within(module, p) for p in RUNNER_IMPORTS[name] | {"mechcli.runner"}):
+                    out.add(label)
+                continue
             layer = name.split(".")[1] if name.count(".") else ""
             if layer not in ("spec", "report"):
                 continue
+            if _within(module, "mechcli.runner") or (module, imported) in _RUNNER_ALIASES:
+                out.add(label)
             if top in SPEC_FORBIDDEN_LIBRARIES and layer == "spec":
                 out.add(label)
             if any(_within(module, f"mechcli.{x}") for x in ("commands", "cli", "options")):
@@ -230,6 +280,45 @@ def _violations():
                 if not ok:
                     out.add(label)
     return out
+
+
+#: the runner's modules under their former names, as ``from mechcli import batch``
+_RUNNER_ALIASES = {("mechcli", "batch"), ("mechcli", "atlas_store"), ("mechcli.batch", None),
+                   ("mechcli.atlas_store", None)}
+
+
+def _mutual_imports():
+    """Pairs (a, b), a < b, of modules of which each imports the other."""
+    modules = _modules()
+    graph = {}
+    for name, path in modules.items():
+        for module, imported in _imports(name, path):
+            for target in (f"{module}.{imported}" if imported else None, module):
+                # a module of the package, not the package its importer lives in
+                if target in modules and target != name and not _within(name, target):
+                    graph.setdefault(name, set()).add(target)
+                    break
+    return {tuple(sorted((a, b))) for a in graph for b in graph[a] if a in graph.get(b, ())}
+
+
+def test_no_two_modules_import_each_other():
+    """A cycle such as spec.common <-> spec.expected (issue 32) is gone and stays gone."""
+    mutual = _mutual_imports()
+    assert not mutual - KNOWN_MUTUAL_IMPORTS, sorted(mutual - KNOWN_MUTUAL_IMPORTS)
+    assert not KNOWN_MUTUAL_IMPORTS - mutual, \
+        ("fixed, remove from KNOWN_MUTUAL_IMPORTS", sorted(KNOWN_MUTUAL_IMPORTS - mutual))
+
+
+def test_the_runner_package_is_covered():
+    """Every runner module has its allow-list; the former names are the same modules."""
+    import mechcli.atlas_store
+    import mechcli.batch
+    import mechcli.runner.atlas_store
+    import mechcli.runner.batch
+    runner = {m for m in _modules() if _within(m, "mechcli.runner")}
+    assert runner | {"mechcli.batch", "mechcli.atlas_store"} == set(RUNNER_IMPORTS)
+    assert mechcli.batch is mechcli.runner.batch
+    assert mechcli.atlas_store is mechcli.runner.atlas_store
 
 
 def test_layers_keep_the_import_contract():
@@ -277,7 +366,9 @@ def test_contract_tables_name_real_modules():
 def test_the_contract_catches_what_it_forbids(tmp_path, monkeypatch):
     """The checker itself: a core module importing click, a spec module calling a solver."""
     probe = {"mechcli.core.fake": "import click\nfrom mechcli.spec import errors\n",
-             "mechcli.spec.fake": "def f():\n    from mechcli.core.linkage import solve\n"}
+             "mechcli.spec.fake": "def f():\n    from mechcli.core.linkage import solve\n",
+             "mechcli.runner.atlas_store": "import rich\nfrom mechcli.report import cad\n",
+             "mechcli.report.fake": "from mechcli import batch\n"}
     found = set()
     for name, text in probe.items():
         path = tmp_path / (name.rpartition(".")[2] + ".py")
@@ -285,7 +376,10 @@ def test_the_contract_catches_what_it_forbids(tmp_path, monkeypatch):
         monkeypatch.setattr(sys.modules[__name__], "_modules", lambda n=name, p=path: {n: p})
         found |= _violations()
     assert found == {"mechcli.core.fake -> click", "mechcli.core.fake -> mechcli.spec.errors",
-                     "mechcli.spec.fake -> mechcli.core.linkage.solve"}
+                     "mechcli.spec.fake -> mechcli.core.linkage.solve",
+                     "mechcli.runner.atlas_store -> rich",
+                     "mechcli.runner.atlas_store -> mechcli.report.cad",
+                     "mechcli.report.fake -> mechcli.batch"}
 
 
 def test_core_does_not_open_files():
@@ -300,3 +394,11 @@ def test_version_does_not_import_numpy_or_matplotlib():
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                          cwd=ROOT, check=True).stdout.strip()
     assert out == "[]"
+
+
+def test_the_design_it_cites_is_in_the_repo():
+    """The contract above cites docs/DESIGN.md §1; it names every layer and the runner."""
+    text = (ROOT / "docs" / "DESIGN.md").read_text(encoding="utf-8")
+    section = text.split("## 1. Layout", 1)[1].split("\n## 2.", 1)[0]
+    for package in ("commands/", "spec/", "core/", "report/", "runner/"):
+        assert package in section, package

@@ -11,8 +11,8 @@ from ``scipy.optimize`` except the book's golden section, which is
 :func:`mechcli.core.refine.golden_section_max`).
 
 Design variables are plain numbers (the spec's numbers, e.g. millimetres and
-degrees); the core never sees a unit or a spec key: the command layer builds
-``evaluate`` from the spec.
+degrees); the core never sees a unit or a spec key: :mod:`.build` makes the
+problem from the numbers the spec layer has read and checked.
 
 May import: numpy, scipy (inside functions), :mod:`mechcli.core.errors`,
 :mod:`mechcli.core.refine`, :mod:`mechcli.core.linkage`.
