@@ -25,8 +25,14 @@ caller's variable and values are used as given.
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING, Any, Callable, Optional, Tuple
 
 import numpy as np
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
+
+    from mechcli.core.types import ArrayFunc, FloatOrArray
 
 #: where :func:`bracketed_root` puts its second probe past a secant step, as a fraction
 #: of that step's move
@@ -36,7 +42,8 @@ GUARD = 0.1
 GOLDEN = (np.sqrt(5) - 1) / 2
 
 
-def bisect(lo, hi, keep_lo, rtol, iterations=64):
+def bisect(lo: Any, hi: Any, keep_lo: Callable[..., Any], rtol: float, iterations: int = 64
+          ) -> Tuple[np.ndarray, np.ndarray]:
     """Vectorised bisection of many brackets at once.
 
     Parameters
@@ -69,7 +76,9 @@ def bisect(lo, hi, keep_lo, rtol, iterations=64):
     return lo, hi
 
 
-def bracketed_root(lo, hi, f, rtol, iterations=64, f_lo=None, f_hi=None):
+def bracketed_root(lo: ArrayLike, hi: ArrayLike, f: ArrayFunc, rtol: FloatOrArray,
+                   iterations: int = 64, f_lo: Optional[ArrayLike] = None,
+                   f_hi: Optional[ArrayLike] = None) -> Tuple[np.ndarray, np.ndarray]:
     """Vectorised roots of ``f`` in brackets where its sign changes, by a safeguarded secant.
 
     Parameters
@@ -113,77 +122,110 @@ def bracketed_root(lo, hi, f, rtol, iterations=64, f_lo=None, f_hi=None):
     if f_lo is None or f_hi is None:
         both = np.asarray(f(np.concatenate([a, b])), dtype=float)
         f_lo, f_hi = both[:a.size], both[a.size:]
-    flip = a > b
-    left, right = np.where(flip, b, a), np.where(flip, a, b)
-    fl = np.where(flip, f_hi, f_lo).astype(float)
-    fr = np.where(flip, f_lo, f_hi).astype(float)
-    kept = np.zeros(a.shape, dtype=np.int8)   # end kept by the last step: -1 left, +1 right
-    x_prev = np.full(a.shape, np.nan)
-    w_before = (np.full(a.shape, np.inf), right - left)   # widths one and two steps back
-    last_bisect = np.zeros(a.shape, dtype=bool)
+    s = _Secant(a, b, f_lo, f_hi)
     for _ in range(2 * iterations):
-        tol = rtol * np.maximum(1.0, np.abs(np.where(flip, right, left)))
-        w = right - left
-        done = w <= tol
-        if np.all(done):
+        tol = rtol * np.maximum(1.0, np.abs(np.where(s.flip, s.right, s.left)))
+        step = _secant_step(s, tol)
+        if step is None:
             break
-        den = fr - fl
-        with np.errstate(divide="ignore", invalid="ignore"):
-            x = right - fr * w / den
-        bad = ~np.isfinite(x)
-        x = np.clip(np.where(bad, left, x), left, right)
-        # the secant step moved less than the tolerance: converged (also where the
-        # derivative is a noisy finite difference and the bracket cannot close)
-        conv = ~bad & ~done & (np.abs(x - x_prev) <= tol)
-        left, right = np.where(conv, x, left), np.where(conv, x, right)
-        done |= conv
-        if np.all(done):
-            break
-        # converging onto an end: close the bracket around x
-        stalled = ~bad & ((x - left <= tol) | (right - x <= tol))
-        # the last two steps did not halve the bracket: bisect (at worst every other step)
-        slow = (w > 0.5 * w_before[0]) & ~last_bisect
-        bad |= slow
-        stalled &= ~slow
-        w_before = (w_before[1], w)
-        last_bisect = bad
-        x = np.where(bad, 0.5 * (left + right), x)
-        h = 0.5 * tol
-        # a secant step's error is far below its move: a second probe a tenth of the
-        # move past it (the first step: of its distance to the nearer end), towards
-        # the end the last step kept (the first step: the farther end), most often
-        # brackets the root tightly, and the bracket shrinks to that in one call
-        guard = ~bad & ~stalled
-        first = ~np.isfinite(x_prev)
-        near, far = np.minimum(x - left, right - x), np.where(x - left > right - x, -1, 1)
-        move = np.where(first, near, np.abs(x - np.where(first, x, x_prev)))
-        reach = np.maximum(h, GUARD * move)
-        ahead = np.where(kept != 0, kept, far)
-        g = np.clip(x + ahead * reach, left, right)
-        p1 = np.where(stalled, np.maximum(x - h, left), np.where(guard, np.minimum(x, g), x))
-        p2 = np.where(stalled, np.minimum(x + h, right), np.where(guard, np.maximum(x, g), x))
+        x, p1, p2, done = step
         vals = np.asarray(f(np.concatenate([p1, p2])), dtype=float)
-        f1, f2 = vals[:a.size], vals[a.size:]
-        pl, p1_pos, p2_pos = fl > 0, f1 > 0, f2 > 0
-        in_first = pl != p1_pos                      # the sign changes in [left, p1]
-        in_mid = ~in_first & (p1_pos != p2_pos)      # in [p1, p2]
-        in_last = ~in_first & ~in_mid                # in [p2, right]
-        # Illinois: halve the value of an end kept twice in a row
-        fl = np.where(in_first & (kept == -1), 0.5 * fl, fl)
-        fr = np.where(in_last & (kept == 1), 0.5 * fr, fr)
-        new_l = np.where(in_first, left, np.where(in_mid, p1, p2))
-        new_r = np.where(in_first, p1, np.where(in_mid, p2, right))
-        new_fl = np.where(in_first, fl, np.where(in_mid, f1, f2))
-        new_fr = np.where(in_first, f1, np.where(in_mid, f2, fr))
-        new_kept = np.where(in_first, -1, np.where(in_last, 1, 0)).astype(np.int8)
-        left, right = np.where(done, left, new_l), np.where(done, right, new_r)
-        fl, fr = np.where(done, fl, new_fl), np.where(done, fr, new_fr)
-        kept = np.where(done, kept, new_kept)
-        x_prev = x
-    return np.where(flip, right, left), np.where(flip, left, right)
+        _narrow(s, x, p1, p2, vals[:a.size], vals[a.size:], done)
+    return np.where(s.flip, s.right, s.left), np.where(s.flip, s.left, s.right)
 
 
-def golden_section_max(f, lo, hi, iterations=48, rtol=1e-10):
+class _Secant:
+    """The state of :func:`bracketed_root`'s brackets between two steps (left < right)."""
+
+    __slots__ = ("flip", "left", "right", "fl", "fr", "kept", "x_prev", "w_before",
+                 "last_bisect")
+
+    def __init__(self, a: np.ndarray, b: np.ndarray, f_lo: ArrayLike, f_hi: ArrayLike) -> None:
+        self.flip = a > b
+        self.left, self.right = np.where(self.flip, b, a), np.where(self.flip, a, b)
+        self.fl = np.where(self.flip, f_hi, f_lo).astype(float)
+        self.fr = np.where(self.flip, f_lo, f_hi).astype(float)
+        #: end kept by the last step: -1 left, +1 right
+        self.kept = np.zeros(a.shape, dtype=np.int8)
+        self.x_prev = np.full(a.shape, np.nan)
+        #: widths one and two steps back
+        self.w_before = (np.full(a.shape, np.inf), self.right - self.left)
+        self.last_bisect = np.zeros(a.shape, dtype=bool)
+
+
+def _secant_step(s: _Secant, tol: np.ndarray
+                 ) -> Optional[Tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]]:
+    """The next secant (or bisection) point ``x`` and the two probes ``p1 <= p2`` of
+    every bracket, with the mask of the brackets done; None when all are done."""
+    left, right, fl, fr = s.left, s.right, s.fl, s.fr
+    w = right - left
+    done = w <= tol
+    if np.all(done):
+        return None
+    den = fr - fl
+    with np.errstate(divide="ignore", invalid="ignore"):
+        x = right - fr * w / den
+    bad = ~np.isfinite(x)
+    x = np.clip(np.where(bad, left, x), left, right)
+    # the secant step moved less than the tolerance: converged (also where the
+    # derivative is a noisy finite difference and the bracket cannot close)
+    conv = ~bad & ~done & (np.abs(x - s.x_prev) <= tol)
+    left, right = np.where(conv, x, left), np.where(conv, x, right)
+    s.left, s.right = left, right
+    done |= conv
+    if np.all(done):
+        return None
+    # converging onto an end: close the bracket around x
+    stalled = ~bad & ((x - left <= tol) | (right - x <= tol))
+    # the last two steps did not halve the bracket: bisect (at worst every other step)
+    slow = (w > 0.5 * s.w_before[0]) & ~s.last_bisect
+    bad |= slow
+    stalled &= ~slow
+    s.w_before = (s.w_before[1], w)
+    s.last_bisect = bad
+    x = np.where(bad, 0.5 * (left + right), x)
+    h = 0.5 * tol
+    # a secant step's error is far below its move: a second probe a tenth of the
+    # move past it (the first step: of its distance to the nearer end), towards
+    # the end the last step kept (the first step: the farther end), most often
+    # brackets the root tightly, and the bracket shrinks to that in one call
+    guard = ~bad & ~stalled
+    first = ~np.isfinite(s.x_prev)
+    near, far = np.minimum(x - left, right - x), np.where(x - left > right - x, -1, 1)
+    move = np.where(first, near, np.abs(x - np.where(first, x, s.x_prev)))
+    reach = np.maximum(h, GUARD * move)
+    ahead = np.where(s.kept != 0, s.kept, far)
+    g = np.clip(x + ahead * reach, left, right)
+    p1 = np.where(stalled, np.maximum(x - h, left), np.where(guard, np.minimum(x, g), x))
+    p2 = np.where(stalled, np.minimum(x + h, right), np.where(guard, np.maximum(x, g), x))
+    return x, p1, p2, done
+
+
+def _narrow(s: _Secant, x: np.ndarray, p1: np.ndarray, p2: np.ndarray, f1: np.ndarray,
+            f2: np.ndarray, done: np.ndarray) -> None:
+    """Shrink every bracket not ``done`` to the part of ``left, p1, p2, right`` where the
+    sign changes, from the values ``f1``, ``f2`` at the probes (Illinois on the ends)."""
+    left, right, fl, fr, kept = s.left, s.right, s.fl, s.fr, s.kept
+    pl, p1_pos, p2_pos = fl > 0, f1 > 0, f2 > 0
+    in_first = pl != p1_pos                      # the sign changes in [left, p1]
+    in_mid = ~in_first & (p1_pos != p2_pos)      # in [p1, p2]
+    in_last = ~in_first & ~in_mid                # in [p2, right]
+    # Illinois: halve the value of an end kept twice in a row
+    fl = np.where(in_first & (kept == -1), 0.5 * fl, fl)
+    fr = np.where(in_last & (kept == 1), 0.5 * fr, fr)
+    new_l = np.where(in_first, left, np.where(in_mid, p1, p2))
+    new_r = np.where(in_first, p1, np.where(in_mid, p2, right))
+    new_fl = np.where(in_first, fl, np.where(in_mid, f1, f2))
+    new_fr = np.where(in_first, f1, np.where(in_mid, f2, fr))
+    new_kept = np.where(in_first, -1, np.where(in_last, 1, 0)).astype(np.int8)
+    s.left, s.right = np.where(done, left, new_l), np.where(done, right, new_r)
+    s.fl, s.fr = np.where(done, fl, new_fl), np.where(done, fr, new_fr)
+    s.kept = np.where(done, kept, new_kept)
+    s.x_prev = x
+
+
+def golden_section_max(f: Callable[..., Any], lo: np.ndarray, hi: np.ndarray, iterations: int = 48,
+                       rtol: float = 1e-10) -> Tuple[np.ndarray, np.ndarray]:
     """Vectorised golden-section search for the maxima of unimodal functions.
 
     Parameters
@@ -231,7 +273,7 @@ def golden_section_max(f, lo, hi, iterations=48, rtol=1e-10):
     return np.where(take_d, d, c), np.where(take_d, fd, fc)
 
 
-def sign_changes(y, falling_only=False):
+def sign_changes(y: np.ndarray, falling_only: bool = False) -> np.ndarray:
     """Grid intervals that bracket a root of sampled values.
 
     Parameters
@@ -254,7 +296,7 @@ def sign_changes(y, falling_only=False):
     return np.flatnonzero(np.sign(y[:-1]) * np.sign(y[1:]) <= 0)
 
 
-def descending_root(f, lo, hi, n=64):
+def descending_root(f: Callable[..., Any], lo: float, hi: float, n: int = 64) -> float:
     """Root of *f* in ``[lo, hi]`` where it changes from positive to negative.
 
     Parameters
@@ -293,7 +335,7 @@ def descending_root(f, lo, hi, n=64):
     return lo + (hi - lo) * ylo / (ylo - yhi)
 
 
-def piece_grid(lo, hi, step, min_points=17):
+def piece_grid(lo: float, hi: float, step: float, min_points: int = 17) -> np.ndarray:
     """Uniform grid on ``[lo, hi]`` no coarser than *step*, at least *min_points*."""
     n = max(min_points, int(math.ceil((hi - lo) / step)) + 1)
     return np.linspace(lo, hi, n)
@@ -306,7 +348,7 @@ DENSIFY_FRACTIONS = np.arange(1, 8) / 8.0
 DENSIFY_MAX = 64
 
 
-def maximize_piecewise(pieces, step):
+def maximize_piecewise(pieces: Any, step: float) -> Optional[Tuple[Optional[float], float]]:
     """Maximum of a piecewise-smooth function from its value and slope.
 
     Parameters
@@ -362,11 +404,11 @@ def maximize_piecewise(pieces, step):
             split = True
         if not split:
             break
-    best = (None, -math.inf)
+    best: Tuple[Optional[float], float] = (None, -math.inf)
     for func, grid, g, dg in sampled:
-        h = float(np.max(np.diff(grid)))
+        h_max = float(np.max(np.diff(grid)))
         # no point of this piece can exceed a grid value by more than h max|g'|
-        reach = h * float(np.max(np.abs(dg)))
+        reach = h_max * float(np.max(np.abs(dg)))
         if float(np.max(g)) + reach < top:
             continue
         inner = np.ones(len(g), dtype=bool)
@@ -379,10 +421,11 @@ def maximize_piecewise(pieces, step):
     return best
 
 
-def _refine_grid_max(func, grid, g, dg, i):
+def _refine_grid_max(func: Callable[..., Any], grid: np.ndarray, g: np.ndarray, dg: np.ndarray,
+                     i: int) -> Tuple[float, float]:
     """Refine the grid maximum *i* of one piece by a root of its slope."""
 
-    def slope(x):
+    def slope(x: np.ndarray) -> np.ndarray:
         return func(np.asarray(x, dtype=float))[1]
 
     x_best, g_best = float(grid[i]), float(g[i])
@@ -402,7 +445,7 @@ def _refine_grid_max(func, grid, g, dg, i):
     return x_best, g_best
 
 
-def true_runs(mask):
+def true_runs(mask: np.ndarray) -> Any:
     """The runs of True of a 1-D boolean array.
 
     Returns
@@ -415,7 +458,7 @@ def true_runs(mask):
     return list(zip(edges[0::2], edges[1::2]))
 
 
-def sorted_union(a, b):
+def sorted_union(a: Any, b: Any) -> np.ndarray:
     """The sorted distinct values of two arrays of numbers (``np.union1d`` of finite values).
 
     ``np.union1d`` and ``np.unique`` import ``numpy.ma`` (about 20 ms) the first time
@@ -437,7 +480,7 @@ def sorted_union(a, b):
     return x[keep]
 
 
-def gauss_legendre(breaks, n=4):
+def gauss_legendre(breaks: np.ndarray, n: int = 4) -> Tuple[np.ndarray, np.ndarray]:
     """Gauss–Legendre nodes and weights on every interval of a grid.
 
     Parameters
@@ -461,7 +504,7 @@ def gauss_legendre(breaks, n=4):
             (half[:, None] * weights[None, :]).ravel())
 
 
-def mean_rms(w, values, span):
+def mean_rms(w: np.ndarray, values: np.ndarray, span: float) -> Tuple[float, float]:
     """Mean and root mean square of *values* at quadrature nodes with weights *w*.
 
     Parameters

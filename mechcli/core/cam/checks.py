@@ -10,6 +10,9 @@ of a motion program they share with :mod:`mechcli.core.cam.sizing`
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING, Any, Callable, List, Optional, Tuple
+
+import numpy as np
 
 from mechcli.core.cam.geometry import (
     CamGeometryError,
@@ -20,8 +23,13 @@ from mechcli.core.cam.geometry import (
 from mechcli.core.records import record
 from mechcli.core.refine import maximize_piecewise
 
+if TYPE_CHECKING:
+    from mechcli.core.cam.geometry import Follower
+    from mechcli.core.cam.motion import MotionProgram
 
-def maximize_on_pieces(program, pieces, func, step):
+
+def maximize_on_pieces(program: MotionProgram, pieces: Any, func: Callable[..., Any], step: float
+                       ) -> Tuple[float, float]:
     """Maximum of a piecewise-smooth function of δ, refined to ~1e-13 rad.
 
     Parameters
@@ -48,17 +56,18 @@ def maximize_on_pieces(program, pieces, func, step):
     tolerance is 1e-5 rad).
     """
     allp = program.pieces()
-    return maximize_piecewise([(allp[k][1], allp[k][2], _on_piece(program, k, func))
+    # the callers pass pieces that exist, so a maximum (δ, value) is found
+    return maximize_piecewise([(allp[k][1], allp[k][2], _on_piece(program, k, func))  # type: ignore[return-value]
                                for k in pieces], step)
 
 
-def _on_piece(program, k, func):
-    def g(x):
+def _on_piece(program: MotionProgram, k: int, func: Callable[..., Any]) -> Callable[..., Any]:
+    def g(x: np.ndarray) -> Tuple[np.ndarray, np.ndarray]:
         return func(*program.piece_state(k, x))
     return g
 
 
-def phase_pieces(program, kind):
+def phase_pieces(program: MotionProgram, kind: str) -> List[int]:
     """Indices into ``program.pieces()`` of the pieces in *kind* (``rise``/``return``) segments."""
     return [k for k, (i, *_rest) in enumerate(program.pieces())
             if program.segments[i].kind == kind]
@@ -109,14 +118,16 @@ class CamChecks:
     distorted: tuple = ()
 
 
-def _abs_alpha_func(fol, sign):
-    def func(s, s1, s2, s3):
+def _abs_alpha_func(fol: Follower, sign: float) -> Callable[..., Any]:
+    def func(s: np.ndarray, s1: np.ndarray, s2: np.ndarray, s3: np.ndarray
+            ) -> Tuple[np.ndarray, np.ndarray]:
         a, da = pressure_angle_and_rate(fol, s, s1, s2, s3)
         return sign * a, sign * da
     return func
 
 
-def max_pressure_angle(fol, program, kind, step=math.radians(1.0)):
+def max_pressure_angle(fol: Follower, program: MotionProgram, kind: str,
+                       step: float = math.radians(1.0)) -> Optional[Extremum]:
     """Largest |α| over the *kind* (``rise``/``return``) segments.
 
     Returns
@@ -136,7 +147,7 @@ def max_pressure_angle(fol, program, kind, step=math.radians(1.0)):
 
 
 
-def check_cam(fol, program, step=math.radians(1.0)):
+def check_cam(fol: Follower, program: MotionProgram, step: float = math.radians(1.0)) -> CamChecks:
     """Pressure-angle maxima, curvature minima and undercut of a cam.
 
     Parameters

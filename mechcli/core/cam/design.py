@@ -8,6 +8,7 @@ This is what ``mechcli cam`` calls; it only combines
 from __future__ import annotations
 
 import math
+from typing import Any, Dict, Optional, Sequence
 
 import numpy as np
 
@@ -81,16 +82,18 @@ class CamDesign:
     rr_max: float | None
 
 
-def _round_up(value, to):
+def _round_up(value: float, to: float) -> float:
     if to <= 0:
         return value
     return max(math.ceil(value / to * (1 - 1e-12)), 1) * to
 
 
-def design_cam(motion, contact, r0, follower_args, segments, stroke, *, angular=False,
-               step=math.radians(0.1), alpha_rise=math.radians(30),
-               alpha_return=math.radians(70), size_base_radius=False, limit_return=False,
-               rho_min=0.0, round_up=0.0, forbid_undercut=False):
+def design_cam(motion: str, contact: str, r0: Optional[float], follower_args: Dict[str, Any],
+               segments: Sequence[Any], stroke: float, *, angular: bool = False,
+               step: float = math.radians(0.1), alpha_rise: float = math.radians(30),
+               alpha_return: float = math.radians(70), size_base_radius: bool = False,
+               limit_return: bool = False, rho_min: float = 0.0, round_up: float = 0.0,
+               forbid_undercut: bool = False) -> CamDesign:
     """Size (optionally), sample and check a disc cam.
 
     Parameters
@@ -147,44 +150,12 @@ def design_cam(motion, contact, r0, follower_args, segments, stroke, *, angular=
     sizing = None
     if size_base_radius:
         ar = alpha_return if limit_return else None
-        if contact == "flat":
-            sizing = CamSizing(r0_min=size_flat_base_radius(program, rho_min, search))
-        elif motion == "translating":
-            e, rot = follower_args.get("e", 0.0), follower_args["rotation"]
-            this = translating_base_radius_min(program, e, rot, alpha_rise, ar, search)
-            if e == 0:
-                sizing = CamSizing(this, this, None)
-            else:
-                other = translating_base_radius_min(program, -e, rot, alpha_rise, ar, search)
-                side = 1 if e > 0 else -1
-                sizing = CamSizing(this, other, side if this <= other else -side)
-        else:
-            probe = Follower(motion, contact, 0.5 * (abs(follower_args["a"] -
-                                                         follower_args["l"]) +
-                                                     follower_args["a"] + follower_args["l"]),
-                             **follower_args)
-            sizing = CamSizing(r0_min=size_oscillating_base_radius(
-                probe, program, alpha_rise, ar, search))
+        sizing = _size(program, motion, contact, follower_args, alpha_rise, ar, rho_min,
+                       search)
     if r0 is None:
         if sizing is None:
             raise ValueError("r0 is required unless the base radius is sized")
-        r0 = _round_up(sizing.r0_min, round_up)
-        if motion == "oscillating":
-            a, l = follower_args["a"], follower_args["l"]
-            if not abs(a - l) < r0 < a + l:
-                raise CamGeometryError(
-                    f"the rounded base radius {r0!r} is outside ({abs(a - l)!r}, {a + l!r}) "
-                    "that the arm allows", "rounded_base_radius", r0=r0, lo=abs(a - l),
-                    hi=a + l)
-        floor = abs(follower_args.get("e", 0.0)) if contact != "flat" else 0.0
-        if r0 <= floor * (1 + 1e-12):
-            raise CamGeometryError(
-                "the limits do not bound the base radius from below (any base radius > "
-                f"{floor!r} meets them)", "unbounded_base_radius", floor=floor)
-        if contact == "roller" and follower_args["rr"] >= r0:
-            raise CamGeometryError(
-                f"the sized base radius {r0!r} is not larger than the roller radius "
-                f"{follower_args['rr']!r}", "roller_too_large", r0=r0, rr=follower_args["rr"])
+        r0 = _sized_r0(sizing, motion, contact, follower_args, round_up)
     fol = Follower(motion, contact, r0, **follower_args)
     if angular and fol.phi0 + stroke >= math.pi:
         raise CamGeometryError(
@@ -197,21 +168,77 @@ def design_cam(motion, contact, r0, follower_args, segments, stroke, *, angular=
     delta, left, grid = jump_samples(program, np.linspace(0.0, 2 * math.pi, n + 1))
     profile = cam_profile(fol, program, delta, left, grid)
     checks = check_cam(fol, program, search)
-    if checks.distorted and forbid_undercut:
+    if forbid_undercut:
+        _refuse_undercut(checks, fol, contact)
+    # a convex pitch corner (velocity jump) has ρ = 0: no roller reproduces it
+    rr_max = None if contact == "flat" else (
+        0.0 if any(convex for _, convex in checks.corners)
+        # not flat: the pitch curve has a smallest radius of curvature
+        else checks.rho_pitch_min.value)  # type: ignore[union-attr]
+    impacts = tuple(i for i in program.impacts())
+    return CamDesign(fol, program, profile, checks, impacts, sizing, rr_max)
+
+
+def _size(program: MotionProgram, motion: str, contact: str, follower_args: Dict[str, Any],
+          alpha_rise: float, ar: Optional[float], rho_min: float, search: float) -> CamSizing:
+    """The smallest base radius meeting the limits (``ar``: the return's pressure angle
+    limit, None for none), on both offset sides for a translating follower."""
+    if contact == "flat":
+        return CamSizing(r0_min=size_flat_base_radius(program, rho_min, search))
+    if motion == "translating":
+        e, rot = follower_args.get("e", 0.0), follower_args["rotation"]
+        this = translating_base_radius_min(program, e, rot, alpha_rise, ar, search)
+        if e == 0:
+            return CamSizing(this, this, None)
+        other = translating_base_radius_min(program, -e, rot, alpha_rise, ar, search)
+        side = 1 if e > 0 else -1
+        return CamSizing(this, other, side if this <= other else -side)
+    probe = Follower(motion, contact, 0.5 * (abs(follower_args["a"] -
+                                                 follower_args["l"]) +
+                                             follower_args["a"] + follower_args["l"]),
+                     **follower_args)
+    return CamSizing(r0_min=size_oscillating_base_radius(
+        probe, program, alpha_rise, ar, search))
+
+
+def _sized_r0(sizing: CamSizing, motion: str, contact: str, follower_args: Dict[str, Any],
+              round_up: float) -> float:
+    """The sized base radius rounded up, checked against the arm, offset and roller."""
+    if sizing.r0_min is None:
+        raise ValueError("r0 is required unless the base radius is sized")
+    r0 = _round_up(sizing.r0_min, round_up)
+    if motion == "oscillating":
+        a, l = follower_args["a"], follower_args["l"]
+        if not abs(a - l) < r0 < a + l:
+            raise CamGeometryError(
+                f"the rounded base radius {r0!r} is outside ({abs(a - l)!r}, {a + l!r}) "
+                "that the arm allows", "rounded_base_radius", r0=r0, lo=abs(a - l),
+                hi=a + l)
+    floor = abs(follower_args.get("e", 0.0)) if contact != "flat" else 0.0
+    if r0 <= floor * (1 + 1e-12):
+        raise CamGeometryError(
+            "the limits do not bound the base radius from below (any base radius > "
+            f"{floor!r} meets them)", "unbounded_base_radius", floor=floor)
+    if contact == "roller" and follower_args["rr"] >= r0:
+        raise CamGeometryError(
+            f"the sized base radius {r0!r} is not larger than the roller radius "
+            f"{follower_args['rr']!r}", "roller_too_large", r0=r0, rr=follower_args["rr"])
+    return r0
+
+
+def _refuse_undercut(checks: CamChecks, fol: Follower, contact: str) -> None:
+    """Raise :class:`UndercutError` when the checks found a distortion or an undercut."""
+    if checks.distorted:
         raise UndercutError(
             "the follower cannot reproduce the velocity jumps at delta = "
             f"{list(checks.distorted)!r}", "distorted", at=checks.distorted, contact=contact)
-    if checks.undercut and forbid_undercut:
+    if checks.undercut:
         at = checks.rho_work_min.delta
-        rho = None if contact == "flat" else checks.rho_pitch_min.value
+        # not flat: the pitch curve has a smallest radius of curvature
+        rho = None if contact == "flat" else checks.rho_pitch_min.value  # type: ignore[union-attr]
         raise UndercutError(
             f"the working profile is undercut (cusp) near delta = {at!r}", "undercut",
             at=at, contact=contact, rr=fol.rr, rho=rho)
-    # a convex pitch corner (velocity jump) has ρ = 0: no roller reproduces it
-    rr_max = None if contact == "flat" else (
-        0.0 if any(convex for _, convex in checks.corners) else checks.rho_pitch_min.value)
-    impacts = tuple(i for i in program.impacts())
-    return CamDesign(fol, program, profile, checks, impacts, sizing, rr_max)
 
 
 __all__ = ["CamChecks", "CamDesign", "CamProfile", "CamSizing", "Impact", "MotionProgram",

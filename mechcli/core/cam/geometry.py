@@ -34,6 +34,7 @@ translating follower).
 from __future__ import annotations
 
 import math
+from typing import Any, List, Optional, Tuple
 
 import numpy as np
 
@@ -103,7 +104,7 @@ class Follower:
     l: float = 0.0
     arm: int | None = None
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         if self.motion not in FOLLOWER_MOTIONS or self.contact not in FOLLOWER_CONTACTS:
             raise ValueError(f"unknown follower {self.motion}/{self.contact}")
         if self.rotation not in (1, -1):
@@ -121,23 +122,23 @@ class Follower:
                 raise ValueError("a, l and r0 cannot form the oscillating follower")
 
     @property
-    def sigma(self):
+    def sigma(self) -> int:
         return self.rotation
 
     @property
-    def arm_side(self):
+    def arm_side(self) -> int:
         """+1: oscillating arm left of the line pivot–cam centre, −1: right."""
         return self.rotation if self.arm is None else self.arm
 
     @property
-    def s0(self):
+    def s0(self) -> float:
         """``sqrt(r0² − e²)``: start height of the follower point, m (eq. 4-1)."""
         if self.contact == "flat":
             return self.r0
         return math.sqrt(self.r0 ** 2 - self.e ** 2)
 
     @property
-    def phi0(self):
+    def phi0(self) -> float:
         """Initial arm angle φ₀ of the oscillating follower, rad (eq. 4-6)."""
         return math.acos((self.a ** 2 + self.l ** 2 - self.r0 ** 2) / (2 * self.a * self.l))
 
@@ -146,24 +147,25 @@ class Follower:
         return self.motion == "oscillating"
 
 
-def _J(v):
+def _J(v: np.ndarray) -> np.ndarray:
     return np.stack([-v[1], v[0]])
 
 
-def _cross(u, v):
+def _cross(u: np.ndarray, v: np.ndarray) -> np.ndarray:
     return u[0] * v[1] - u[1] * v[0]
 
 
-def _dot(u, v):
+def _dot(u: np.ndarray, v: np.ndarray) -> np.ndarray:
     return u[0] * v[0] + u[1] * v[1]
 
 
-def _rotate(v, angle):
+def _rotate(v: np.ndarray, angle: np.ndarray) -> np.ndarray:
     c, s = np.cos(angle), np.sin(angle)
     return np.stack([c * v[0] - s * v[1], s * v[0] + c * v[1]])
 
 
-def follower_point(fol, s, s1, s2, s3):
+def follower_point(fol: Follower, s: np.ndarray, s1: np.ndarray, s2: np.ndarray, s3: np.ndarray
+                  ) -> Tuple[np.ndarray, ...]:
     """Follower reference point in the fixed frame and its δ-derivatives.
 
     Parameters
@@ -199,7 +201,8 @@ def follower_point(fol, s, s1, s2, s3):
     return P, P1, P2, P3, up, -u * s1
 
 
-def _derived(fol, s, s1, s2, s3):
+def _derived(fol: Follower, s: np.ndarray, s1: np.ndarray, s2: np.ndarray, s3: np.ndarray
+            ) -> Tuple[np.ndarray, ...]:
     """V₀…V₃ (fixed-frame images of the profile derivatives) and d, d'."""
     sg = fol.sigma
     P, P1, P2, P3, d, d1 = follower_point(fol, s, s1, s2, s3)
@@ -209,7 +212,8 @@ def _derived(fol, s, s1, s2, s3):
     return P, V1, V2, V3, d, d1
 
 
-def pressure_angle_and_rate(fol, s, s1, s2, s3):
+def pressure_angle_and_rate(fol: Follower, s: np.ndarray, s1: np.ndarray, s2: np.ndarray,
+                            s3: np.ndarray) -> Tuple[np.ndarray, np.ndarray]:
     """Signed pressure angle α (rad) and dα/dδ.
 
     α = atan2(V₁·d, σ V₁×d): positive when the normal force opposes the
@@ -229,7 +233,8 @@ def pressure_angle_and_rate(fol, s, s1, s2, s3):
     return np.arctan2(N, D), (dN * D - N * dD) / (N ** 2 + D ** 2)
 
 
-def curvature_and_rate(fol, s, s1, s2, s3):
+def curvature_and_rate(fol: Follower, s: np.ndarray, s1: np.ndarray, s2: np.ndarray, s3: np.ndarray
+                      ) -> Tuple[np.ndarray, np.ndarray]:
     """Signed curvature of the pitch curve (1/m, convex positive) and dκ/dδ.
 
     For the flat-faced follower: ``-(r0 + s + s'')`` and its derivative
@@ -247,7 +252,7 @@ def curvature_and_rate(fol, s, s1, s2, s3):
     return kappa, dkappa
 
 
-def _rho(kappa, cap):
+def _rho(kappa: np.ndarray, cap: float) -> np.ndarray:
     big = np.abs(kappa) * cap <= 1.0
     safe = np.where(big, 1.0, kappa)
     return np.where(big, np.where(kappa < 0, -cap, cap), 1.0 / safe)
@@ -307,7 +312,8 @@ class CamProfile:
     grid: np.ndarray | None = None
 
 
-def cam_profile(fol, program: MotionProgram, delta, left=None, grid=None):
+def cam_profile(fol: Follower, program: MotionProgram, delta: np.ndarray,
+                left: Optional[np.ndarray] = None, grid: Optional[np.ndarray] = None) -> CamProfile:
     """Pitch and working curves of the cam at cam angles *delta*.
 
     Parameters
@@ -370,7 +376,7 @@ def cam_profile(fol, program: MotionProgram, delta, left=None, grid=None):
 
 
 
-def pitch_corners(fol, program):
+def pitch_corners(fol: Follower, program: MotionProgram) -> Any:
     """Corners of the pitch curve where the follower velocity jumps.
 
     Parameters
@@ -402,7 +408,8 @@ def pitch_corners(fol, program):
 
 
 
-def _corner_normals(fol, program, dc):
+def _corner_normals(fol: Follower, program: MotionProgram, dc: float
+                   ) -> List[Tuple[np.ndarray, np.ndarray]]:
     """Pitch point and outward normals (cam frame) on both sides of a corner at *dc*."""
     sg = fol.sigma
     allp = program.pieces()
@@ -415,7 +422,8 @@ def _corner_normals(fol, program, dc):
     return ends
 
 
-def _trim_loop(left, right):
+def _trim_loop(left: np.ndarray, right: np.ndarray
+               ) -> Optional[Tuple[np.ndarray, np.ndarray, np.ndarray]]:
     """Cut the overlap of two working-curve branches meeting at a convex pitch corner.
 
     Both branches are taken as functions r(θ) of the polar angle about the cam
@@ -446,7 +454,8 @@ def _trim_loop(left, right):
     return tl < th, tr > th, np.array(xl)
 
 
-def working_outline(fol, program, profile, corners, arc_step=math.radians(2.0)):
+def working_outline(fol: Follower, program: MotionProgram, profile: CamProfile, corners: Any,
+                    arc_step: float = math.radians(2.0)) -> np.ndarray:
     """The closed working curve to draw, with the roller's behaviour at pitch corners.
 
     Where the follower velocity jumps (uniform law) the pitch curve has a corner.

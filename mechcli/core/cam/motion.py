@@ -26,10 +26,14 @@ from __future__ import annotations
 
 import functools
 import math
+from typing import TYPE_CHECKING, Any, Callable, List, Optional, Tuple, Union
 
 import numpy as np
 
 from mechcli.core.records import record
+
+if TYPE_CHECKING:
+    from mechcli.core.types import FloatOrArray
 
 #: the law names accepted by :func:`law_pieces`
 LAWS = ("uniform", "parabolic", "cosine", "sine", "cubic", "poly345", "poly4567",
@@ -70,41 +74,41 @@ class LawPiece:
 
     u0: float
     u1: float
-    func: object
+    func: Callable[..., Any]
 
 
-def _uniform(u):
+def _uniform(u: np.ndarray) -> Tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     one = np.ones_like(u)
     return u, one, 0.0 * u, 0.0 * u
 
 
-def _parabolic_a(u):
+def _parabolic_a(u: np.ndarray) -> Tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     return 2 * u ** 2, 4 * u, 4.0 + 0 * u, 0.0 * u
 
 
-def _parabolic_b(u):
+def _parabolic_b(u: np.ndarray) -> Tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     w = 1 - u
     return 1 - 2 * w ** 2, 4 * w, -4.0 + 0 * u, 0.0 * u
 
 
-def _cosine(u):
+def _cosine(u: np.ndarray) -> Tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     p = math.pi
     return ((1 - np.cos(p * u)) / 2, p / 2 * np.sin(p * u), p ** 2 / 2 * np.cos(p * u),
             -p ** 3 / 2 * np.sin(p * u))
 
 
-def _sine(u):
+def _sine(u: np.ndarray) -> Tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     t = 2 * math.pi
     return (u - np.sin(t * u) / t, 1 - np.cos(t * u), t * np.sin(t * u),
             t ** 2 * np.cos(t * u))
 
 
-def _poly(coeffs):
+def _poly(coeffs: List[float]) -> Callable[..., Any]:
     """Polynomial law ``sum c_k u^k`` with its exact derivatives."""
     c = np.polynomial.Polynomial(coeffs)
     d1, d2, d3 = c.deriv(1), c.deriv(2), c.deriv(3)
 
-    def func(u):
+    def func(u: FloatOrArray) -> Any:
         return c(u), d1(u), d2(u), d3(u)
     return func
 
@@ -134,19 +138,19 @@ class PolynomialLaw:
 
     coefficients: tuple
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         c = tuple(float(x) for x in self.coefficients)
         if len(c) < 2 or not all(math.isfinite(x) for x in c):
             raise ValueError("a polynomial law needs at least two finite coefficients")
         object.__setattr__(self, "coefficients", c)
 
-    def ends(self):
+    def ends(self) -> Tuple[Tuple[float, ...], ...]:
         """``(f, f', f'')`` at ``u = 0`` and at ``u = 1``: two tuples of 3 floats."""
         c = np.polynomial.Polynomial(self.coefficients)
         return tuple(tuple(float(c.deriv(k)(u)) if k else float(c(u)) for k in range(3))
                      for u in (0.0, 1.0))
 
-    def extremes(self):
+    def extremes(self) -> Tuple[float, float, float, float]:
         """Smallest and largest ``f`` on ``0 ≤ u ≤ 1``.
 
         Returns
@@ -167,7 +171,7 @@ class PolynomialLaw:
         lo, hi = int(np.argmin(f)), int(np.argmax(f))
         return float(f[lo]), float(u[lo]), float(f[hi]), float(u[hi])
 
-    def __str__(self):
+    def __str__(self) -> str:
         """``3u² − 2u³``: the book's way of writing the law (superscript powers)."""
         sup = str.maketrans("0123456789", "⁰¹²³⁴⁵⁶⁷⁸⁹")
         terms = []
@@ -187,14 +191,15 @@ class PolynomialLaw:
 _named_polys = {name: _poly(list(c)) for name, c in POLYNOMIAL_LAWS.items()}
 
 
-def _trig_piece(u0, c0, cs, cc, k, v0, s0, scale):
+def _trig_piece(u0: float, c0: float, cs: float, cc: float, k: float, v0: float, s0: float,
+                scale: float) -> Callable[..., Any]:
     """Piece with acceleration ``c0 + cs sin(k t) + cc cos(k t)``, ``t = u - u0``.
 
     Integrated in closed form from start velocity *v0* and displacement *s0*;
     everything is multiplied by *scale* (the normalization ``1/f(1)``).
     """
 
-    def func(u):
+    def func(u: FloatOrArray) -> Any:
         t = u - u0
         sn, cn = np.sin(k * t), np.cos(k * t)
         acc = c0 + cs * sn + cc * cn
@@ -205,7 +210,7 @@ def _trig_piece(u0, c0, cs, cc, k, v0, s0, scale):
     return func
 
 
-def _acc_shape_pieces(shape):
+def _acc_shape_pieces(shape: List[Tuple[float, ...]]) -> Any:
     """Integrate a piecewise acceleration shape into normalized law pieces.
 
     *shape* is a list of ``(u0, u1, c0, cs, cc, k)``: acceleration
@@ -224,7 +229,7 @@ def _acc_shape_pieces(shape):
 
 
 @functools.cache
-def law_pieces(law):
+def law_pieces(law: Union[PolynomialLaw, str]) -> Any:
     """The closed-form pieces of a normalized motion law.
 
     Parameters
@@ -277,7 +282,7 @@ def law_pieces(law):
     raise ValueError(f"unknown motion law '{law}'; valid: {', '.join(LAWS)}")
 
 
-def law_values(law, u):
+def law_values(law: Union[PolynomialLaw, str], u: np.ndarray) -> Tuple[np.ndarray, ...]:
     """Normalized displacement and derivatives of *law* at *u* (array in [0, 1]).
 
     Returns
@@ -332,10 +337,10 @@ class Segment:
     lift: float
 
     @property
-    def end(self):
+    def end(self) -> float:
         return self.start + self.span
 
-    def pieces(self):
+    def pieces(self) -> Any:
         """``(delta0, delta1, LawPiece or None)`` smooth pieces of this segment."""
         if self.law is None:
             return [(self.start, self.end, None)]
@@ -364,7 +369,8 @@ class MotionState:
     s3: np.ndarray
 
 
-def _piece_state(seg, piece, delta):
+def _piece_state(seg: Segment, piece: Optional[LawPiece], delta: np.ndarray
+                ) -> Tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     delta = np.asarray(delta, dtype=float)
     if piece is None:
         z = np.zeros_like(delta)
@@ -415,17 +421,18 @@ class MotionProgram:
     stroke: float
     angular: bool = False
 
-    def pieces(self):
+    def pieces(self) -> Any:
         """All smooth pieces ``(seg_index, delta0, delta1, LawPiece or None)``."""
         return [(i, d0, d1, p) for i, seg in enumerate(self.segments)
                 for d0, d1, p in seg.pieces()]
 
-    def piece_state(self, k, delta):
+    def piece_state(self, k: int, delta: np.ndarray
+                   ) -> Tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         """State on piece *k* of :meth:`pieces` (its formula, even at its ends)."""
         i, _, _, p = self.pieces()[k]
         return _piece_state(self.segments[i], p, delta)
 
-    def evaluate(self, delta, left=None):
+    def evaluate(self, delta: np.ndarray, left: Optional[np.ndarray] = None) -> MotionState:
         """Displacement and derivatives at cam angles *delta* (rad, any array).
 
         Angles are taken modulo 2π; at a piece boundary the following piece is
@@ -459,7 +466,7 @@ class MotionProgram:
                 o[mask] = v
         return MotionState(delta, *out)
 
-    def impacts(self, rtol=1e-9):
+    def impacts(self, rtol: float = 1e-9) -> Any:
         """Velocity and acceleration jumps around the cycle.
 
         Returns
@@ -488,7 +495,7 @@ class MotionProgram:
         return tuple(out)
 
 
-    def jumps(self, rtol=1e-9):
+    def jumps(self, rtol: float = 1e-9) -> Any:
         """Cam angles where the motion jumps: ds/dδ, d²s/dδ² or d³s/dδ³ differ on the
         two sides of a piece boundary (segment ends, the parabolic law's midpoint).
 
@@ -520,7 +527,8 @@ class MotionProgram:
         return tuple(out)
 
 
-def jump_samples(program, delta, rtol=1e-9):
+def jump_samples(program: MotionProgram, delta: np.ndarray, rtol: float = 1e-9
+                ) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Sample angles with both sides of every jump of *program*.
 
     Parameters
@@ -568,7 +576,7 @@ def jump_samples(program, delta, rtol=1e-9):
     return rows[order], left[order], grid[order]
 
 
-def build_program(segments, stroke, angular=False):
+def build_program(segments: Any, stroke: float, angular: bool = False) -> MotionProgram:
     """Make a :class:`MotionProgram` from ``(kind, span, law, lift)`` tuples.
 
     Parameters

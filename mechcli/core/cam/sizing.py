@@ -7,14 +7,20 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from typing import TYPE_CHECKING, Optional, Tuple
 
 import numpy as np
 
 from mechcli.core.cam.checks import max_pressure_angle, maximize_on_pieces, phase_pieces
 from mechcli.core.cam.geometry import CamGeometryError
 
+if TYPE_CHECKING:
+    from mechcli.core.cam.geometry import Follower
+    from mechcli.core.cam.motion import MotionProgram
 
-def _translating_s0_needed(program, e, sigma, kind, tan_allow, step):
+
+def _translating_s0_needed(program: MotionProgram, e: float, sigma: int, kind: str,
+                           tan_allow: float, step: float) -> float:
     """Smallest s0 keeping |α| ≤ [α] on the *kind* segments (translating)."""
     pieces = phase_pieces(program, kind)
     if not pieces:
@@ -22,14 +28,16 @@ def _translating_s0_needed(program, e, sigma, kind, tan_allow, step):
 
     best = -math.inf
     for sgn in (1.0, -1.0):
-        def func(s, s1, s2, s3, sgn=sgn):
+        def func(s: np.ndarray, s1: np.ndarray, s2: np.ndarray, s3: np.ndarray, sgn: float = sgn
+                ) -> Tuple[np.ndarray, np.ndarray]:
             return sgn * (s1 - sigma * e) / tan_allow - s, sgn * s2 / tan_allow - s1
         best = max(best, maximize_on_pieces(program, pieces, func, step)[1])
     return best
 
 
-def translating_base_radius_min(program, e, rotation, alpha_rise, alpha_return=None,
-                                step=math.radians(1.0)):
+def translating_base_radius_min(program: MotionProgram, e: float, rotation: int, alpha_rise: float,
+                                alpha_return: Optional[float] = None,
+                                step: float = math.radians(1.0)) -> float:
     """Smallest base radius of a translating knife/roller follower for [α].
 
     Parameters
@@ -67,15 +75,17 @@ def translating_base_radius_min(program, e, rotation, alpha_rise, alpha_return=N
     return math.hypot(max(need, 0.0), e)
 
 
-def size_flat_base_radius(program, rho_min=0.0, step=math.radians(1.0)):
+def size_flat_base_radius(program: MotionProgram, rho_min: float = 0.0,
+                          step: float = math.radians(1.0)) -> float:
     """Smallest base radius of a flat-faced cam with ρ = r0 + s + s'' ≥ ρ_min (m)."""
     allk = range(len(program.pieces()))
     hit = maximize_on_pieces(program, allk, lambda s, s1, s2, s3: (-(s + s2), -(s1 + s3)), step)
     return max(hit[1] + rho_min, 0.0)
 
 
-def size_oscillating_base_radius(fol, program, alpha_rise, alpha_return=None,
-                                 step=math.radians(1.0), rtol=1e-12):
+def size_oscillating_base_radius(fol: Follower, program: MotionProgram, alpha_rise: float,
+                                 alpha_return: Optional[float] = None,
+                                 step: float = math.radians(1.0), rtol: float = 1e-12) -> float:
     """Smallest base radius of an oscillating follower for [α] (bisection on r0).
 
     Searches r0 in (|a − l|, a + l) for the smallest value whose pressure-angle
@@ -85,7 +95,7 @@ def size_oscillating_base_radius(fol, program, alpha_rise, alpha_return=None,
     lo_lim, hi_lim = abs(fol.a - fol.l), fol.a + fol.l
     psi = max(seg.s_start + max(seg.lift, 0) for seg in program.segments)
 
-    def ok(r0):
+    def ok(r0: float) -> bool:
         f = dataclasses.replace(fol, r0=r0)
         if f.phi0 + psi >= math.pi:
             return False

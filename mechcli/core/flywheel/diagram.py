@@ -14,10 +14,16 @@ SI units and radians; no I/O.
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING, Tuple
+
 import numpy as np
 
 from mechcli.core.errors import DescribedError
 from mechcli.core.records import record
+
+if TYPE_CHECKING:
+    from mechcli.core.flywheel.motion import MomentModel
+    from mechcli.core.types import FloatOrArray
 
 #: relative size of the net work per cycle, against ∫|Me| dφ, that still counts as none
 NET_RTOL = 1e-9
@@ -57,7 +63,8 @@ class EnergyLoops:
     period: float
 
 
-def energy_loops(moment, phi0, period, omega_m=0.0):
+def energy_loops(moment: MomentModel, phi0: float, period: float, omega_m: float = 0.0
+                ) -> EnergyLoops:
     """The loop-energy table of ``Me(φ, ωm)`` over one cycle from ``phi0``.
 
     Parameters
@@ -86,11 +93,11 @@ def energy_loops(moment, phi0, period, omega_m=0.0):
     phi0, T = float(phi0), float(period)
     b = float(getattr(moment, "b", 0.0))
 
-    def W(p):
+    def W(p: FloatOrArray) -> FloatOrArray:
         p = np.asarray(p, dtype=float)
         return moment.energy(phi0, p) - b * omega_m * (p - phi0)
 
-    def f(p):
+    def f(p: np.ndarray) -> np.ndarray:
         return moment(p, omega_m)
 
     grid = np.unique(np.concatenate((np.linspace(phi0, phi0 + T, SAMPLES + 1),
@@ -111,7 +118,7 @@ def energy_loops(moment, phi0, period, omega_m=0.0):
             if j > last + 1:        # Me = 0 on the samples between: the loop ends there
                 cuts.append(float(grid[last + 1]))
             else:
-                def g(p):
+                def g(p: float) -> float:
                     return float(f(np.array([p]))[0])
                 cuts.append(float(brentq(g, grid[last], grid[j], xtol=1e-13 * max(1.0, T),
                                          rtol=4 * np.finfo(float).eps)))
@@ -128,7 +135,7 @@ def energy_loops(moment, phi0, period, omega_m=0.0):
                        phi_min=float(bounds[i_min]), period=T)
 
 
-def speeds_from_swing(J, dW, omega_mean):
+def speeds_from_swing(J: float, dW: float, omega_mean: float) -> Tuple[float, float, float]:
     """Eqs 6-28, 6-29 from numbers: δ = ΔWmax/(J ωm²) for the whole inertia J [kg m²],
     ΔWmax [J] and the mean speed ωm [rad/s]; ωmax, ωmin = ωm (1 ± δ/2) [rad/s].
 
@@ -144,7 +151,7 @@ def speeds_from_swing(J, dW, omega_mean):
     return delta, omega_mean * (1 + delta / 2), omega_mean * (1 - delta / 2)
 
 
-def mean_moment(moment, phi0, period):
+def mean_moment(moment: MomentModel, phi0: float, period: float) -> float:
     """The mean of a moment of φ over a cycle, ``(1/T) ∫Me dφ`` [N·m] (the constant that
     balances it: "the resisting moment is the mean")."""
     return float(moment.energy(float(phi0), float(phi0) + float(period))) / float(period)

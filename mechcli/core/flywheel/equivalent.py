@@ -39,13 +39,18 @@ load's program depends on the sign of a velocity.
 from __future__ import annotations
 
 import copy
-from typing import Optional
+from typing import TYPE_CHECKING, Any, Dict, List, Optional, Tuple
 
 import numpy as np
 
 from mechcli.core.errors import DescribedError
 from mechcli.core.linkage.engine import kinematic_coefficients
 from mechcli.core.linkage.force_model import Body, ForceModelError, com_of, topology
+
+if TYPE_CHECKING:
+    from mechcli.core.linkage.engine import Linkage, LinkageMotion
+    from mechcli.core.linkage.force_model import Topology
+    from mechcli.core.types import FloatOrArray
 
 TWO_PI = 2.0 * np.pi
 
@@ -75,25 +80,25 @@ class InertiaModel:
     constant: bool = False
     added = 0.0
 
-    def __call__(self, phi):
+    def __call__(self, phi: FloatOrArray) -> Any:
         """``(Je, dJe)`` at the input angles ``phi`` [rad]: arrays of ``phi``'s shape
         (broadcast with the model's own batch shape, if any) [kg m², kg m²/rad]."""
         phi = np.asarray(phi, dtype=float)
         Je, dJe = self._evaluate(phi)
         return Je + self.added, dJe
 
-    def plus(self, J):
+    def plus(self, J: float) -> Any:
         """The same model with the constant moment of inertia ``J`` [kg m²] added: a
         flywheel on the equivalent link (eq 6-29 adds J_F to Je)."""
         new = copy.copy(self)
         new.added = self.added + J
         return new
 
-    def _evaluate(self, phi):  # pragma: no cover - every model overrides it
+    def _evaluate(self, phi: np.ndarray) -> Any:  # pragma: no cover - every model overrides it
         raise NotImplementedError
 
 
-def _positive(J, what):
+def _positive(J: FloatOrArray, what: str) -> None:
     J = np.asarray(J, dtype=float)
     if not np.all(np.isfinite(J)) or np.any(J <= 0.0):
         bad = J[~(np.isfinite(J) & (J > 0.0))] if J.ndim else J
@@ -121,11 +126,11 @@ class ConstantInertia(InertiaModel):
     period = None
     constant = True
 
-    def __init__(self, J):
+    def __init__(self, J: float) -> None:
         _positive(J, "equivalent moment of inertia")
         self.value = J
 
-    def _evaluate(self, phi):
+    def _evaluate(self, phi: np.ndarray) -> Any:
         Je = self.value + np.zeros_like(phi)
         return Je, np.zeros_like(Je)
 
@@ -137,7 +142,7 @@ class ZeroInertia(InertiaModel):
     period = None
     constant = True
 
-    def _evaluate(self, phi):
+    def _evaluate(self, phi: np.ndarray) -> Any:
         Je = np.zeros_like(phi)
         return Je, np.zeros_like(Je)
 
@@ -162,7 +167,7 @@ class ChainInertia(ConstantInertia):
         Each member's share, members first, then masses, in the order given.
     """
 
-    def __init__(self, members, *, masses=()):
+    def __init__(self, members: List[Tuple[float, float]], *, masses: Any = ()) -> None:
         terms = tuple(float(J) * float(r) ** 2 for J, r in members)
         terms += tuple(float(m) * float(v) ** 2 for m, v in masses)
         if any(t < 0.0 for t in terms):
@@ -172,7 +177,7 @@ class ChainInertia(ConstantInertia):
         self.terms = terms
 
 
-def chain_moment(torques, forces=()):
+def chain_moment(torques: List[Tuple[float, float]], forces: Any = ()) -> float:
     """Me of loads on members at constant ratios to the input (eq 6-2).
 
     Parameters
@@ -233,7 +238,8 @@ class TableInertia(InertiaModel):
     constant = False
     METHODS = ("cubic", "linear", "fourier")
 
-    def __init__(self, phi, J, *, method="cubic", period=TWO_PI):
+    def __init__(self, phi: np.ndarray, J: np.ndarray, *, method: str = "cubic",
+                 period: float = TWO_PI) -> None:
         self.period = T = float(period)
         phi = np.asarray(phi, dtype=float).ravel()
         J = np.asarray(J, dtype=float).ravel()
@@ -282,7 +288,7 @@ class TableInertia(InertiaModel):
             self._coef = weight * c
             self._k = np.arange(c.size, dtype=float) * (TWO_PI / T)
 
-    def _evaluate(self, phi):
+    def _evaluate(self, phi: np.ndarray) -> Any:
         x0 = self.phi[0]
         t = np.mod(phi - x0, self.period)
         if self.method == "cubic":
@@ -306,7 +312,8 @@ class TableInertia(InertiaModel):
 # ---------------------------------------------------------------------------
 # a linkage of the engine
 # ---------------------------------------------------------------------------
-def _point_motion(m, topo, link, origin, along, normal, acc):
+def _point_motion(m: LinkageMotion, topo: Topology, link: int, origin: str, along: Optional[float],
+                  normal: Optional[float], acc: bool) -> Any:
     """Velocity (and acceleration) coefficients of a point fixed on ``link``: ``origin +
     (along + i normal) e^{iθ}``, or the midpoint of the link's two points when ``along``
     is None (:func:`~mechcli.core.linkage.force_model.com_of`'s convention)."""
@@ -327,7 +334,7 @@ def _point_motion(m, topo, link, origin, along, normal, acc):
     return vx, vy, o.ax - k.alpha * ry - w2 * rx, o.ay + k.alpha * rx - w2 * ry
 
 
-def _check_regular(m, phi):
+def _check_regular(m: LinkageMotion, phi: np.ndarray) -> None:
     """Raise when the linkage does not assemble (or is at a dead point) at some input."""
     if np.all(m.regular):
         return
@@ -341,7 +348,7 @@ def _check_regular(m, phi):
                          "coefficients are unbounded)", reason="dead_point", angle=angle)
 
 
-def _period(linkage, followers):
+def _period(linkage: Linkage, followers: Optional[Any]) -> Optional[float]:
     rotary = linkage.drivers[0].rotary
     ratios = [float(r) for r, _ in (followers or {}).values()]
     return TWO_PI if rotary and all(r == round(r) for r in ratios) else None
@@ -397,7 +404,9 @@ class LinkageInertia(InertiaModel):
 
     constant = False
 
-    def __init__(self, linkage, bodies, *, followers=None, derivative="exact", step=1e-5):
+    def __init__(self, linkage: Linkage, bodies: Dict[int, Body], *,
+                 followers: Optional[Any] = None, derivative: str = "exact", step: float = 1e-5
+                ) -> None:
         if derivative not in ("exact", "difference"):
             raise ValueError(f"derivative must be 'exact' or 'difference', got {derivative!r}")
         if not step > 0.0:
@@ -413,12 +422,12 @@ class LinkageInertia(InertiaModel):
                 self._terms.append((link, b.mass, b.inertia) + com_of(self.topo, b, link))
         self.period = _period(linkage, followers)
 
-    def _solve(self, phi, order):
+    def _solve(self, phi: np.ndarray, order: int) -> LinkageMotion:
         m = kinematic_coefficients(self.linkage, phi, self.followers or None, order=order)
         _check_regular(m, phi)
         return m
 
-    def parts(self, phi):
+    def parts(self, phi: np.ndarray) -> Dict[int, Tuple[np.ndarray, np.ndarray]]:
         """Each body's share of Je and its exact derivative: ``{link: (Je_i, dJe_i)}``
         (before ``added``)."""
         phi = np.asarray(phi, dtype=float)
@@ -427,7 +436,7 @@ class LinkageInertia(InertiaModel):
         return {link: (np.array(np.broadcast_to(Je, shape)), np.array(np.broadcast_to(dJe, shape)))
                 for link, (Je, dJe) in self._shares(m).items()}
 
-    def _shares(self, m):
+    def _shares(self, m: LinkageMotion) -> Any:
         out = {}
         for link, mass, J, origin, along, normal in self._terms:
             vx, vy, ax, ay = _point_motion(m, self.topo, link, origin, along, normal, True)
@@ -437,7 +446,7 @@ class LinkageInertia(InertiaModel):
             out[link] = (Je, dJe)
         return out
 
-    def _je(self, m):
+    def _je(self, m: LinkageMotion) -> np.ndarray:
         Je = np.zeros(np.shape(m.feasible))
         for link, mass, J, origin, along, normal in self._terms:
             vx, vy, _ax, _ay = _point_motion(m, self.topo, link, origin, along, normal, False)
@@ -445,7 +454,7 @@ class LinkageInertia(InertiaModel):
             Je = Je + mass * (vx * vx + vy * vy) + J * w * w
         return Je
 
-    def _evaluate(self, phi):
+    def _evaluate(self, phi: np.ndarray) -> Any:
         if self.derivative == "exact":
             m = self._solve(phi, 2)
             Je, dJe = np.zeros(np.shape(m.feasible)), np.zeros(np.shape(m.feasible))
@@ -458,7 +467,7 @@ class LinkageInertia(InertiaModel):
         return Je, dJe
 
 
-def _check_on_link(topo, link, origin, what):
+def _check_on_link(topo: Topology, link: int, origin: Optional[str], what: str) -> None:
     if link not in topo.links:
         raise ForceModelError(f"{what}: link {link} does not move", ("link", link))
     if origin is not None and link not in topo.members.get(origin, ()):
@@ -469,7 +478,9 @@ def _check_on_link(topo, link, origin, what):
 # ---------------------------------------------------------------------------
 # the equivalent moment of a linkage's loads
 # ---------------------------------------------------------------------------
-def linkage_moment(linkage, topo, bodies, gravity, programs, phi, *, followers=None):
+def linkage_moment(linkage: Linkage, topo: Topology, bodies: Any,
+                   gravity: Optional[Tuple[float, float]], programs: Any, phi: np.ndarray, *,
+                   followers: Optional[Any] = None) -> np.ndarray:
     """Me(φ) of the external loads and gravity on a linkage (eq 6-2).
 
     The power of every load at unit input speed (the velocity coefficients):
@@ -573,7 +584,7 @@ class SampledInertia(InertiaModel):
         Angles per period (3600: every 0.1°).
     """
 
-    def __init__(self, model, samples=3600):
+    def __init__(self, model: LinkageInertia, samples: int = 3600) -> None:
         if model.period is None:
             raise ValueError("only a periodic inertia model can be sampled")
         self.period, self.constant, self.samples = model.period, False, int(samples)
@@ -583,7 +594,7 @@ class SampledInertia(InertiaModel):
         self._J, self._dJ = np.asarray(J, dtype=float), np.asarray(dJ, dtype=float)
         self.added = 0.0        # model(grid) already holds model.added
 
-    def _evaluate(self, phi):
+    def _evaluate(self, phi: np.ndarray) -> Any:
         u = np.mod(phi, self.period) / self.h
         i = np.minimum(np.floor(u).astype(int), self.samples - 1)
         t = u - i

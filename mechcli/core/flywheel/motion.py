@@ -44,12 +44,21 @@ from __future__ import annotations
 import bisect
 import dataclasses
 import math
+from typing import TYPE_CHECKING, Any, Callable, Dict, List, Optional, Tuple, Union
 
 import numpy as np
 
 from mechcli.core.errors import ConvergenceError, DescribedError
 from mechcli.core.records import record
 from mechcli.core.refine import gauss_legendre
+
+if TYPE_CHECKING:
+    from mechcli.core.flywheel.equivalent import (
+        ConstantInertia,
+        TableInertia,
+        ZeroInertia,
+    )
+    from mechcli.core.types import FloatOrArray
 
 TWO_PI = 2.0 * math.pi
 
@@ -75,26 +84,26 @@ class _ConstantInertia:
     period = None
     constant = True
 
-    def __init__(self, J):
+    def __init__(self, J: float) -> None:
         self.value = float(J)
         if not self.value > 0:
             raise ValueError("the moment of inertia must be positive")
 
-    def __call__(self, phi):
+    def __call__(self, phi: FloatOrArray) -> Any:
         phi = np.asarray(phi, dtype=float)
         return np.full_like(phi, self.value), np.zeros_like(phi)
 
-    def plus(self, J):
+    def plus(self, J: Any):
         return _ConstantInertia(self.value + J)
 
 
-def _as_inertia(inertia):
+def _as_inertia(inertia: Any) -> Any:
     if isinstance(inertia, (int, float, np.floating, np.integer)):
         return _ConstantInertia(inertia)
     return inertia
 
 
-def _breaks_of(model):
+def _breaks_of(model: Any) -> Optional[Tuple[np.ndarray, float, np.ndarray, float]]:
     """``(periodic_knots, period_base, aperiodic_knots[, period])`` where a model may have
     a kink (the period 2π when the tuple has no fourth item).
 
@@ -120,7 +129,8 @@ class _Piecewise:
     (``period`` [rad], 2π by default: 4π for a four-stroke engine's cycle).
     """
 
-    def __init__(self, starts, ends, m0, m1, periodic, period=TWO_PI):
+    def __init__(self, starts: np.ndarray, ends: np.ndarray, m0: np.ndarray, m1: np.ndarray,
+                 periodic: bool, period: float = TWO_PI) -> None:
         self.period = float(period)
         self.starts, self.ends = np.asarray(starts, float), np.asarray(ends, float)
         self.m0, self.m1 = np.asarray(m0, float), np.asarray(m1, float)
@@ -134,7 +144,7 @@ class _Piecewise:
         self._starts, self._ends = self.starts.tolist(), self.ends.tolist()
         self._m0, self._slopes = self.m0.tolist(), self.slope.tolist()
 
-    def scalar(self, p):
+    def scalar(self, p: float) -> float:
         """``M(p)`` for one float angle (the integrators' fast path)."""
         x = self.base + (p - self.base) % self.period if self.periodic else p
         starts = self._starts
@@ -145,7 +155,7 @@ class _Piecewise:
             return self._m0[i] + self._slopes[i] * (x - starts[i])
         return 0.0
 
-    def _reduce(self, phi):
+    def _reduce(self, phi: np.ndarray) -> Any:
         phi = np.asarray(phi, dtype=float)
         if not self.periodic:
             return phi, np.zeros_like(phi)
@@ -156,10 +166,10 @@ class _Piecewise:
         over = x >= self.base + T
         return np.where(over, x - T, x), turns + over
 
-    def _index(self, x):
+    def _index(self, x: FloatOrArray) -> FloatOrArray:
         return np.clip(np.searchsorted(self.starts, x, side="right") - 1, 0, len(self.starts) - 1)
 
-    def __call__(self, phi):
+    def __call__(self, phi: FloatOrArray) -> Any:
         x, _ = self._reduce(phi)
         i = self._index(x)
         d = x - self.starts[i]
@@ -168,7 +178,7 @@ class _Piecewise:
             inside |= x == self.ends[-1]
         return np.where(inside, self.m0[i] + self.slope[i] * d, 0.0)
 
-    def primitive(self, phi):
+    def primitive(self, phi: np.ndarray) -> FloatOrArray:
         """``∫_{base}^{φ} M dφ``, exact (periodic: whole turns times the work per turn)."""
         x, turns = self._reduce(phi)
         i = self._index(x)
@@ -181,7 +191,7 @@ class _Piecewise:
 class _PeriodicCubic:
     """A periodic cubic spline through a closed table, with its exact primitive."""
 
-    def __init__(self, xp, fp, period=TWO_PI):
+    def __init__(self, xp: np.ndarray, fp: np.ndarray, period: float = TWO_PI) -> None:
         from scipy.interpolate import CubicSpline
 
         self.period = float(period)
@@ -192,20 +202,20 @@ class _PeriodicCubic:
         self.knots = np.asarray(xp, dtype=float)
         self.periodic = True
 
-    def scalar(self, p):
+    def scalar(self, p: float) -> float:
         """``M(p)`` for one float angle."""
         return float(self.spline(self.base + (p - self.base) % self.period))
 
-    def _reduce(self, phi):
+    def _reduce(self, phi: np.ndarray) -> Any:
         phi = np.asarray(phi, dtype=float)
         turns = np.floor((phi - self.base) / self.period)
         return phi - self.period * turns, turns
 
-    def __call__(self, phi):
+    def __call__(self, phi: FloatOrArray) -> Any:
         x, _ = self._reduce(phi)
         return self.spline(x)
 
-    def primitive(self, phi):
+    def primitive(self, phi: np.ndarray) -> FloatOrArray:
         x, turns = self._reduce(phi)
         return turns * self.per_turn + self.anti(x) - self.anti(self.base)
 
@@ -216,7 +226,7 @@ class _PeriodicQuadratic(_PeriodicCubic):
     every even node is the Simpson sum, on equal or unequal steps).  The number of
     intervals must be even."""
 
-    def __init__(self, xp, fp, period=TWO_PI):
+    def __init__(self, xp: np.ndarray, fp: np.ndarray, period: float = TWO_PI) -> None:
         xp, fp = np.asarray(xp, dtype=float), np.asarray(fp, dtype=float)
         n = xp.size - 1
         if n % 2:
@@ -236,24 +246,24 @@ class _PeriodicQuadratic(_PeriodicCubic):
         self.knots = np.append(x0, xp[-1])
         self._lists = (x0.tolist(), self.c0.tolist(), self.c1.tolist(), self.c2.tolist())
 
-    def _index(self, x):
+    def _index(self, x: FloatOrArray) -> FloatOrArray:
         return np.clip(np.searchsorted(self.starts, x, side="right") - 1, 0,
                        self.starts.size - 1)
 
-    def scalar(self, p):
+    def scalar(self, p: float) -> float:
         x = self.base + (p - self.base) % self.period
         starts, c0, c1, c2 = self._lists
         i = min(max(bisect.bisect_right(starts, x) - 1, 0), len(starts) - 1)
         d = x - starts[i]
         return c0[i] + d * (c1[i] + c2[i] * d)
 
-    def __call__(self, phi):
+    def __call__(self, phi: FloatOrArray) -> Any:
         x, _ = self._reduce(phi)
         i = self._index(x)
         d = x - self.starts[i]
         return self.c0[i] + d * (self.c1[i] + self.c2[i] * d)
 
-    def primitive(self, phi):
+    def primitive(self, phi: np.ndarray) -> FloatOrArray:
         x, turns = self._reduce(phi)
         i = self._index(x)
         d = np.clip(x - self.starts[i], 0.0, self.width[i])
@@ -261,7 +271,7 @@ class _PeriodicQuadratic(_PeriodicCubic):
         return turns * self.per_turn + self.before[i] + part
 
 
-def _closed_table(phi, M, period=TWO_PI):
+def _closed_table(phi: Any, M: Any, period: float = TWO_PI) -> Tuple[np.ndarray, np.ndarray]:
     """The nodes of a periodic table closed at ``phi[0] + period`` (the wrap node
     appended)."""
     phi = np.asarray(phi, dtype=float).ravel()
@@ -326,8 +336,10 @@ class MomentModel:
         stop at.
     """
 
-    def __init__(self, *, table=None, linear=None, harmonic=None, segments=None,
-                 constant=0.0, period=TWO_PI):
+    def __init__(self, *, table: Any = None, linear: Optional[Tuple[float, float]] = None,
+                 harmonic: Any = None,
+                 segments: Optional[List[Tuple[float, float, float, float]]] = None,
+                 constant: float = 0.0, period: float = TWO_PI) -> None:
         T = float(period)
         if not (math.isfinite(T) and T > 0):
             raise ValueError("the period must be positive")
@@ -405,7 +417,7 @@ class MomentModel:
         aper = self._seg.knots if aperiodic else np.empty(0)
         self.breaks = (knots, base, aper, T)
 
-    def scalar(self, p, w):
+    def scalar(self, p: float, w: float) -> float:
         """``Me(p, w)`` for one float angle and speed (the integrators' fast path)."""
         m = self.constant + self.a - self.b * w
         if self._table is not None:
@@ -420,11 +432,11 @@ class MomentModel:
         return m
 
     @property
-    def omega_coefficient(self):
+    def omega_coefficient(self) -> float:
         """``∂Me/∂ω = −b`` [N·m·s] (the model is linear in ω)."""
         return -self.b
 
-    def phi_part(self, phi):
+    def phi_part(self, phi: FloatOrArray) -> FloatOrArray:
         """The part of ``Me`` that depends on φ only (every term but ``−bω``) [N·m]."""
         phi = np.asarray(phi, dtype=float)
         m = np.full_like(phi, self.constant + self.a)
@@ -438,11 +450,11 @@ class MomentModel:
             m = m + self._seg(phi)
         return m
 
-    def __call__(self, phi, omega):
+    def __call__(self, phi: FloatOrArray, omega: FloatOrArray) -> FloatOrArray:
         """``Me(φ, ω)`` [N·m]; φ [rad] and ω [rad/s] broadcast together."""
         return self.phi_part(phi) - self.b * np.asarray(omega, dtype=float)
 
-    def _primitive(self, phi):
+    def _primitive(self, phi: FloatOrArray) -> FloatOrArray:
         phi = np.asarray(phi, dtype=float)
         f = (self.constant + self.a) * phi
         if self._table is not None:
@@ -455,19 +467,20 @@ class MomentModel:
             f = f + self._seg.primitive(phi)
         return f
 
-    def energy(self, phi0, phi):
+    def energy(self, phi0: float, phi: FloatOrArray) -> FloatOrArray:
         """The work ``W(φ) = ∫_{φ0}^{φ} Me dφ`` of the φ-only part, exactly (eq 6-12) [J].
 
         The term ``−bω`` depends on the motion and is left out; ``a`` is kept.
         """
         return self._primitive(phi) - self._primitive(phi0)
 
-    def breaks_between(self, lo, hi):
+    def breaks_between(self, lo: float, hi: float) -> np.ndarray:
         """The break angles of :attr:`breaks` strictly inside ``(lo, hi)``, increasing."""
         return _breaks_in(self.breaks, lo, hi)
 
 
-def _breaks_in(breaks, lo, hi):
+def _breaks_in(breaks: Optional[Tuple[np.ndarray, float, np.ndarray, float]], lo: float, hi: float
+              ) -> np.ndarray:
     if breaks is None:
         return np.empty(0)
     knots, base, aper = breaks[:3]
@@ -484,7 +497,7 @@ def _breaks_in(breaks, lo, hi):
     return allk[(allk > lo + tol) & (allk < hi - tol)]
 
 
-def _all_breaks(inertia, moment, lo, hi):
+def _all_breaks(inertia: Any, moment: MomentModel, lo: float, hi: float) -> np.ndarray:
     out = [_breaks_in(_breaks_of(moment), lo, hi), _breaks_in(_breaks_of(inertia), lo, hi)]
     return np.unique(np.concatenate(out))
 
@@ -529,7 +542,7 @@ class Motion:
     step: float | None = None
 
     @property
-    def energy(self):
+    def energy(self) -> np.ndarray:
         """The kinetic energy ``½Je ω²`` [J] (eq 6-5)."""
         return 0.5 * self.Je * self.omega ** 2
 
@@ -593,7 +606,7 @@ class SteadyState:
 # --------------------------------------------------------------------------- energy integral
 
 
-def _grid(phi0, phi_end, points):
+def _grid(phi0: float, phi_end: float, points: Optional[int]) -> np.ndarray:
     if points is None:
         points = max(2, int(math.ceil((phi_end - phi0) / math.radians(1.0) - 1e-9)) + 1)
     if points < 2:
@@ -601,7 +614,7 @@ def _grid(phi0, phi_end, points):
     return np.linspace(phi0, phi_end, int(points))
 
 
-def _time(omega_at, breaks, n=_GL_NODES):
+def _time(omega_at: Callable[..., Any], breaks: np.ndarray, n: int = _GL_NODES) -> np.ndarray:
     """``t = ∫dφ/ω`` (eq 6-14) from ``breaks[0]`` to every break, Gauss–Legendre per interval.
 
     A start from rest (ω = 0 at ``φ0 = breaks[0]``, where ``ω ∝ sqrt(φ − φ0)``) is
@@ -617,7 +630,7 @@ def _time(omega_at, breaks, n=_GL_NODES):
     return np.concatenate(([0.0], np.cumsum(parts)))
 
 
-def _stall_angle(g, lo, hi):
+def _stall_angle(g: Callable[..., Any], lo: float, hi: float) -> float:
     """The first root of the falling ``g`` in ``[lo, hi]`` (g(lo) > 0 >= g(hi))."""
     from scipy.optimize import brentq
 
@@ -626,11 +639,12 @@ def _stall_angle(g, lo, hi):
     return float(brentq(g, lo, hi, xtol=1e-13 * max(1.0, abs(hi)), rtol=4 * np.finfo(float).eps))
 
 
-def _check_energy_stall(inertia, moment, phi0, E0, phi_end, fine):
+def _check_energy_stall(inertia: Any, moment: MomentModel, phi0: float, E0: float, phi_end: float,
+                        fine: np.ndarray) -> None:
     """Raise ``"stall"`` where ``E0 + W(φ)`` first reaches 0 on ``[phi0, phi_end]``."""
     from scipy.optimize import minimize_scalar
 
-    def g(p):
+    def g(p: float) -> float:
         return E0 + float(moment.energy(phi0, p))
 
     e = E0 + moment.energy(phi0, fine)
@@ -651,7 +665,8 @@ def _check_energy_stall(inertia, moment, phi0, E0, phi_end, fine):
                              phi=_stall_angle(g, fine[first - 1], fine[first]))
 
 
-def energy_solution(inertia, moment, phi0, omega0, phi):
+def energy_solution(inertia: Any, moment: MomentModel, phi0: float, omega0: float, phi: Any
+                   ) -> Motion:
     """The exact motion under a moment of φ alone by the energy integral (eqs 6-11, 6-12).
 
     ``ω(φ) = sqrt((Je0 ω0² + 2W(φ)) / Je(φ))`` with ``W = ∫_{φ0}^{φ} Me dφ`` exact
@@ -701,7 +716,7 @@ def energy_solution(inertia, moment, phi0, omega0, phi):
     if hi > lo:
         _check_energy_stall(inertia, moment, phi0, E0, hi, fine)
 
-    def omega_at(p):
+    def omega_at(p: np.ndarray) -> np.ndarray:
         Je = inertia(p)[0]
         return np.sqrt(np.maximum(2.0 * (E0 + moment.energy(phi0, p)) / Je, 0.0))
 
@@ -721,7 +736,9 @@ def energy_solution(inertia, moment, phi0, omega0, phi):
 # --------------------------------------------------------------------------- closed form
 
 
-def linear_closed_form(J, a, b, Mr, omega0, *, omega_end=None, t=None, points=201):
+def linear_closed_form(J: float, a: float, b: float, Mr: float, omega0: float, *,
+                       omega_end: Optional[float] = None, t: Any = None, points: int = 201
+                      ) -> Motion:
     """The closed-form motion of ``J dω/dt = a − bω − Mr`` (eqs 6-16 … 6-20; 例 6-3).
 
     With ``ω∞ = (a − Mr)/b``:
@@ -808,14 +825,15 @@ def linear_closed_form(J, a, b, Mr, omega0, *, omega_end=None, t=None, points=20
 class _Run:
     """One integration: every solver step's interval and dense output of E."""
 
-    def __init__(self, los, his, dense, nfev, E_end):
+    def __init__(self, los: List[float], his: List[float], dense: List[Any], nfev: int,
+                 E_end: float) -> None:
         self.los, self.his = np.asarray(los), np.asarray(his)
         self.dense = dense            # one callable per step
         self.steps = np.concatenate((self.los[:1], self.his))  # step boundaries, increasing
         self.nfev = nfev
         self.E_end = E_end
 
-    def E(self, phi):
+    def E(self, phi: np.ndarray) -> np.ndarray:
         phi = np.atleast_1d(np.asarray(phi, dtype=float))
         out = np.empty_like(phi)
         k = np.minimum(np.searchsorted(self.his, phi, side="left"), len(self.dense) - 1)
@@ -828,7 +846,7 @@ class _Run:
 
 
 #: scipy's explicit and implicit integrators by name
-def _solver_class(method):
+def _solver_class(method: str) -> Any:
     from scipy.integrate import DOP853, RK45, Radau
 
     return {"RK45": RK45, "DOP853": DOP853, "Radau": Radau}[method]
@@ -839,7 +857,8 @@ def _solver_class(method):
 MAX_STEPS = 200_000
 
 
-def _ode(inertia, moment, phi0, omega0, phi_end, method, rtol, atol):
+def _ode(inertia: Union[ConstantInertia, TableInertia, _ConstantInertia], moment: MomentModel,
+         phi0: float, omega0: float, phi_end: float, method: str, rtol: float, atol: float) -> _Run:
     """Integrate ``dE/dφ = Me(φ, ω)``, ``ω = sqrt(2E/Je)`` (eq 6-5) piece by piece.
 
     scipy's solver objects are stepped here (not ``solve_ivp``) so that a stall is found on
@@ -854,7 +873,7 @@ def _ode(inertia, moment, phi0, omega0, phi_end, method, rtol, atol):
 
     scalar = getattr(moment, "scalar", None) or (lambda p, w: float(moment(p, w)))
 
-    def rhs(p, y):
+    def rhs(p: float, y: np.ndarray) -> np.ndarray:
         Je = float(inertia(p)[0])
         return np.array([scalar(p, math.sqrt(max(2.0 * y[0] / Je, 0.0)))])
 
@@ -870,7 +889,7 @@ def _ode(inertia, moment, phi0, omega0, phi_end, method, rtol, atol):
                 raise ConvergenceError(f"the integrator failed: {message}")
             d = solver.dense_output()
             if float(solver.y[0]) <= 0.0 and solver.t > t_old:
-                def g(p):
+                def g(p: float) -> float:
                     return float(np.ravel(d(p))[0])
                 if y_old <= 0.0:
                     at = t_old
@@ -895,13 +914,16 @@ def _ode(inertia, moment, phi0, omega0, phi_end, method, rtol, atol):
     return _Run(los, his, dense, nfev, E)
 
 
-def _omega_of(run, inertia):
-    def omega(p):
+def _omega_of(run: _Run, inertia: Union[ConstantInertia, TableInertia, _ConstantInertia]
+             ) -> Callable[..., Any]:
+    def omega(p: np.ndarray) -> np.ndarray:
         return np.sqrt(np.maximum(2.0 * run.E(p) / inertia(p)[0], 0.0))
     return omega
 
 
-def _motion_from_run(run, inertia, moment, phi, method, rtol, atol):
+def _motion_from_run(run: _Run, inertia: Union[ConstantInertia, TableInertia, _ConstantInertia],
+                     moment: MomentModel, phi: np.ndarray, method: str, rtol: float, atol: float
+                    ) -> Motion:
     omega_at = _omega_of(run, inertia)
     breaks = np.unique(np.concatenate((run.steps, phi)))
     t_b = _time(omega_at, breaks)
@@ -915,7 +937,8 @@ def _motion_from_run(run, inertia, moment, phi, method, rtol, atol):
                   nfev=run.nfev, rtol=rtol, atol=atol)
 
 
-def _book(inertia, moment, phi0, omega0, phi_end, step):
+def _book(inertia: Union[TableInertia, _ConstantInertia], moment: MomentModel, phi0: float,
+          omega0: float, phi_end: float, step: float) -> Tuple[Any, ...]:
     """The book's explicit scheme (eqs 6-22, 6-23) on the grid ``phi0 + k·Δφ``.
 
     ``ω_{i+1} = Me(φ_i, ω_i) Δφ / (J_i ω_i) + (3J_i − J_{i+1}) ω_i / (2J_i)``; the step is
@@ -945,7 +968,8 @@ def _book(inertia, moment, phi0, omega0, phi_end, step):
     return phi, omega, np.asarray(dJ, float) * np.ones_like(phi), J, h, n
 
 
-def _book_motion(inertia, moment, phi0, omega0, phi_end, step):
+def _book_motion(inertia: Union[TableInertia, _ConstantInertia], moment: MomentModel, phi0: float,
+                 omega0: float, phi_end: float, step: float) -> Motion:
     phi, omega, dJ, J, h, n = _book(inertia, moment, phi0, omega0, phi_end, step)
     Me = moment(phi, omega)
     # eq 6-14 with ω linear over each step: Δt = Δφ ln(ω_{i+1}/ω_i)/(ω_{i+1} − ω_i)
@@ -959,15 +983,17 @@ def _book_motion(inertia, moment, phi0, omega0, phi_end, step):
                   dJe=dJ, Me=np.asarray(Me, float), method="book", nfev=n, step=h)
 
 
-def _check_method(method, step):
+def _check_method(method: str, step: Optional[float]) -> None:
     if method not in METHODS:
         raise ValueError(f"unknown method {method!r}")
     if method == "book" and not (step is not None and step > 0):
         raise ValueError("the book's scheme needs a positive step")
 
 
-def integrate(inertia, moment, phi0, omega0, phi_end, *, method="DOP853", rtol=1e-10,
-              atol=1e-12, step=None, points=None):
+def integrate(inertia: Union[ConstantInertia, TableInertia, float], moment: MomentModel,
+              phi0: float, omega0: float, phi_end: float, *, method: str = "DOP853",
+              rtol: float = 1e-10, atol: float = 1e-12, step: Optional[float] = None,
+              points: Optional[int] = None) -> Motion:
     """The motion under ``Me(φ, ω)`` with ``Je(φ)`` from ``phi0`` to ``phi_end`` (eq 6-21).
 
     ``Je ω dω/dφ + ½ dJe ω² = Me(φ, ω)`` is integrated in φ as the energy differential
@@ -1034,7 +1060,7 @@ def integrate(inertia, moment, phi0, omega0, phi_end, *, method="DOP853", rtol=1
 # --------------------------------------------------------------------------- steady state
 
 
-def cycle(*periods):
+def cycle(*periods: Any) -> float:
     """The cycle of models of these periods [rad] (None: constant): the longest, which
     every other must divide (2π and 4π: 4π, a four-stroke engine); 2π when none varies.
 
@@ -1055,7 +1081,7 @@ def cycle(*periods):
     return T
 
 
-def _period(inertia, moment):
+def _period(inertia: Any, moment: MomentModel) -> float:
     if getattr(inertia, "period", None) is None and not getattr(inertia, "constant", False):
         raise ValueError("the steady state needs a periodic or constant inertia")
     if moment.depends_on_phi and moment.period is None:
@@ -1063,7 +1089,7 @@ def _period(inertia, moment):
     return cycle(getattr(inertia, "period", None), moment.period)
 
 
-def _extreme(f, phi, i, sign):
+def _extreme(f: Callable[..., Any], phi: np.ndarray, i: int, sign: float) -> Tuple[float, float]:
     """Refine the grid extreme ``i`` of ``sign·f`` (Brent, bounded, on both neighbours)."""
     from scipy.optimize import minimize_scalar
 
@@ -1076,8 +1102,9 @@ def _extreme(f, phi, i, sign):
     return best_x, sign * best
 
 
-def _summary(motion, omega0, omega_max, omega_min, p_max, p_min, mean, dW, it, res, root,
-             nfev):
+def _summary(motion: Motion, omega0: float, omega_max: float, omega_min: float, p_max: float,
+             p_min: float, mean: float, dW: float, it: int, res: float, root: str, nfev: int
+            ) -> SteadyState:
     avg = 0.5 * (omega_max + omega_min)
     return SteadyState(motion=motion, omega0=float(omega0), omega_max=float(omega_max),
                        omega_min=float(omega_min), phi_at_max=float(p_max),
@@ -1087,7 +1114,9 @@ def _summary(motion, omega0, omega_max, omega_min, p_max, p_min, mean, dW, it, r
                        iterations=int(it), residual=float(res), root=root, nfev=int(nfev))
 
 
-def _steady_energy(inertia, moment, phi0, T, omega_mean, tol, max_iter, points):
+def _steady_energy(inertia: Union[ConstantInertia, ZeroInertia, _ConstantInertia],
+                   moment: MomentModel, phi0: float, T: float, omega_mean: float, tol: float,
+                   max_iter: int, points: int) -> SteadyState:
     """Me(φ) only: every ω0 is periodic when the work per period vanishes; pick the mean."""
     from scipy.optimize import brentq
 
@@ -1107,7 +1136,7 @@ def _steady_energy(inertia, moment, phi0, T, omega_mean, tol, max_iter, points):
     # the lowest ω0 that does not stall: 2E0 >= max(−2W)
     w_low = math.sqrt(max(0.0, 2.0 * float(np.max(-W_x))) / Je0) if np.max(-W_x) > 0 else 0.0
 
-    def mean_of(w0):
+    def mean_of(w0: float) -> float:
         return float(np.dot(w, np.sqrt(np.maximum(Je0 * w0 * w0 + 2 * W_x, 0) / Je_x))) / T
 
     if not omega_mean > mean_of(w_low):
@@ -1123,11 +1152,11 @@ def _steady_energy(inertia, moment, phi0, T, omega_mean, tol, max_iter, points):
         raise ConvergenceError("the speed of the given mean was not found")
     m = energy_solution(inertia, moment, phi0, w0, phi)
 
-    def omega_f(p):
+    def omega_f(p: np.ndarray) -> np.ndarray:
         return np.sqrt(np.maximum((Je0 * w0 * w0 + 2 * moment.energy(phi0, p))
                                   / inertia(p)[0], 0.0))
 
-    def E_f(p):
+    def E_f(p: np.ndarray) -> np.ndarray:
         return moment.energy(phi0, p)
 
     imax, imin = int(np.argmax(m.omega)), int(np.argmin(m.omega))
@@ -1142,8 +1171,10 @@ def _steady_energy(inertia, moment, phi0, T, omega_mean, tol, max_iter, points):
                     res, "mean", 0)
 
 
-def steady_state(inertia, moment, *, omega_guess, method="DOP853", rtol=1e-10, atol=1e-12,
-                 step=None, root="shooting", tol=1e-12, max_iter=200, points=361, phi0=0.0):
+def steady_state(inertia: Any, moment: MomentModel, *, omega_guess: float, method: str = "DOP853",
+                 rtol: float = 1e-10, atol: float = 1e-12, step: Optional[float] = None,
+                 root: str = "shooting", tol: float = 1e-12, max_iter: int = 200,
+                 points: int = 361, phi0: float = 0.0) -> SteadyState:
     """The periodic motion of the stable-running stage and its speed fluctuation (例 6-4).
 
     The period map ``ω0 ↦ ω(φ0 + 2π)`` of :func:`integrate` has a fixed point ω0:
@@ -1248,13 +1279,15 @@ class _PeriodMap:
     integrated, ``evaluations`` the moment evaluations they cost, ``history`` the
     starts in order."""
 
-    def __init__(self, inertia, moment, phi0, T, method, rtol, atol, step):
+    def __init__(self, inertia: Union[ConstantInertia, TableInertia], moment: MomentModel,
+                 phi0: float, T: float, method: str, rtol: float, atol: float,
+                 step: Optional[float]) -> None:
         self.inertia, self.moment, self.phi0, self.T = inertia, moment, phi0, T
         self.method, self.rtol, self.atol, self.step = method, rtol, atol, step
         self.cache, self.history = {}, []
         self.calls = self.evaluations = 0
 
-    def advance(self, w0):
+    def advance(self, w0: float) -> float:
         """ω at the period end (``None`` on a stall)."""
         if w0 in self.cache:
             return self.cache[w0][0]
@@ -1278,13 +1311,14 @@ class _PeriodMap:
             self.cache[w0] = (None, None)
         return self.cache[w0][0]
 
-    def F(self, w0):
+    def F(self, w0: float) -> float:
         """``ω(φ0 + T) − ω0`` (+∞ on a stall: the start needs more speed)."""
         w1 = self.advance(w0)
         return math.inf if w1 is None else w1 - w0
 
 
-def _repeat_root(pm, g, tol, max_iter):
+def _repeat_root(pm: _PeriodMap, g: float, tol: float, max_iter: int
+                ) -> Optional[Tuple[float, int]]:
     """The book's loop: each period from the last one's end speed until ``|Δω| < tol``:
     ``(ω0, periods)``."""
     w, it = g, 0
@@ -1302,7 +1336,7 @@ def _repeat_root(pm, g, tol, max_iter):
         w = w1
 
 
-def _shooting_root(pm, g, tol, max_iter):
+def _shooting_root(pm: _PeriodMap, g: float, tol: float, max_iter: int) -> Tuple[float, int]:
     """brentq on the period map's fixed point, bracketed from ``g`` and its image:
     ``(ω0, periods integrated)``."""
     from scipy.optimize import brentq
@@ -1330,7 +1364,8 @@ def _shooting_root(pm, g, tol, max_iter):
     return w0, pm.calls
 
 
-def _bracket(F, g, f_g, max_iter):
+def _bracket(F: Callable[..., Any], g: float, f_g: float, max_iter: int
+            ) -> Optional[Tuple[Tuple[float, float], Tuple[float, float]]]:
     """Two speeds where ``F`` changes sign, from ``g`` and its image ``g + F(g)``."""
     a, fa = g, f_g
     if math.isinf(f_g):  # the guess stalls: go up
@@ -1354,7 +1389,7 @@ def _bracket(F, g, f_g, max_iter):
 # --------------------------------------------------------------------------- flywheel
 
 
-def flywheel_approx(dW_max, omega_m, delta, Je=0.0):
+def flywheel_approx(dW_max: float, omega_m: float, delta: float, Je: float = 0.0) -> float:
     """The flywheel inertia of the constant-Je design formula (eqs 6-29, 6-30).
 
     ``J_F = ΔWmax / (ωm² [δ]) − Je`` (eq 6-29; ``Je = 0`` gives eq 6-30).
@@ -1391,9 +1426,11 @@ def flywheel_approx(dW_max, omega_m, delta, Je=0.0):
     return total - Je
 
 
-def flywheel_exact(inertia, moment, delta, *, omega_guess, method="DOP853", rtol=1e-10,
-                   atol=1e-12, step=None, mean="integral", tol=1e-9, max_iter=100,
-                   points=361, swing=None):
+def flywheel_exact(inertia: Any, moment: Any, delta: float, *, omega_guess: float,
+                   method: str = "DOP853", rtol: float = 1e-10, atol: float = 1e-12,
+                   step: Optional[float] = None, mean: str = "integral", tol: float = 1e-9,
+                   max_iter: int = 100, points: int = 361,
+                   swing: Optional[Tuple[float, float, float]] = None) -> float:
     """The flywheel ``J_F`` whose steady state with the variable Je meets [δ].
 
     Solves ``δ(J_F) = [δ]`` where ``δ(J_F)`` is the coefficient of fluctuation (eq 6-25) of
@@ -1442,31 +1479,59 @@ def flywheel_exact(inertia, moment, delta, *, omega_guess, method="DOP853", rtol
     target = float(delta)
     if not target > 0:
         raise ValueError("[δ] must be positive")
-    guess = [float(omega_guess)]
-    fixed_mean = not moment.depends_on_omega
+    run = _FlywheelRun(inertia, moment, target, float(omega_guess), mean, swing is not None,
+                       dict(method=method, rtol=rtol, atol=atol, step=step, points=points))
+    J1, h0 = _first_estimate(run, swing)
+    return _secant_flywheel(run.h, h0, J1, tol, max_iter)
 
-    def ss(JF):
-        s = steady_state(inertia.plus(JF) if JF else inertia, moment,
-                         omega_guess=guess[0], method=method, rtol=rtol, atol=atol, step=step,
-                         points=points)
-        if not fixed_mean:
-            guess[0] = s.omega0
+
+class _FlywheelRun:
+    """The steady states of :func:`flywheel_exact`'s machine with a trial flywheel ``J_F``
+    (the mean-speed guess carried from one to the next when the moment depends on ω)."""
+
+    def __init__(self, inertia: Any, moment: Any, target: float, guess: float, mean: str,
+                 has_swing: bool, options: Dict[str, Any]) -> None:
+        self.inertia, self.moment, self.target = inertia, moment, target
+        self.guess, self.mean, self.options = guess, mean, options
+        self.fixed_mean = not moment.depends_on_omega
+        #: the errors that mean "cannot run at that mean speed" (caught only with a swing)
+        self.cannot: Tuple[type, ...] = (DescribedError,) if has_swing else ()
+
+    def ss(self, JF: float) -> Any:
+        s = steady_state(self.inertia.plus(JF) if JF else self.inertia, self.moment,
+                         omega_guess=self.guess, **self.options)
+        if not self.fixed_mean:
+            self.guess = s.omega0
         return s
 
-    def d_of(s):
-        return s.delta if mean == "integral" else s.delta_avg
+    def d_of(self, s: Any) -> float:
+        return s.delta if self.mean == "integral" else s.delta_avg
 
-    cannot = (DescribedError,) if swing is not None else ()
+    def h(self, JF: float) -> float:
+        """``1/[δ] − 1/δ(J_F)``: δ ≈ ΔW/(ωm²(J_F + Je)) makes it nearly linear in J_F."""
+        try:
+            return 1.0 / self.target - 1.0 / self.d_of(self.ss(JF))
+        except self.cannot as e:     # still too light to run at that mean: more J_F
+            if e.reason not in ("no_steady_state", "stall"):
+                raise
+            return 1.0 / self.target
+
+
+def _first_estimate(run: _FlywheelRun, swing: Optional[Tuple[float, float, float]]
+                    ) -> Tuple[float, float]:
+    """The first trial ``J_F`` (eq 6-29) and ``h(0)``, from the machine's own steady state
+    or, when it has none, from ``swing``."""
+    inertia, target, mean = run.inertia, run.target, run.mean
     grid = np.linspace(0.0, TWO_PI, 361)
     s0 = None
     if float(np.max(inertia(grid)[0])) > 0.0:
         try:
-            s0 = ss(0.0)
-        except cannot as e:     # the machine cannot run without its flywheel
+            s0 = run.ss(0.0)
+        except run.cannot as e:     # the machine cannot run without its flywheel
             if e.reason not in ("no_steady_state", "stall"):
                 raise
     if s0 is not None:
-        d0 = d_of(s0)
+        d0 = run.d_of(s0)
         if d0 <= target:
             raise DescribedError("the machine needs no flywheel", reason="no_flywheel_needed",
                                  delta=d0)
@@ -1475,20 +1540,18 @@ def flywheel_exact(inertia, moment, delta, *, omega_guess, method="DOP853", rtol
         J1 = max(s0.dW_max / (wm ** 2 * target) - Jm, 1e-6 * Jm)
         h0 = 1.0 / target - 1.0 / d0
     else:
+        if swing is None:   # Je = 0 everywhere and no swing given
+            raise TypeError("a machine without inertia needs the swing")
         dW, wm, Jm = (float(v) for v in swing)
         J1 = max(dW / (wm ** 2 * target) - Jm, 1e-9 * dW / (wm ** 2 * target))
         h0 = 1.0 / target       # δ(0) unbounded
+    return J1, h0
 
-    def h(JF):  # δ ≈ ΔW/(ωm²(J_F + Je)) makes 1/δ nearly linear in J_F
-        try:
-            return 1.0 / target - 1.0 / d_of(ss(JF))
-        except cannot as e:     # still too light to run at that mean: more J_F
-            if e.reason not in ("no_steady_state", "stall"):
-                raise
-            return 1.0 / target
 
-    # safeguarded secant on h (nearly linear): a root bracket [lo, hi] once h changes sign,
-    # bisection whenever the secant leaves it
+def _secant_flywheel(h: Callable[[float], float], h0: float, J1: float, tol: float,
+                     max_iter: int) -> float:
+    """The root of ``h`` (``h(0) = h0 > 0``) from ``J1``: a safeguarded secant, with a root
+    bracket [lo, hi] once h changes sign and bisection whenever the secant leaves it."""
     lo, h_lo = 0.0, h0
     hi = None
     a, h_a, b = 0.0, h_lo, J1
@@ -1515,7 +1578,7 @@ def flywheel_exact(inertia, moment, delta, *, omega_guess, method="DOP853", rtol
     raise ConvergenceError("the flywheel for [δ] was not found")
 
 
-def rim(J, radius):
+def rim(J: float, radius: float) -> float:
     """Mass of a thin-rim flywheel ``m = J/R²`` [kg] (J [kg·m²], mean rim radius R [m])."""
     J, radius = float(J), float(radius)
     if not (J >= 0 and radius > 0):
@@ -1523,7 +1586,7 @@ def rim(J, radius):
     return J / radius ** 2
 
 
-def disc(J, radius):
+def disc(J: float, radius: float) -> float:
     """Mass of a solid-disc flywheel ``m = 2J/R²`` [kg] (J [kg·m²], outer radius R [m])."""
     J, radius = float(J), float(radius)
     if not (J >= 0 and radius > 0):
@@ -1531,7 +1594,7 @@ def disc(J, radius):
     return 2.0 * J / radius ** 2
 
 
-def width(mass, density, r_outer, r_inner=0.0):
+def width(mass: float, density: float, r_outer: float, r_inner: float = 0.0) -> float:
     """Axial width ``b = m / (ρ π (Ro² − Ri²))`` [m] of a disc or rim of that mass.
 
     Parameters

@@ -8,7 +8,7 @@
 
 from __future__ import annotations
 
-from typing import Any, Optional
+from typing import TYPE_CHECKING, Any, Dict, List, Optional, Tuple, Union
 
 import numpy as np
 
@@ -17,6 +17,17 @@ from mechcli.core.flywheel import diagram as dg
 from mechcli.core.flywheel import equivalent as eq
 from mechcli.core.flywheel import motion as mo
 from mechcli.core.records import record
+
+if TYPE_CHECKING:
+    from mechcli.core.flywheel.equivalent import (
+        ConstantInertia,
+        LinkageInertia,
+        TableInertia,
+        ZeroInertia,
+    )
+    from mechcli.core.flywheel.motion import MomentModel
+    from mechcli.core.linkage.engine import Linkage
+    from mechcli.core.linkage.force_model import Topology
 
 #: the grid the loads of a linkage are sampled on for the moment table [points per turn]
 LOAD_SAMPLES = 3600
@@ -78,7 +89,8 @@ class FlywheelSolution:
     motion_with_J_F: bool = False       # the motion reported carries the sized J_F
 
 
-def build_inertia(part, linkage=None, bodies=None, followers=None):
+def build_inertia(part: Any, linkage: Optional[Linkage] = None, bodies: Any = None,
+                  followers: Optional[Dict[Any, Any]] = None) -> Any:
     """The inertia model of the spec's ``inertia`` part."""
     if part.kind == "linkage":
         return eq.LinkageInertia(linkage, bodies, followers=followers or None,
@@ -93,7 +105,8 @@ def build_inertia(part, linkage=None, bodies=None, followers=None):
     return eq.ConstantInertia(part.J)
 
 
-def _repeat_table(phi, M, period, cycle):
+def _repeat_table(phi: np.ndarray, M: np.ndarray, period: float, cycle: float
+                 ) -> Tuple[np.ndarray, np.ndarray]:
     """A table of ``period`` repeated over ``cycle`` (a whole multiple): the same periodic
     interpolant (linear, cubic spline, Simpson parabolas) on the longer cycle."""
     xp, fp = mo._closed_table(phi, M, period)
@@ -105,7 +118,8 @@ def _repeat_table(phi, M, period, cycle):
             np.append(np.tile(fp[:-1], m), fp[0]))
 
 
-def _tables(part, linkage_moment, cycle, only=None):
+def _tables(part: Any, linkage_moment: Optional[Any], cycle: float, only: Optional[str] = None
+           ) -> Optional[Tuple[np.ndarray, np.ndarray, str]]:
     """The φ-tables of the moment summed into one (phi, M, method) over ``cycle``.
     ``only``: "table" or "resisting_table" alone (no loads), for the work of one term."""
     tabs = []
@@ -134,7 +148,8 @@ def _tables(part, linkage_moment, cycle, only=None):
     return grid, total, "linear"
 
 
-def _harmonic(h, cycle):
+def _harmonic(h: Tuple[float, Tuple[float], Tuple[Any, ...], float], cycle: float
+             ) -> Tuple[float, Tuple[float], Tuple[Any, ...]]:
     """``(a0, a, b)`` of a series of period ``h[3]`` as harmonics of the cycle."""
     a0, a, b, period = h
     m = int(round(cycle / period))
@@ -148,7 +163,7 @@ def _harmonic(h, cycle):
     return (a0,) + tuple(out)
 
 
-def _segments(part, cycle):
+def _segments(part: Any, cycle: float) -> Optional[List[Tuple[float, float, float, float]]]:
     """The segments over the cycle: repeated when they cover their period end to end."""
     segs = list(part.segments)
     if not segs:
@@ -162,7 +177,7 @@ def _segments(part, cycle):
     return [(a + k * T, b + k * T, c, d) for k in range(m) for a, b, c, d in segs]
 
 
-def moment_cycle(part):
+def moment_cycle(part: Any) -> float:
     """The period [rad] of the moment's φ-terms: the longest of theirs (the spec checks
     that the others divide it); 2π for the loads of a linkage."""
     periods = [2 * np.pi] if part.loads else []
@@ -176,8 +191,10 @@ def moment_cycle(part):
     return mo.cycle(*periods)
 
 
-def build_moment(part, linkage=None, topo=None, bodies=None, gravity=None, loads=(),
-                 followers=None, shift=0.0):
+def build_moment(part: Any, linkage: Optional[Linkage] = None, topo: Optional[Topology] = None,
+                 bodies: Any = None, gravity: Optional[Tuple[float, float]] = None,
+                 loads: Tuple[Any, ...] = (), followers: Optional[Dict[Any, Any]] = None,
+                 shift: float = 0.0) -> Tuple[MomentModel, None]:
     """The moment model of the spec's ``moment`` part (and the linkage's loads), over its
     cycle; ``shift`` [N m] is added to the constant (the balancing mean)."""
     cycle = moment_cycle(part)
@@ -208,7 +225,8 @@ def build_moment(part, linkage=None, topo=None, bodies=None, gravity=None, loads
     return model, lm
 
 
-def _term_works(part, lm, cycle, omega_m):
+def _term_works(part: Any, lm: Optional[Any], cycle: float, omega_m: float
+                ) -> Optional[List[float]]:
     """The work over a cycle of each term of the moment [J] (None for a motor line without
     a mean speed): the driving ones positive, the resisting ones negative."""
     T = cycle
@@ -235,7 +253,7 @@ def _term_works(part, lm, cycle, omega_m):
     return works
 
 
-def _with_band_limits(linkage, loads, followers):
+def _with_band_limits(linkage: Any, loads: Any, followers: Any):
     """Loads acting over a band of a slide's stroke (例 2-4's cutting force) get the
     stroke's absolute limits, refined on the exact solution as ``force`` does."""
     if not any(p.band is not None for p in loads):
@@ -254,7 +272,7 @@ def _with_band_limits(linkage, loads, followers):
     return out
 
 
-def _switches(linkage, loads, phi, followers):
+def _switches(linkage: Any, loads: Any, phi: Any, followers: Any):
     """The sample angles at which a load's program switches (its window, velocity sign or
     stroke band): where the loads' Me may jump."""
     from mechcli.core.linkage.kinematics import Sweep
@@ -272,7 +290,7 @@ def _switches(linkage, loads, phi, followers):
     return np.concatenate(out) if out else np.empty(0)
 
 
-def _auto(kind, inertia, moment, end, omega0):
+def _auto(kind: str, inertia: Any, moment: MomentModel, end: str, omega0: float) -> str:
     """The method for the problem: exact where a closed form or the energy integral
     applies, else DOP853 -- or Radau when the motor's damping b makes the equation stiff
     (b/(Je ω) per radian large: a steep motor line on a light machine)."""
@@ -291,7 +309,7 @@ def _auto(kind, inertia, moment, end, omega0):
 STIFF = 50.0
 
 
-def _swing_at_mean(moment, phi0, omega_m, period, n=7201):
+def _swing_at_mean(moment: Any, phi0: Any, omega_m: Any, period: Any, n: int = 7201):
     """ΔWmax of eq. 6-29 as taught: the swing of the work of Me(φ, ωm) at the mean speed
     over a cycle (the φ-part exactly, minus b ωm φ)."""
     phi = np.linspace(phi0, phi0 + period, n)
@@ -299,7 +317,7 @@ def _swing_at_mean(moment, phi0, omega_m, period, n=7201):
     return float(np.max(W) - np.min(W))
 
 
-def balance_mean(moment, phi0, period=2 * np.pi):
+def balance_mean(moment: MomentModel, phi0: float, period: float = 2 * np.pi) -> Optional[float]:
     """The integral mean speed a steady state must have when Me is linear in ω with b > 0:
     the work over a cycle vanishes, so ωm = (1/T)∫(Me + bω) dφ / b; None otherwise."""
     if not (moment.depends_on_omega and moment.b > 0):
@@ -307,7 +325,7 @@ def balance_mean(moment, phi0, period=2 * np.pi):
     return float(moment.energy(phi0, phi0 + period)) / (period * moment.b)
 
 
-def _shape(fly, J_F):
+def _shape(fly: Any, J_F: float) -> Any:
     """The mass and width of a rim (mean radius, radial thickness) or a solid disc, or
     the mass J/k² for a radius of gyration k; {} without a shape."""
     if fly.k:
@@ -327,7 +345,7 @@ def _shape(fly, J_F):
 speeds_from_swing = dg.speeds_from_swing
 
 
-def _balanced(spec, cycle):
+def _balanced(spec: Any, cycle: float) -> Any:
     """The moment part with its "mean" term resolved: (part, shift [N m], mean term)."""
     part = spec.moment
     if part is None or part.mean is None:
@@ -339,7 +357,8 @@ def _balanced(spec, cycle):
     return -mean, (part.mean, value)
 
 
-def _figures(spec, moment, lm, cycle, phi0, omega_m, sol):
+def _figures(spec: Any, moment: Optional[MomentModel], lm: Optional[Any], cycle: float,
+             phi0: float, omega_m: Optional[float], sol: Any) -> None:
     """The numbers of a cycle textbooks print: the loop table, the work per cycle (the mean
     moment follows), and with Simpson tables ΔWmax with them read linearly."""
     if moment is None or moment.period is None or omega_m is None:
@@ -361,7 +380,7 @@ def _figures(spec, moment, lm, cycle, phi0, omega_m, sol):
     if any(t[4] == "simpson" for t in tabs):
         import dataclasses
 
-        def linear(t):
+        def linear(t: Optional[Tuple[Any, ...]]) -> Optional[Tuple[Any, ...]]:
             return None if t is None else (t[0], t[1], "linear", t[3], "trapezoid")
         alt = dataclasses.replace(spec.moment, table=linear(spec.moment.table),
                                   resisting_table=linear(spec.moment.resisting_table))
@@ -376,7 +395,7 @@ def _figures(spec, moment, lm, cycle, phi0, omega_m, sol):
         sol["dW_trapezoid"] = dg.energy_loops(m2, phi0, cycle, omega_m).dW_max
 
 
-def solve_flywheel(spec):
+def solve_flywheel(spec: Any) -> FlywheelSolution:
     """Build the models of a flywheel spec and solve its motion.
 
     Raises
@@ -459,7 +478,9 @@ def solve_flywheel(spec):
                             **sol)
 
 
-def _model(spec, inertia, zero, moment, lm, cycle, sol):
+def _model(spec: Any, inertia: Union[ConstantInertia, LinkageInertia, ZeroInertia], zero: bool,
+           moment: Optional[MomentModel], lm: Optional[Any], cycle: float, sol: Any
+          ) -> FlywheelSolution:
     """No [motion]: Je (and Me) over one cycle; the energy-swing forms (eqs 6-28 … 6-30)."""
     ms, fly = spec.motion, spec.flywheel
     phi = np.linspace(ms.phi0, ms.phi0 + cycle, ms.points)
@@ -497,7 +518,9 @@ def _model(spec, inertia, zero, moment, lm, cycle, sol):
                             None, "none", J_F=J_F, swing=swing, **sol)
 
 
-def _steady(spec, inertia, zero, moment, lm, cycle, method, kw, sol):
+def _steady(spec: Any, inertia: Union[ConstantInertia, TableInertia, ZeroInertia], zero: bool,
+            moment: MomentModel, lm: Optional[Any], cycle: float, method: str,
+            kw: Dict[str, Optional[float]], sol: Any) -> FlywheelSolution:
     """The periodic steady state; with ``delta`` the flywheel sized for it exactly (and by
     eq 6-29).  A machine that cannot run at its mean speed without the flywheel (Je = 0,
     or too light for the swing) reports the motion with the sized flywheel."""

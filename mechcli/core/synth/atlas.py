@@ -34,7 +34,7 @@ from __future__ import annotations
 
 import functools
 import math
-from typing import Optional, Tuple
+from typing import TYPE_CHECKING, Any, Dict, Optional, Tuple
 
 import numpy as np
 
@@ -43,6 +43,9 @@ from mechcli.core.grashof.chain import TYPES, length_ranges
 from mechcli.core.grashof.fourbar import classify_fourbar
 from mechcli.core.linkage import RRR, Crank, DriverMotion, Ground, Linkage, PointOnLink, solve
 from mechcli.core.records import record
+
+if TYPE_CHECKING:
+    from mechcli.core.types import FloatOrArray
 
 #: the manifest's format name and version
 FORMAT = "mechcli-hrones-nelson-atlas"
@@ -79,7 +82,8 @@ _REGION_OF = {"crank_rocker": CRANK_ROCKER, "double_crank": DOUBLE_CRANK,
 # ---------------------------------------------------------------------------
 # the linkage and a page
 # ---------------------------------------------------------------------------
-def atlas_linkage(A, B, C, gx, gy, branch=1) -> Linkage:
+def atlas_linkage(A: FloatOrArray, B: FloatOrArray, C: FloatOrArray, gx: FloatOrArray,
+                  gy: FloatOrArray, branch: int = 1) -> Linkage:
     """The Hrones–Nelson four-bar on the engine, coupler point "P" at (gx, gy).
 
     Crank pivot "A" = (0, 0), follower pivot "D" = (C, 0); crank 1 (link 1,
@@ -94,12 +98,12 @@ def atlas_linkage(A, B, C, gx, gy, branch=1) -> Linkage:
                        PointOnLink("P", 2, "B", gx, gy)))
 
 
-def _lengths(A, B, C):
+def _lengths(A: FloatOrArray, B: FloatOrArray, C: FloatOrArray) -> np.ndarray:
     A, B, C = np.broadcast_arrays(*(np.asarray(v, dtype=float).reshape(-1) for v in (A, B, C)))
     return np.stack([np.ones_like(A), A, B, C], axis=1)
 
 
-def crank_rocker_mask(A, B, C):
+def crank_rocker_mask(A: FloatOrArray, B: FloatOrArray, C: FloatOrArray) -> np.ndarray:
     """True where the four-bar (1, A, B, C) is a crank-rocker whose crank is link 1
     (not a change point): the atlas keeps exactly these."""
     L = _lengths(A, B, C)
@@ -107,13 +111,13 @@ def crank_rocker_mask(A, B, C):
     return (cls.code == TYPES.index("crank_rocker")) & cls.crank_mask[:, 0]
 
 
-def _kind_of(A, B, C):
+def _kind_of(A: float, B: float, C: float) -> Tuple[str, bool]:
     L = _lengths(A, B, C)
     cls = classify_fourbar(L, frame=4)
     return TYPES[int(cls.code[0])].replace("_", "-"), bool(cls.crank_mask[0, 0])
 
 
-def chain_kind(A, B, C):
+def chain_kind(A: Any, B: Any, C: Any):
     """(Grashof type of the chain with frame C, e.g. "crank-rocker"; whether link 1
     turns fully)."""
     return _kind_of(float(A), float(B), float(C))
@@ -156,7 +160,7 @@ class AtlasPage:
     reason: Optional[str]
 
 
-def atlas_page(A, B, C, gx, gy, step=STEP) -> AtlasPage:
+def atlas_page(A: float, B: float, C: float, gx: Any, gy: Any, step: float = STEP) -> AtlasPage:
     """The coupler curves of the points (gx, gy) of one linkage (one engine call).
 
     A linkage whose crank (link 1) cannot turn a full revolution gives
@@ -218,7 +222,7 @@ class TypeChart:
     crank: np.ndarray
 
 
-def _axis(r, points):
+def _axis(r: Any, points: int) -> np.ndarray:
     r = tuple(r)
     if len(r) == 3:
         return np.linspace(float(r[0]), float(r[1]), int(r[2]))
@@ -227,7 +231,7 @@ def _axis(r, points):
     return np.asarray(r, dtype=float)
 
 
-def type_chart(A, B_range, C_range, points=201) -> TypeChart:
+def type_chart(A: Any, B_range: Any, C_range: Any, points: int = 201) -> TypeChart:
     """Classify (1, A, B, C) over a grid of B (columns) and C (rows), vectorized.
 
     ``B_range``/``C_range``: (lo, hi) with ``points`` values, (lo, hi, count),
@@ -248,7 +252,7 @@ def type_chart(A, B_range, C_range, points=201) -> TypeChart:
     return TypeChart(float(As[0]) if scalar else As, Bs, Cs, region, crank)
 
 
-def admissible_ranges(A, B, C) -> dict:
+def admissible_ranges(A: float, B: float, C: float) -> dict:
     """Each ratio's interval keeping a crank-rocker with crank 1, the other two fixed.
 
     ``{"A": (lo, hi), "B": (lo, hi), "C": (lo, hi)}`` from
@@ -275,11 +279,11 @@ def admissible_ranges(A, B, C) -> dict:
 # ---------------------------------------------------------------------------
 # descriptors
 # ---------------------------------------------------------------------------
-def _ks(harmonics):
+def _ks(harmonics: int) -> np.ndarray:
     return np.concatenate([np.arange(1, harmonics + 1), -np.arange(1, harmonics + 1)])
 
 
-def polyline_coefficients(x, y, harmonics=16):
+def polyline_coefficients(x: np.ndarray, y: np.ndarray, harmonics: int = 16) -> Any:
     """Exact Fourier coefficients of closed polylines parametrized by arc length.
 
     ``x, y`` (M, N) or (N,): the vertices (the last joined to the first).
@@ -337,7 +341,8 @@ def polyline_coefficients(x, y, harmonics=16):
     return c0, c, L
 
 
-def _resampled_coefficients(x, y, harmonics, samples):
+def _resampled_coefficients(x: np.ndarray, y: np.ndarray, harmonics: int, samples: int
+                           ) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
     z = np.atleast_2d(np.asarray(x, dtype=float) + 1j * np.asarray(y, dtype=float))
     M, N = z.shape
     zc = np.concatenate([z, z[:, :1]], axis=1)
@@ -358,7 +363,7 @@ def _resampled_coefficients(x, y, harmonics, samples):
     return F[:, 0], c, L
 
 
-def normalize(c, harmonics=16):
+def normalize(c: np.ndarray, harmonics: int = 16) -> np.ndarray:
     """Normalized coefficients (M, 2H) complex of raw ones (see :func:`descriptors`)."""
     H = int(harmonics)
     c = np.atleast_2d(np.asarray(c, dtype=complex))
@@ -380,11 +385,12 @@ def normalize(c, harmonics=16):
     return np.where((s < 0)[:, None], c * sign[None, :], c)
 
 
-def _real(c):
+def _real(c: np.ndarray) -> np.ndarray:
     return np.concatenate([c.real, c.imag], axis=1).astype(np.float32)
 
 
-def descriptors(x, y, harmonics=16, samples=128, exact=True):
+def descriptors(x: np.ndarray, y: np.ndarray, harmonics: int = 16, samples: int = 128,
+                exact: bool = True) -> np.ndarray:
     """Shape descriptors of closed curves: (M, 4H) float32.
 
     Parameters
@@ -428,7 +434,7 @@ def descriptors(x, y, harmonics=16, samples=128, exact=True):
     return _real(normalize(c, harmonics))
 
 
-def _flip_even(d, harmonics):
+def _flip_even(d: np.ndarray, harmonics: int) -> np.ndarray:
     H = int(harmonics)
     k = _ks(H)
     sign = np.where(k % 2 == 0, -1.0, 1.0).astype(np.float32)
@@ -438,7 +444,7 @@ def _flip_even(d, harmonics):
 # ---------------------------------------------------------------------------
 # building
 # ---------------------------------------------------------------------------
-def _curves(params, step=STEP):
+def _curves(params: np.ndarray, step: float = STEP) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Engine call for a (M, 5) parameter array: (x, y (M, N), ok (M,))."""
     P = np.asarray(params, dtype=float)
     theta = np.arange(POSITIONS) * step if step == STEP else \
@@ -451,7 +457,8 @@ def _curves(params, step=STEP):
     return np.broadcast_to(p.x, shape), np.broadcast_to(p.y, shape), ok
 
 
-def build_chunk(params, harmonics=16):
+def build_chunk(params: np.ndarray, harmonics: int = 16
+               ) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Descriptors of a chunk of parameter rows (one engine call for the chunk).
 
     ``params`` (M, 5): A, B, C, gx, gy.  Only crank-rockers with crank 1 that
@@ -471,7 +478,7 @@ def build_chunk(params, harmonics=16):
     return descriptors(x, y, harmonics), keep.astype(np.float32), ok
 
 
-def ratio_sets(A_range, B_range, C_range):
+def ratio_sets(A_range: Any, B_range: Any, C_range: Any) -> np.ndarray:
     """The crank-rocker (A, B, C) of the ranges' grid, in a fixed order (K, 3)."""
     a, b, c = (_axis(r, 0) for r in (A_range, B_range, C_range))
     AA, BB, CC = np.meshgrid(a, b, c, indexing="ij")
@@ -479,18 +486,19 @@ def ratio_sets(A_range, B_range, C_range):
     return sets[crank_rocker_mask(sets[:, 0], sets[:, 1], sets[:, 2])]
 
 
-def grid_points(grid):
+def grid_points(grid: Any) -> np.ndarray:
     gxv, gyv = (np.asarray(v, dtype=float).reshape(-1) for v in grid)
     GX, GY = np.meshgrid(gxv, gyv, indexing="ij")
     return np.stack([GX.ravel(), GY.ravel()], axis=1)
 
 
 @functools.lru_cache(maxsize=4)
-def _ratio_sets_cached(A_range, B_range, C_range):
+def _ratio_sets_cached(A_range: Tuple[float, float, int], B_range: Tuple[float, float, int],
+                       C_range: Tuple[float, float, int]) -> np.ndarray:
     return ratio_sets(A_range, B_range, C_range)
 
 
-def chunk_params(parameters, start, stop):
+def chunk_params(parameters: Dict[str, Any], start: int, stop: int) -> np.ndarray:
     """The parameter rows start ... stop of a build (the ratio sets are classified once
     per process, not once per chunk)."""
     sets = _ratio_sets_cached(*(tuple(parameters[k]) for k in ("A_range", "B_range",
@@ -523,7 +531,7 @@ class Match:
     row: int = -1
 
 
-def target_points(x, y):
+def target_points(x: Any, y: Any) -> np.ndarray:
     x = np.asarray(x, dtype=float).reshape(-1)
     y = np.asarray(y, dtype=float).reshape(-1)
     if x.shape != y.shape:
@@ -543,14 +551,15 @@ def target_points(x, y):
     return z
 
 
-def queries(z, harmonics):
+def queries(z: np.ndarray, harmonics: int) -> np.ndarray:
     d = descriptors(z.real, z.imag, harmonics)
     r = descriptors(z.real[::-1], z.imag[::-1], harmonics)
     Q = np.concatenate([d, _flip_even(d, harmonics), r, _flip_even(r, harmonics)], axis=0)
     return Q.astype(np.float32)
 
 
-def rank_chunk(desc, params, Q, k):
+def rank_chunk(desc: np.ndarray, params: np.ndarray, Q: np.ndarray, k: int
+              ) -> Tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """The k rows of one chunk nearest any of the queries ``Q`` (q, D): distances
     (float64, exact for the short list), their parameters, which query matched
     (>= 2: the target reversed) and the rows; pure arrays, no file."""
@@ -606,7 +615,9 @@ class Refined:
     message: str = ""
 
 
-def placed_linkage(A, B, C, gx, gy, tx, ty, rotation, scale, branch=1) -> Linkage:
+def placed_linkage(A: FloatOrArray, B: FloatOrArray, C: FloatOrArray, gx: FloatOrArray,
+                   gy: FloatOrArray, tx: FloatOrArray, ty: FloatOrArray, rotation: FloatOrArray,
+                   scale: FloatOrArray, branch: int = 1) -> Linkage:
     """The atlas linkage moved to crank pivot (tx, ty), frame direction
     ``rotation`` and crank length ``scale``; arrays broadcast (a population)."""
     c, s = np.cos(rotation), np.sin(rotation)
@@ -619,7 +630,7 @@ def placed_linkage(A, B, C, gx, gy, tx, ty, rotation, scale, branch=1) -> Linkag
 _MARGIN = 1e-4
 
 
-def _crank_rocker_g(X, gamma_min=0.0):
+def _crank_rocker_g(X: np.ndarray, gamma_min: float = 0.0) -> np.ndarray:
     """The six crank-rocker inequalities (<= 0 met) and, with ``gamma_min`` > 0,
     the angle BCD within [gamma_min, pi - gamma_min] at its extremes (crank along
     the frame: 式 7-12, 7-13), as cosines."""
@@ -645,17 +656,18 @@ class _PathFit:
     size squared (the targets are normalized: centroid 0, RMS radius 1).
     """
 
-    def __init__(self, T, angles, samples, gamma_min=0.0):
+    def __init__(self, T: np.ndarray, angles: Optional[np.ndarray], samples: int,
+                 gamma_min: float = 0.0) -> None:
         self.T = T
         self.angles = angles
         self.gamma_min = float(gamma_min)
         self.q = np.arange(int(samples)) * (2 * math.pi / int(samples))
 
-    def candidates(self, X):
+    def candidates(self, X: np.ndarray) -> Tuple[Linkage, np.ndarray, Dict[Any, Any]]:
         lk = placed_linkage(*(X[:, j:j + 1] for j in range(9)))
         return lk, np.all(np.isfinite(X), axis=1), {}
 
-    def foot(self, X):
+    def foot(self, X: np.ndarray) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Crank angles (M, K) of the targets' feet, the points there, ok (M,)."""
         lk, built, _ = self.candidates(X)
         M, K = X.shape[0], self.T.size
@@ -687,7 +699,8 @@ class _PathFit:
                         ok_b & ok_c)
         return best
 
-    def _newton(self, lk, th, ok):
+    def _newton(self, lk: Linkage, th: np.ndarray, ok: np.ndarray
+               ) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Newton steps on the crank angle from ``th`` (M, K) towards each target's
         foot; ``(theta, points, ok)``."""
         dq = self.q[1] if self.q.size > 1 else math.pi
@@ -705,7 +718,7 @@ class _PathFit:
         p = m.points["P"]
         return th, np.broadcast_to(p.x + 1j * p.y, th.shape), ok & np.all(m.feasible, axis=1)
 
-    def __call__(self, X):
+    def __call__(self, X: np.ndarray) -> Any:   # an optimize.problem.Evaluation
         from mechcli.core.optimize.problem import Evaluation
 
         X = np.atleast_2d(np.asarray(X, dtype=float))
@@ -717,7 +730,8 @@ class _PathFit:
         return Evaluation(np.where(ok, f, 0.0), _crank_rocker_g(X, self.gamma_min), ok)
 
 
-def _initial_placement(match, z, samples=720):
+def _initial_placement(match: Match, z: np.ndarray, samples: int = 720
+                      ) -> Tuple[float, float, float, float]:
     """(tx, ty, rotation, scale) that best lays the match's curve on the targets
     (Fourier coefficients: the best start shift, then the complex factor)."""
     th = np.arange(samples) * (2 * math.pi / samples)
@@ -741,8 +755,9 @@ def _initial_placement(match, z, samples=720):
     return t.real, t.imag, float(np.angle(lam)), float(abs(lam))
 
 
-def refine(match, x, y, angles=None, method="slsqp", samples=360, polish=True, maxiter=200,
-           gamma_min=0.0):
+def refine(match: Match, x: np.ndarray, y: np.ndarray, angles: Optional[np.ndarray] = None,
+           method: str = "slsqp", samples: int = 360, polish: bool = True, maxiter: int = 200,
+           gamma_min: float = 0.0) -> Refined:
     """Refine an atlas match on the real path error, with the linkage's
     placement free.
 
@@ -840,7 +855,7 @@ def refine(match, x, y, angles=None, method="slsqp", samples=360, polish=True, m
                    (X["tx"], X["ty"], X["rotation"], X["scale"]), size, method, message)
 
 
-def _polish(fit, x):
+def _polish(fit: _PathFit, x: np.ndarray) -> Optional[np.ndarray]:
     """Gauss–Newton (trust region) on P(θ_i) - T_i with the θ_i free."""
     from scipy.optimize import least_squares
 
@@ -852,7 +867,7 @@ def _polish(fit, x):
     T = fit.T
     K = T.size
 
-    def points(V):                       # V (M, n [+ K])
+    def points(V: np.ndarray) -> Tuple[np.ndarray, np.ndarray]:   # V (M, n [+ K])
         X = V[:, :n]
         lk = placed_linkage(*(X[:, j:j + 1] for j in range(9)))
         q = (X[:, 7:8] + X[:, 9:10] + fit.angles[None, :]) if timed else V[:, n:]
@@ -860,12 +875,12 @@ def _polish(fit, x):
         p = m.points["P"]
         return np.broadcast_to(p.x + 1j * p.y, q.shape), np.all(m.feasible, axis=1)
 
-    def res(v):
+    def res(v: np.ndarray) -> np.ndarray:
         pz, _ = points(v[None, :])
         r = pz[0] - T
         return np.concatenate([r.real, r.imag])
 
-    def jac(v):
+    def jac(v: np.ndarray) -> np.ndarray:
         h = 1e-7 * np.maximum(np.abs(v), 1.0)
         V = np.repeat(v[None, :], 2 * v.size, axis=0)
         idx = np.arange(v.size)
@@ -904,7 +919,8 @@ class PathCandidate:
     kind: str
 
 
-def path_synthesis(matches, x, y, angles=None, method="slsqp", samples=360, gamma_min=0.0):
+def path_synthesis(matches: Any, x: Any, y: Any, angles: Optional[Any] = None,
+                   method: str = "slsqp", samples: int = 360, gamma_min: float = 0.0):
     """Refine each of the search's ``matches`` on the real path error (see
     :func:`refine`) and measure its transmission angles; the candidates sorted by
     their path error (RMS)."""

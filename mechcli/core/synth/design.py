@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from typing import Mapping, Optional, Tuple
+from typing import TYPE_CHECKING, Any, Dict, Mapping, Optional, Tuple
 
 import numpy as np
 
@@ -19,6 +19,9 @@ from mechcli.core.linkage.elements import RRR, Crank, Ground, PointOnLink
 from mechcli.core.linkage.engine import Linkage
 from mechcli.core.linkage.presets import slider_crank
 from mechcli.core.records import record
+
+if TYPE_CHECKING:
+    pass
 
 Point = Tuple[float, float]
 
@@ -72,7 +75,7 @@ class LinkageDesign:
         return max(abs(float(v)) for k, v in self.lengths.items() if k.startswith("l"))
 
 
-def _xy(p) -> complex:
+def _xy(p: Any) -> complex:
     if isinstance(p, complex):
         return p
     x, y = p
@@ -89,8 +92,13 @@ def branch_of(b: complex, c: complex, d: complex) -> int:
     return 1 if cross >= 0 else -1
 
 
-def four_bar_design(A, D, B1, C1, *, inputs=None, points=None, angles=None,
-                    coupler_point=None, pivots=None, values=None) -> LinkageDesign:
+def four_bar_design(A: Tuple[float, float], D: Tuple[float, float], B1: Any, C1: Any, *,
+                    inputs: Optional[np.ndarray] = None,
+                    points: Optional[Dict[str, np.ndarray]] = None,
+                    angles: Optional[Dict[int, np.ndarray]] = None,
+                    coupler_point: Optional[Tuple[float, float]] = None,
+                    pivots: Optional[Dict[str, Tuple[float, float]]] = None, values: Any = None
+                   ) -> LinkageDesign:
     """A four-bar ABCD from its pivots in position 1.
 
     Parameters
@@ -129,8 +137,10 @@ def four_bar_design(A, D, B1, C1, *, inputs=None, points=None, angles=None,
                          dict(angles or {}), {}, dict(values or {}))
 
 
-def slider_crank_design(l1, l2, e=0.0, *, branch=1, inputs=None, slides=None,
-                        values=None, H=None) -> LinkageDesign:
+def slider_crank_design(l1: float, l2: float, e: float = 0.0, *, branch: int = 1,
+                        inputs: Optional[np.ndarray] = None,
+                        slides: Optional[Dict[str, np.ndarray]] = None, values: Any = None,
+                        H: Optional[float] = None) -> LinkageDesign:
     """An offset slider-crank (图 1-4): A = (0, 0), guide y = e, slide ``s3`` = x of C.
 
     Parameters

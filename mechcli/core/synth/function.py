@@ -20,12 +20,18 @@ the slider pin.  SI units and radians.
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING, Any, Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
 
 from mechcli.core.errors import DescribedError
 from mechcli.core.linkage.engine import DriverMotion, solve
+from mechcli.core.records import record
 from mechcli.core.synth.design import LinkageDesign, branch_of, four_bar_design, slider_crank_design
+
+if TYPE_CHECKING:
+    from mechcli.core.synth.functions import Function
+    from mechcli.core.types import FloatOrArray
 
 #: a linear system whose smallest singular value is below this fraction of its
 #: largest does not determine the linkage (repeated or dependent points)
@@ -44,26 +50,26 @@ METHODS = ("precision", "chebyshev", "least_squares")
 LEAST_SQUARES_POINTS = 11
 
 
-def _wrap(a):
+def _wrap(a: FloatOrArray) -> FloatOrArray:
     """Angles wrapped to (−π, π]."""
     return np.angle(np.exp(1j * np.asarray(a, dtype=float)))
 
 
-def _vector(name, v):
+def _vector(name: str, v: Any) -> np.ndarray:
     a = np.atleast_1d(np.asarray(v, dtype=float))
     if a.ndim != 1 or not np.all(np.isfinite(a)):
         raise ValueError(f"{name} must be a finite 1-D sequence, got {v!r}")
     return a
 
 
-def _positive(name, v):
+def _positive(name: str, v: float) -> float:
     v = float(v)
     if not (math.isfinite(v) and v > 0.0):
         raise ValueError(f"{name} must be positive and finite, got {v!r}")
     return v
 
 
-def _solve_linear(A, b):
+def _solve_linear(A: np.ndarray, b: np.ndarray) -> np.ndarray:
     """Solve A P = b (least squares when A is tall); 'singular' if A is rank-deficient."""
     s = np.linalg.svd(A, compute_uv=False)
     rcond = float(s[-1] / s[0]) if s[0] > 0 else 0.0
@@ -75,7 +81,7 @@ def _solve_linear(A, b):
     return np.linalg.lstsq(A, b, rcond=None)[0]
 
 
-def _check_distinct(q1, q2):
+def _check_distinct(q1: np.ndarray, q2: np.ndarray) -> None:
     """'singular' if two points coincide in both coordinates (angles modulo 2π)."""
     d1 = np.abs(_wrap(q1[:, None] - q1[None, :]))
     d2 = np.abs(_wrap(q2[:, None] - q2[None, :]))
@@ -89,14 +95,15 @@ def _check_distinct(q1, q2):
 
 # --- Freudenstein's equation -------------------------------------------------------------
 
-def _freudenstein_system(t1, t3, a0, p0):
+def _freudenstein_system(t1: np.ndarray, t3: np.ndarray, a0: FloatOrArray, p0: FloatOrArray
+                        ) -> Tuple[np.ndarray, np.ndarray]:
     """Rows of eq. (3-34): [cos(θ3+φ0), cos(θ3+φ0−θ1−α0), 1] · (P0, P1, P2) = cos(θ1+α0)."""
     u, v = t1 + a0, t3 + p0
     A = np.stack([np.cos(v), np.cos(v - u), np.ones_like(u + v)], axis=-1)
     return A, np.cos(u)
 
 
-def _ratios(P, a0, p0):
+def _ratios(P: np.ndarray, a0: float, p0: float) -> Optional[Tuple[float, ...]]:
     """l, m, n and the normalised angle origins from P0, P1, P2 (eq. 3-34).
 
     P0 = m, P1 = −m/n, P2 = (m² + n² + 1 − l²)/(2n).  A negative n puts D on −x:
@@ -123,7 +130,8 @@ def _ratios(P, a0, p0):
     return math.sqrt(l2), m, n, float(_wrap(a0)), float(_wrap(p0))
 
 
-def _pivots(t1, t3, l, m, n, a0, p0, crank):
+def _pivots(t1: np.ndarray, t3: np.ndarray, l: float, m: float, n: float, a0: float, p0: float,
+            crank: float) -> Tuple[np.ndarray, np.ndarray, complex]:
     """B, C at every point and D [m] (complex), eq. (3-33) with a = crank."""
     b = crank * np.exp(1j * (t1 + a0))
     d = complex(crank * n, 0.0)
@@ -131,12 +139,14 @@ def _pivots(t1, t3, l, m, n, a0, p0, crank):
     return b, c, d
 
 
-def _branches(t1, t3, l, m, n, a0, p0):
+def _branches(t1: np.ndarray, t3: np.ndarray, l: float, m: float, n: float, a0: float, p0: float
+             ) -> np.ndarray:
     b, c, d = _pivots(t1, t3, l, m, n, a0, p0, 1.0)
     return np.array([branch_of(bi, ci, d) for bi, ci in zip(b, c)])
 
 
-def _four_bar(t1, t3, P, ratios, crank, values):
+def _four_bar(t1: np.ndarray, t3: np.ndarray, P: np.ndarray, ratios: Tuple[float, ...],
+              crank: float, values: Any) -> LinkageDesign:
     """The design of a Freudenstein solution (pivots in position 1, link 3 = D→C)."""
     l, m, n, a0, p0 = ratios
     A, rhs = _freudenstein_system(t1, t3, a0, p0)
@@ -151,7 +161,8 @@ def _four_bar(t1, t3, P, ratios, crank, values):
                            angles={3: _wrap(t3 + p0)}, values=values)
 
 
-def _newton_roots(t1, t3, a0, p0):
+def _newton_roots(t1: np.ndarray, t3: np.ndarray, a0: Optional[float], p0: Optional[float]
+                 ) -> List[Tuple[np.ndarray, Any, int]]:
     """Every root of eq. (3-34) with the origins left None unknown (N = 3 + unknowns).
 
     Multi-start Newton: from a grid of the unknown origins (72 values of one,
@@ -170,7 +181,7 @@ def _newton_roots(t1, t3, a0, p0):
         grid = np.stack(np.meshgrid(g, g, indexing="ij"), axis=-1).reshape(-1, 2)
     S = grid.shape[0]
 
-    def origins(z):
+    def origins(z: np.ndarray) -> Tuple[np.ndarray, np.ndarray]:
         cols = iter(range(3, 3 + k))
         aa = z[:, next(cols)] if free[0] else np.full(S, a0)
         pp = z[:, next(cols)] if free[1] else np.full(S, p0)
@@ -222,7 +233,8 @@ def _newton_roots(t1, t3, a0, p0):
     return roots
 
 
-def freudenstein(theta1, theta3, *, alpha0=None, phi0=None, crank=1.0) -> LinkageDesign:
+def freudenstein(theta1: np.ndarray, theta3: np.ndarray, *, alpha0: Optional[float] = None,
+                 phi0: Optional[float] = None, crank: float = 1.0) -> LinkageDesign:
     """The four-bar whose crank and rocker angles correspond at 3–5 precision points.
 
     Parameters
@@ -301,6 +313,17 @@ def freudenstein(theta1, theta3, *, alpha0=None, phi0=None, crank=1.0) -> Linkag
     if not 3 <= N <= 5:
         raise ValueError(f"Freudenstein's equation takes 3 to 5 precision points, got {N}")
     crank = _positive("crank", crank)
+    a0, p0 = _origins(N, alpha0, phi0)
+    if N == 3:
+        return _linear(t1, t3, a0, p0, crank, "the precision points give no real four-bar "
+                       "(a link would have zero or infinite length)")
+    return _nonlinear(t1, t3, a0, p0, crank)
+
+
+def _origins(N: int, alpha0: Optional[float], phi0: Optional[float]
+             ) -> Tuple[Optional[float], Optional[float]]:
+    """The origins α0, φ0 of :func:`freudenstein` at N points: the chosen ones, None for
+    those the N points solve."""
     given = [v if v is None else float(v) for v in (alpha0, phi0)]
     for name, v in zip(("alpha0", "phi0"), given):
         if v is not None and not math.isfinite(v):
@@ -317,16 +340,20 @@ def freudenstein(theta1, theta3, *, alpha0=None, phi0=None, crank=1.0) -> Linkag
     elif a0 is not None or p0 is not None:
         raise ValueError("5 precision points determine both origins: give neither alpha0 "
                          "nor phi0")
-    if N == 3:
-        return _linear(t1, t3, a0, p0, crank, "the precision points give no real four-bar "
-                       "(a link would have zero or infinite length)")
+    return a0, p0
+
+
+def _nonlinear(t1: np.ndarray, t3: np.ndarray, a0: Optional[float], p0: Optional[float],
+               crank: float) -> LinkageDesign:
+    """Eq. (3-34) at 4 or 5 points with an origin unknown: the best of Newton's roots."""
+    N = t1.size
     _check_distinct(t1, t3)
     roots = _newton_roots(t1, t3, a0, p0)
     if not roots:
         raise DescribedError("the precision points give no real four-bar "
                              "(the nonlinear system has no real root)", reason="no_solution")
 
-    def rank(root):
+    def rank(root: Any) -> Tuple[bool, float]:
         ratios = root[1]
         one_branch = abs(int(np.sum(_branches(t1, t3, *ratios)))) == N
         lengths = (1.0,) + ratios[:3]
@@ -340,7 +367,7 @@ def freudenstein(theta1, theta3, *, alpha0=None, phi0=None, crank=1.0) -> Linkag
 
 # --- function generation -----------------------------------------------------------------
 
-def chebyshev_points(x0, xm, n):
+def chebyshev_points(x0: float, xm: float, n: int) -> np.ndarray:
     """The Chebyshev spacing of n precision points on [x0, xm], eq. (3-38).
 
     x_i = (xm + x0)/2 − (xm − x0)/2 · cos((2i − 1)π / (2n)), i = 1 … n, in
@@ -353,7 +380,8 @@ def chebyshev_points(x0, xm, n):
     return 0.5 * (xm + x0) - 0.5 * (xm - x0) * np.cos((2 * i - 1) * np.pi / (2 * n))
 
 
-def _linear(t1, t3, a0, p0, crank, why):
+def _linear(t1: np.ndarray, t3: np.ndarray, a0: float, p0: float, crank: float, why: str
+           ) -> LinkageDesign:
     """Eq. (3-34) with given origins: solved at 3 points, fitted by linear least squares
     at more; *why* words a solution that is no four-bar."""
     _check_distinct(t1, t3)
@@ -369,15 +397,17 @@ def _linear(t1, t3, a0, p0, crank, why):
     return _four_bar(t1, t3, P, ratios, crank, values)
 
 
-def _least_squares(t1, t3, a0, p0, crank):
+def _least_squares(t1: np.ndarray, t3: np.ndarray, a0: float, p0: float, crank: float
+                  ) -> LinkageDesign:
     """Eq. (3-34) at N > 3 points with chosen origins, by linear least squares."""
     return _linear(t1, t3, a0, p0, crank, "the least-squares fit gives no real four-bar (the "
                    "coupler's length squared is not positive, or a link is a point)")
 
 
-def function_generator(f, x0, xm, *, alpha_m, phi_m, alpha0=None, phi0=None,
-                       method="precision", n=None, x=None, crank=1.0,
-                       samples=201) -> LinkageDesign:
+def function_generator(f: Function, x0: float, xm: float, *, alpha_m: float, phi_m: float,
+                       alpha0: Optional[float] = None, phi0: Optional[float] = None,
+                       method: str = "precision", n: Optional[int] = None, x: Any = None,
+                       crank: float = 1.0, samples: int = 201) -> LinkageDesign:
     """The four-bar that reproduces y = f(x), x0 <= x <= xm (§3.5 二, 【例 3-7】).
 
     Parameters
@@ -454,6 +484,40 @@ def function_generator(f, x0, xm, *, alpha_m, phi_m, alpha0=None, phi0=None,
     """
     if method not in METHODS:
         raise ValueError(f"unknown method {method!r}; known: {', '.join(METHODS)}")
+    scale, samples = _scale(f, x0, xm, alpha_m, phi_m, samples)
+    xs = _points(f, method, x, n, scale.x0, scale.xm, alpha0, phi0)
+    ys, alpha, phi = scale.angles(xs)
+    if method == "least_squares":
+        design = _least_squares(alpha, phi, float(alpha0), float(phi0), _positive("crank", crank))
+    else:
+        design = freudenstein(alpha, phi, alpha0=alpha0, phi0=phi0, crank=crank)
+    values = _structural_error(design, scale, samples, method, xs, ys, alpha, phi)
+    return LinkageDesign(design.kind, design.linkage, design.lengths, design.pivots,
+                         design.inputs, design.points, design.angles, design.slides, values)
+
+
+@record
+class _Scale:
+    """The book's mapping of x to α and of y = f(x) to φ (步骤 (2))."""
+
+    f: Any
+    x0: float
+    xm: float
+    y0: float
+    ym: float
+    alpha_m: float
+    phi_m: float
+
+    def angles(self, xv: np.ndarray) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """y = f(x) and the angles α, φ from the origins at the points ``xv``."""
+        x0, xm, y0, ym = self.x0, self.xm, self.y0, self.ym
+        yv = np.asarray(self.f(xv), dtype=float)
+        return yv, (xv - x0) / (xm - x0) * self.alpha_m, (yv - y0) / (ym - y0) * self.phi_m
+
+
+def _scale(f: Any, x0: float, xm: float, alpha_m: float, phi_m: float, samples: int
+           ) -> Tuple[_Scale, int]:
+    """The checked range, swings and grid size of :func:`function_generator`."""
     x0, xm = float(x0), float(xm)
     if not (math.isfinite(x0) and math.isfinite(xm) and x0 < xm):
         raise ValueError(f"the range must be finite with x0 < xm, got {x0!r}, {xm!r}")
@@ -471,7 +535,12 @@ def function_generator(f, x0, xm, *, alpha_m, phi_m, alpha0=None, phi0=None,
     if not (math.isfinite(y0) and math.isfinite(ym) and y0 != ym):
         raise DescribedError("the function has the same value at both ends of the range, so "
                              "the rocker's scale is undefined", reason="flat", y0=y0, ym=ym)
+    return _Scale(f, x0, xm, y0, ym, alpha_m, phi_m), samples
 
+
+def _points(f: Any, method: str, x: Optional[Sequence[float]], n: Optional[int], x0: float,
+            xm: float, alpha0: Optional[float], phi0: Optional[float]) -> np.ndarray:
+    """The points x_i of :func:`function_generator`'s method, checked to lie in [x0, xm]."""
     if method == "precision":
         if x is None:
             nodes = getattr(f, "nodes", None)
@@ -498,20 +567,19 @@ def function_generator(f, x0, xm, *, alpha_m, phi_m, alpha0=None, phi0=None,
             raise ValueError(f"least squares needs at least 4 points, got {xs.size}")
     if np.any(xs < x0) or np.any(xs > xm):
         raise ValueError(f"the points must lie in [{x0}, {xm}], got {xs.tolist()}")
+    return xs
 
-    def angles(xv):
-        yv = np.asarray(f(xv), dtype=float)
-        return yv, (xv - x0) / (xm - x0) * alpha_m, (yv - y0) / (ym - y0) * phi_m
 
-    ys, alpha, phi = angles(xs)
-    if method == "least_squares":
-        design = _least_squares(alpha, phi, float(alpha0), float(phi0), _positive("crank", crank))
-    else:
-        design = freudenstein(alpha, phi, alpha0=alpha0, phi0=phi0, crank=crank)
-
+def _structural_error(design: LinkageDesign, scale: _Scale, samples: int, method: str,
+                      xs: np.ndarray, ys: np.ndarray, alpha: np.ndarray, phi: np.ndarray
+                      ) -> Dict[str, Any]:
+    """``design.values`` with the points and the structural error on the grid (the
+    ``values`` of :func:`function_generator`)."""
+    x0, xm, y0, ym = scale.x0, scale.xm, scale.y0, scale.ym
+    alpha_m, phi_m = scale.alpha_m, scale.phi_m
     values = dict(design.values)
     grid = np.union1d(np.linspace(x0, xm, samples), xs)
-    yg, ag, pg = angles(grid)
+    yg, ag, pg = scale.angles(grid)
     motion = solve(design.linkage, {1: DriverMotion(ag + values["alpha0"])}, order=0)
     feasible = np.asarray(motion.feasible, dtype=bool)
     error_phi = np.where(feasible, _wrap(pg + values["phi0"] - motion.links[3].theta), np.nan)
@@ -524,18 +592,17 @@ def function_generator(f, x0, xm, *, alpha_m, phi_m, alpha0=None, phi0=None,
                   else math.nan,
                   error_phi_max=float(np.max(np.abs(error_phi[feasible]))) if feasible.any()
                   else math.nan)
-    return LinkageDesign(design.kind, design.linkage, design.lengths, design.pivots,
-                         design.inputs, design.points, design.angles, design.slides, values)
+    return values
 
 
 # --- slider mechanisms -------------------------------------------------------------------
 
-def _slider_branches(b, s, e):
+def _slider_branches(b: np.ndarray, s: np.ndarray, e: float) -> np.ndarray:
     """+1 where the slider pin (s, e) lies ahead of B along the guide (+x), else −1."""
     return np.where(s >= b.real, 1, -1)
 
 
-def slider_crank_function(theta1, s, *, e=None) -> LinkageDesign:
+def slider_crank_function(theta1: Any, s: Any, *, e: Optional[float] = None) -> LinkageDesign:
     """The offset slider-crank whose crank angles and slider positions correspond (习题 3-12).
 
     Parameters
@@ -614,7 +681,7 @@ def slider_crank_function(theta1, s, *, e=None) -> LinkageDesign:
                                values={"e": ev, "branches": branches, "residual": residual})
 
 
-def rocker_slider(phi, s, *, e) -> LinkageDesign:
+def rocker_slider(phi: np.ndarray, s: np.ndarray, *, e: float) -> LinkageDesign:
     """The rocker–slider whose rocker angles and slider positions correspond (习题 3-9).
 
     The rocker turns about A = (0, 0); the slider's pin on the guide y = e is

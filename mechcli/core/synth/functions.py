@@ -13,12 +13,15 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from typing import Optional, Tuple
+from typing import TYPE_CHECKING, Any, Optional, Tuple
 
 import numpy as np
 
 from mechcli.core.errors import DescribedError
 from mechcli.core.records import record
+
+if TYPE_CHECKING:
+    from mechcli.core.types import FloatOrArray
 
 #: the names :func:`make_function` accepts
 NAMES = ("log10", "ln", "sqrt", "power", "sin", "cos", "tan", "exp", "reciprocal",
@@ -62,7 +65,7 @@ class Function:
     interpolation: Optional[str] = None
     _table: object = dataclasses.field(default=None, repr=False, compare=False)
 
-    def __call__(self, x):
+    def __call__(self, x: Any) -> FloatOrArray:
         x = np.asarray(x, dtype=float)
         name = self.name
         if name == "log10":
@@ -87,7 +90,7 @@ class Function:
             return np.polynomial.polynomial.polyval(x, self.coeffs)
         return self._table_value(x, 0)
 
-    def derivative(self, x):
+    def derivative(self, x: Any) -> np.ndarray:
         """dy/dx at ``x`` (vectorised).
 
         Where the derivative is infinite (sqrt at 0, a power 0 < p < 1 at 0)
@@ -120,7 +123,7 @@ class Function:
                     x, np.polynomial.polynomial.polyder(self.coeffs))
         return self._table_value(x, 1)
 
-    def _table_value(self, x, order):
+    def _table_value(self, x: np.ndarray, order: int) -> np.ndarray:
         xs, ys = self.nodes
         if self.interpolation == "linear":
             if order == 0:
@@ -132,7 +135,7 @@ class Function:
         spline = self._table
         return spline(x) if order == 0 else spline(x, 1)
 
-    def check_domain(self, x0, xm):
+    def check_domain(self, x0: float, xm: float) -> None:
         """Check that f is defined (and finite) on the closed interval [x0, xm].
 
         Parameters
@@ -194,7 +197,7 @@ class Function:
                 reason="domain", x0=x0, xm=xm, x=float(bad))
 
 
-def make_function(name, *, exponent=None, coeffs=None) -> Function:
+def make_function(name: str, *, exponent: Optional[float] = None, coeffs: Any = None) -> Function:
     """The named function ``name`` (one of :data:`NAMES`).
 
     Parameters
@@ -236,7 +239,7 @@ def make_function(name, *, exponent=None, coeffs=None) -> Function:
     return Function(name, exponent=exponent, coeffs=coeffs)
 
 
-def table_function(x, y, *, interpolation="cubic") -> Function:
+def table_function(x: Any, y: Any, *, interpolation: str = "cubic") -> Function:
     """A function given by a table of points (x_i, y_i).
 
     Parameters

@@ -53,13 +53,16 @@ An iterative solve that does not converge raises
 from __future__ import annotations
 
 import math
-from typing import List, Tuple
+from typing import TYPE_CHECKING, Any, List, Optional, Tuple
 
 import numpy as np
 
 from mechcli.core.errors import ConvergenceError, DescribedError
 from mechcli.core.records import record
 from mechcli.core.synth.design import LinkageDesign, four_bar_design
+
+if TYPE_CHECKING:
+    from mechcli.core.types import FloatOrArray
 
 Point = Tuple[float, float]
 
@@ -79,7 +82,7 @@ INFINITY = 1e8
 
 
 # --------------------------------------------------------------------- helpers
-def _complex(p, what: str) -> complex:
+def _complex(p: Any, what: str) -> complex:
     """(x, y) or complex -> complex; ValueError unless finite."""
     if isinstance(p, complex):
         z = p
@@ -94,7 +97,7 @@ def _complex(p, what: str) -> complex:
     return z
 
 
-def _points(seq, n, what: str) -> np.ndarray:
+def _points(seq: Any, n: int, what: str) -> np.ndarray:
     """A sequence of exactly ``n`` (x, y) points (an int, or a tuple of allowed counts)."""
     pts = list(seq)
     counts = (n,) if isinstance(n, int) else tuple(n)
@@ -103,7 +106,7 @@ def _points(seq, n, what: str) -> np.ndarray:
     return np.array([_complex(p, f"{what}[{i}]") for i, p in enumerate(pts)], dtype=complex)
 
 
-def _angles(seq, n, what: str) -> np.ndarray:
+def _angles(seq: Any, n: int, what: str) -> np.ndarray:
     a = np.asarray(list(seq), dtype=float)
     if a.shape != (n,) or not np.all(np.isfinite(a)):
         raise ValueError(f"{what} needs {n} finite angles, got {list(seq)!r}")
@@ -114,7 +117,7 @@ def _pt(z: complex) -> Point:
     return (float(z.real), float(z.imag))
 
 
-def _wrap(a):
+def _wrap(a: FloatOrArray) -> FloatOrArray:
     """Angle(s) wrapped into (-π, π]."""
     return np.angle(np.exp(1j * np.asarray(a, dtype=float)))
 
@@ -163,7 +166,7 @@ def _circumcentre(z: np.ndarray, link: int) -> complex:
     return complex(z[0] + complex(ox, oy))
 
 
-def _design(A: complex, D: complex, b: np.ndarray, c: np.ndarray, **kw) -> LinkageDesign:
+def _design(A: complex, D: complex, b: np.ndarray, c: np.ndarray, **kw: Any) -> LinkageDesign:
     """The four-bar with A, D and B, C at the positions ``b``, ``c``; ``zero_link``
     when a link vanishes."""
     lengths = (abs(b[0] - A), abs(c[0] - b[0]), abs(D - c[0]), abs(D - A))
@@ -176,7 +179,8 @@ def _design(A: complex, D: complex, b: np.ndarray, c: np.ndarray, **kw) -> Linka
 
 
 # --------------------------------------------------------------------- §3.2: B and C given
-def _pivot_on_bisector(z1: complex, z2: complex, point, line, name: str, link: int) -> complex:
+def _pivot_on_bisector(z1: complex, z2: complex, point: Any, line: Any, name: str, link: int
+                      ) -> complex:
     """A fixed pivot on the perpendicular bisector of z1 z2 (eqs. 3-3…3-9)."""
     if (point is None) == (line is None):
         raise ValueError(f"give {name} either as a point or as a line, not "
@@ -209,8 +213,9 @@ def _pivot_on_bisector(z1: complex, z2: complex, point, line, name: str, link: i
     return mid + s * n
 
 
-def two_positions(B, C, *, A=None, D=None, line_A=None, line_D=None,
-                  rigid_tol=RIGID_TOL) -> LinkageDesign:
+def two_positions(B: Any, C: Any, *, A: Any = None, D: Optional[Tuple[int, int]] = None,
+                  line_A: Any = None, line_D: Any = None, rigid_tol: float = RIGID_TOL
+                 ) -> LinkageDesign:
     """A four-bar whose coupler BC passes through two prescribed positions.
 
     Parameters
@@ -256,7 +261,7 @@ def two_positions(B, C, *, A=None, D=None, line_A=None, line_D=None,
     return _design(a, d, b, c, points={"B": b, "C": c})
 
 
-def three_positions(B, C, *, rigid_tol=RIGID_TOL) -> LinkageDesign:
+def three_positions(B: Any, C: Any, *, rigid_tol: float = RIGID_TOL) -> LinkageDesign:
     """A four-bar whose coupler BC passes through three prescribed positions.
 
     Parameters
@@ -290,7 +295,8 @@ def three_positions(B, C, *, rigid_tol=RIGID_TOL) -> LinkageDesign:
 
 
 # --------------------------------------------------------------------- §3.3–3.4: poses given
-def displacement_matrix(M_from, phi_from: float, M_to, phi_to: float) -> np.ndarray:
+def displacement_matrix(M_from: Tuple[float, float], phi_from: float, M_to: Tuple[float, float],
+                        phi_to: float) -> np.ndarray:
     """The planar displacement matrix [D] of eq. 3-22: a body's pose (M, φ) from -> to.
 
     Parameters
@@ -326,8 +332,8 @@ def _inverted(P: complex, M: np.ndarray, phi: np.ndarray) -> np.ndarray:
     return out
 
 
-def _poses_design(A: complex, D: complex, M: np.ndarray, phi: np.ndarray, b1: complex,
-                  c1: complex, values) -> LinkageDesign:
+def _poses_design(A: complex, D: complex, M: np.ndarray, phi: np.ndarray, b1: complex, c1: complex,
+                  values: Any) -> LinkageDesign:
     """The design of moving pivots b1, c1 (pose 1) led through the poses."""
     rot = np.exp(1j * (phi - phi[0]))
     b = M + (b1 - M[0]) * rot          # eq. 3-28
@@ -336,7 +342,8 @@ def _poses_design(A: complex, D: complex, M: np.ndarray, phi: np.ndarray, b1: co
                    coupler_point=_pt(M[0]), values=values)
 
 
-def _equation_residual(A: complex, D: complex, M, phi, b1, c1) -> float:
+def _equation_residual(A: complex, D: complex, M: np.ndarray, phi: np.ndarray, b1: complex,
+                       c1: complex) -> float:
     """Largest |eq. 3-31|, |eq. 3-32| divided by the size² of the design (dimensionless)."""
     rot = np.exp(1j * (phi - phi[0]))
     b, c = M + (b1 - M[0]) * rot, M + (c1 - M[0]) * rot
@@ -345,7 +352,7 @@ def _equation_residual(A: complex, D: complex, M, phi, b1, c1) -> float:
     return float(max(np.max(np.abs(rb - rb[0])), np.max(np.abs(rc - rc[0]))) / size ** 2)
 
 
-def moving_pivots(A, D, poses) -> LinkageDesign:
+def moving_pivots(A: Any, D: Any, poses: Any) -> LinkageDesign:
     """The moving pivots B1, C1 for given fixed pivots A, D and three coupler poses.
 
     Parameters
@@ -389,8 +396,9 @@ def moving_pivots(A, D, poses) -> LinkageDesign:
                          {"residual": _equation_residual(a, d, M, phi, b1, c1)})
 
 
-def coupler_poses(M, phi, A, D, *, method: str = "matrix", tol: float = 1e-12,
-                  max_iter: int = 100, guess=None) -> LinkageDesign:
+def coupler_poses(M: Any, phi: Any, A: Any, D: Any, *, method: str = "matrix", tol: float = 1e-12,
+                  max_iter: int = 100, guess: Optional[List[Tuple[float, float]]] = None
+                 ) -> LinkageDesign:
     """A four-bar with given fixed pivots whose coupler takes three poses.
 
     Parameters
@@ -465,7 +473,9 @@ def coupler_poses(M, phi, A, D, *, method: str = "matrix", tol: float = 1e-12,
     return _poses_design(a, d, Mz, ph, b1, c1, values)
 
 
-def _solve_moving_pivots(a, d, M, phi, tol, max_iter, guess):
+def _solve_moving_pivots(a: complex, d: complex, M: np.ndarray, phi: np.ndarray, tol: float,
+                         max_iter: int, guess: Optional[List[Tuple[float, float]]]
+                        ) -> Tuple[complex, complex, int]:
     """Eqs. 3-31, 3-32 (i = 2, 3) solved for x'_B, y'_B, x'_C, y'_C with scipy.
 
     Scaled by the size of the data (origin M1), so that ``tol`` is relative.
@@ -483,7 +493,7 @@ def _solve_moving_pivots(a, d, M, phi, tol, max_iter, guess):
         local = (g - M[0]) / scale / e[0]              # eqs. 3-28, 3-29 inverted at pose 1
         x0 = np.array([local[0].real, local[0].imag, local[1].real, local[1].imag])
 
-    def fun(x):
+    def fun(x: np.ndarray) -> Tuple[np.ndarray, np.ndarray]:
         F, J = np.zeros(4), np.zeros((4, 4))
         for k in range(2):                              # k = 0: B about A; 1: C about D
             p = complex(x[2 * k], x[2 * k + 1])
@@ -564,7 +574,7 @@ class BurmesterPair:
     at_infinity: bool = False
 
 
-def _poses(M, phi, n):
+def _poses(M: Any, phi: Any, n: int) -> Tuple[np.ndarray, np.ndarray, float, np.ndarray]:
     """Poses scaled about M1: (m_j = (M_j - M_1)/L, E_j = e^{i(φj - φ1)}, L, M as complex)."""
     Mz = _points(M, n, "M")
     ph = _angles(phi, len(Mz), "phi")
@@ -583,7 +593,8 @@ def _poses(M, phi, n):
     return (Mz - Mz[0]) / L, np.exp(1j * (ph - ph[0])), L, Mz
 
 
-def burmester_curves(M, phi, n: int = 721, *, extent=None) -> BurmesterCurves:
+def burmester_curves(M: Any, phi: Any, n: int = 721, *, extent: Optional[float] = None
+                    ) -> BurmesterCurves:
     """The centre-point and circle-point curves of four coupler poses.
 
     Parameters
@@ -632,34 +643,63 @@ def burmester_curves(M, phi, n: int = 721, *, extent=None) -> BurmesterCurves:
         extent = max([10.0] + [1.25 * r for r in far])
     if not extent > 0:
         raise ValueError(f"extent must be positive, got {extent!r}")
-    Aj, dj = E[1:] - 1, m[1:]                      # rows j = 2, 3, 4
-    cof = np.array([Aj[1] * dj[2] - Aj[2] * dj[1],
-                    -(Aj[0] * dj[2] - Aj[2] * dj[0]),
-                    Aj[0] * dj[1] - Aj[1] * dj[0]])
-    big = float(np.max(np.abs(cof)))
-    if big <= 1e-12:
-        raise DescribedError("the four poses leave the compatibility equation empty",
-                             reason="degenerate")
-    d1 = -cof.sum()
-    order = np.argsort(np.abs(cof))               # parameter: the shortest side
-    p, q, r = order
+    comp = _Compatibility(m, E, extent)
+    step = 2 * np.pi / n
+    grid = step * (np.arange(n) + 0.5)
+    ok = comp.triangle(grid)[2]
+    out = _Loops(Mz[0], L, extent / 50, n)
+    for run in _cyclic_runs(ok):
+        beta = np.unwrap(grid[run])
+        if len(run) == n:                           # two closed loops
+            loop = np.concatenate([beta, beta[:1] + 2 * np.pi])
+            _keep(comp, out, loop, np.ones(len(loop)))
+            _keep(comp, out, loop, -np.ones(len(loop)))
+        else:                                       # one loop: + forward, - back
+            lo = _edge(comp, beta[0], beta[0] - step)
+            hi = _edge(comp, beta[-1], beta[-1] + step)
+            fwd = np.concatenate([[lo], beta, [hi]])
+            _keep(comp, out, np.concatenate([fwd, fwd[::-1]]),
+                  np.concatenate([np.ones(len(fwd)), -np.ones(len(fwd))]))
+    return BurmesterCurves(out.centres, out.circles, out.betas)
 
-    def triangle(beta):
+
+class _Compatibility:
+    """The compatibility equation of four poses (:func:`burmester_curves`, Notes): its
+    cofactors, and its solutions W, Z at values of the parameter."""
+
+    def __init__(self, m: np.ndarray, E: np.ndarray, extent: float) -> None:
+        Aj, dj = E[1:] - 1, m[1:]                      # rows j = 2, 3, 4
+        cof = np.array([Aj[1] * dj[2] - Aj[2] * dj[1],
+                        -(Aj[0] * dj[2] - Aj[2] * dj[0]),
+                        Aj[0] * dj[1] - Aj[1] * dj[0]])
+        big = float(np.max(np.abs(cof)))
+        if big <= 1e-12:
+            raise DescribedError("the four poses leave the compatibility equation empty",
+                                 reason="degenerate")
+        self.Aj, self.dj, self.cof, self.extent = Aj, dj, cof, extent
+        self.d1 = -cof.sum()
+        # parameter: the shortest side
+        self.p, self.q, self.r = (int(i) for i in np.argsort(np.abs(cof)))
+
+    def triangle(self, beta: np.ndarray) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
         """(base, |h/g|-clipped spread, ok) of the second angle at parameter values beta."""
-        K = d1 + cof[p] * np.exp(1j * beta)
+        cof, p, q, r = self.cof, self.p, self.q, self.r
+        K = self.d1 + cof[p] * np.exp(1j * beta)
         g = K.conjugate() * cof[q]
         h = (abs(cof[r]) ** 2 - abs(cof[q]) ** 2 - np.abs(K) ** 2) / 2
         ok = np.abs(h) <= np.abs(g)
         ratio = np.where(np.abs(g) > 0, h / np.where(np.abs(g) > 0, np.abs(g), 1.0), 2.0)
         return -np.angle(g), np.arccos(np.clip(ratio, -1.0, 1.0)), ok
 
-    def points(beta, sign):
+    def points(self, beta: np.ndarray, sign: np.ndarray
+               ) -> Tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         """Centre, circle points (scaled), β2 and validity at parameter beta, way sign."""
-        base, spread, ok = triangle(beta)
+        cof, p, q, r, Aj, dj = self.cof, self.p, self.q, self.r, self.Aj, self.dj
+        base, spread, ok = self.triangle(beta)
         x = np.empty((3, len(beta)), dtype=complex)
         x[p] = np.exp(1j * beta)
         x[q] = np.exp(1j * (base + sign * spread))
-        x[r] = -(d1 + cof[p] * x[p] + cof[q] * x[q]) / cof[r]
+        x[r] = -(self.d1 + cof[p] * x[p] + cof[q] * x[q]) / cof[r]
         # W, Z from the best-conditioned two of the three equations
         W = np.zeros(len(beta), dtype=complex)
         Z = np.zeros(len(beta), dtype=complex)
@@ -673,56 +713,53 @@ def burmester_curves(M, phi, n: int = 721, *, extent=None) -> BurmesterCurves:
             dets = np.where(take, np.abs(det), dets)
         circle = -Z                                # B1 = M1 - Z (M1 at the origin)
         centre = circle - W
+        extent = self.extent
         good = ok & (dets > 1e-14) & (np.abs(circle) <= extent) & (np.abs(centre) <= extent)
         return centre, circle, np.angle(x[0]), good
 
-    step = 2 * np.pi / n
-    grid = step * (np.arange(n) + 0.5)
-    ok = triangle(grid)[2]
-    chord = extent / 50                            # longest chord before a sample is added
-    centres, circles, betas = [], [], []
 
-    def keep(beta, sign):
-        """Sample one loop (beta unwrapped, increasing where the way is +), adding
-        samples where the curve moves fast, then cut it where it leaves the disc."""
-        for _ in range(8):
-            cen, cir, b2, good = points(beta, sign)
-            long = (np.maximum(np.abs(np.diff(cen)), np.abs(np.diff(cir))) > chord) \
-                & (sign[1:] == sign[:-1]) & (good[1:] | good[:-1])
-            if not long.any() or len(beta) > 8 * n:
-                break
-            at = np.flatnonzero(long) + 1
-            beta = np.insert(beta, at, (beta[at - 1] + beta[at]) / 2)
-            sign = np.insert(sign, at, sign[at])
-        cut = ~good
-        # an asymptote crossed between two samples (refinement gave up)
-        cut[1:] |= np.maximum(np.abs(np.diff(cen)), np.abs(np.diff(cir))) > 4 * chord
-        for seg in _runs(~cut, good):
-            if len(seg) >= 2:
-                centres.append(Mz[0] + L * cen[seg])
-                circles.append(Mz[0] + L * cir[seg])
-                betas.append(b2[seg])
+class _Loops:
+    """The pieces of the Burmester curves kept so far, in the poses' frame."""
 
-    def edge(inside, outside):
-        """The parameter where the triangle closes (h = ±|g|), by bisection."""
-        for _ in range(50):
-            mid = (inside + outside) / 2
-            inside, outside = (mid, outside) if triangle(np.array([mid]))[2][0] else \
-                (inside, mid)
-        return inside
+    def __init__(self, origin: complex, scale: float, chord: float, n: int) -> None:
+        self.origin, self.scale, self.n = origin, scale, n
+        #: longest chord before a sample is added
+        self.chord = chord
+        self.centres: List[np.ndarray] = []
+        self.circles: List[np.ndarray] = []
+        self.betas: List[np.ndarray] = []
 
-    for run in _cyclic_runs(ok):
-        beta = np.unwrap(grid[run])
-        if len(run) == n:                           # two closed loops
-            loop = np.concatenate([beta, beta[:1] + 2 * np.pi])
-            keep(loop, np.ones(len(loop)))
-            keep(loop, -np.ones(len(loop)))
-        else:                                       # one loop: + forward, - back
-            lo, hi = edge(beta[0], beta[0] - step), edge(beta[-1], beta[-1] + step)
-            fwd = np.concatenate([[lo], beta, [hi]])
-            keep(np.concatenate([fwd, fwd[::-1]]),
-                 np.concatenate([np.ones(len(fwd)), -np.ones(len(fwd))]))
-    return BurmesterCurves(centres, circles, betas)
+
+def _keep(comp: _Compatibility, out: _Loops, beta: np.ndarray, sign: np.ndarray) -> None:
+    """Sample one loop (beta unwrapped, increasing where the way is +), adding
+    samples where the curve moves fast, then cut it where it leaves the disc."""
+    chord = out.chord
+    for _ in range(8):
+        cen, cir, b2, good = comp.points(beta, sign)
+        long = (np.maximum(np.abs(np.diff(cen)), np.abs(np.diff(cir))) > chord) \
+            & (sign[1:] == sign[:-1]) & (good[1:] | good[:-1])
+        if not long.any() or len(beta) > 8 * out.n:
+            break
+        at = np.flatnonzero(long) + 1
+        beta = np.insert(beta, at, (beta[at - 1] + beta[at]) / 2)
+        sign = np.insert(sign, at, sign[at])
+    cut = ~good
+    # an asymptote crossed between two samples (refinement gave up)
+    cut[1:] |= np.maximum(np.abs(np.diff(cen)), np.abs(np.diff(cir))) > 4 * chord
+    for seg in _runs(~cut, good):
+        if len(seg) >= 2:
+            out.centres.append(out.origin + out.scale * cen[seg])
+            out.circles.append(out.origin + out.scale * cir[seg])
+            out.betas.append(b2[seg])
+
+
+def _edge(comp: _Compatibility, inside: float, outside: float) -> float:
+    """The parameter where the triangle closes (h = ±|g|), by bisection."""
+    for _ in range(50):
+        mid = (inside + outside) / 2
+        inside, outside = (mid, outside) if comp.triangle(np.array([mid]))[2][0] else \
+            (inside, mid)
+    return inside
 
 
 def _poles(m: np.ndarray, E: np.ndarray) -> List[complex]:
@@ -778,7 +815,7 @@ def _cyclic_runs(mask: np.ndarray) -> List[np.ndarray]:
     return runs
 
 
-def _rows(m: np.ndarray, E: np.ndarray):
+def _rows(m: np.ndarray, E: np.ndarray) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
     """N(c) = N0 + u Nu + v Nv for the circle point c = u + iv (scaled, M1 = 0).
 
     Row j (poses j = 2…5) of the condition on the centre point (w, ax, ay), the
@@ -796,7 +833,7 @@ def _rows(m: np.ndarray, E: np.ndarray):
     return N0, Nu, Nv
 
 
-def burmester_points(M, phi) -> List[BurmesterPair]:
+def burmester_points(M: Any, phi: Any) -> List[BurmesterPair]:
     """The Burmester point pairs of five coupler poses (real ones, at most four).
 
     Parameters
@@ -849,25 +886,47 @@ def burmester_points(M, phi) -> List[BurmesterPair]:
     P = m[k] / (1 - E[k])                          # the pole P1k: B_k = B_1
     X = N0 + P.real * Nu + P.imag * Nv             # N(P); its row 0 is zero
     X[0] = 0.0
+    candidates = _line_candidates(P, X, Nu, Nv)
+    pairs: List[Tuple[complex, np.ndarray]] = []
+    for c0 in candidates:
+        found = _polish_circle_point(c0, N0, Nu, Nv)
+        if found is None:
+            continue
+        c, nvec = found
+        if any(abs(c - q[0]) <= 1e-7 * (1 + abs(c)) for q in pairs):
+            continue
+        pairs.append((c, nvec))
+    out = _burmester_pairs(pairs, m, E, L, Mz)
+    out.sort(key=lambda p: (p.at_infinity, p.centre.real if not p.at_infinity else 0.0,
+                            p.centre.imag if not p.at_infinity else 0.0))
+    return out
 
-    def quads(theta):
-        """q(t) = a + b t + c t² of the cubics of rows (0,1,2) and (0,1,3) on the line."""
-        ct, st = np.cos(theta)[:, None, None], np.sin(theta)[:, None, None]
-        Y = ct * Nu + st * Nv                      # (T, 4, 3)
-        Xb = np.broadcast_to(X, Y.shape)
-        out = []
-        for last in (2, 3):
-            def det(r1, r2):
-                return np.linalg.det(np.stack([Y[:, 0], r1, r2], axis=1))
-            a = det(Xb[:, 1], Xb[:, last])
-            b = det(Y[:, 1], Xb[:, last]) + det(Xb[:, 1], Y[:, last])
-            c = det(Y[:, 1], Y[:, last])
-            out.append((a, b, c))
-        return out
 
+def _quads(X: np.ndarray, Nu: np.ndarray, Nv: np.ndarray, theta: np.ndarray
+           ) -> List[Tuple[np.ndarray, np.ndarray, np.ndarray]]:
+    """q(t) = a + b t + c t² of the cubics of rows (0,1,2) and (0,1,3) on the lines
+    c = P + t e^{iθ} (``X`` = N(P))."""
+    ct, st = np.cos(theta)[:, None, None], np.sin(theta)[:, None, None]
+    Y = ct * Nu + st * Nv                      # (T, 4, 3)
+    Xb = np.broadcast_to(X, Y.shape)
+    out = []
+    for last in (2, 3):
+        def det(r1: np.ndarray, r2: np.ndarray) -> np.ndarray:
+            return np.linalg.det(np.stack([Y[:, 0], r1, r2], axis=1))
+        a = det(Xb[:, 1], Xb[:, last])
+        b = det(Y[:, 1], Xb[:, last]) + det(Xb[:, 1], Y[:, last])
+        c = det(Y[:, 1], Y[:, last])
+        out.append((a, b, c))
+    return out
+
+
+def _line_candidates(P: complex, X: np.ndarray, Nu: np.ndarray, Nv: np.ndarray
+                     ) -> List[complex]:
+    """The candidate circle points: the common roots on the lines through the pole P
+    at the real roots θ of the resultant R(θ) (:func:`burmester_points`, Notes)."""
     T = 16
     theta = np.pi * np.arange(T) / T
-    (a1, b1, c1), (a2, b2, c2) = quads(theta)
+    (a1, b1, c1), (a2, b2, c2) = _quads(X, Nu, Nv, theta)
     R = (a1 * c2 - a2 * c1) ** 2 - (a1 * b2 - a2 * b1) * (b1 * c2 - b2 * c1)
     r = np.fft.fft(R) / T                          # R = Σ r_m e^{2imθ}, m = -4…4
     coeffs = np.array([r[mm % T] for mm in range(4, -5, -1)])
@@ -879,21 +938,19 @@ def burmester_points(M, phi) -> List[BurmesterPair]:
     cand_theta = np.angle(roots) / 2
     candidates = []
     if len(cand_theta):
-        qs = quads(cand_theta)
+        qs = _quads(X, Nu, Nv, cand_theta)
         for i, th in enumerate(cand_theta):
             for a, b, c in qs:
                 for t in np.roots([c[i], b[i], a[i]]) if abs(c[i]) > 0 or abs(b[i]) > 0 else ():
                     if abs(t.imag) <= 1e-3 * (1 + abs(t)):
                         candidates.append(P + t.real * np.exp(1j * th))
-    pairs = []
-    for c0 in candidates:
-        found = _polish_circle_point(c0, N0, Nu, Nv)
-        if found is None:
-            continue
-        c, nvec = found
-        if any(abs(c - q[0]) <= 1e-7 * (1 + abs(c)) for q in pairs):
-            continue
-        pairs.append((c, nvec))
+    return candidates
+
+
+def _burmester_pairs(pairs: List[Tuple[complex, np.ndarray]], m: np.ndarray, E: np.ndarray,
+                     L: float, Mz: np.ndarray) -> List[BurmesterPair]:
+    """The Burmester pairs of the polished circle points and null vectors (w, ax, ay),
+    in the poses' frame; those that do not polish are left out."""
     out = []
     for c, (w, ax, ay) in pairs:
         a = complex(ax, ay)
@@ -910,12 +967,11 @@ def burmester_points(M, phi) -> List[BurmesterPair]:
             continue
         centre, c = polished
         out.append(BurmesterPair(complex(Mz[0] + L * centre), complex(Mz[0] + L * c), False))
-    out.sort(key=lambda p: (p.at_infinity, p.centre.real if not p.at_infinity else 0.0,
-                            p.centre.imag if not p.at_infinity else 0.0))
     return out
 
 
-def _polish_circle_point(c0: complex, N0, Nu, Nv, iterations: int = 30):
+def _polish_circle_point(c0: complex, N0: np.ndarray, Nu: np.ndarray, Nv: np.ndarray,
+                         iterations: int = 30) -> Optional[Tuple[complex, np.ndarray]]:
     """Newton on N(c) n = 0, n0·n = 1 (5 equations, unknowns u, v, n); (c, n) or None."""
     c = complex(c0)
     N = N0 + c.real * Nu + c.imag * Nv
@@ -934,7 +990,8 @@ def _polish_circle_point(c0: complex, N0, Nu, Nv, iterations: int = 30):
     return complex(x[0], x[1]), nvec
 
 
-def _newton_circle_point(x, n0, N0, Nu, Nv, iterations):
+def _newton_circle_point(x: np.ndarray, n0: np.ndarray, N0: np.ndarray, Nu: np.ndarray,
+                         Nv: np.ndarray, iterations: int) -> Optional[np.ndarray]:
     """Newton's iterations of :func:`_polish_circle_point`; None when they diverge."""
     for _ in range(iterations):
         N = N0 + x[0] * Nu + x[1] * Nv
@@ -954,20 +1011,21 @@ def _newton_circle_point(x, n0, N0, Nu, Nv, iterations):
     return x
 
 
-def _dyad_residual(centre: complex, circle: complex, m, E) -> float:
+def _dyad_residual(centre: complex, circle: complex, m: np.ndarray, E: np.ndarray) -> float:
     """Largest ||Bj - A| - |B1 - A|| (scaled): the circle point on its circle."""
     B = m + circle * E
     r = np.abs(B - centre)
     return float(np.max(np.abs(r - r[0])))
 
 
-def _slider_residual(circle: complex, m, E, guide: complex) -> float:
+def _slider_residual(circle: complex, m: np.ndarray, E: np.ndarray, guide: complex) -> float:
     """Largest distance of the circle point's positions from its line (scaled)."""
     B = m + circle * E
     return float(np.max(np.abs((np.conj(guide) * (B - B[0])).imag)))
 
 
-def _polish_dyad(centre: complex, circle: complex, m, E, iterations: int = 8):
+def _polish_dyad(centre: complex, circle: complex, m: np.ndarray, E: np.ndarray,
+                 iterations: int = 8) -> Optional[Tuple[complex, complex]]:
     """Newton on (S-E) j = 2…n in W, Z, βj (scaled, M1 = 0); (centre, circle) or None."""
     W, Z = circle - centre, -circle
     B = m + circle * E
@@ -1002,7 +1060,8 @@ def _polish_dyad(centre: complex, circle: complex, m, E, iterations: int = 8):
     return -Z - W, -Z
 
 
-def burmester_design(M, phi, pair_a: BurmesterPair, pair_b: BurmesterPair) -> LinkageDesign:
+def burmester_design(M: List[Tuple[float, float]], phi: np.ndarray, pair_a: BurmesterPair,
+                     pair_b: BurmesterPair) -> LinkageDesign:
     """The four-bar of two Burmester pairs: A, B1 of ``pair_a``; D, C1 of ``pair_b``.
 
     Parameters

@@ -7,10 +7,13 @@ radians), the report layer words what it returns.
 
 from __future__ import annotations
 
-from typing import Any, Optional
+from typing import TYPE_CHECKING, Any, Optional
 
 from mechcli.core.records import record
 from mechcli.core.synth.verify import Verification, verify
+
+if TYPE_CHECKING:
+    pass
 
 #: the kinds whose four-bar only has to move a body: either side link may drive it
 #: (a function generator's input is its crank by definition)
@@ -43,7 +46,7 @@ class SynthSolution:
     other_driver: Optional[Verification] = None
 
 
-def _design(kind, d):
+def _design(kind: str, d: Any) -> Any:
     if kind == "two_positions":
         from mechcli.core.synth.guidance import two_positions
         return two_positions(d["B"], d["C"], A=d["A"], D=d["D"], line_A=d["line_A"],
@@ -149,7 +152,7 @@ class AtlasChart:
     ranges: Optional[dict]
 
 
-def solve_synthesis(kind, data) -> SynthSolution:
+def solve_synthesis(kind: str, data: Any) -> SynthSolution:
     """Design one problem and check the design on the engine.
 
     Parameters

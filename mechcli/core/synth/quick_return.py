@@ -31,7 +31,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from typing import Optional, Sequence, Tuple
+from typing import Any, List, Optional, Sequence, Tuple
 
 import numpy as np
 
@@ -82,28 +82,28 @@ def time_ratio(theta: float) -> float:
     return (math.pi + theta) / (math.pi - theta)
 
 
-def _positive(name, x):
+def _positive(name: str, x: float) -> float:
     x = float(x)
     if not (math.isfinite(x) and x > 0):
         raise ValueError(f"{name} must be a positive length, got {x!r}")
     return x
 
 
-def _branch(branch, allowed=BRANCHES):
+def _branch(branch: str, allowed: Tuple[str, str, str] = BRANCHES) -> str:
     if branch not in allowed:
         raise ValueError(f"branch must be one of {allowed}, got {branch!r}")
     return branch
 
 
-def _unit(v):
+def _unit(v: np.ndarray) -> np.ndarray:
     return v / np.hypot(v[0], v[1])
 
 
-def _pt(v) -> Point:
+def _pt(v: np.ndarray) -> Point:
     return (float(v[0]), float(v[1]))
 
 
-def _gamma_ok(gamma_min, gamma_allowed):
+def _gamma_ok(gamma_min: float, gamma_allowed: Optional[float]) -> Optional[bool]:
     return None if gamma_allowed is None else bool(gamma_min >= gamma_allowed)
 
 
@@ -147,13 +147,13 @@ class PivotCircle:
     coupler: Tuple[float, float]
     frame: Tuple[float, float]
 
-    def lengths_at(self, A):
+    def lengths_at(self, A: np.ndarray) -> Tuple[float, float, float]:
         """(l1, l2, l4) for A on L: l1 = |AC2 − AC1|/2, l2 = (AC1 + AC2)/2, l4 = AD."""
         A = np.asarray(A, dtype=float)
         ac1, ac2 = np.hypot(*(A - self.C1)), np.hypot(*(A - self.C2))
         return abs(ac2 - ac1) / 2, (ac1 + ac2) / 2, float(np.hypot(*A))
 
-    def from_delta(self, delta):
+    def from_delta(self, delta: float) -> np.ndarray:
         """A on C1's side of L for the parameter δ ∈ (0, (π − θ)/2).
 
         With x = ∠AC1C2 and y = ∠AC2C1 (x + y = π − θ), δ = (x − y)/2; the law
@@ -167,7 +167,7 @@ class PivotCircle:
         x = delta + (math.pi - th) / 2
         return self.C1 + (l2 - l1) * np.array([math.cos(x), -math.sin(x)])
 
-    def usable(self, A, rtol=1e-12):
+    def usable(self, A: np.ndarray, rtol: float = 1e-12) -> bool:
         """A is on the usable arcs: below the chord, and C1, C2 strictly on one side of AD."""
         A = np.asarray(A, dtype=float)
         scale = self.rocker
@@ -175,7 +175,7 @@ class PivotCircle:
             return False
         u = -A                                     # A -> D
 
-        def side(P):
+        def side(P: np.ndarray) -> float:
             w = P - A
             return (u[0] * w[1] - u[1] * w[0]) / scale ** 2
 
@@ -244,7 +244,7 @@ def pivot_circle(K: float, rocker: float, swing: float) -> PivotCircle:
                                frame=(min(l3, l4E), max(l3, l4E)))
 
 
-def _check_range(name, reason, key, value, rng):
+def _check_range(name: str, reason: str, key: str, value: float, rng: Tuple[float, float]) -> None:
     lo, hi = rng
     if not (lo < value < hi):
         raise DescribedError(
@@ -253,7 +253,7 @@ def _check_range(name, reason, key, value, rng):
             **{key: value, "value": value, "lo": lo, "hi": hi})
 
 
-def _line_points(circle, line):
+def _line_points(circle: PivotCircle, line: Any) -> List[np.ndarray]:
     """Intersections of a x + b y = c with L, ordered by x (then y)."""
     a, b, c = (float(v) for v in line)
     n = math.hypot(a, b)
@@ -277,7 +277,8 @@ def _line_points(circle, line):
     return pts
 
 
-def _crank_rocker_at(circle, A, K, gamma_allowed, side):
+def _crank_rocker_at(circle: PivotCircle, A: np.ndarray, K: float, gamma_allowed: Optional[float],
+                     side: str) -> LinkageDesign:
     """The design for a pivot A on the usable arc (B1 where A, B1, C1 are in line)."""
     A = np.asarray(A, dtype=float)
     C1, C2, D = circle.C1, circle.C2, np.zeros(2)
@@ -380,49 +381,59 @@ def crank_rocker_from_K(K: float, rocker: float, swing: float, *,
                          f"{sorted(given) or 'none'}")
     _branch(branch)
     circle = pivot_circle(K, rocker, swing)
-    th, R = circle.theta, circle.R
-
     if pivot_line is not None:
-        pts = _line_points(circle, pivot_line)
-        ok = [circle.usable(p) for p in pts]
-        if branch == "best":
-            cands = [_crank_rocker_at(circle, p, K, gamma_allowed, "left" if i == 0 else "right")
-                     for i, p in enumerate(pts) if ok[i]]
-            if cands:
-                return max(cands, key=lambda d: d.values["gamma_min"])
-        else:
-            i = 0 if branch == "left" else 1
-            if ok[i]:
-                return _crank_rocker_at(circle, pts[i], K, gamma_allowed, branch)
-        raise DescribedError(
-            "the line of A meets the circle of A only where the linkage's limit positions "
-            "are not C1 and C2 (the line AD passes between them)" if branch == "best" else
-            f"the {branch} intersection of the line with the circle of A gives no "
-            "crank-rocker with these limit positions", reason="pivot_line_unusable",
-            points=[_pt(p) for p in pts], usable=ok, branch=branch)
-
-    if crank is not None:
-        l1 = _positive("crank", crank)
-        _check_range("crank", "crank_range", "l1", l1, circle.crank)
-        A = circle.from_delta(math.asin(l1 / (2 * R * math.sin(th / 2))))
-    elif coupler is not None:
-        l2 = _positive("coupler", coupler)
-        _check_range("coupler", "coupler_range", "l2", l2, circle.coupler)
-        A = circle.from_delta(math.acos(l2 / (2 * R * math.cos(th / 2))))
-    else:
-        l4 = _positive("frame", frame)
-        _check_range("frame", "frame_range", "l4", l4, circle.frame)
-        yo = circle.O[1]
-        if yo == 0.0:      # D is the centre of L: every A is l3 from D, the range is empty
-            raise DescribedError("with D at the centre of the circle of A the frame does not "
-                                 "fix A", reason="frame_range", l4=l4, value=l4,
-                                 lo=circle.rocker, hi=circle.rocker)
-        y = (l4 ** 2 + yo ** 2 - R ** 2) / (2 * yo)
-        A = np.array([-math.sqrt(max(l4 ** 2 - y ** 2, 0.0)), y])
+        return _on_pivot_line(circle, pivot_line, K, gamma_allowed, branch)
+    A = _pivot_from_length(circle, crank, coupler, frame)
     side = "right" if branch == "right" else "left"
     if side == "right":
         A = np.array([-A[0], A[1]])
     return _crank_rocker_at(circle, A, K, gamma_allowed, side)
+
+
+def _on_pivot_line(circle: PivotCircle, pivot_line: Sequence[float], K: float,
+                   gamma_allowed: Optional[float], branch: str) -> LinkageDesign:
+    """Case (1) of :func:`crank_rocker_from_K`: A where the line meets L."""
+    pts = _line_points(circle, pivot_line)
+    ok = [circle.usable(p) for p in pts]
+    if branch == "best":
+        cands = [_crank_rocker_at(circle, p, K, gamma_allowed, "left" if i == 0 else "right")
+                 for i, p in enumerate(pts) if ok[i]]
+        if cands:
+            return max(cands, key=lambda d: d.values["gamma_min"])
+    else:
+        i = 0 if branch == "left" else 1
+        if ok[i]:
+            return _crank_rocker_at(circle, pts[i], K, gamma_allowed, branch)
+    raise DescribedError(
+        "the line of A meets the circle of A only where the linkage's limit positions "
+        "are not C1 and C2 (the line AD passes between them)" if branch == "best" else
+        f"the {branch} intersection of the line with the circle of A gives no "
+        "crank-rocker with these limit positions", reason="pivot_line_unusable",
+        points=[_pt(p) for p in pts], usable=ok, branch=branch)
+
+
+def _pivot_from_length(circle: PivotCircle, crank: Optional[float], coupler: Optional[float],
+                       frame: Optional[float]) -> np.ndarray:
+    """Cases (2)–(4) of :func:`crank_rocker_from_K`: A on C1's side from the one length
+    given (crank, coupler or frame)."""
+    th, R = circle.theta, circle.R
+    if crank is not None:
+        l1 = _positive("crank", crank)
+        _check_range("crank", "crank_range", "l1", l1, circle.crank)
+        return circle.from_delta(math.asin(l1 / (2 * R * math.sin(th / 2))))
+    if coupler is not None:
+        l2 = _positive("coupler", coupler)
+        _check_range("coupler", "coupler_range", "l2", l2, circle.coupler)
+        return circle.from_delta(math.acos(l2 / (2 * R * math.cos(th / 2))))
+    l4 = _positive("frame", frame)
+    _check_range("frame", "frame_range", "l4", l4, circle.frame)
+    yo = circle.O[1]
+    if yo == 0.0:      # D is the centre of L: every A is l3 from D, the range is empty
+        raise DescribedError("with D at the centre of the circle of A the frame does not "
+                             "fix A", reason="frame_range", l4=l4, value=l4,
+                             lo=circle.rocker, hi=circle.rocker)
+    y = (l4 ** 2 + yo ** 2 - R ** 2) / (2 * yo)
+    return np.array([-math.sqrt(max(l4 ** 2 - y ** 2, 0.0)), y])
 
 
 def crank_rocker_from_K_limit_angle(K: float, rocker: float, frame: float,
@@ -526,14 +537,14 @@ def crank_rocker_from_K_limit_angle(K: float, rocker: float, frame: float,
     return dataclasses.replace(design, inputs=None)
 
 
-def _limit_angle_K_hi(c, d, s1, delta, limit):
+def _limit_angle_K_hi(c: float, d: float, s1: float, delta: float, limit: str) -> float:
     """Largest K of the crank-rockers with AC1 = s1 at ∠ADC1 = delta: the best of 4096
     cranks per kind, refined by golden section between its grid neighbours (K is -inf
     where the crank-rocker ceases, so an edge maximum is approached from inside)."""
     kinds = ("extended", "folded") if limit == "best" else (limit,)
     best = 1.0
     for kind in kinds:
-        def K_of(a, kind=kind):
+        def K_of(a: np.ndarray, kind: str = kind) -> np.ndarray:
             a = np.atleast_1d(np.asarray(a, dtype=float))
             b = s1 - a if kind == "extended" else s1 + a
             L = np.stack([a, b, np.full_like(a, c), np.full_like(a, d)], axis=1)
@@ -684,7 +695,8 @@ def slider_crank_stroke_from_K(K: float, crank: float, coupler: float, *,
     return _slider_design(a, b, e, K, theta, H, gamma_allowed)
 
 
-def _slider_design(a, b, e, K, theta, H, gamma_allowed, **extra):
+def _slider_design(a: float, b: float, e: float, K: float, theta: float, H: float,
+                   gamma_allowed: Optional[Any], **extra: Any) -> LinkageDesign:
     """The slider-crank design with its limit positions (A = (0, 0), path y = e)."""
     xf = math.sqrt(max((b - a) ** 2 - e * e, 0.0))
     xe = math.sqrt((b + a) ** 2 - e * e)

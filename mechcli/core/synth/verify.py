@@ -26,12 +26,16 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from typing import Optional, Tuple
+from typing import TYPE_CHECKING, Any, List, Optional, Tuple
 
 import numpy as np
 
 from mechcli.core.linkage.engine import DriverMotion, Linkage, solve
 from mechcli.core.records import record
+
+if TYPE_CHECKING:
+    from mechcli.core.linkage.engine import LinkageMotion
+    from mechcli.core.synth.design import LinkageDesign
 
 #: samples of the crank path per radian when looking for gaps and dead points
 #: (0.25° apart; a gap narrower than that between two positions can be missed,
@@ -119,7 +123,7 @@ def _flipped(linkage: Linkage) -> Linkage:
         for el in linkage.elements))
 
 
-def _residuals(design, m):
+def _residuals(design: LinkageDesign, m: LinkageMotion) -> np.ndarray:
     """Relative residual at each prescribed position (NaN where infeasible)."""
     size = design.size
     res = np.zeros(len(design.inputs))
@@ -134,7 +138,7 @@ def _residuals(design, m):
     return np.where(m.feasible, res, np.nan)
 
 
-def _type(design, driver=1):
+def _type(design: LinkageDesign, driver: int = 1) -> Any:
     """(type name, the input turns, γmin over a turn or None, figures for a K design)."""
     from mechcli.core.grashof.fourbar import (
         analyse_fourbar,
@@ -169,7 +173,7 @@ def _type(design, driver=1):
     raise ValueError(f"unknown design kind {design.kind!r}")
 
 
-def _orders(q):
+def _orders(q: np.ndarray) -> List[Tuple[int, np.ndarray]]:
     """Directions (+1, -1) that visit the positions in order within one turn,
     with their unwrapped paths; a repeated position is a zero step."""
     out = []
@@ -182,7 +186,8 @@ def _orders(q):
     return out
 
 
-def _path_check(linkage, q0, sign, travel):
+def _path_check(linkage: Linkage, q0: float, sign: int, travel: np.ndarray
+               ) -> Tuple[None, None, float]:
     """Solve along one direction; (index of the first position not reached, angle of the
     first bad sample or None, γmin over the path or None)."""
     total = travel[-1]
@@ -202,7 +207,7 @@ def _path_check(linkage, q0, sign, travel):
     return reached, float(q0 + sign * s[bad]), gamma
 
 
-def _crank_path(linkage, q):
+def _crank_path(linkage: Linkage, q: np.ndarray) -> Tuple[int, float, float, None]:
     """A crank turns one way: the positions must come in order within one turn."""
     orders = _orders(q)
     if not orders:
@@ -217,7 +222,7 @@ def _crank_path(linkage, q):
     return 0, float(q[0]), None, Defect("circuit", first_fail[0] + 1, first_fail[1])
 
 
-def _rocker_path(linkage, q):
+def _rocker_path(linkage: Linkage, q: np.ndarray) -> Tuple[int, float, float, None]:
     """An input that does not turn fully may reverse: each step from one position to
     the next must be possible one way or the other without disassembly."""
     signs, gammas, stop = [], [], float(q[0])
@@ -238,7 +243,7 @@ def _rocker_path(linkage, q):
     return direction, stop, (min(gammas) if gammas else None), None
 
 
-def _driven_by_rocker(design, C):
+def _driven_by_rocker(design: LinkageDesign, C: np.ndarray) -> LinkageDesign:
     """The four-bar of *design* driven by its rocker CD (link 3) about D: the crank AB
     becomes the dyad's second link.  *C*: the joint C at each prescribed position."""
     from mechcli.core.linkage.elements import RRR, Crank, Ground, PointOnLink
@@ -258,7 +263,7 @@ def _driven_by_rocker(design, C):
                                inputs=np.angle(np.asarray(C) - d), angles=angles)
 
 
-def verify(design, driver=1) -> Verification:
+def verify(design: LinkageDesign, driver: int = 1) -> Verification:
     """Move a design through its prescribed positions on the engine.
 
     Parameters
