@@ -41,6 +41,7 @@ from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
 from mechcli.report import run as _run
+from mechcli.report.words import CJK
 
 #: resolution of a PNG unless ``--dpi`` (or :func:`set_dpi`) says otherwise
 DEFAULT_DPI = 200
@@ -259,7 +260,7 @@ def setup(lang="en"):
     fam = cjk_font()
     # an explicit list: matplotlib takes each glyph from the first family that has it
     matplotlib.rcParams["font.family"] = [_BASE_FAMILY, fam] if fam else [_BASE_FAMILY]
-    if fam is None and lang == "zh":
+    if fam is None and lang in CJK:   # a language in Chinese characters needs a CJK font
         _run.notice(f"{_run.NO_CJK}: figure labels in English")   # once for the run
         return "en"
     return lang
