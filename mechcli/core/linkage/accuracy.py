@@ -5,7 +5,7 @@ order) and the correct significant digits of every quantity (:func:`estimate_acc
 from __future__ import annotations
 
 import dataclasses
-from typing import Dict
+from typing import TYPE_CHECKING, Any, Dict, Sequence
 
 import numpy as np
 
@@ -13,6 +13,10 @@ from mechcli.core.linkage.engine import Linkage, LinkageMotion, solve
 from mechcli.core.linkage.sweep import _take
 from mechcli.core.records import record
 from mechcli.core.refine import true_runs
+from mechcli.core.types import FloatOrArray
+
+if TYPE_CHECKING:
+    from mechcli.core.linkage.sweep import Sweep
 
 # ---------------------------------------------------------------------------
 # accuracy: how many digits the float64 solution keeps near a singular position
@@ -84,7 +88,7 @@ class Accuracy:
         """Class -> fewest estimated digits over the range (0 ... 15.7)."""
         return {k: float(np.min(v)) for k, v in self.digits.items() if np.size(v)}
 
-    def ranges(self, threshold=ACCURACY_WARN):
+    def ranges(self, threshold: FloatOrArray = ACCURACY_WARN):
         """Every continuous range of inputs where a class keeps fewer than
         ``threshold`` digits: one :class:`AccuracyRange` per range and class."""
         out = []
@@ -147,13 +151,15 @@ def amplification(linkage: Linkage, motion: LinkageMotion):
     return out
 
 
-def _digits(err_over_scale):
+def _digits(err_over_scale: FloatOrArray):
     """Correct significant digits of a relative error (0 ... FULL_DIGITS)."""
     r = np.maximum(np.asarray(err_over_scale, dtype=float), EPS)
     return np.clip(-np.log10(r), 0.0, FULL_DIGITS)
 
 
-def estimate_accuracy(linkage, sweep, quantities, values, extremes, q, motion, segment):
+def estimate_accuracy(linkage: Linkage, sweep: Sweep, quantities: Sequence[Any],
+                      values: Dict[str, np.ndarray], extremes: Any, q: np.ndarray,
+                      motion: LinkageMotion, segment: Any):
     """Digits-lost estimate of every quantity at inputs ``q`` (see :class:`Accuracy`).
 
     ``values``/``extremes`` give each quantity's largest magnitude over the
@@ -202,8 +208,9 @@ def estimate_accuracy(linkage, sweep, quantities, values, extremes, q, motion, s
     return Accuracy(q, segment, digits, worst, by_q)
 
 
-def _accuracy_of_sweep(linkage, sweep, quantities, order, q, values, extremes, motion, runs,
-                       toggles):
+def _accuracy_of_sweep(linkage, sweep, quantities, order,
+                       q, values, extremes,
+                       motion, runs, toggles):
     """:func:`estimate_accuracy` on the output rows and the refined near-dead positions
     (a singular position between two rows is not missed)."""
     segment = np.repeat(np.arange(len(runs)), [b - a for a, b in runs]) if runs else \
@@ -228,10 +235,10 @@ def _accuracy_of_sweep(linkage, sweep, quantities, order, q, values, extremes, m
     return estimate_accuracy(linkage, sweep, quantities, values, extremes, q_all, motion, seg)
 
 
-def _concat_motion(a: LinkageMotion, b: LinkageMotion, sort) -> LinkageMotion:
+def _concat_motion(a: Any, b: Any, sort: bool):
     """Two motions' positions joined, then reordered by ``sort`` (conditions only:
     what the accuracy estimate reads)."""
-    def cat(x, y):
+    def cat(x: FloatOrArray, y: FloatOrArray):
         return None if x is None or y is None else np.concatenate([x, y])[sort]
     cds = tuple(dataclasses.replace(c, sin_gamma=cat(c.sin_gamma, d.sin_gamma),
                                     cos_joint=cat(c.cos_joint, d.cos_joint))

@@ -25,17 +25,25 @@ head-end dead centre; exactly it is r sin(θ + φ) / cos φ.
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING, Any, Callable, Dict, Optional, Sequence, Tuple
 
 import numpy as np
 
 from mechcli.core.refine import bracketed_root
+from mechcli.core.types import FloatOrArray
+
+if TYPE_CHECKING:
+    pass
+
+if TYPE_CHECKING:
+    from mechcli.core.linkage.engine import LinkageMotion
 
 #: the rounding of a derivative of the series, relative to the sum of its terms' sizes
 #: (a few operations on the rounded angle and lengths)
 _EPS = float(np.finfo(float).eps)
 
 
-def series(q, r, l, branch=1):
+def series(q: np.ndarray, r: FloatOrArray, l: FloatOrArray, branch: int = 1):
     """``(s, ds/dθ, d²s/dθ²)`` of the first-order series at crank angles *q* [rad]."""
     q = np.asarray(q, dtype=float)
     n = l / r
@@ -46,7 +54,7 @@ def series(q, r, l, branch=1):
     return s, ds, dds
 
 
-def exact(q, r, l, branch=1):
+def exact(q: np.ndarray, r: FloatOrArray, l: FloatOrArray, branch: int = 1):
     """``(s, ds/dθ, d²s/dθ²)`` of the exact centred slider-crank (closed form)."""
     q = np.asarray(q, dtype=float)
     b = 1.0 if branch >= 0 else -1.0
@@ -59,7 +67,7 @@ def exact(q, r, l, branch=1):
     return s, ds, dds
 
 
-def moment_arm(q, r, l, branch=1):
+def moment_arm(q: np.ndarray, r: FloatOrArray, l: FloatOrArray, branch: int = 1):
     """The series moment arm [m] of the piston effort about the crank pivot at crank
     angles *q* [rad]: the turning moment is T ≈ F_P · arm, F_P along the line of
     stroke toward the crank (positive pushing the piston toward the crank pivot).
@@ -76,14 +84,16 @@ def moment_arm(q, r, l, branch=1):
     return -b * series(q, r, l, branch)[1]
 
 
-def motion(q, r, l, omega, alpha=0.0, branch=1):
+def motion(q: np.ndarray, r: FloatOrArray, l: FloatOrArray, omega: FloatOrArray, alpha: float = 0.0,
+           branch: int = 1):
     """Approximate ``(s, v, a)`` of the slider at crank angles *q* [rad], crank
     speed *omega* [rad/s] and acceleration *alpha* [rad/s²]."""
     s, ds, dds = series(q, r, l, branch)
     return s, ds * omega, dds * omega ** 2 + ds * alpha
 
 
-def slopes(q, r, l, omega, alpha=0.0, branch=1):
+def slopes(q: np.ndarray, r: FloatOrArray, l: FloatOrArray, omega: FloatOrArray, alpha: float = 0.0,
+           branch: int = 1):
     """d/dθ of :func:`motion`'s ``(s, v, a)`` and of their derivatives, in closed form,
     at crank angles *q* [rad], with *omega* and *alpha* held at every angle (the book's
     convention: alpha enters the acceleration only).
@@ -108,7 +118,8 @@ def slopes(q, r, l, omega, alpha=0.0, branch=1):
     return first, second, sizes
 
 
-def extremes(q, values, func, slope=None):
+def extremes(q: Any, values: Any, func: Callable[..., Any],
+             slope: Any = None):
     """``(max, min)`` of ``func(x)`` (a closed form) over the sweep *q*, refined
     between the neighbours of the best sample.  Returns two ``(value, at, tol)``.
 
@@ -146,7 +157,7 @@ def extremes(q, values, func, slope=None):
     return tuple(out)
 
 
-def differences(approx, exact_values):
+def differences(approx: Any, exact_values: Any):
     """Largest |approximate - exact| over the sweep, absolute and relative.
 
     *approx*, *exact_values*: ``(s, v, a)`` arrays in the same units.  The
@@ -162,7 +173,7 @@ def differences(approx, exact_values):
     return out
 
 
-def largest_relative_differences(n, samples=36001):
+def largest_relative_differences(n: int, samples: Any = 36001):
     """The largest relative differences (s to the stroke 2r, v to max |v|, a to
     max |a|) of the series over a whole turn for rod/crank ratio *n* (ω = 1, α = 0)."""
     q = np.linspace(0.0, 2 * math.pi, samples)
@@ -207,7 +218,7 @@ def apply(linkage, sweep, result):
         values[sym] = approx[k]
         func = (lambda x, k=k: float(motion(np.array([x]), r, l, omega, alpha, branch)[k][0]))
 
-        def slope(x, k=k):
+        def slope(x: Any, k: int = k):
             first, second, sizes = slopes(x, r, l, omega, alpha, branch)
             return first[k], second[k], sizes[k]
         if q.size:
@@ -227,16 +238,17 @@ class SeriesInertia:
     ``moment_arm``: ``"exact"`` (default) or ``"series"``: the engine's named
     results T and FT then take the series moment arm (:meth:`arm`)."""
 
-    def __init__(self, r, l, branch, mass, omega, alpha=0.0, moment_arm="exact"):
+    def __init__(self, r: FloatOrArray, l: FloatOrArray, branch: int, mass: FloatOrArray,
+                 omega: FloatOrArray, alpha: float = 0.0, moment_arm: str = "exact") -> None:
         self.r, self.l, self.branch = float(r), float(l), int(branch)
         self.mass, self.omega, self.alpha = float(mass), float(omega), float(alpha)
         self.moment_arm = str(moment_arm)
 
-    def acceleration(self, q):
+    def acceleration(self, q: np.ndarray):
         """The series acceleration of the slide [m/s²] at crank angles ``q``."""
         return motion(q, self.r, self.l, self.omega, self.alpha, self.branch)[2]
 
-    def arm(self, q):
+    def arm(self, q: np.ndarray):
         """The series moment arm of the piston effort [m] at crank angles ``q``
         (:func:`moment_arm`) with ``moment_arm = "series"``; else None (T and FT
         from the rod's force on the crank pin)."""
@@ -244,11 +256,12 @@ class SeriesInertia:
             return None
         return moment_arm(q, self.r, self.l, self.branch)
 
-    def force(self, q, motion_=None):
+    def force(self, q: np.ndarray, motion_: Optional[LinkageMotion] = None):
         return -self.mass * self.acceleration(q)
 
 
-def force_model(piston, bodies, programs, gravity, omega, alpha=0.0):
+def force_model(piston: Any, bodies: Dict[int, Any], programs: Sequence[Any],
+                gravity: Optional[Tuple[float, float]], omega: FloatOrArray, alpha: float = 0.0):
     """The approximate model of ``mechcli force`` for a centred slider-crank.
 
     The piston's d'Alembert force −m a is taken from the series (its exact value

@@ -36,12 +36,13 @@ is left to it (:func:`layout` returns None).
 
 from __future__ import annotations
 
-from typing import Tuple
+from typing import Any, Sequence, Tuple
 
 import numpy as np
 
 from mechcli.core.linkage.folding import Neg, add, const, cross3, div, dot3, mul, neg, sub, value  # noqa: F401
 from mechcli.core.records import record
+from mechcli.core.types import FloatOrArray
 
 # the folding arithmetic (:mod:`.folding`); the underscored names are its earlier
 # names here, kept for code that imported them
@@ -49,7 +50,7 @@ _Neg, _neg, _mul, _add, _sub, _div = Neg, neg, mul, add, sub, div
 _dot3, _cross = dot3, cross3
 
 
-def _isf(v):
+def _isf(v: Any):
     return type(v) is float
 
 
@@ -138,7 +139,7 @@ def layout(kind_of, cols_of_rows, nrows):
     return DyadLayout(out[0], (2 * inner, 2 * inner + 1), out[1])
 
 
-def _guard(det):
+def _guard(det: Any):
     """``(det, singular)``: exact zeros replaced by 1 (flagged)."""
     if type(det) is Neg:
         det, sing = _guard(det.v)
@@ -153,7 +154,7 @@ def _guard(det):
     return np.where(zero, 1.0, det), zero
 
 
-def _cramer(p, q, r, s, det):
+def _cramer(p: Any, q: FloatOrArray, r: Any, s: Any, det: Any):
     """``(p q - r s) / det``; for a pending negation of ``det`` the products are
     subtracted the other way round (no pass for the sign)."""
     if type(det) is Neg:
@@ -161,7 +162,7 @@ def _cramer(p, q, r, s, det):
     return div(sub(mul(p, q), mul(r, s)), det)
 
 
-def _residual(bk, a0, y0, a1, y1, over):
+def _residual(bk: Any, a0: Any, y0: Any, a1: Any, y1: Any, over: Any):
     """``(bk - a0 y0 - a1 y1) / over``; for a negative float ``over`` (the force of
     link i on j is minus that of j on i) the terms are summed the other way round
     (no pass for the sign)."""
@@ -170,7 +171,7 @@ def _residual(bk, a0, y0, a1, y1, over):
     return div(sub(sub(bk, mul(a0, y0)), mul(a1, y1)), over)
 
 
-def _outer(cols, base, A, r):
+def _outer(cols: Tuple[int, int], base: int, A: Sequence[Sequence[Any]], r: Any):
     """A prismatic outer pair's two unknowns from its link's residual equations
     ``r`` (a revolute one's come from :func:`_residual` directly)."""
     c0, c1 = cols
@@ -179,7 +180,7 @@ def _outer(cols, base, A, r):
     return n, div(sub(r[2], mul(um, n)), A[base + 2][c1])
 
 
-def factor(lay, A):
+def factor(lay: Any, A: Sequence[Sequence[Any]]):
     """The part of a block's closed-form solution that depends on ``A`` only
     (the equations free of the outer pairs, the 2 x 2 determinant), for
     :func:`apply` to any number of right-hand sides."""
@@ -202,7 +203,8 @@ def factor(lay, A):
     return lay, ws, (g00, g01, g10, g11), det, sing
 
 
-def apply(fac, A, b, shape, arrays=True):
+def apply(fac, A, b, shape,
+          arrays=True):
     """Solve ``A x = b`` with a :func:`factor` of ``A``: X, a list of the unknowns
     in the block's column order (zero at the singular positions); arrays of
     ``shape`` (or, with ``arrays`` False, Python floats where they are constant)."""
@@ -245,7 +247,7 @@ def apply(fac, A, b, shape, arrays=True):
     return X
 
 
-def solve(lay, A, b, shape):
+def solve(lay: Any, A: Sequence[Sequence[Any]], b: Sequence[Any], shape: Tuple[int, ...]):
     """Solve one block in closed form: ``(X, singular)`` (X a list of the
     unknowns in the block's column order, arrays of ``shape``; ``singular`` None,
     True or a mask of the positions with a vanishing determinant, where X is

@@ -33,11 +33,18 @@ slider-crank of 例 1-2 is ``Crank`` + ``RRP``; the guide-bar of 例 1-3 is
 
 from __future__ import annotations
 
-from typing import ClassVar, Optional, Tuple
+from typing import Any, ClassVar, Optional, Tuple
 
 import numpy as np
 
 from mechcli.core.records import record
+from mechcli.core.types import FloatOrArray
+
+#: the engine's solve state and motion (``engine.SolveState``, ``engine.LinkageMotion``):
+#: engine imports this module, so they are untyped here (no import cycle, not even under
+#: TYPE_CHECKING: tests/unit/test_layering.py)
+_SolveState = Any
+_Motion = Any
 
 #: relative size below which a dyad counts as singular (a dead point).  The
 #: closed-form positions carry a sqrt of a rounded discriminant, so sin(gamma)
@@ -52,7 +59,7 @@ ASSEMBLY_TOL = 1e-10
 _SKETCH = ("Bar", "Block", "Guide", "Pivot")
 
 
-def __getattr__(name):
+def __getattr__(name: str):
     if name in _SKETCH:
         from mechcli.core.linkage import sketch
         return getattr(sketch, name)
@@ -69,7 +76,8 @@ class Solve2:
     inf or NaN.
     """
 
-    def __init__(self, c1x, c1y, c2x, c2y, bad):
+    def __init__(self, c1x: FloatOrArray, c1y: FloatOrArray, c2x: FloatOrArray, c2y: FloatOrArray,
+                 bad: Optional[np.ndarray]) -> None:
         det = c1x * c2y - c1y * c2x
         if bad is not None:
             det = np.where(bad, 1.0, det)
@@ -77,7 +85,7 @@ class Solve2:
         self.c = (c1x, c1y, c2x, c2y)
         self.bad = bad
 
-    def __call__(self, rx, ry):
+    def __call__(self, rx: FloatOrArray, ry: FloatOrArray):
         c1x, c1y, c2x, c2y = self.c
         x = (rx * c2y - ry * c2x) * self.inv
         y = (c1x * ry - c1y * rx) * self.inv
@@ -87,7 +95,7 @@ class Solve2:
         return x, y
 
 
-def _minus(a, b):
+def _minus(a: FloatOrArray, b: FloatOrArray):
     """``a - b`` of two coordinate arrays; ``a`` itself when ``b`` is a point fixed at
     zero (a stride-0 array of zeros, as the engine gives a ground point)."""
     if type(b) is np.ndarray and b.ndim and not any(b.strides) and not b.reshape(-1)[0]:
@@ -95,7 +103,9 @@ def _minus(a, b):
     return np.subtract(a, b)
 
 
-def _guide_unit(dx, dy, s, e, inv, ux, uy, t1, t2):
+def _guide_unit(dx: Any, dy: Any, s: Any, e: Any,
+                inv: Any, ux: Any, uy: Any, t1: Any,
+                t2: Any):
     """An RPR guide's unit vector into ``ux``, ``uy``: ``d = (s + i e) u`` with ``d``
     = point - pivot, so ``u = d (s - i e) / |d|^2`` (``inv`` = 1 / |d|^2; ``t1``,
     ``t2`` scratch of the full shape).  Returns where the offset is zero (there
@@ -124,7 +134,9 @@ class LinkState:
 
     __slots__ = ("theta", "c", "s", "w", "al")
 
-    def __init__(self, theta, c, s, w, al):
+    def __init__(self, theta: FloatOrArray, c: Optional[FloatOrArray],
+                 s: Optional[FloatOrArray], w: Optional[FloatOrArray],
+                 al: Optional[FloatOrArray]) -> None:
         self.theta, self.c, self.s, self.w, self.al = theta, c, s, w, al
 
 
@@ -133,11 +145,14 @@ class PointState:
 
     __slots__ = ("x", "y", "vx", "vy", "ax", "ay")
 
-    def __init__(self, x, y, vx=None, vy=None, ax=None, ay=None):
+    def __init__(self, x: FloatOrArray, y: FloatOrArray, vx: Optional[FloatOrArray] = None,
+                 vy: Optional[FloatOrArray] = None, ax: Optional[FloatOrArray] = None,
+                 ay: Optional[FloatOrArray] = None) -> None:
         self.x, self.y, self.vx, self.vy, self.ax, self.ay = x, y, vx, vy, ax, ay
 
 
-def rotate_about(o: PointState, link: LinkState, rx, ry, vel, acc, st=None) -> PointState:
+def rotate_about(o, link, rx, ry, vel,
+                 acc, st=None):
     """The point ``o + (rx, ry)`` fixed on ``link``, with its velocity and acceleration.
 
     With ``st`` (the solve state) the results are written into its preallocated
@@ -184,7 +199,8 @@ class _GuideLine:
     block's angle is an output row.
     """
 
-    def __init__(self, st, link, point, angle, offset, slot, keep):
+    def __init__(self, st, link, point, angle,
+                 offset, slot, keep):
         self.p, self.g = st.P[point], st.L[link]
         self.moving = link != st.frame
         g, c, s = self.g, np.cos(angle), np.sin(angle)
@@ -205,7 +221,8 @@ class _GuideLine:
             self.theta = st.full(angle)
         self.keep = keep or not self.moving
 
-    def carried_velocity(self, rx, ry, ox, oy):
+    def carried_velocity(self, rx, ry, ox,
+                         oy):
         """Velocity [m/s] of the guide link's point at ``point + (rx, ry)``
         (into ``ox``, ``oy`` when the link moves)."""
         p, w = self.p, self.g.w
@@ -217,7 +234,8 @@ class _GuideLine:
         np.add(p.vy, oy, out=oy)
         return ox, oy
 
-    def carried_acceleration(self, rx, ry, sd, ox, oy, t):
+    def carried_acceleration(self, rx, ry, sd,
+                             ox, oy, t):
         """Acceleration [m/s^2] of the guide link's point at ``point + (rx, ry)``
         plus the Coriolis term ``2 omega x (sd u)`` of a block sliding at ``sd``
         [m/s] (into ``ox``, ``oy`` when the link moves; ``t``: two scratch arrays)."""
@@ -237,7 +255,7 @@ class _GuideLine:
         oy += np.multiply(cor, self.ux, out=cor)
         return ox, oy
 
-    def block(self, st):
+    def block(self, st: _SolveState):
         """State of a block sliding on this line: turned with the guide link."""
         if self.keep:
             return LinkState(self.theta, st.full(self.ux), st.full(self.uy), self.g.w,
@@ -245,7 +263,9 @@ class _GuideLine:
         return LinkState(self.theta, None, None, self.g.w, self.g.al)
 
 
-def _prismatic_solve(hx, hy, rx, ry, ux, uy, k, a, b, t, bad):
+def _prismatic_solve(hx: Any, hy: Any, rx: Any, ry: Any,
+                     ux: Any, uy: Any, k: int, a: Any, b: Any,
+                     t: Any, bad: Any) -> None:
     """RRP's 2x2 system ``a (i r) - b u = h``: ``a = (hx uy - hy ux) k``,
     ``b = (rx hx + ry hy) k`` with ``k`` the negated inverse of ``r . u``;
     ``t`` is scratch; 0 where ``bad``."""
@@ -260,7 +280,9 @@ def _prismatic_solve(hx, hy, rx, ry, ux, uy, k, a, b, t, bad):
         np.copyto(b, 0.0, where=bad)
 
 
-def _guide_solve(hx, hy, ux, uy, dx, dy, k, t1, t2, bad):
+def _guide_solve(hx: Any, hy: Any, ux: Any, uy: Any,
+                 dx: Any, dy: Any, k: int, t1: Any, t2: Any,
+                 bad: Any) -> None:
     """RPR's 2x2 system ``a u + b (i d) = h`` in place of ``hx, hy``:
     ``a = (hx dx + hy dy) k``, ``b = (ux hy - uy hx) k`` with ``k = 1 / (u . d)``;
     ``t1``, ``t2`` are scratch; 0 where ``bad``."""
@@ -276,7 +298,8 @@ def _guide_solve(hx, hy, ux, uy, dx, dy, k, t1, t2, bad):
         np.copyto(hy, 0.0, where=bad)
 
 
-def _cross_solve(hx, hy, a, b, k, t1, t2, bad):
+def _cross_solve(hx: Any, hy: Any, a: Any, b: Any, k: int,
+                 t1: Any, t2: Any, bad: Any) -> None:
     """PRP's 2x2 system ``x u_a - y u_b = h`` in place of ``hx, hy``:
     ``x = (hx b_uy - hy b_ux) k``, ``y = (a_uy hx - a_ux hy) k`` with
     ``k = 1 / (u_a x u_b)``; ``t1``, ``t2`` are scratch; 0 where ``bad``."""
@@ -293,7 +316,7 @@ def _cross_solve(hx, hy, a, b, k, t1, t2, bad):
         np.copyto(hy, 0.0, where=bad)
 
 
-def _nonpositive(*lengths):
+def _nonpositive(*lengths: FloatOrArray):
     """Mask of the designs where any of ``lengths`` is <= 0 (None when none is:
     the common case costs one comparison per parameter and changes nothing)."""
     void = None
@@ -306,14 +329,14 @@ def _nonpositive(*lengths):
     return void
 
 
-def _flips(branch):
+def _flips(branch: int):
     """Does ``branch`` (+1/-1, or an array of them) take -1 anywhere?"""
     if type(branch) is int:
         return branch != 1
     return bool(np.any(np.not_equal(branch, 1)))
 
 
-def _slide_symbol(name, block, guide, frame):
+def _slide_symbol(name: str, block: Any, guide: Any, frame: int):
     """Slide symbol suffix: ``name`` if given, else ``<block>`` on a frame
     guide, ``<block><guide>`` on a moving one (RRP's rule)."""
     if name:
@@ -344,7 +367,7 @@ class Element:
     lengths_: ClassVar[Tuple[str, ...]] = ()
     angles_: ClassVar[Tuple[str, ...]] = ()
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         # numeric parameters given as lists/tuples become arrays (a batch of
         # designs); a branch must be +1 or -1 (0 or 2 would solve silently wrong)
         for f in self.lengths_ + self.angles_ + ("branch",):
@@ -375,15 +398,15 @@ class Element:
         """Absolute values of the length-like parameters [m]."""
         return tuple(np.abs(getattr(self, f)) for f in self.lengths_)
 
-    def slide_names(self, frame) -> Tuple[str, ...]:
+    def slide_names(self, frame: int) -> Tuple[str, ...]:
         """Symbol suffixes of the slides this element reports (``s3``, ``s23``, ``sE``)."""
         return ()
 
-    def translating_links(self, frame):
+    def translating_links(self, frame: int):
         """Links made here that only translate (their angle never changes)."""
         return ()
 
-    def reported_links(self, frame):
+    def reported_links(self, frame: int):
         """Links made here whose angle, omega and alpha are reported."""
         return ()
 
@@ -391,27 +414,27 @@ class Element:
         """Joint whose transmission angle is reported (RRR dyads)."""
         return None
 
-    def step(self, st):
+    def step(self, st: _SolveState):
         """Solve this element on the state ``st`` (see ``engine.solve``)."""
         raise NotImplementedError
 
-    def direction(self, motion, link):
+    def direction(self, motion: _Motion, link: int):
         """``(cos, sin)`` of the angle of ``link`` (made here) at every position of
         ``motion``, formed from its solved points as :meth:`step` formed them: a few
         passes over memory, where ``np.cos`` and ``np.sin`` of the angle cost ~20 ns
         a position.  None: this element has no such form (take the angle's)."""
         return None
 
-    def _out_rows(self, vel, acc, frame=None):
+    def _out_rows(self, vel: bool, acc: bool, frame: Optional[int] = None):
         """How many output arrays of the full shape ``step`` takes from ``st.out()``
         (the engine preallocates them in one block)."""
         return 0
 
-    def pairs(self, tb):
+    def pairs(self, tb: Any):
         """Declare the element's points and kinematic pairs on a topology builder."""
         raise NotImplementedError
 
-    def sketch(self, frame):
+    def sketch(self, frame: int):
         """Drawing primitives: a tuple of Bar, Block, Guide, Pivot (``frame``: the
         frame's link number, for the slide names)."""
         return ()
@@ -437,17 +460,17 @@ class Ground(Element):
     def makes(self):
         return (self.name,), ()
 
-    def step(self, st):
+    def step(self, st: _SolveState) -> None:
         # kept at the parameters' own shape: broadcast to the full shape only in
         # the results (a batch of designs need not repeat x, y at every position)
         st.P[self.name] = PointState(np.asarray(self.x, dtype=float),
                                      np.asarray(self.y, dtype=float), st.zero, st.zero,
                                      st.zero, st.zero)
 
-    def pairs(self, tb):
+    def pairs(self, tb: Any) -> None:
         tb.new_point(self.name, tb.frame)
 
-    def sketch(self, frame):
+    def sketch(self, frame: int):
         from mechcli.core.linkage.sketch import Pivot
         return (Pivot(self.name),)
 
@@ -501,16 +524,16 @@ class Crank(Element):
         st.P[self.point] = rotate_about(st.P[self.pivot], link, rx, ry, st.vel, st.acc, st)
         st.L[self.link] = link
 
-    def _out_rows(self, vel, acc, frame=None):
+    def _out_rows(self, vel: bool, acc: bool, frame: Optional[int] = None):
         return 2 + 2 * vel + 2 * acc
 
-    def pairs(self, tb):
+    def pairs(self, tb: Any):
         tb.revolute(self.pivot, self.link)
         tb.new_point(self.point, self.link)
         tb.frames[self.link] = [self.pivot, self.point]
         return (self.link,)
 
-    def sketch(self, frame):
+    def sketch(self, frame: int):
         from mechcli.core.linkage.sketch import Bar
         return (Bar(self.pivot, self.point),)
 
@@ -538,13 +561,13 @@ class SliderDriver(Element):
     def makes(self):
         return (self.point,), (self.link,)
 
-    def slide_names(self, frame):
+    def slide_names(self, frame: int):
         return (self.name or str(self.link),)
 
-    def translating_links(self, frame):
+    def translating_links(self, frame: int):
         return (self.link,)
 
-    def step(self, st):
+    def step(self, st: _SolveState) -> None:
         m = st.inputs[self.link]
         s = st.full(m.q)
         ux, uy = np.cos(self.angle), np.sin(self.angle)
@@ -560,7 +583,7 @@ class SliderDriver(Element):
         st.L[self.link] = LinkState(st.full(self.angle), ux, uy, st.zero, st.zero)
         st.slide(self.slide_names(st.frame)[0], self.link, st.frame, s, v, a)
 
-    def pairs(self, tb):
+    def pairs(self, tb: Any):
         if tb.owner.get(self.origin) != tb.frame:
             tb.fail(f"the slider driver of link {self.link} needs its origin '{self.origin}' "
                     "on the frame", ("link", self.link))
@@ -569,12 +592,14 @@ class SliderDriver(Element):
         tb.frames[self.link] = [self.point, None]
         return (self.link,)
 
-    def sketch(self, frame):
+    def sketch(self, frame: int):
         from mechcli.core.linkage.sketch import Block
         return (Block(self.point, None),)
 
 
-def _rrr_solve(rx, ry, rax, ray, rbx, rby, icross, a, b, bad):
+def _rrr_solve(rx: Any, ry: Any, rax: Any, ray: Any,
+               rbx: Any, rby: Any, icross: Any, a: Any,
+               b: Any, bad: Any):
     """The RRR dyad's 2x2 system for the rates of its links (velocities, or
     accelerations with the centripetal terms moved into ``rx, ry``), by Cramer's
     rule into ``a`` and ``b`` (``ry`` is used as scratch); 0 where ``bad``."""
@@ -588,6 +613,152 @@ def _rrr_solve(rx, ry, rax, ray, rbx, rby, icross, a, b, bad):
         np.copyto(a, 0.0, where=bad)
         np.copyto(b, 0.0, where=bad)
     return a, b
+
+
+@record
+class _RRRPose:
+    """The RRR dyad's position (:func:`_rrr_pose`): the joint ``qx, qy``; the link
+    vectors ``ra = joint - point_a``, ``rb = joint - point_b``; their ``cross``
+    product (a scratch buffer the velocity reuses); the transmission measures
+    ``sing, cosj``; where it assembles (``ok``), where its known points coincide on
+    a kite (``coincide``); and the lengths used (1 where ``void``)."""
+
+    qx: np.ndarray
+    qy: np.ndarray
+    rax: np.ndarray
+    ray: np.ndarray
+    rbx: np.ndarray
+    rby: np.ndarray
+    cross: np.ndarray
+    sing: np.ndarray
+    cosj: np.ndarray
+    ok: np.ndarray
+    coincide: Optional[np.ndarray]
+    la: Any
+    lb: Any
+
+
+def _rrr_triangle(st: Any, pa: PointState, pb: PointState, la: Any, lb: Any,
+                  branch: Any) -> Tuple[Any, ...]:
+    """The joint of the triangle (pa, pb, joint) with sides ``la``, ``lb``: returns
+    ``(dx, dy, along, h, inv, qx, qy, ok, coincide)`` with ``(along, h)`` the joint from
+    ``pa`` in units of ``(dx, dy) = pb - pa`` (``qx, qy`` are still unset rows)."""
+    out, tmp = st.out, st.tmp
+    qx, qy = out(), out()
+    dx = np.subtract(pb.x, pa.x, out=tmp(0))
+    dy = np.subtract(pb.y, pa.y, out=tmp(1))
+    d2 = np.multiply(dx, dx, out=tmp(2))
+    d2 += np.multiply(dy, dy, out=qx)
+    dist = np.sqrt(d2, out=tmp(3))
+    ok = dist > ASSEMBLY_TOL * st.scale
+    coincide = None
+    if not ok.all():
+        # the known points coincide: with equal lengths (a kite's folded
+        # position) the joint may be anywhere on the circle -- a dead
+        # point, not a failure to assemble
+        kite = np.abs(la - lb) <= ASSEMBLY_TOL * np.maximum(la, lb)
+        if np.any(kite):
+            coincide = ~ok & kite
+        np.copyto(dist, 1.0, where=~ok)
+    inv = np.divide(1.0, dist, out=dist)
+    la2 = la * la
+    along = d2
+    along += la2 - lb * lb
+    along *= inv
+    along *= 0.5
+    h = np.multiply(along, along, out=tmp(4))
+    np.subtract(la2, h, out=h)
+    ok &= h >= -4 * ASSEMBLY_TOL * la2
+    np.maximum(h, 0.0, out=h)
+    np.sqrt(h, out=h)
+    if _flips(branch):
+        h *= branch
+    along *= inv  # (along, h) / dist: the joint from pa in units of (dx, dy)
+    h *= inv
+    return dx, dy, along, h, inv, qx, qy, ok, coincide
+
+
+def _rrr_pose(st: Any, pa: PointState, pb: PointState, la: Any, lb: Any,
+              branch: Any) -> _RRRPose:
+    """The RRR dyad's joint, link vectors and transmission measures (:class:`_RRRPose`)."""
+    out, tmp = st.out, st.tmp
+    # a link of zero (or negative) length cannot assemble (its angle is
+    # undefined): such designs of a batch are infeasible, never inf/NaN
+    void = _nonpositive(la, lb)
+    if void is not None:
+        la, lb = np.where(void, 1.0, la), np.where(void, 1.0, lb)
+    dx, dy, along, h, inv, qx, qy, ok, coincide = _rrr_triangle(st, pa, pb, la, lb, branch)
+    # ra = along * e + h * (i e), e = (dx, dy) / dist
+    rax = np.multiply(along, dx, out=inv)
+    rax -= np.multiply(h, dy, out=qx)
+    ray = np.multiply(along, dy, out=along)
+    ray += np.multiply(h, dx, out=qy)
+    np.add(pa.x, rax, out=qx)
+    np.add(pa.y, ray, out=qy)
+    rbx = np.subtract(rax, dx, out=dx)
+    rby = np.subtract(ray, dy, out=dy)
+    nab = 1.0 / (la * lb)
+    sing, cosj = out(), out()
+    cross = np.multiply(rax, rby, out=h)
+    cross -= np.multiply(ray, rbx, out=sing)
+    np.abs(cross, out=sing)
+    sing *= nab
+    np.multiply(rax, rbx, out=cosj)
+    cosj += np.multiply(ray, rby, out=tmp(5))
+    cosj *= nab
+    if coincide is not None:
+        ok = ok | coincide
+        np.copyto(sing, 0.0, where=coincide)
+    if void is not None:
+        ok = ok & ~void
+    return _RRRPose(qx, qy, rax, ray, rbx, rby, cross, sing, cosj, ok, coincide, la, lb)
+
+
+def _rrr_velocity(st: _SolveState, pa: Any, pb: Any, p: Any,
+                  bad: Any, q: Any
+                  ):
+    """The links' angular velocities ``wa, wb`` and the joint's velocity (into ``q``):
+    the system wa (i ra) - wb (i rb) = vb - va by Cramer's rule; its determinant is
+    -cross, kept as ``icross = 1 / cross`` (returned, for the acceleration)."""
+    out = st.out
+    cross = p.cross
+    if bad is not None:
+        np.copyto(cross, 1.0, where=bad)
+    icross = np.divide(1.0, cross, out=cross)
+    rx = np.subtract(pb.vx, pa.vx, out=out())
+    ry = np.subtract(pb.vy, pa.vy, out=out())
+    wa, wb = _rrr_solve(rx, ry, p.rax, p.ray, p.rbx, p.rby, icross, out(), out(), bad)
+    q.vx = np.multiply(wa, p.ray, out=rx)
+    np.subtract(pa.vx, q.vx, out=q.vx)
+    q.vy = np.multiply(wa, p.rax, out=ry)
+    np.add(pa.vy, q.vy, out=q.vy)
+    return wa, wb, icross
+
+
+def _rrr_acceleration(st: _SolveState, pa: Any, pb: Any, p: Any,
+                      bad: Any, q: Any, wa: Any,
+                      wb: Any, icross: Any):
+    """The links' angular accelerations ``aa, ab`` and the joint's acceleration (into
+    ``q``): the velocity's system with the centripetal terms on the right."""
+    out, tmp = st.out, st.tmp
+    rax, ray, rbx, rby = p.rax, p.ray, p.rbx, p.rby
+    wa2 = np.multiply(wa, wa, out=tmp(5))
+    aa, ab = out(), out()
+    wb2 = np.multiply(wb, wb, out=ab)
+    rx = np.subtract(pb.ax, pa.ax, out=out())
+    rx += np.multiply(wa2, rax, out=aa)
+    rx -= np.multiply(wb2, rbx, out=aa)
+    ry = np.subtract(pb.ay, pa.ay, out=out())
+    ry += np.multiply(wa2, ray, out=aa)
+    ry -= np.multiply(wb2, rby, out=aa)
+    _rrr_solve(rx, ry, rax, ray, rbx, rby, icross, aa, ab, bad)
+    q.ax = np.multiply(aa, ray, out=rx)
+    np.subtract(pa.ax, q.ax, out=q.ax)
+    q.ax -= np.multiply(wa2, rax, out=ry)
+    q.ay = np.multiply(aa, rax, out=ry)
+    np.add(pa.ay, q.ay, out=q.ay)
+    q.ay -= np.multiply(wa2, ray, out=wa2)
+    return aa, ab
 
 
 @record
@@ -617,113 +788,31 @@ class RRR(Element):
     def makes(self):
         return (self.joint,), (self.link_a, self.link_b)
 
-    def reported_links(self, frame):
+    def reported_links(self, frame: int):
         return (self.link_a, self.link_b)
 
     def transmission_joint(self):
         return self.joint
 
-    def step(self, st):
+    def step(self, st: _SolveState) -> None:
         # written for few passes over memory: every array of the full shape is an
-        # output row (st.out) or one of six scratch buffers (st.tmp) reused in place
+        # output row (st.out) or one of six scratch buffers (st.tmp) reused in place;
+        # the steps: the joint (_rrr_pose), its velocity and acceleration
+        # (_rrr_velocity, _rrr_acceleration), then the links' states
         pa, pb = st.P[self.point_a], st.P[self.point_b]
-        la, lb = self.length_a, self.length_b
-        # a link of zero (or negative) length cannot assemble (its angle is
-        # undefined): such designs of a batch are infeasible, never inf/NaN
-        void = _nonpositive(la, lb)
-        if void is not None:
-            la, lb = np.where(void, 1.0, la), np.where(void, 1.0, lb)
-        out, tmp = st.out, st.tmp
-        qx, qy = out(), out()
-        dx = np.subtract(pb.x, pa.x, out=tmp(0))
-        dy = np.subtract(pb.y, pa.y, out=tmp(1))
-        d2 = np.multiply(dx, dx, out=tmp(2))
-        d2 += np.multiply(dy, dy, out=qx)
-        dist = np.sqrt(d2, out=tmp(3))
-        ok = dist > ASSEMBLY_TOL * st.scale
-        coincide = None
-        if not ok.all():
-            # the known points coincide: with equal lengths (a kite's folded
-            # position) the joint may be anywhere on the circle -- a dead
-            # point, not a failure to assemble
-            kite = np.abs(la - lb) <= ASSEMBLY_TOL * np.maximum(la, lb)
-            if np.any(kite):
-                coincide = ~ok & kite
-            np.copyto(dist, 1.0, where=~ok)
-        inv = np.divide(1.0, dist, out=dist)
-        la2 = la * la
-        along = d2
-        along += la2 - lb * lb
-        along *= inv
-        along *= 0.5
-        h = np.multiply(along, along, out=tmp(4))
-        np.subtract(la2, h, out=h)
-        ok &= h >= -4 * ASSEMBLY_TOL * la2
-        np.maximum(h, 0.0, out=h)
-        np.sqrt(h, out=h)
-        if _flips(self.branch):
-            h *= self.branch
-        along *= inv  # (along, h) / dist: the joint from pa in units of (dx, dy)
-        h *= inv
-        # ra = along * e + h * (i e), e = (dx, dy) / dist
-        rax = np.multiply(along, dx, out=inv)
-        rax -= np.multiply(h, dy, out=qx)
-        ray = np.multiply(along, dy, out=along)
-        ray += np.multiply(h, dx, out=qy)
-        np.add(pa.x, rax, out=qx)
-        np.add(pa.y, ray, out=qy)
-        rbx = np.subtract(rax, dx, out=dx)
-        rby = np.subtract(ray, dy, out=dy)
-        nab = 1.0 / (la * lb)
-        sing, cosj = out(), out()
-        cross = np.multiply(rax, rby, out=h)
-        cross -= np.multiply(ray, rbx, out=sing)
-        np.abs(cross, out=sing)
-        sing *= nab
-        np.multiply(rax, rbx, out=cosj)
-        cosj += np.multiply(ray, rby, out=tmp(5))
-        cosj *= nab
-        if coincide is not None:
-            ok = ok | coincide
-            np.copyto(sing, 0.0, where=coincide)
-        if void is not None:
-            ok = ok & ~void
-        st.condition(self, self.joint, sing, cosj)
-        bad = st.mark(ok, sing, coincide)
-        q = PointState(qx, qy)
+        p = _rrr_pose(st, pa, pb, self.length_a, self.length_b, self.branch)
+        st.condition(self, self.joint, p.sing, p.cosj)
+        bad = st.mark(p.ok, p.sing, p.coincide)
+        q = PointState(p.qx, p.qy)
         wa = wb = aa = ab = None
         if st.vel:
-            # the velocity system wa (i ra) - wb (i rb) = vb - va by Cramer's rule:
-            # its determinant is -cross; kept as 1 / cross
-            if bad is not None:
-                np.copyto(cross, 1.0, where=bad)
-            icross = np.divide(1.0, cross, out=cross)
-            rx = np.subtract(pb.vx, pa.vx, out=out())
-            ry = np.subtract(pb.vy, pa.vy, out=out())
-            wa, wb = _rrr_solve(rx, ry, rax, ray, rbx, rby, icross, out(), out(), bad)
-            q.vx = np.multiply(wa, ray, out=rx)
-            np.subtract(pa.vx, q.vx, out=q.vx)
-            q.vy = np.multiply(wa, rax, out=ry)
-            np.add(pa.vy, q.vy, out=q.vy)
+            wa, wb, icross = _rrr_velocity(st, pa, pb, p, bad, q)
             if st.acc:
-                wa2 = np.multiply(wa, wa, out=tmp(5))
-                aa, ab = out(), out()
-                wb2 = np.multiply(wb, wb, out=ab)
-                rx = np.subtract(pb.ax, pa.ax, out=out())
-                rx += np.multiply(wa2, rax, out=aa)
-                rx -= np.multiply(wb2, rbx, out=aa)
-                ry = np.subtract(pb.ay, pa.ay, out=out())
-                ry += np.multiply(wa2, ray, out=aa)
-                ry -= np.multiply(wb2, rby, out=aa)
-                _rrr_solve(rx, ry, rax, ray, rbx, rby, icross, aa, ab, bad)
-                q.ax = np.multiply(aa, ray, out=rx)
-                np.subtract(pa.ax, q.ax, out=q.ax)
-                q.ax -= np.multiply(wa2, rax, out=ry)
-                q.ay = np.multiply(aa, rax, out=ry)
-                np.add(pa.ay, q.ay, out=q.ay)
-                q.ay -= np.multiply(wa2, ray, out=wa2)
+                aa, ab = _rrr_acceleration(st, pa, pb, p, bad, q, wa, wb, icross)
         st.P[self.joint] = q
         needed = st.needed_links
+        la, lb, out = p.la, p.lb, st.out
+        rax, ray, rbx, rby = p.rax, p.ray, p.rbx, p.rby
         st.L[self.link_a] = LinkState(np.arctan2(ray, rax, out=out()),
                                       rax * (1 / la) if self.link_a in needed else None,
                                       ray * (1 / la) if self.link_a in needed else None, wa, aa)
@@ -731,10 +820,10 @@ class RRR(Element):
                                       rbx * (1 / lb) if self.link_b in needed else None,
                                       rby * (1 / lb) if self.link_b in needed else None, wb, ab)
 
-    def _out_rows(self, vel, acc, frame=None):
+    def _out_rows(self, vel: bool, acc: bool, frame: Optional[int] = None):
         return 6 + 4 * vel + 4 * acc
 
-    def pairs(self, tb):
+    def pairs(self, tb: Any):
         tb.revolute(self.point_a, self.link_a)
         tb.new_point(self.joint, self.link_a)
         tb.joint(self.joint, self.link_a, self.link_b)
@@ -743,9 +832,164 @@ class RRR(Element):
         tb.frames[self.link_b] = [self.point_b, self.joint]
         return (self.link_a, self.link_b)
 
-    def sketch(self, frame):
+    def sketch(self, frame: int):
         from mechcli.core.linkage.sketch import Bar
         return (Bar(self.point_a, self.joint), Bar(self.point_b, self.joint))
+
+
+def _rrp_guide(st: Any, g: Any, pg: PointState, angle: float, e: float, moving: bool,
+               keep_u: bool) -> Tuple[Any, Any, Any, Any]:
+    """The RRP dyad's guide line: its direction ``ux, uy`` and base ``bx, by`` (the
+    guide point shifted by the offset ``e`` along the left normal)."""
+    tmp = st.tmp
+    cphi, sphi = np.cos(angle), np.sin(angle)
+    if moving:
+        # the guide's direction and base turn with its link: full arrays (kept
+        # for a later element that reads the slider's cosine and sine)
+        ux = np.multiply(g.c, cphi, out=np.empty(st.shape) if keep_u else tmp(6))
+        ux -= np.multiply(g.s, sphi, out=tmp(0))
+        uy = np.multiply(g.s, cphi, out=np.empty(st.shape) if keep_u else tmp(7))
+        uy += np.multiply(g.c, sphi, out=tmp(0))
+        bx = np.multiply(uy, e, out=tmp(4))
+        np.subtract(pg.x, bx, out=bx)
+        by = np.multiply(ux, e, out=tmp(5))
+        np.add(pg.y, by, out=by)
+    else:  # a frame guide: direction and base at the parameters' own shape
+        ux, uy = g.c * cphi - g.s * sphi, g.s * cphi + g.c * sphi
+        bx, by = pg.x - e * uy, pg.y + e * ux
+    return ux, uy, bx, by
+
+
+@record
+class _RRPPose:
+    """The RRP dyad's position (:func:`_rrp_pose`): the guide direction ``ux, uy`` and
+    base ``bx, by``; the slide ``s``; the pin ``qx, qy``; the rod ``r = pin - point``;
+    ``dot = r . u`` (the velocity system's determinant, a scratch buffer the velocity
+    reuses); ``sing = |dot| / length``, ``ilen = 1 / length``; where it assembles."""
+
+    ux: Any
+    uy: Any
+    bx: Any
+    by: Any
+    s: np.ndarray
+    qx: np.ndarray
+    qy: np.ndarray
+    rx: np.ndarray
+    ry: np.ndarray
+    dot: np.ndarray
+    sing: np.ndarray
+    ilen: Any
+    ok: np.ndarray
+
+
+def _rrp_pose(st: Any, pp: PointState, ux: Any, uy: Any, bx: Any, by: Any, length: Any,
+              branch: Any) -> _RRPPose:
+    """The slide ``s`` from ``|base + s u - point| = length``, ``s = -b +- sqrt(b^2 - c)``,
+    and the pin (:class:`_RRPPose`)."""
+    out, tmp = st.out, st.tmp
+    void = _nonpositive(length)  # a rod of zero length: infeasible (see RRR)
+    if void is not None:
+        length = np.where(void, 1.0, length)
+    length2 = length * length
+    ilen = 1 / length
+    wx = np.subtract(bx, pp.x, out=tmp(0))
+    wy = np.subtract(by, pp.y, out=tmp(1))
+    b = np.multiply(wx, ux, out=tmp(2))
+    b += np.multiply(wy, uy, out=tmp(3))
+    c = np.multiply(wx, wx, out=tmp(3))
+    c += np.multiply(wy, wy, out=wx)
+    c -= length2
+    s = np.multiply(b, b, out=out())
+    s -= c  # the discriminant
+    ok = s >= -4 * ASSEMBLY_TOL * length2
+    if void is not None:
+        ok &= ~void
+    np.maximum(s, 0.0, out=s)
+    np.sqrt(s, out=s)
+    if _flips(branch):
+        s *= branch
+    s -= b
+    qx = np.multiply(s, ux, out=out())
+    qx += bx
+    qy = np.multiply(s, uy, out=out())
+    qy += by
+    rx = np.subtract(qx, pp.x, out=tmp(0))  # rod: point -> pin
+    ry = np.subtract(qy, pp.y, out=tmp(1))
+    dot = np.multiply(rx, ux, out=tmp(2))  # the velocity system's determinant
+    dot += np.multiply(ry, uy, out=tmp(3))
+    sing = np.abs(dot, out=out())
+    sing *= ilen
+    return _RRPPose(ux, uy, bx, by, s, qx, qy, rx, ry, dot, sing, ilen, ok)
+
+
+def _rrp_velocity(st: _SolveState, pp: Any, pg: Any, g: Any, p: Any,
+                  moving: Any, bad: Any, q: Any
+                  ):
+    """The rod's angular velocity ``wr``, the slide rate ``sd`` and the pin's velocity
+    (into ``q``): wr (i r) - sd u = v_base(pin) - v_point by Cramer's rule, with the
+    negated inverse of the determinant r . u (``ninv``, returned with ``lever``:
+    ``(lx, ly)``, base -> pin from the guide point on a moving guide, for the
+    acceleration)."""
+    out, tmp = st.out, st.tmp
+    rx, ry, ux, uy, s = p.rx, p.ry, p.ux, p.uy, p.s
+    if bad is not None:
+        np.copyto(p.dot, 1.0, where=bad)
+    ninv = np.divide(-1.0, p.dot, out=p.dot)
+    hx = np.subtract(pg.vx, pp.vx, out=tmp(3))
+    hy = np.subtract(pg.vy, pp.vy, out=tmp(4) if not moving else tmp(8))
+    lx = ly = None
+    if moving:
+        gw = g.w
+        lx = np.subtract(p.bx, pg.x, out=tmp(9))  # base -> pin from the guide point
+        lx += np.multiply(s, ux, out=tmp(10))
+        ly = np.subtract(p.by, pg.y, out=tmp(11))
+        ly += np.multiply(s, uy, out=tmp(10))
+        hx -= np.multiply(gw, ly, out=tmp(10))
+        hy += np.multiply(gw, lx, out=tmp(10))
+    wr, sd = out(), out()
+    _prismatic_solve(hx, hy, rx, ry, ux, uy, ninv, wr, sd, tmp(5), bad)
+    q.vx = np.multiply(wr, ry, out=out())
+    np.subtract(pp.vx, q.vx, out=q.vx)
+    q.vy = np.multiply(wr, rx, out=out())
+    np.add(pp.vy, q.vy, out=q.vy)
+    return wr, sd, ninv, (lx, ly)
+
+
+def _rrp_acceleration(st: _SolveState, pp: Any, pg: Any, g: Any, p: Any,
+                      moving: Any, bad: Any, q: Any,
+                      wr: Any, sd: Any, ninv: Any, lever: Any
+                      ):
+    """The rod's angular acceleration ``ar``, the slide's ``sdd`` and the pin's
+    acceleration (into ``q``): the velocity's system with the centripetal (and, on a
+    moving guide, the guide's and Coriolis) terms on the right."""
+    out, tmp = st.out, st.tmp
+    rx, ry, ux, uy = p.rx, p.ry, p.ux, p.uy
+    wr2 = np.multiply(wr, wr, out=tmp(4) if not moving else tmp(12))
+    hx = np.subtract(pg.ax, pp.ax, out=tmp(3))
+    hx += np.multiply(wr2, rx, out=tmp(5))
+    q.ay = hy = np.subtract(pg.ay, pp.ay, out=out())
+    hy += np.multiply(wr2, ry, out=tmp(5))
+    if moving:
+        gw = g.w
+        lx, ly = lever
+        w2 = np.multiply(gw, gw, out=tmp(8))
+        cor = np.multiply(sd, 2.0, out=tmp(13))
+        cor *= gw
+        hx -= np.multiply(g.al, ly, out=tmp(5))
+        hx -= np.multiply(w2, lx, out=tmp(5))
+        hx -= np.multiply(cor, uy, out=tmp(5))
+        hy += np.multiply(g.al, lx, out=tmp(5))
+        hy -= np.multiply(w2, ly, out=tmp(5))
+        hy += np.multiply(cor, ux, out=tmp(5))
+    ar, sdd = out(), out()
+    _prismatic_solve(hx, hy, rx, ry, ux, uy, ninv, ar, sdd, tmp(5), bad)
+    q.ax = np.multiply(ar, ry, out=out())
+    np.subtract(pp.ax, q.ax, out=q.ax)
+    q.ax -= np.multiply(wr2, rx, out=tmp(5))
+    np.multiply(ar, rx, out=q.ay)
+    np.add(pp.ay, q.ay, out=q.ay)
+    q.ay -= np.multiply(wr2, ry, out=tmp(5))
+    return ar, sdd
 
 
 @record
@@ -786,124 +1030,37 @@ class RRP(Element):
     def slide_names(self, frame):
         return (_slide_symbol(self.name, self.slider, self.guide_link, frame),)
 
-    def translating_links(self, frame):
+    def translating_links(self, frame: int):
         return (self.slider,) if self.guide_link == frame else ()
 
-    def reported_links(self, frame):
+    def reported_links(self, frame: int):
         return (self.link,) if self.guide_link == frame else (self.link, self.slider)
 
-    def step(self, st):
+    def step(self, st: _SolveState) -> None:
         # written like RRR's: every array of the full shape is an output row
         # (st.out) or a scratch buffer (st.tmp) reused in place; the operations
-        # (and so the rounding) are those of the plain closed form
+        # (and so the rounding) are those of the plain closed form.  The steps: the
+        # guide line (_rrp_guide), the pin (_rrp_pose), its velocity and acceleration
+        # (_rrp_velocity, _rrp_acceleration), then the links' states
         pp, pg, g = st.P[self.point], st.P[self.guide_point], st.L[self.guide_link]
-        out, tmp = st.out, st.tmp
-        cphi, sphi = np.cos(self.guide_angle), np.sin(self.guide_angle)
+        out = st.out
         moving = self.guide_link != st.frame
         keep_u = self.slider in st.needed_links
-        e = self.offset
-        if moving:
-            # the guide's direction and base turn with its link: full arrays (kept
-            # for a later element that reads the slider's cosine and sine)
-            ux = np.multiply(g.c, cphi, out=np.empty(st.shape) if keep_u else tmp(6))
-            ux -= np.multiply(g.s, sphi, out=tmp(0))
-            uy = np.multiply(g.s, cphi, out=np.empty(st.shape) if keep_u else tmp(7))
-            uy += np.multiply(g.c, sphi, out=tmp(0))
-            bx = np.multiply(uy, e, out=tmp(4))
-            np.subtract(pg.x, bx, out=bx)
-            by = np.multiply(ux, e, out=tmp(5))
-            np.add(pg.y, by, out=by)
-        else:  # a frame guide: direction and base at the parameters' own shape
-            ux, uy = g.c * cphi - g.s * sphi, g.s * cphi + g.c * sphi
-            bx, by = pg.x - e * uy, pg.y + e * ux
-        length = self.length
-        void = _nonpositive(length)  # a rod of zero length: infeasible (see RRR)
-        if void is not None:
-            length = np.where(void, 1.0, length)
-        length2 = length * length
-        ilen = 1 / length
-        # the slide s from |base + s u - point| = length, s = -b +- sqrt(b^2 - c)
-        wx = np.subtract(bx, pp.x, out=tmp(0))
-        wy = np.subtract(by, pp.y, out=tmp(1))
-        b = np.multiply(wx, ux, out=tmp(2))
-        b += np.multiply(wy, uy, out=tmp(3))
-        c = np.multiply(wx, wx, out=tmp(3))
-        c += np.multiply(wy, wy, out=wx)
-        c -= length2
-        s = np.multiply(b, b, out=out())
-        s -= c  # the discriminant
-        ok = s >= -4 * ASSEMBLY_TOL * length2
-        if void is not None:
-            ok &= ~void
-        np.maximum(s, 0.0, out=s)
-        np.sqrt(s, out=s)
-        if _flips(self.branch):
-            s *= self.branch
-        s -= b
-        qx = np.multiply(s, ux, out=out())
-        qx += bx
-        qy = np.multiply(s, uy, out=out())
-        qy += by
-        rx = np.subtract(qx, pp.x, out=tmp(0))  # rod: point -> pin
-        ry = np.subtract(qy, pp.y, out=tmp(1))
-        dot = np.multiply(rx, ux, out=tmp(2))  # the velocity system's determinant
-        dot += np.multiply(ry, uy, out=tmp(3))
-        sing = np.abs(dot, out=out())
-        sing *= ilen
-        st.condition(self, self.joint, sing)
-        bad = st.mark(ok, sing)
-        q = PointState(qx, qy)
-        theta = np.arctan2(ry, rx, out=out())
+        ux, uy, bx, by = _rrp_guide(st, g, pg, self.guide_angle, self.offset, moving, keep_u)
+        p = _rrp_pose(st, pp, ux, uy, bx, by, self.length, self.branch)
+        st.condition(self, self.joint, p.sing)
+        bad = st.mark(p.ok, p.sing)
+        q = PointState(p.qx, p.qy)
+        theta = np.arctan2(p.ry, p.rx, out=out())
         needed = self.link in st.needed_links
-        st.L[self.link] = LinkState(theta, rx * ilen if needed else None,
-                                    ry * ilen if needed else None, None, None)
+        st.L[self.link] = LinkState(theta, p.rx * p.ilen if needed else None,
+                                    p.ry * p.ilen if needed else None, None, None)
         wr = ar = sd = sdd = None
         if st.vel:
-            # wr (i r) - sd u = v_base(pin) - v_point by Cramer's rule, with the
-            # negated inverse of the determinant r . u
-            if bad is not None:
-                np.copyto(dot, 1.0, where=bad)
-            ninv = np.divide(-1.0, dot, out=dot)
-            hx = np.subtract(pg.vx, pp.vx, out=tmp(3))
-            hy = np.subtract(pg.vy, pp.vy, out=tmp(4) if not moving else tmp(8))
-            if moving:
-                gw = g.w
-                lx = np.subtract(bx, pg.x, out=tmp(9))  # base -> pin from the guide point
-                lx += np.multiply(s, ux, out=tmp(10))
-                ly = np.subtract(by, pg.y, out=tmp(11))
-                ly += np.multiply(s, uy, out=tmp(10))
-                hx -= np.multiply(gw, ly, out=tmp(10))
-                hy += np.multiply(gw, lx, out=tmp(10))
-            wr, sd = out(), out()
-            _prismatic_solve(hx, hy, rx, ry, ux, uy, ninv, wr, sd, tmp(5), bad)
-            q.vx = np.multiply(wr, ry, out=out())
-            np.subtract(pp.vx, q.vx, out=q.vx)
-            q.vy = np.multiply(wr, rx, out=out())
-            np.add(pp.vy, q.vy, out=q.vy)
+            wr, sd, ninv, lever = _rrp_velocity(st, pp, pg, g, p, moving, bad, q)
             if st.acc:
-                wr2 = np.multiply(wr, wr, out=tmp(4) if not moving else tmp(12))
-                hx = np.subtract(pg.ax, pp.ax, out=tmp(3))
-                hx += np.multiply(wr2, rx, out=tmp(5))
-                q.ay = hy = np.subtract(pg.ay, pp.ay, out=out())
-                hy += np.multiply(wr2, ry, out=tmp(5))
-                if moving:
-                    w2 = np.multiply(gw, gw, out=tmp(8))
-                    cor = np.multiply(sd, 2.0, out=tmp(13))
-                    cor *= gw
-                    hx -= np.multiply(g.al, ly, out=tmp(5))
-                    hx -= np.multiply(w2, lx, out=tmp(5))
-                    hx -= np.multiply(cor, uy, out=tmp(5))
-                    hy += np.multiply(g.al, lx, out=tmp(5))
-                    hy -= np.multiply(w2, ly, out=tmp(5))
-                    hy += np.multiply(cor, ux, out=tmp(5))
-                ar, sdd = out(), out()
-                _prismatic_solve(hx, hy, rx, ry, ux, uy, ninv, ar, sdd, tmp(5), bad)
-                q.ax = np.multiply(ar, ry, out=out())
-                np.subtract(pp.ax, q.ax, out=q.ax)
-                q.ax -= np.multiply(wr2, rx, out=tmp(5))
-                np.multiply(ar, rx, out=q.ay)
-                np.add(pp.ay, q.ay, out=q.ay)
-                q.ay -= np.multiply(wr2, ry, out=tmp(5))
+                ar, sdd = _rrp_acceleration(st, pp, pg, g, p, moving, bad, q, wr, sd, ninv,
+                                            lever)
             st.L[self.link].w, st.L[self.link].al = wr, ar
         st.P[self.joint] = q
         if moving:
@@ -914,12 +1071,12 @@ class RRP(Element):
             th_s = st.full(self.guide_angle)
             ux, uy = st.full(ux), st.full(uy)
         st.L[self.slider] = LinkState(th_s, ux, uy, g.w, g.al)
-        st.slide(self.slide_names(st.frame)[0], self.slider, self.guide_link, s, sd, sdd)
+        st.slide(self.slide_names(st.frame)[0], self.slider, self.guide_link, p.s, sd, sdd)
 
-    def _out_rows(self, vel, acc, frame=None):
+    def _out_rows(self, vel: bool, acc: bool, frame: Optional[int] = None):
         return 5 + (self.guide_link != frame) + 4 * vel + 4 * acc
 
-    def pairs(self, tb):
+    def pairs(self, tb: Any):
         tb.revolute(self.point, self.link)
         tb.new_point(self.joint, self.link)
         tb.joint(self.joint, self.link, self.slider)
@@ -928,7 +1085,7 @@ class RRP(Element):
         tb.frames[self.slider] = [self.joint, None]
         return (self.link, self.slider)
 
-    def sketch(self, frame):
+    def sketch(self, frame: int):
         from mechcli.core.linkage.sketch import Bar, Block, Guide
         return (Bar(self.point, self.joint), Block(self.joint, self.slider),
                 Guide(self.guide_link, self.guide_point, self.guide_angle, self.offset,
@@ -963,13 +1120,13 @@ class RPR(Element):
     def makes(self):
         return (), (self.guide, self.block)
 
-    def slide_names(self, frame):
+    def slide_names(self, frame: int):
         return (self.name or f"{self.block}{self.guide}",)
 
-    def reported_links(self, frame):
+    def reported_links(self, frame: int):
         return (self.guide,)  # the block turns with the guide
 
-    def step(self, st):
+    def step(self, st: _SolveState) -> None:
         # in place like RRR's (output rows and scratch buffers), with the
         # operations of the plain closed form
         pp, pc = st.P[self.point], st.P[self.pivot]
@@ -1045,10 +1202,10 @@ class RPR(Element):
         _guide_unit(dx, dy, s, self.offset, inv, ux, uy, np.empty(shape), np.empty(shape))
         return ux, uy
 
-    def _out_rows(self, vel, acc, frame=None):
+    def _out_rows(self, vel: bool, acc: bool, frame: Optional[int] = None):
         return 3 + 2 * vel + 2 * acc
 
-    def pairs(self, tb):
+    def pairs(self, tb: Any):
         tb.revolute(self.point, self.block)
         tb.prismatic(self.guide, self.block, self.point)
         tb.revolute(self.pivot, self.guide)
@@ -1056,7 +1213,7 @@ class RPR(Element):
         tb.frames[self.guide] = [self.pivot, None]
         return (self.block, self.guide)
 
-    def sketch(self, frame):
+    def sketch(self, frame: int):
         from mechcli.core.linkage.sketch import Block, Guide
         return (Block(self.point, self.block),
                 Guide(self.guide, self.pivot, 0.0, self.offset, self.slide_names(frame)[0], True,
@@ -1096,10 +1253,10 @@ class PointOnLink(Element):
             ry += np.multiply(self.normal, k.c, out=tmp(5))
         st.P[self.name] = rotate_about(st.P[self.origin], k, rx, ry, st.vel, st.acc, st)
 
-    def _out_rows(self, vel, acc, frame=None):
+    def _out_rows(self, vel: bool, acc: bool, frame: Optional[int] = None):
         return 2 + 2 * vel + 2 * acc
 
-    def pairs(self, tb):
+    def pairs(self, tb: Any) -> None:
         if self.link not in tb.members.get(self.origin, ()):
             tb.fail(f"point '{self.name}' is placed from '{self.origin}', which is not on link "
                     f"{self.link}", ("point", self.name))
@@ -1107,7 +1264,7 @@ class PointOnLink(Element):
         if tb.frames[self.link][1] is None:
             tb.frames[self.link][1] = self.name
 
-    def sketch(self, frame):
+    def sketch(self, frame: int):
         from mechcli.core.linkage.sketch import Bar
         return (Bar(self.origin, self.name),)
 
@@ -1176,13 +1333,13 @@ class PRP(Element):
     def makes(self):
         return (self.joint,), (self.slider_a, self.slider_b)
 
-    def slide_names(self, frame):
+    def slide_names(self, frame: int):
         return tuple(_slide_symbol(name, sl, gl, frame) for sl, gl, *_, name in self._sides())
 
-    def translating_links(self, frame):
+    def translating_links(self, frame: int):
         return tuple(sl for sl, gl, *_ in self._sides() if gl == frame)
 
-    def reported_links(self, frame):
+    def reported_links(self, frame: int):
         return tuple(sl for sl, gl, *_ in self._sides() if gl != frame)
 
     def step(self, st):
@@ -1244,11 +1401,11 @@ class PRP(Element):
             st.L[sl] = line.block(st)
             st.slide(name, sl, gl, s, v, acc)
 
-    def _out_rows(self, vel, acc, frame=None):
+    def _out_rows(self, vel: bool, acc: bool, frame: Optional[int] = None):
         return (5 + (self.guide_link_a != frame) + (self.guide_link_b != frame)
                 + 4 * vel + 4 * acc)
 
-    def pairs(self, tb):
+    def pairs(self, tb: Any):
         for sl, gl, gp, *_ in self._sides():
             if gl not in tb.members.get(gp, ()):
                 tb.fail(f"the guide of slider {sl} passes through '{gp}', which is not on "
@@ -1261,7 +1418,7 @@ class PRP(Element):
         tb.frames[self.slider_b] = [self.joint, None]
         return (self.slider_a, self.slider_b)
 
-    def sketch(self, frame):
+    def sketch(self, frame: int):
         from mechcli.core.linkage.sketch import Block, Guide
         return tuple(p for (sl, gl, gp, ang, off, _), name in zip(self._sides(),
                                                                   self.slide_names(frame))

@@ -7,10 +7,12 @@ by :func:`gauss` (see :mod:`mechcli.core.linkage.kinetostatics`).
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 
 
-def _nonzero(v):
+def _nonzero(v: Any):
     return not (isinstance(v, float) and v == 0.0)
 
 

@@ -19,12 +19,13 @@ import dataclasses
 import functools
 import sys
 import threading
-from typing import Dict, Optional, Tuple, Union
+from typing import Any, Dict, Optional, Tuple, Union
 
 import numpy as np
 
 from mechcli.core.linkage.elements import SINGULAR_TOL, Element, LinkState, PointState
 from mechcli.core.records import record
+from mechcli.core.types import FloatOrArray
 
 
 class LinkageDefinitionError(ValueError):
@@ -38,7 +39,8 @@ class LinkageDefinitionError(ValueError):
         ``("point", name)`` or ``("link", number)``: the reference at fault.
     """
 
-    def __init__(self, message, index=None, field=None):
+    def __init__(self, message: str, index: Optional[int] = None,
+                 field: Optional[Tuple[str, Any]] = None) -> None:
         super().__init__(message)
         self.index = index
         self.field = field
@@ -118,7 +120,7 @@ class Linkage:
                 raise exc
         object.__setattr__(self, "order", tuple(order))
 
-    def with_elements(self, *extra) -> Linkage:
+    def with_elements(self, *extra: Any) -> Linkage:
         """The same linkage with more elements (e.g. coupler points) added."""
         return Linkage(self.frame, self.elements + tuple(extra),
                        angle_offsets=self.angle_offsets, structure=self.structure)
@@ -128,7 +130,7 @@ class Linkage:
         """The driver elements, the primary (input) one first."""
         return tuple(el for el in self.elements if el.is_driver)
 
-    def driver(self, link):
+    def driver(self, link: int):
         """The driver element of link ``link``."""
         for d in self.drivers:
             if d.link == link:
@@ -188,7 +190,7 @@ class Linkage:
         return functools.reduce(np.maximum, sizes, 1e-300)
 
 
-def stack(linkages) -> Linkage:
+def stack(linkages):
     """One batched linkage from M linkages of the same structure.
 
     Every numeric parameter (lengths, coordinates, angles, branch) becomes an
@@ -242,7 +244,7 @@ def stack(linkages) -> Linkage:
                    structure=first.structure)
 
 
-def _fields(el):
+def _fields(el: Any):
     return [f for f in el.lengths_ + el.angles_ + ("branch",) if hasattr(el, f)]
 
 
@@ -348,16 +350,16 @@ class Slides(dict):
 
     __slots__ = ()
 
-    def __missing__(self, key):
+    def __missing__(self, key: Any):
         if isinstance(key, str) and key.startswith("s") and dict.__contains__(self, key[1:]):
             return self[key[1:]]
         raise KeyError(key)
 
-    def __contains__(self, key):
+    def __contains__(self, key: Any):
         return dict.__contains__(self, key) or (
             isinstance(key, str) and key.startswith("s") and dict.__contains__(self, key[1:]))
 
-    def get(self, key, default=None):
+    def get(self, key: Any, default: Any = None):
         return self[key] if key in self else default
 
 
@@ -387,11 +389,11 @@ class LinkageMotion:
     slides: Dict[str, SlideMotion]
     conditions: Tuple[DyadCondition, ...]
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         if type(self.slides) is not Slides:
             object.__setattr__(self, "slides", Slides(self.slides))
 
-    def condition(self, joint) -> DyadCondition:
+    def condition(self, joint: str) -> DyadCondition:
         """The conditioning of the dyad whose joint (or block point) is ``joint``:
         ``m.condition("C").gamma`` is the transmission angle at C [rad]."""
         for c in self.conditions:
@@ -413,7 +415,8 @@ class SolveState:
     record a dyad's conditioning and a prismatic pair's slide.
     """
 
-    def __init__(self, linkage, inputs, shape, order, arena=None):
+    def __init__(self, linkage, inputs, shape, order,
+                 arena=None):
         self.inputs = inputs
         self.shape = shape
         self.zero = np.broadcast_to(0.0, shape)  # a view: costs no memory
@@ -448,7 +451,7 @@ class SolveState:
             return row
         return np.empty(self.shape)
 
-    def tmp(self, i):
+    def tmp(self, i: int):
         """Scratch buffer ``i`` (0-7) of the full shape: shared by the elements,
         valid only inside one element's step (never stored in the results)."""
         t = self._tmp.get(i)
@@ -456,13 +459,14 @@ class SolveState:
             t = self._tmp[i] = _scratch(i, self.shape)
         return t
 
-    def full(self, x):
+    def full(self, x: FloatOrArray):
         x = np.asarray(x, dtype=float)
         if x.shape == self.shape:
             return x
         return np.broadcast_to(x, self.shape) if x.ndim == 0 else x + self.zero
 
-    def mark(self, ok, sing, position_singular=None):
+    def mark(self, ok: np.ndarray, sing: FloatOrArray,
+             position_singular: Optional[np.ndarray] = None):
         """Update the masks; return the 'bad' mask for the 2x2 solves (None if none).
 
         ``position_singular``: a mask of positions where the singularity
@@ -479,10 +483,12 @@ class SolveState:
         self.regular &= good
         return None if good.all() else ~good
 
-    def condition(self, element, joint, sin_gamma, cos_joint=None):
+    def condition(self, element, joint, sin_gamma,
+                  cos_joint=None):
         self.conds.append(DyadCondition(self.index, element.kind, joint, sin_gamma, cos_joint))
 
-    def slide(self, name, block, guide, s, v, a):
+    def slide(self, name: str, block: Any, guide: Any, s: Any, v: Any,
+              a: Any) -> None:
         self.S[name] = SlideMotion(name, block, guide, s, v, a)
 
 
@@ -493,7 +499,7 @@ _POOL_SIZE = 1 << 16  # per-thread scratch kept between solves: 8 x 512 KiB
 _POOL = threading.local()
 
 
-def _scratch(i, shape):
+def _scratch(i: int, shape: Tuple[int, ...]):
     """Scratch row ``i``: from a per-thread pool reused across solves (so a
     solve does not pay fresh pages for its temporaries) when it is small
     enough, else a new array."""
@@ -527,7 +533,7 @@ def _free_refs():
 _FREE_REFS = _free_refs()
 
 
-def _output_block(shape):
+def _output_block(shape: Tuple[int, ...]):
     """A block for a solve's outputs: one of the last two handed out on this
     thread if nothing references it any more (its results were dropped: its
     pages are mapped already, so the next solve pays no page faults), else a
@@ -559,11 +565,11 @@ class _Facts:
     def __getstate__(self):    # pickle protocols 0 and 1 need it with __slots__
         return {k: getattr(self, k) for k in self.__slots__}
 
-    def __setstate__(self, state):
+    def __setstate__(self, state: Any) -> None:
         for k, v in state.items():
             setattr(self, k, v)
 
-    def __init__(self, linkage):
+    def __init__(self, linkage: Linkage) -> None:
         self.shape = linkage.shape
         self.finite = _finite_designs(linkage)
         self.scale = linkage.scale()
@@ -573,7 +579,7 @@ class _Facts:
                               for el in linkage.elements) for order in (0, 1, 2))
 
 
-def _facts(linkage):
+def _facts(linkage: Linkage):
     facts = linkage.__dict__.get("_facts")
     if facts is None:
         facts = _Facts(linkage)
@@ -581,15 +587,16 @@ def _facts(linkage):
     return facts
 
 
-def _needed_links(linkage):
+def _needed_links(linkage: Linkage):
     return _facts(linkage).needed_links
 
 
-def _out_rows(linkage, order):
+def _out_rows(linkage: Linkage, order: int):
     return _facts(linkage).rows[order]
 
 
-def solve(linkage: Linkage, inputs, order: int = 2, on_fail: str = "mask") -> LinkageMotion:
+def solve(linkage, inputs, order=2,
+          on_fail="mask"):
     """Solve positions (and velocities, accelerations) of every point and link.
 
     Parameters
@@ -686,7 +693,8 @@ def _solve_chunked(linkage, inputs, shape, order):
             if isinstance(m.q, np.ndarray) and np.ndim(inputs[k].q) == 1:
                 seen.setdefault(id(m.q), np.asarray(inputs[k].q))
 
-        def full(v, key, a=a, b=b, seen=seen):
+        def full(v, key, a=a, b=b,
+                 seen=seen):
             if not isinstance(v, np.ndarray) or v.shape != (b - a,):
                 return v
             if id(v) in seen:
@@ -716,7 +724,8 @@ def _solve_chunked(linkage, inputs, shape, order):
     return whole
 
 
-def _input_shape(linkage, inputs, order, params_shape=None):
+def _input_shape(linkage: Linkage, inputs: Dict[int, Any], order: int,
+                 params_shape: Optional[Tuple[int, ...]] = None):
     """Broadcast shape of the inputs (the rates that ``order`` uses) and the
     linkage parameters; a clear ValueError naming every shape when they do not
     broadcast, or when a driver has no input or an input has no driver."""
@@ -753,7 +762,7 @@ def _input_shape(linkage, inputs, order, params_shape=None):
                          f"together: {named}, linkage parameters {params_shape}") from None
 
 
-def _finite_designs(linkage):
+def _finite_designs(linkage: Linkage):
     """Mask (of the parameters' shape) of the designs whose parameters are all
     finite; None when every one is (the common case)."""
     params = [p for el in linkage.elements for p in el.parameters()]
@@ -762,7 +771,9 @@ def _finite_designs(linkage):
     return functools.reduce(np.logical_and, (np.isfinite(p) for p in params), True)
 
 
-def kinematic_coefficients(linkage: Linkage, q, followers=None, order: int = 2) -> LinkageMotion:
+def kinematic_coefficients(linkage: Linkage, q: np.ndarray,
+                           followers: Optional[Dict[int, Any]] = None,
+                           order: int = 2) -> LinkageMotion:
     """Velocity and acceleration coefficients (类速度, 类加速度) at input positions ``q``.
 
     The linkage is solved at unit input speed and zero input acceleration, so

@@ -6,13 +6,22 @@ bracketed search to 1e-15 ... 1e-10 rad of input, each with its tolerance
 from __future__ import annotations
 
 import dataclasses
+from typing import TYPE_CHECKING, Any, Callable, Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
 
 from mechcli.core.linkage.accuracy import EPS
 from mechcli.core.linkage.engine import solve
 from mechcli.core.linkage.sweep import Extreme, _periodic, _wrap
+from mechcli.core.records import record
 from mechcli.core.refine import bracketed_root
+from mechcli.core.types import FloatOrArray
+
+if TYPE_CHECKING:
+    from mechcli.core.linkage.sweep import Sweep
+
+if TYPE_CHECKING:
+    from mechcli.core.linkage.engine import Linkage
 
 
 class _Domain:
@@ -20,13 +29,15 @@ class _Domain:
     far each run really extends (refined assembly limits), and whether the
     last run continues into the first one through a whole turn (periodic)."""
 
-    def __init__(self, q, runs, lo_ext, hi_ext, connected, period, ends=None):
+    def __init__(self, q: np.ndarray, runs: Sequence[Tuple[int, int]], lo_ext: FloatOrArray,
+                 hi_ext: FloatOrArray, connected: bool, period: FloatOrArray,
+                 ends: Optional[Tuple[float, float]] = None) -> None:
         self.q, self.runs = q, runs
         self.ends = ends if ends is not None else (q[0], q[-1])
         self.lo_ext, self.hi_ext = lo_ext, hi_ext  # per run: input where it really ends
         self.connected, self.period = connected, period
 
-    def is_gap_edge(self, b):
+    def is_gap_edge(self, b: FloatOrArray):
         """Is input ``b`` the refined edge of a gap (not an end of the sweep)?"""
         return self.ends[0] < b < self.ends[1]
 
@@ -74,7 +85,7 @@ def _steady(sweep):
     return dataclasses.replace(sweep, ddq=0.0)
 
 
-def _rate_is_slope(sweep, getter, speed):
+def _rate_is_slope(sweep: Sweep, getter: Any, speed: FloatOrArray):
     """Does ``getter``'s exact time rate over ``speed`` give its d/dq (see :func:`_steady`)?
     A position's rate (``J dq``) always does; a velocity's only at a constant input speed."""
     return getter[1] is not None and speed != 0 and (
@@ -94,7 +105,8 @@ class _SlopeProbe:
     whatever the number of targets.
     """
 
-    def __init__(self, linkage, sweep, order, getters, h):
+    def __init__(self, linkage, sweep, order, getters,
+                 h):
         self.linkage, self.sweep, self.order, self.h = linkage, sweep, order, h
         self.n = len(getters)
         steady = _steady(sweep)
@@ -123,7 +135,7 @@ class _SlopeProbe:
             seen[key][2].append(j)
         return [(fn, is_angle, np.array(js)) for fn, is_angle, js in seen.values()]
 
-    def _plan(self, rep, exact):
+    def _plan(self, rep: int, exact: Any):
         """Per group, the indices of its targets' inputs among ``rep`` copies, split into
         those taken from the rate (``exact``) and those taken by differences."""
         n = self.n
@@ -176,14 +188,14 @@ class _SlopeProbe:
         return out, (m if m is not None else m_rate)
 
 
-def _transmission_measure(joint):
+def _transmission_measure(joint: str):
     """A smooth function of the motion that rises and falls with the acute transmission
     angle of the dyad at ``joint`` (``DyadCondition.gamma``): ``-cos_joint**2`` (gamma =
     atan2(|sin|, |cos|) of the joint angle, the largest where its cosine is 0), or
     ``sin_gamma**2`` where the dyad gives no cosine (gamma = asin(sin_gamma)).  Gamma
     folds at 90° (a kink, where its difference quotient has one magnitude either side and
     a secant search on it only bisects); this measure has a smooth extremum there."""
-    def measure(m):
+    def measure(m: Any):
         c = m.condition(joint)
         if c.cos_joint is None:
             return c.sin_gamma * c.sin_gamma
@@ -191,7 +203,7 @@ def _transmission_measure(joint):
     return measure
 
 
-def _transmission_measure_rate(linkage, joint):
+def _transmission_measure_rate(linkage: Linkage, joint: str):
     """The exact time rate of :func:`_transmission_measure` for the RRR dyad whose joint
     is ``joint`` (None for any other dyad).
 
@@ -219,7 +231,7 @@ def _transmission_measure_rate(linkage, joint):
     return rate
 
 
-def _slope_getters(qt, linkage=None):
+def _slope_getters(qt: Any, linkage: Optional[Linkage] = None):
     """``(get, rate, is_angle, order)`` whose slope :class:`_SlopeProbe` takes for the
     extremes of ``qt``: its own, but a transmission angle's smooth measure
     (:func:`_transmission_measure`, same extrema) with its exact rate where the dyad
@@ -230,8 +242,9 @@ def _slope_getters(qt, linkage=None):
     return (qt.get, qt.rate, qt.is_angle, qt.order)
 
 
-def refine_extremes(linkage, sweep, order, quantities, values, domain, iterations=64,
-                    max_candidates=6):
+def refine_extremes(linkage: Linkage, sweep: Any, order: int, quantities: Sequence[Any],
+                    values: Dict[str, np.ndarray], domain: _Domain, iterations: int = 64,
+                    max_candidates: int = 6) -> Dict[str, Tuple[Extreme, Extreme]]:
     """Max and min of every quantity, located to ~1e-10 rad of input.
 
     Every local extremum of the grid within each run (the run ends included,
@@ -247,11 +260,68 @@ def refine_extremes(linkage, sweep, order, quantities, values, domain, iteration
     transmission angle is refined on a smooth measure with the same extrema
     (:func:`_transmission_measure`: it folds at 90°), on its exact rate for an RRR dyad
     (:func:`_transmission_measure_rate`).  All targets share each solve.
+
+    The steps: the candidates (:func:`_extreme_targets`), their brackets
+    (:func:`_target_brackets`), the first bisection step (:func:`_first_halving`), the
+    secant search (:func:`_close_brackets`), the best value per quantity and sign
+    (:func:`_best_candidates`), the extremes (:func:`_extremes_of`).
     """
     q = domain.q
     span = float(q[-1] - q[0]) if q.size > 1 else 1.0
     rotary = linkage.driver(sweep.driver).rotary
     h = 1e-5 if rotary else 1e-5 * max(abs(span), 1e-12)
+    targets = _extreme_targets(quantities, values, domain, max_candidates)
+    if not targets:
+        return {}
+    wraps, lo, hi = _target_brackets(quantities, values, domain, targets)
+    by_quantity = {}   # one getter per quantity: a solve evaluates each once
+    for qi, *_ in targets:
+        if qi not in by_quantity:
+            by_quantity[qi] = _slope_getters(quantities[qi], linkage)
+    s = _Search(linkage, sweep, order, quantities, values, domain, targets,
+                [by_quantity[qi] for qi, *_ in targets], np.array([t[1] for t in targets]), h)
+    width0 = np.abs(hi - lo)   # the search brackets, before refinement
+    lo, hi, d_lo, d_hi, proper, mid = _first_halving(s, lo, hi)
+    if proper.any():
+        _close_brackets(s, lo, hi, d_lo, d_hi, proper, mid, iterations)
+    best = _best_candidates(s, lo, hi, width0)
+    return _extremes_of(s, best, wraps)
+
+
+@record
+class _Search:
+    """What the steps of :func:`refine_extremes` share: the problem, the targets
+    ``(quantity index, sign, run, grid index)``, their slope ``getters``
+    (:func:`_slope_getters`) and ``signs``, and the difference step ``h``."""
+
+    linkage: Any
+    sweep: Any
+    order: int
+    quantities: Sequence[Any]
+    values: Dict[str, np.ndarray]
+    domain: Any
+    targets: List[Tuple[int, float, int, int]]
+    getters: List[Any]
+    signs: np.ndarray
+    h: float
+
+    def slope(self, idx: np.ndarray) -> Callable[[np.ndarray], np.ndarray]:
+        """Signed derivative of the targets ``idx`` (> 0: the extreme lies further on);
+        called with several inputs per target (the probes of :func:`bracketed_root`)."""
+        probe = _SlopeProbe(self.linkage, self.sweep, self.order,
+                            [self.getters[i] for i in idx], self.h)
+        sg = self.signs[idx]
+
+        def f(x: np.ndarray) -> np.ndarray:
+            return np.tile(sg, x.size // len(idx)) * probe(x)[0]
+        return f
+
+
+def _extreme_targets(quantities: Sequence[Any], values: Any,
+                     domain: Any, max_candidates: Any
+                     ):
+    """``(quantity index, sign, run, grid index)`` of the best ``max_candidates`` local
+    extrema of the grid, per quantity and sign."""
     targets = []  # (symbol index, sign, run, k)
     for qi, qt in enumerate(quantities):
         v = values[qt.symbol]
@@ -270,8 +340,14 @@ def refine_extremes(linkage, sweep, order, quantities, values, domain, iteration
             cands.sort(key=lambda c: -c[0])
             for _val, r, k in cands[:max_candidates]:
                 targets.append((qi, sign, r, k))
-    if not targets:
-        return {}
+    return targets
+
+
+def _target_brackets(quantities: Sequence[Any], values: Dict[str, np.ndarray],
+                     domain: _Domain, targets: List[Tuple[int, float, int, int]]
+                     ) -> Tuple[Dict[str, Any], np.ndarray, np.ndarray]:
+    """symbol -> does the quantity return to its value over the sweep; the search
+    bracket ``(lo, hi)`` of every target."""
     lo = np.empty(len(targets))
     hi = np.empty(len(targets))
     wraps = {}
@@ -280,32 +356,20 @@ def refine_extremes(linkage, sweep, order, quantities, values, domain, iteration
         wraps[qt.symbol] = abs(v[-1] - v[0]) <= 1e-9 * max(1.0, float(np.max(np.abs(v))))
     for j, (qi, sign, r, k) in enumerate(targets):
         lo[j], hi[j] = domain.bracket(r, k, wraps[quantities[qi].symbol])
-    width0 = np.abs(hi - lo)   # the search brackets, before refinement
-    by_quantity = {}   # one getter per quantity: a solve evaluates each once
-    for qi, *_ in targets:
-        if qi not in by_quantity:
-            by_quantity[qi] = _slope_getters(quantities[qi], linkage)
-    getters = [by_quantity[qi] for qi, *_ in targets]
-    signs = np.array([t[1] for t in targets])
+    return wraps, lo, hi
 
-    def slope(idx):
-        """Signed derivative of the targets ``idx`` (> 0: the extreme lies further on);
-        called with several inputs per target (the probes of :func:`bracketed_root`)."""
-        probe, sg = _SlopeProbe(linkage, sweep, order, [getters[i] for i in idx], h), signs[idx]
 
-        def f(x):
-            return np.tile(sg, x.size // len(idx)) * probe(x)[0]
-        return f
-
-    # The first step of a bisection on the sign of the derivative, with the derivative
-    # at both ends too (one solve): the half that bisection keeps either has a sign
-    # change (closed by a safeguarded secant: a few solves instead of ~40) or the
-    # derivative has one sign over it, and bisection would close on its far end
-    # (the end of a run, or no extreme inside): taken directly, as bisection's
-    # last bracket.
-    n_t = len(targets)
+def _first_halving(s: _Search, lo: np.ndarray, hi: np.ndarray
+                   ) -> Tuple[np.ndarray, ...]:
+    """The first step of a bisection on the sign of the derivative, with the derivative
+    at both ends too (one solve): the half that bisection keeps either has a sign
+    change (``proper``: closed by a safeguarded secant, a few solves instead of ~40)
+    or the derivative has one sign over it, and bisection would close on its far end
+    (the end of a run, or no extreme inside): taken directly, as bisection's last
+    bracket.  Returns ``(lo, hi, d_lo, d_hi, proper, mid)``."""
+    n_t = len(s.targets)
     mid = 0.5 * (lo + hi)
-    d = slope(np.arange(n_t))(np.concatenate([lo, mid, hi]))
+    d = s.slope(np.arange(n_t))(np.concatenate([lo, mid, hi]))
     d_lo, d_mid, d_hi = d[:n_t], d[n_t:2 * n_t], d[2 * n_t:]
     up = d_mid > 0                       # bisection's keep_lo at the midpoint
     lo, d_lo = np.where(up, mid, lo), np.where(up, d_mid, d_lo)
@@ -315,33 +379,49 @@ def refine_extremes(linkage, sweep, order, quantities, values, domain, iteration
     to_hi = ~proper & (d_lo > 0)         # rising throughout: bisection closes on hi
     lo = np.where(to_hi, hi - np.copysign(tol, hi - lo), lo)
     hi = np.where(~proper & ~to_hi, lo + np.copysign(tol, hi - lo), hi)
-    if proper.any():
-        idx = np.flatnonzero(proper)
-        # A central difference locates its extreme no closer than its rounding allows
-        # (:func:`_difference_tol`, the tolerance reported for it): its bracket need not
-        # close further than that.
-        rtol = np.full(idx.size, 1e-13)
-        spd0 = np.broadcast_to(sweep.speed(mid), mid.shape)
-        for i, j in enumerate(idx):
-            if not _rate_is_slope(sweep, getters[j], spd0[j]):
-                qi, _sign, r, k = targets[j]
-                dtol = _difference_tol(values[quantities[qi].symbol], q, domain.runs[r], k, h)
-                rtol[i] = max(1e-13, dtol / max(1.0, abs(float(lo[j]))))
-        lo[idx], hi[idx] = bracketed_root(lo[idx], hi[idx], slope(idx), rtol, iterations,
-                                          d_lo[idx], d_hi[idx])
+    return lo, hi, d_lo, d_hi, proper, mid
+
+
+def _close_brackets(s: _Search, lo: np.ndarray, hi: np.ndarray, d_lo: np.ndarray,
+                    d_hi: np.ndarray, proper: np.ndarray, mid: np.ndarray,
+                    iterations: int) -> None:
+    """Close the ``proper`` brackets (in place) by a safeguarded secant on the slope.
+
+    A central difference locates its extreme no closer than its rounding allows
+    (:func:`_difference_tol`, the tolerance reported for it): its bracket need not
+    close further than that."""
+    idx = np.flatnonzero(proper)
+    rtol = np.full(idx.size, 1e-13)
+    spd0 = np.broadcast_to(s.sweep.speed(mid), mid.shape)
+    for i, j in enumerate(idx):
+        if not _rate_is_slope(s.sweep, s.getters[j], spd0[j]):
+            qi, _sign, r, k = s.targets[j]
+            dtol = _difference_tol(s.values[s.quantities[qi].symbol], s.domain.q,
+                                   s.domain.runs[r], k, s.h)
+            rtol[i] = max(1e-13, dtol / max(1.0, abs(float(lo[j]))))
+    lo[idx], hi[idx] = bracketed_root(lo[idx], hi[idx], s.slope(idx), rtol, iterations,
+                                      d_lo[idx], d_hi[idx])
+
+
+def _best_candidates(s: _Search, lo: Any, hi: Any, width0: Any
+                     ) -> Dict[Tuple[str, float], Tuple[float, float, float]]:
+    """(symbol, sign) -> (value, input, tol) of the best target: the refined value where
+    the located input is regular and no worse than its grid value, else the grid's."""
+    linkage, sweep, h, n_t = s.linkage, s.sweep, s.h, len(s.targets)
+    q, values = s.domain.q, s.values
     at = 0.5 * (lo + hi)
     spd = np.broadcast_to(sweep.speed(at), at.shape)
-    by_diff = np.array([not _rate_is_slope(sweep, getters[j], spd[j]) for j in range(n_t)],
+    by_diff = np.array([not _rate_is_slope(sweep, s.getters[j], spd[j]) for j in range(n_t)],
                        dtype=bool)
     diff = np.flatnonzero(by_diff)
     # the targets located on a central difference are solved at +-h and +-2h as well (in
     # the same solve): the bias of the difference (:func:`_truncation_shift`)
     m = solve(linkage, sweep.inputs(np.concatenate(
-        [at] + [at[diff] + s * h for s in (-1.0, 1.0, -2.0, 2.0)])), order=order)
-    shift = _truncation_shift(m, getters, diff, n_t, h)
-    best = {}
-    for j, (qi, sign, r, k) in enumerate(targets):
-        qt = quantities[qi]
+        [at] + [at[diff] + sh * h for sh in (-1.0, 1.0, -2.0, 2.0)])), order=s.order)
+    shift = _truncation_shift(m, s.getters, diff, n_t, h)
+    best: Dict[Tuple[str, float], Tuple[float, float, float]] = {}
+    for j, (qi, sign, r, k) in enumerate(s.targets):
+        qt = s.quantities[qi]
         vgrid = float(values[qt.symbol][k])
         cand = (vgrid, float(q[k]), 0.5 * float(width0[j]))
         if m.regular[j]:
@@ -352,22 +432,30 @@ def refine_extremes(linkage, sweep, order, quantities, values, domain, iteration
                 # no closer than a few units in the last place of the location itself
                 tol = max(0.5 * abs(float(hi[j] - lo[j])), 4.0 * float(np.spacing(abs(at[j]))))
                 if by_diff[j]:
-                    dtol = _difference_tol(values[qt.symbol], q, domain.runs[r], k, h)
+                    dtol = _difference_tol(values[qt.symbol], q, s.domain.runs[r], k, h)
                     tol = max(tol, dtol + TRUNCATION_MARGIN * shift.get(j, 0.0))
                 cand = (val, float(at[j]), tol)
         key = (qt.symbol, sign)
         if key not in best or sign * cand[0] > sign * best[key][0]:
             best[key] = cand
+    return best
+
+
+def _extremes_of(s: _Search, best: Dict[Tuple[str, float], Tuple[float, float, float]],
+                 wraps: Dict[str, Any]) -> Dict[str, Tuple[Extreme, Extreme]]:
+    """symbol -> (max, min) :class:`Extreme`: bounded unless at a gap edge, the input
+    wrapped into the period of a periodic sweep."""
+    domain = s.domain
     gap_edges = [b for r in range(len(domain.runs))
                  for b in (domain.lo_ext[r], domain.hi_ext[r]) if domain.is_gap_edge(b)]
     out = {}
-    for qt in quantities:
+    for qt in s.quantities:
         ext = []
         for sign in (1.0, -1.0):
             val, pos, tol = best[(qt.symbol, sign)]
             bounded = qt.order == 0 or not any(
                 abs(pos - b) <= 1e-7 * max(1.0, abs(b)) for b in gap_edges)
-            if sweep.periodic and domain.connected and wraps[qt.symbol]:
+            if s.sweep.periodic and domain.connected and wraps[qt.symbol]:
                 pos = _periodic(pos, domain.ends[0], domain.period)
             ext.append(Extreme(val, float(pos), bounded, tol))
         out[qt.symbol] = (ext[0], ext[1])
@@ -379,7 +467,8 @@ def refine_extremes(linkage, sweep, order, quantities, values, domain, iteration
 ZERO_NOISE = 1e-12
 
 
-def zero_crossings(q, values, runs, f, rtol=1e-15, iterations=64):
+def zero_crossings(q, values, runs,
+                   f, rtol=1e-15, iterations=64):
     """Every input where a sampled function crosses or touches 0, refined.
 
     Parameters
@@ -425,7 +514,9 @@ def zero_crossings(q, values, runs, f, rtol=1e-15, iterations=64):
     return sorted(out)
 
 
-def _slide_zeros(linkage, sweep, order, quantities, values, q, runs, periodic, q0, period):
+def _slide_zeros(linkage: Linkage, sweep: Sweep, order: int, quantities: Sequence[Any],
+                 values: Dict[str, Any], q: Any, runs: Sequence[Tuple[int, int]],
+                 periodic: bool, q0: Any, period: Any):
     """:func:`zero_crossings` of every slide acceleration (``SweepResult.zeros``)."""
     out = {}
     for qt in quantities:
@@ -433,7 +524,7 @@ def _slide_zeros(linkage, sweep, order, quantities, values, q, runs, periodic, q
                 or order < 2:
             continue
 
-        def f(x, qt=qt):
+        def f(x: Any, qt: Any = qt):
             m = solve(linkage, sweep.inputs(x), order=2)
             return np.where(m.regular, np.asarray(qt.get(m), dtype=float), np.nan)
         roots = zero_crossings(q, values[qt.symbol], runs, f)
@@ -452,7 +543,8 @@ def _slide_zeros(linkage, sweep, order, quantities, values, q, runs, periodic, q
 TRUNCATION_MARGIN = 3.0
 
 
-def _truncation_shift(m, getters, diff, n, h):
+def _truncation_shift(m, getters, diff, n,
+                      h):
     """``{target: |x - x*|}``: how far from the true extreme ``x*`` each target ``j`` of
     ``diff`` (located at ``x``, a root of the central difference of step ``h`` of its
     ``getters[j][0]``) lies, from the motion ``m`` solved at the ``n`` targets' ``x``
@@ -480,7 +572,7 @@ def _truncation_shift(m, getters, diff, n, h):
             f = np.asarray(get(m), dtype=float)
             f0, fm1, fp1, fm2, fp2 = (float(f[a]) for a in at)
 
-            def dif(a, b, is_angle=is_angle):
+            def dif(a: FloatOrArray, b: FloatOrArray, is_angle: bool = is_angle):
                 return float(_wrap(a - b)) if is_angle else a - b
             d1 = dif(fp1, fm1) / (2.0 * h)
             d2 = dif(fp2, fm2) / (4.0 * h)
@@ -491,7 +583,7 @@ def _truncation_shift(m, getters, diff, n, h):
     return out
 
 
-def _difference_tol(v, q, run, k, h):
+def _difference_tol(v: Any, q: Any, run: Tuple[int, int], k: int, h: Any):
     """How closely a central difference of step ``h`` locates the extreme of the samples
     ``v`` near grid index ``k``: its rounding, about 2 EPS |f|, over its slope
     2 h |f''| (f'' from the grid's second difference at ``k``), with a factor 2 of

@@ -24,6 +24,8 @@ or moves a sign to where it is exact (``-(a - b)`` is ``b - a``).
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 
 __all__ = ["Neg", "neg", "value", "const", "exact_zero", "mul", "add", "sub", "div",
@@ -39,14 +41,14 @@ class Neg:
 
     __slots__ = ("v",)
 
-    def __init__(self, v):
+    def __init__(self, v: Any) -> None:
         self.v = v
 
     def __abs__(self):
         return abs(self.v)
 
 
-def neg(a):
+def neg(a: Any):
     """``-a``: a float negated, a pending negation undone, an array left pending."""
     ta = type(a)
     if ta is Neg:
@@ -56,12 +58,12 @@ def neg(a):
     return Neg(a)
 
 
-def value(a):
+def value(a: Any):
     """``a`` as a float or an array (a pending negation computed)."""
     return -a.v if type(a) is Neg else a
 
 
-def const(a):
+def const(a: Any):
     """A Python float for an array that holds one value at every position (a
     stride-0 broadcast, as the engine gives a fixed point or a fixed angle),
     anything else unchanged: the arithmetic here folds it."""
@@ -70,14 +72,14 @@ def const(a):
     return a
 
 
-def exact_zero(v):
+def exact_zero(v: Any):
     """Whether ``v`` is a Python number equal to 0 (an array never is)."""
     return (type(v) is float or type(v) is int) and v == 0
 
 
 # (the type tests are written out, not calls of a helper: these run a few hundred times
 # a call, and the fixed cost of one kinetostatics call is a goal of its own)
-def mul(a, b):
+def mul(a: Any, b: Any):
     """``a * b``, folded (a float 0 or +-1, a pending sign)."""
     ta, tb = type(a), type(b)
     if ta is float:
@@ -105,7 +107,7 @@ def mul(a, b):
     return a * b
 
 
-def add(a, b):
+def add(a: Any, b: Any):
     """``a + b``, folded (a float 0, a pending sign)."""
     ta, tb = type(a), type(b)
     if ta is float and a == 0.0:
@@ -119,7 +121,7 @@ def add(a, b):
     return a + b
 
 
-def sub(a, b):
+def sub(a: Any, b: Any):
     """``a - b``, folded (a float 0, a pending sign)."""
     ta, tb = type(a), type(b)
     if tb is float and b == 0.0:
@@ -133,7 +135,7 @@ def sub(a, b):
     return a - b
 
 
-def div(a, b):
+def div(a: Any, b: Any):
     """``a / b``, folded (a float +-1, a pending sign)."""
     ta, tb = type(a), type(b)
     if tb is float:
@@ -150,12 +152,12 @@ def div(a, b):
     return a / b
 
 
-def dot3(w, c):
+def dot3(w: Any, c: Any):
     """``w . c`` of two 3-vectors (floats or arrays), folded."""
     return add(add(mul(w[0], c[0]), mul(w[1], c[1])), mul(w[2], c[2]))
 
 
-def cross3(c1, c2):
+def cross3(c1: Any, c2: Any):
     """``c1 x c2`` of two 3-vectors (floats or arrays), folded."""
     return (sub(mul(c1[1], c2[2]), mul(c1[2], c2[1])),
             sub(mul(c1[2], c2[0]), mul(c1[0], c2[2])),

@@ -10,7 +10,7 @@ returns.  Conventions: see :mod:`mechcli.core.linkage.kinetostatics`.
 from __future__ import annotations
 
 import dataclasses
-from typing import Dict, Optional, Tuple
+from typing import Any, Dict, Optional, Tuple
 
 import numpy as np
 
@@ -25,7 +25,7 @@ COND_FLAG = 1e8
 class ForceModelError(ValueError):
     """The linkage, bodies or loads cannot be modelled (bad point or link)."""
 
-    def __init__(self, message, what=None):
+    def __init__(self, message: str, what: Any = None) -> None:
         super().__init__(message)
         self.what = what
 
@@ -131,12 +131,12 @@ class _TopologyBuilder:
         self.pairs = []
         self.index = None
 
-    def put(self, point, link):
+    def put(self, point: str, link: int) -> None:
         links = self.members.setdefault(point, [])
         if link not in links:
             links.append(link)
 
-    def new_point(self, point, link):
+    def new_point(self, point: str, link: int) -> None:
         """``point`` is made by (fixed on) ``link``."""
         self.owner[point] = link
         self.put(point, link)
@@ -157,11 +157,11 @@ class _TopologyBuilder:
         self.pairs.append(Pair(min(guide, block), max(guide, block), "P", point, self.index,
                                guide, block))
 
-    def fail(self, message, what):
+    def fail(self, message: str, what: Any):
         raise ForceModelError(message, what)
 
 
-def topology(linkage: Linkage) -> Topology:
+def topology(linkage):
     """Derive the pairs of a linkage from its elements (see the module notes)."""
     tb = _TopologyBuilder(linkage.frame)
     blocks = []
@@ -179,7 +179,7 @@ def topology(linkage: Linkage) -> Topology:
                     {k: tuple(v) for k, v in tb.members.items()})
 
 
-def com_of(topo: Topology, body: Optional[Body], link):
+def com_of(topo: Topology, body: Optional[Body], link: int):
     """``(origin, along, normal)`` of a link's centre of mass; ``along is None``
     means the midpoint of the link's two points (the default)."""
     if body is not None and body.origin is not None:

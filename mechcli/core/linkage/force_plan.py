@@ -25,10 +25,17 @@ coefficient is dimensionless.  The link equations are ΣFx, ΣFy, ΣM in rows
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING, Any
+
 from mechcli.core.linkage import dyad_statics
 from mechcli.core.linkage.elements import Element
 from mechcli.core.linkage.force_model import ForceModelError
 from mechcli.core.records import record
+from mechcli.core.types import FloatOrArray
+
+if TYPE_CHECKING:
+
+    from mechcli.core.linkage.force_model import Topology
 
 __all__ = ["Constant", "Arm", "Along", "PairNormal", "PairLine", "DriverLine", "Plan",
            "plan", "actuated_pair"]
@@ -186,12 +193,12 @@ class Plan:
         self.direction_of = {ln: el for el in linkage.elements for ln in el.makes()[1]
                              if type(el).direction is not Element.direction}
 
-    def _unknowns(self, *columns, couple):
+    def _unknowns(self, *columns: Any, couple: FloatOrArray) -> None:
         for col in columns:
             self.columns.append(col)
             self.is_couple.append(couple)
 
-    def _revolute(self, pr, frame):
+    def _revolute(self, pr: Any, frame: int):
         """The x and y columns of a revolute pair's reaction (of i on j: + on j,
         - on i; the frame has no equations)."""
         cx, cy = [], []
@@ -203,7 +210,7 @@ class Plan:
             cy += [(e + FY, Constant(sign)), (e + M, Arm(link, pr.point, sign, 1))]
         return cx, cy
 
-    def _prismatic(self, pi, pr, frame):
+    def _prismatic(self, pi: int, pr: Any, frame: int):
         """The normal-force and couple columns of a prismatic pair."""
         cn, cm = [], []
         normal = self.normal[pi] = PairNormal(pi)
@@ -214,11 +221,12 @@ class Plan:
             cm.append((self.eq_of[link] + M, Constant(sign)))  # the couple (scaled)
         return cn, cm
 
-    def _along(self, link, sign, point, direction):
+    def _along(self, link: int, sign: Any, point: str, direction: Any):
         e = self.eq_of[link]
         return [(e + row, Along(link, point, direction, sign, row)) for row in (FX, FY, M)]
 
-    def _block(self, topo, idx, new_links, pidx, solved):
+    def _block(self, topo, idx, new_links, pidx,
+               solved):
         """One element block ``(unknowns, rows, entries, known, layout)``."""
         el = topo.linkage.elements[idx]
         unk = [u for pi in pidx for u in self.pair_cols[pi]]
@@ -243,7 +251,8 @@ class Plan:
         lay = dyad_statics.layout(kind_of, cols_of_rows, len(rows))
         return unk, rows, entries, known, lay
 
-    def _reference_points(self, topo, new_links, pidx, lay):
+    def _reference_points(self, topo, new_links, pidx,
+                          lay):
         """A closed-form block's links may take their moments about their outer
         pair's point instead of the centre of mass (the same solution): that pair
         then drops out of the moment equation with no pass over memory."""
@@ -254,7 +263,7 @@ class Plan:
             self.ref_point[new_links[0]] = topo.pairs[pidx[0]].point
 
 
-def plan(topo) -> Plan:
+def plan(topo: Topology) -> Plan:
     """The :class:`Plan` of ``topo``, built on first use and cached on it."""
     p = topo.__dict__.get("_force_plan")
     if p is None:
@@ -263,7 +272,7 @@ def plan(topo) -> Plan:
     return p
 
 
-def actuated_pair(topo, name):
+def actuated_pair(topo: Topology, name: str):
     """The index in ``topo.pairs`` of the prismatic pair of the RPR dyad whose slide is
     called ``name`` (an actuator: a cylinder between two pivots).
 

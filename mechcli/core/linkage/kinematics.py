@@ -20,6 +20,7 @@ runs them (:func:`analyse_sweep`) and re-exports their public names.
 from __future__ import annotations
 
 import dataclasses
+from typing import TYPE_CHECKING, Any, Dict, Sequence
 
 import numpy as np
 
@@ -65,6 +66,9 @@ from mechcli.core.linkage.sweep import (
 from mechcli.core.records import record
 from mechcli.core.refine import sorted_union, true_runs
 
+if TYPE_CHECKING:
+    from mechcli.core.linkage.engine import LinkageMotion
+
 #: the public names of the sweep analysis, whichever module of it holds them
 #: (:mod:`.sweep`, :mod:`.limits`, :mod:`.extremes`, :mod:`.accuracy`, this one)
 __all__ = ["Sweep", "Quantity", "Extreme", "Toggle", "DeadPoint", "SweepResult",
@@ -78,7 +82,7 @@ __all__ = ["Sweep", "Quantity", "Extreme", "Toggle", "DeadPoint", "SweepResult",
 SEARCH_STEP = np.radians(0.5)
 
 
-def analyse_sweep(linkage: Linkage, sweep: Sweep, quantities, order: int,
+def analyse_sweep(linkage: Linkage, sweep: Sweep, quantities: Sequence[Any], order: int,
                   partial: bool = False, extremes: bool = True) -> SweepResult:
     """Solve the linkage over a sweep and summarise it.
 
@@ -153,7 +157,7 @@ def analyse_sweep(linkage: Linkage, sweep: Sweep, quantities, order: int,
                        accuracy, ex.tol, deads, zeros)
 
 
-def _analysis_grid(linkage, sweep, q_out):
+def _analysis_grid(linkage: Linkage, sweep: Sweep, q_out: np.ndarray):
     """Step 1: the output inputs merged with a search grid of at most ``SEARCH_STEP``
     (span / 720 for a linear input): ``(q_all, out_idx)``, the rows' indices in it."""
     rotary = linkage.driver(sweep.driver).rotary
@@ -186,7 +190,8 @@ class _Excluded:
     deads: list
 
 
-def _exclusions(linkage, sweep, order, q_all, motion, good, gaps, partial):
+def _exclusions(linkage, sweep, order, q_all,
+                motion, good, gaps, partial):
     """Step 2: the grid's runs that are not regular, each bounded by bisection from its
     regular neighbours, then refined to the roots of a dyad's discriminant and to the
     dead points; :class:`AssemblyError` unless ``partial``."""
@@ -257,7 +262,7 @@ class _Grid:
     connected: bool
 
 
-def _grid_runs(sweep, q_all, good, out_idx, ex):
+def _grid_runs(sweep: Sweep, q_all: np.ndarray, good: np.ndarray, out_idx: Any, ex: Any):
     """Step 3: the regular part of the grid and its runs (at least two rows, else
     :class:`AssemblyError`)."""
     idx = np.flatnonzero(good)
@@ -275,7 +280,7 @@ def _grid_runs(sweep, q_all, good, out_idx, ex):
     return _Grid(idx, q, runs, lo_ext, hi_ext, period, connected)
 
 
-def _boundary_toggles(linkage, sweep, q_all, regular):
+def _boundary_toggles(linkage: Linkage, sweep: Sweep, q_all: np.ndarray, regular: np.ndarray):
     """Step 4: a toggle at every inner end of an excluded interval (the group whose
     condition is least there)."""
     out = []
@@ -288,7 +293,8 @@ def _boundary_toggles(linkage, sweep, q_all, regular):
     return out
 
 
-def _output_rows(out_idx, good, grid, grid_motion, values):
+def _output_rows(out_idx: Any, good: np.ndarray, grid: Any, grid_motion: LinkageMotion,
+                 values: Dict[str, np.ndarray]):
     """Step 5: the output rows, the regular output positions as a subset of the grid:
     ``(keep, runs, motion, values)`` (``keep``: their indices in the whole grid)."""
     keep = out_idx[good[out_idx]]

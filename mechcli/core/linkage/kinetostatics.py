@@ -55,7 +55,7 @@ k - 1 pairs with the defining link (the pin is part of that link).
 from __future__ import annotations
 
 import functools
-from typing import Dict, Optional
+from typing import Any, Dict, Optional, Sequence, Tuple
 
 import numpy as np
 
@@ -80,18 +80,20 @@ from mechcli.core.linkage.force_model import (  # noqa: F401
 from mechcli.core.linkage.force_plan import Arm, Constant, PairLine, PairNormal
 from mechcli.core.linkage.loads import LoadProgram  # noqa: F401
 from mechcli.core.records import record
+from mechcli.core.types import FloatOrArray
 
 
 # ---------------------------------------------------------------------------
 # solve
 # ---------------------------------------------------------------------------
-def _mid(a, b):
+def _mid(a: FloatOrArray, b: FloatOrArray):
     """``(a + b) / 2``, a fixed point's values (a stride-0 array: its zero
     acceleration, a point at the origin) folded as floats."""
     return mul(0.5, add(const(a), const(b)))
 
 
-def _point(motion, topo, origin, link, along, normal, order=2, cos_sin=None):
+def _point(motion, topo, origin, link,
+           along, normal, order=2, cos_sin=None):
     """Position (and velocity, acceleration) of a point fixed on ``link``
     (``cos_sin(link)``: the cosine and sine of its angle, when already known).
     ``order`` "a": the position and the acceleration only (velocities None)."""
@@ -211,7 +213,7 @@ def _solve_block(A, b, flat, condition):
     return X, c_blk
 
 
-def _solve_closed(lay, A, b, flat, condition):
+def _solve_closed(lay: Any, A: Any, b: Any, flat: Any, condition: bool):
     """Solve one driver or dyad block in closed form (:mod:`.dyad_statics`):
     ``(X, cond)`` as :func:`_solve_block`, or None when a position overflows
     (a nearly singular one: the general elimination then solves the block).
@@ -261,7 +263,7 @@ CLOSED_FORM = True
 _exact_zero = exact_zero
 
 
-def _broadcasts(a, b):
+def _broadcasts(a: Any, b: Any):
     try:
         np.broadcast_shapes(a, b)
         return True
@@ -269,7 +271,7 @@ def _broadcasts(a, b):
         return False
 
 
-def _check_shapes(bodies, loads, n):
+def _check_shapes(bodies: Dict[int, Any], loads: Sequence[Any], n: int) -> None:
     """Raise ValueError for a body's or a load's array that does not broadcast to
     the motion's shape ``n`` (a batch of designs needs a batched linkage or input)."""
     for what, obj, fields in ([(f"body of link {k}", b, ("mass", "inertia", "along", "normal"))
@@ -305,7 +307,7 @@ class _Call:
     condition: bool
     trig: dict
 
-    def arr(self, x):
+    def arr(self, x: FloatOrArray):
         """``x`` as a flat float array over the positions (a view where it is one)."""
         # the common case, an array over the positions already: a view, no broadcast_to
         n, flat = self.n, self.flat
@@ -313,14 +315,14 @@ class _Call:
             return x.reshape(flat)
         return np.broadcast_to(np.asarray(x, dtype=float), n).reshape(flat)
 
-    def coord(self, v):
+    def coord(self, v: FloatOrArray):
         """A number that is the same at every position (a Python number, a fixed
         point's stride-0 array) as a float, folded by the arithmetic; else the flat
         array."""
         c = const(v)
         return float(c) if type(c) is float or type(c) is int else self.arr(c)
 
-    def cos_sin(self, link):
+    def cos_sin(self, link: int):
         """Cosine and sine of ``link``'s angle, once per call (the centres of mass,
         the loads, the directions and the virtual power share them)."""
         th = self.motion.links[link].theta
@@ -352,7 +354,8 @@ class _Known:
     com_off: dict
 
 
-def _known_loads(call, bodies, loads, gravity):
+def _known_loads(call: Any, bodies: Dict[int, Any], loads: Sequence[Any],
+                 gravity: Optional[Tuple[float, float]]):
     """Step 1: the centres of mass and the known loads on every moving link
     (:class:`_Known`): weight, d'Alembert inertia force and couple, external loads."""
     known = _inertia_loads(call, bodies, gravity)
@@ -407,7 +410,7 @@ def _inertia_loads(call, bodies, gravity):
     return _Known(com, minus, com_off)
 
 
-def _add_load(call, known, ld):
+def _add_load(call: Any, known: Any, ld: Any) -> None:
     """Subtract the external load ``ld`` (its force moved to the centre of mass)
     from its link's right-hand side in ``known``."""
     topo, arr, coord = call.topo, call.arr, call.coord
@@ -454,7 +457,7 @@ class _Coefficients:
         self.ref = call.plan.ref_point if not call.condition and CLOSED_FORM else {}
         self.levers, self.directions = {}, {}
 
-    def lever(self, link, point):
+    def lever(self, link: int, point: str):
         """``(dx, dy) / L`` from ``link``'s reference point to ``point``."""
         levers, call = self.levers, self.call
         lv = levers.get((link, point))
@@ -480,7 +483,7 @@ class _Coefficients:
                                           div(call.arr(p.y) - com[1], call.Ls))
         return lv
 
-    def direction(self, key):
+    def direction(self, key: Any):
         """The unit vector of a :class:`~.force_plan.PairNormal` or
         :class:`~.force_plan.DriverLine`."""
         u = self.directions.get(key)
@@ -500,7 +503,7 @@ class _Coefficients:
             self.directions[key] = u
         return u
 
-    def of(self, spec):
+    def of(self, spec: Any):
         """The value of a coefficient record (a float or an array)."""
         kind = type(spec)
         if kind is Constant:
@@ -518,7 +521,7 @@ class _Coefficients:
         return mul(spec.sign, sub(mul(dx, uy), mul(dy, ux)))
 
 
-def _right_hand_sides(call, known, coefs):
+def _right_hand_sides(call: Any, known: Any, coefs: Any):
     """Step 2: the right-hand side of every equation (minus the known loads; the
     moment about the link's reference point, scaled by L)."""
     rhs = [None] * call.plan.nrows
@@ -544,7 +547,7 @@ def _right_hand_sides(call, known, coefs):
     return rhs
 
 
-def _solve_blocks(call, coefs, rhs):
+def _solve_blocks(call: Any, coefs: Any, rhs: Any):
     """Step 3: the element blocks, from the last element back to the drivers (block
     lower-triangular), each one's unknowns from its links' equations: the scaled
     unknowns and the largest condition number of the blocks at each position."""
@@ -575,7 +578,7 @@ def _solve_blocks(call, coefs, rhs):
     return xs, cond
 
 
-def _reactions(call, coefs, xs):
+def _reactions(call: Any, coefs: Any, xs: Any):
     """Step 4: the unknowns in their units: ``(balancing, pairs)``, the balancing
     torque or force of every driver and the :class:`PairForce` of every pair."""
     n, plan, topo = call.n, call.plan, call.topo
@@ -607,7 +610,7 @@ def _reactions(call, coefs, xs):
     return balancing, pairs
 
 
-def _line_of(call, pi):
+def _line_of(call: Any, pi: int):
     """Cosine and sine of an actuated slide's line (its block's angle), of the
     motion's shape."""
     c, s = call.cos_sin(call.topo.pairs[pi].block)
@@ -625,12 +628,12 @@ class _Sums:
         self.sums = dict.fromkeys(keys, 0.0)
         self.terms = {k: [] for k in keys}
 
-    def put(self, key, v, sign=1.0):
+    def put(self, key: Any, v: FloatOrArray, sign: float = 1.0) -> None:
         self.sums[key] = add(self.sums[key], v) if sign > 0 else sub(self.sums[key], v)
         if type(v) is not float:
             self.terms[key].append(v)
 
-    def own(self, key, flat):
+    def own(self, key: Any, flat: Any):
         # an array of its own: a sum of one term is that term (a pair's force) itself
         v = value(self.sums[key])
         if type(v) is float:
@@ -638,7 +641,7 @@ class _Sums:
         return v.copy() if any(v is t for t in self.terms[key]) else v
 
 
-def _frame_resultants(call, balancing, pairs):
+def _frame_resultants(call: Any, balancing: Dict[int, np.ndarray], pairs: Any):
     """Step 5: the force and moment (about the origin) transmitted to the frame and
     the input power, as flat arrays ``(fx, fy, m, power)``."""
     motion, flat, arr = call.motion, call.flat, call.arr
@@ -684,13 +687,13 @@ def _frame_resultants(call, balancing, pairs):
     return tuple(sums.own(k, flat) for k in ("fx", "fy", "m", "p"))
 
 
-def _slide_name(topo, pi):
+def _slide_name(topo: Topology, pi: int):
     """The slide (``LinkageMotion.slides`` key) of prismatic pair ``pi``."""
     pr = topo.pairs[pi]
     return topo.linkage.elements[pr.element].slide_names(topo.linkage.frame)[0]
 
 
-def _force_residual(call, known, ffx, ffy):
+def _force_residual(call: Any, known: Any, ffx: FloatOrArray, ffy: FloatOrArray):
     """Step 6a: the global balance |Σ known forces (gravity, loads, inertia) - the
     force on the frame| (minus the known forces, summed, plus the force on the
     frame: the same length), flat."""
@@ -704,7 +707,8 @@ def _force_residual(call, known, ffx, ffy):
     return np.sqrt(dx, out=dx)
 
 
-def _power_residual(call, known, balancing, unit_motion):
+def _power_residual(call: Any, known: Any, balancing: Dict[int, np.ndarray],
+                    unit_motion: LinkageMotion):
     """Step 6b: the virtual power with the velocity coefficients ``unit_motion``,
     Σ balancing·ω* + Σ known loads·v*: a second route to the balancing (zeros
     without ``unit_motion``), of the motion's shape."""
@@ -741,9 +745,10 @@ def _power_residual(call, known, balancing, unit_motion):
     return pres.reshape(call.n)
 
 
-def solve_forces(topo: Topology, motion: LinkageMotion, bodies: Dict[int, Body], loads=(),
-                 gravity=(0.0, 0.0), unit_motion: Optional[LinkageMotion] = None,
-                 scale: Optional[float] = None, condition: bool = True) -> ForceResult:
+def solve_forces(topo, motion, bodies,
+                 loads=(), gravity=(0.0, 0.0),
+                 unit_motion=None, scale=None,
+                 condition=True):
     """Pair reactions and balancing torques/forces at every position of ``motion``.
 
     Parameters

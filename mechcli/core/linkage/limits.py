@@ -5,19 +5,30 @@ input with its uncertainty (:func:`dead_points`), the toggles a grid passes near
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING, Any, Optional
+
 import numpy as np
 
 from mechcli.core.linkage.engine import solve
 from mechcli.core.linkage.sweep import NEAR_TOGGLE_SIN, DeadPoint, Toggle
 from mechcli.core.refine import bisect
+from mechcli.core.types import FloatOrArray
+
+if TYPE_CHECKING:
+    pass
+
+if TYPE_CHECKING:
+    from mechcli.core.linkage.engine import Linkage
+    from mechcli.core.linkage.sweep import Sweep
 
 
-def _bisect_boundaries(linkage, sweep, order, good, bad):
+def _bisect_boundaries(linkage: Linkage, sweep: Sweep, order: int, good: np.ndarray,
+                       bad: Optional[np.ndarray]):
     """Refine boundaries between regular inputs ``good`` and irregular ``bad``.
 
     Returns the last regular input of every pair (to ~1e-15 relative).
     """
-    def regular(mid):
+    def regular(mid: Any):
         return solve(linkage, sweep.inputs(mid), order=order).regular
 
     return bisect(good, bad, regular, 1e-15)[0]
@@ -34,7 +45,7 @@ SIN_ZERO = 1e-13
 ROUNDING = 32 * float(np.finfo(float).eps)
 
 
-def _assembles(linkage, sweep, x):
+def _assembles(linkage: Linkage, sweep: Sweep, x: FloatOrArray):
     """Does the linkage assemble at inputs ``x`` with every dyad's discriminant > 0?
     Also returns the smallest sin(gamma) of the dyads there."""
     m = solve(linkage, sweep.inputs(np.asarray(x, dtype=float)), order=0)
@@ -43,7 +54,7 @@ def _assembles(linkage, sweep, x):
     return m.feasible & (low > SIN_ZERO), low
 
 
-def _input_scale(linkage, sweep):
+def _input_scale(linkage: Linkage, sweep: Sweep):
     """1 rad for a crank, the sweep's span [m] for a slider: what 'relative' input means."""
     if linkage.driver(sweep.driver).rotary:
         return 1.0
@@ -51,7 +62,8 @@ def _input_scale(linkage, sweep):
     return max(float(abs(q[-1] - q[0])) if q.size else 0.0, float(np.max(linkage.scale())))
 
 
-def assembly_limits(linkage, sweep, inside, outside, iterations=80):
+def assembly_limits(linkage: Linkage, sweep: Sweep, inside: FloatOrArray, outside: FloatOrArray,
+                    iterations: int = 80):
     """The inputs where the linkage stops assembling, between ``inside`` (assembles) and
     ``outside`` (does not), and how closely each is located.
 
@@ -85,7 +97,7 @@ def assembly_limits(linkage, sweep, inside, outside, iterations=80):
     return lo, tol
 
 
-def _touch_minimum(linkage, sweep, ci, c0, R):
+def _touch_minimum(linkage: Linkage, sweep: Sweep, ci: int, c0: int, R: FloatOrArray):
     """The minimum of sin^2(gamma) of condition ``ci`` near ``c0``, from the 6-point
     stencil c0 ± R, ± 2R, ± 3R (a degree-5 interpolant; sin^2(gamma) is smooth through
     a touching zero, sin(gamma) is not).  Returns ``(t, noise)`` in input units, or
@@ -170,7 +182,8 @@ def dead_points(linkage, sweep, excluded):
     return out
 
 
-def _scan_gaps(linkage, sweep, order, q, motion, runs):
+def _scan_gaps(linkage, sweep, order, q, motion,
+               runs):
     """Find dead points and assembly gaps the grid stepped over, and near-toggles.
 
     Every grid minimum of a dyad's sin(gamma) below ``NEAR_TOGGLE_SIN``
@@ -205,7 +218,7 @@ def _scan_gaps(linkage, sweep, order, q, motion, runs):
     h = 1e-7 * max(1.0, float(np.max(np.abs(q))))
     T = len(targets)
 
-    def falling(mid):
+    def falling(mid: FloatOrArray):
         m = solve(linkage, sweep.inputs(np.concatenate([mid - h, mid + h])), order=0)
         return np.array([m.conditions[ci].sin_gamma[T + j] - m.conditions[ci].sin_gamma[j]
                          for j, (ci, *_r) in enumerate(targets)]) < 0
@@ -223,7 +236,8 @@ def _scan_gaps(linkage, sweep, order, q, motion, runs):
     return toggles, gaps
 
 
-def _refined_exclusions(linkage, sweep, excluded, ends, bounds):
+def _refined_exclusions(linkage, sweep, excluded, ends,
+                        bounds):
     """The excluded intervals with every ``cannot assemble`` end that lies between a
     regular input and one that does not assemble moved onto the root of the dyad's
     discriminant (:func:`assembly_limits`); the other ends stay the last regular input.
@@ -250,7 +264,7 @@ def _refined_exclusions(linkage, sweep, excluded, ends, bounds):
     return [tuple(e) for e in out], [tuple(t) for t in tol]
 
 
-def _limits_are_not_dead_points(excluded, excluded_tol, deads):
+def _limits_are_not_dead_points(excluded: Any, excluded_tol: Any, deads: Any):
     """A ``dead point`` interval whose zero of sin(gamma) is a limit of assembly (the
     sweep ends on it: a :class:`DeadPoint` of shape ``"limit"``) is what a gap's end is,
     a limit of assembly, not a dead point: it becomes a ``cannot assemble`` interval that
@@ -275,7 +289,7 @@ def _limits_are_not_dead_points(excluded, excluded_tol, deads):
     return excluded, excluded_tol, keep
 
 
-def _nearest_boundary(excluded, x, before):
+def _nearest_boundary(excluded: Any, x: FloatOrArray, before: FloatOrArray):
     """The refined edge of the excluded interval adjacent to grid point ``x``
     (``x`` itself where no gap is adjacent: the sweep ends there)."""
     if before:
@@ -285,7 +299,7 @@ def _nearest_boundary(excluded, x, before):
     return min(starts) if starts else x
 
 
-def _describe_exclusions(excluded):
+def _describe_exclusions(excluded: Any):
     """Core wording (input in rad or m); the report layer rewords it in the spec's units."""
     return "; ".join(f"{reason} for input {start:.6g} … {stop:.6g}"
                      for start, stop, reason in excluded)

@@ -15,12 +15,13 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from typing import Callable, Dict, Optional
+from typing import Any, Callable, Dict, Optional, Sequence
 
 import numpy as np
 
 from mechcli.core.linkage.force_analysis import ForceEvaluator, series_of
 from mechcli.core.records import record
+from mechcli.core.types import FloatOrArray
 
 
 @record
@@ -61,7 +62,7 @@ class SwitchRows:
         return int(self.q.size)
 
 
-def forced_programs(programs, state):
+def forced_programs(programs: Sequence[Any], state: Any):
     """The load programs with each conditional load in *state* held on or off.
 
     Parameters
@@ -87,7 +88,7 @@ def forced_programs(programs, state):
     return tuple(out)
 
 
-def _snap(x, programs, q, tol):
+def _snap(x: FloatOrArray, programs: Sequence[Any], q: np.ndarray, tol: FloatOrArray):
     """A switch input moved onto the exact window bound it is within round-off of
     (bisection brackets it to ~1e-14), then onto a sample of *q* within *tol*."""
     for p in programs:
@@ -134,16 +135,16 @@ def switch_states(result, programs, periodic=False):
     ivs = {n: [(_snap(s, programs, q, tol)[0], _snap(t, programs, q, tol)[0])
                for s, t in result.active[n]] for n in names}
 
-    def before(x):
+    def before(x: FloatOrArray):
         return {n: any(s < x <= t for s, t in ivs[n]) for n in names}
 
-    def after(x):
+    def after(x: FloatOrArray):
         return {n: any(s <= x < t for s, t in ivs[n]) for n in names}
 
     first, last = q[runs[0][0]], q[runs[-1][1] - 1]
     grid = {n: np.asarray(result.active_mask[n], dtype=bool) for n in names}
 
-    def sample(k):
+    def sample(k: int):
         return None if k < 0 else {n: bool(grid[n][k]) for n in names}
 
     cands = {_snap(e, programs, q, tol) for n in names for pair in result.active[n]
@@ -165,7 +166,7 @@ def switch_states(result, programs, periodic=False):
     return out
 
 
-def switch_rows(pipe: ForceEvaluator, result, periodic=False,
+def switch_rows(pipe: ForceEvaluator, result: Any, periodic: bool = False,
                 extra: Optional[Callable] = None):
     """The kinetostatics on both sides of every load switch of a force sweep.
 
@@ -239,7 +240,7 @@ def switch_rows(pipe: ForceEvaluator, result, periodic=False,
                       fres[keep], active, {k: v[keep] for k, v in more.items()})
 
 
-def split_mean(pipe: ForceEvaluator, result):
+def split_mean(pipe: ForceEvaluator, result: Any):
     """The mean and RMS of the balancing quantities with the loads' own kinks and jumps
     as split points of the quadrature.
 

@@ -10,12 +10,19 @@ force in part of the stroke) or a magnitude computed from the motion
 from __future__ import annotations
 
 import dataclasses
-from typing import Optional, Tuple
+from typing import TYPE_CHECKING, Optional, Tuple
 
 import numpy as np
 
 from mechcli.core.linkage.force_model import Load
 from mechcli.core.records import record
+from mechcli.core.types import FloatOrArray
+
+if TYPE_CHECKING:
+    pass
+
+if TYPE_CHECKING:
+    pass
 
 
 @record
@@ -81,7 +88,7 @@ class LoadProgram:
             on = on & (s >= lo) & (s <= hi)
         return on
 
-    def breaks(self, lo, hi):
+    def breaks(self, lo: FloatOrArray, hi: FloatOrArray):
         """The inputs in [lo, hi] where the load's magnitude has a kink or a jump from its
         tabulated ``factor`` (with its repeats when rotary) or its ``source`` (one with a
         ``breaks(lo, hi)``); the switches of the conditions are found separately."""
@@ -101,7 +108,7 @@ class LoadProgram:
             out += list(self.source.breaks(lo, hi))
         return out
 
-    def factor(self, q):
+    def factor(self, q: np.ndarray):
         if self.table is None:
             return 1.0
         xs, ys = self.table

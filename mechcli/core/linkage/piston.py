@@ -30,11 +30,19 @@ T = F_T r.
 from __future__ import annotations
 
 import math
-from typing import Optional, Tuple
+from typing import TYPE_CHECKING, Any, Dict, Optional, Sequence, Tuple
 
 import numpy as np
 
 from mechcli.core.records import record
+from mechcli.core.types import FloatOrArray
+
+if TYPE_CHECKING:
+    pass
+
+if TYPE_CHECKING:
+    from mechcli.core.linkage.engine import LinkageMotion
+    from mechcli.core.linkage.force_model import Topology
 
 
 class PistonError(ValueError):
@@ -43,7 +51,7 @@ class PistonError(ValueError):
     ``lengths``: ``{"rod": l, "crank": r, "offset": h}`` [m] when the crank cannot make a
     whole turn (the spec words the message in its own units), else None."""
 
-    def __init__(self, message, lengths=None):
+    def __init__(self, message: str, lengths: Optional[Dict[str, float]] = None) -> None:
         super().__init__(message)
         self.lengths = lengths
 
@@ -92,7 +100,7 @@ class Piston:
         (in increasing input angle; π without offset)."""
         return (self.theta_crank - self.theta_head) % (2 * math.pi)
 
-    def crank_angles(self, frac, lo, hi):
+    def crank_angles(self, frac: FloatOrArray, lo: FloatOrArray, hi: FloatOrArray):
         """The input angles in [lo, hi] [rad] where the piston is the fraction ``frac`` of
         the stroke from the head end (closed form: the crank pin on the circle of radius l
         about the piston pin; two per turn, one on each stroke)."""
@@ -116,7 +124,7 @@ class Piston:
                 k += 1
         return out
 
-    def fraction_at(self, theta):
+    def fraction_at(self, theta: FloatOrArray):
         """The piston's fraction of the stroke from the head end at input angle ``theta``
         [rad] (closed form, scalar)."""
         bx = self.pivot[0] + self.r * math.cos(theta) - self.base[0]
@@ -126,7 +134,7 @@ class Piston:
         s = along + self.branch * math.sqrt(max(self.l ** 2 - normal ** 2, 0.0))
         return float(self.displacement(s) / self.stroke)
 
-    def displacement(self, s):
+    def displacement(self, s: FloatOrArray):
         """Distance of the pin from the head-end dead centre [m] (0 … stroke)."""
         sgn = 1.0 if self.s_crank > self.s_head else -1.0
         return sgn * (np.asarray(s, dtype=float) - self.s_head)
@@ -265,7 +273,7 @@ class GasLoad:
     crank: Optional[PressureCurve] = None
     rod_area: float = 0.0
 
-    def breaks(self, lo, hi):
+    def breaks(self, lo: FloatOrArray, hi: FloatOrArray):
         """The input angles in [lo, hi] [rad] where the force has a kink or a jump
         (:meth:`PressureCurve.breaks` of both sides)."""
         out = self.head.breaks(self.piston, lo, hi)
@@ -273,7 +281,7 @@ class GasLoad:
             out += self.crank.breaks(self.piston, lo, hi)
         return out
 
-    def force(self, q, motion):
+    def force(self, q: np.ndarray, motion: LinkageMotion):
         s = np.asarray(motion.slides[self.piston.slide].s, dtype=float)
         frac = self.piston.displacement(s) / self.piston.stroke
         q = np.broadcast_to(np.asarray(q, dtype=float), np.shape(s))
@@ -287,7 +295,7 @@ class GasLoad:
 ENGINE_SYMBOLS = ("FL", "FI", "FP", "FQ", "FN", "FT", "Frad", "T")
 
 
-def _pair(topo, a, b, point):
+def _pair(topo: Topology, a: FloatOrArray, b: FloatOrArray, point: str):
     """``(pair force, sign)``: the force of ``a`` on ``b`` is ``sign * (fx, fy)``."""
     lo, hi = min(a, b), max(a, b)
     for k, pr in enumerate(topo.pairs):
@@ -296,7 +304,9 @@ def _pair(topo, a, b, point):
     raise PistonError(f"no pair between links {a} and {b} at {point}")
 
 
-def engine_series(piston, topo, fr, motion, gas, inertia_accel=None, mass=0.0, arm=None):
+def engine_series(piston: Any, topo: Topology, fr: Any, motion: LinkageMotion, gas: FloatOrArray,
+                  inertia_accel: Optional[FloatOrArray] = None, mass: float = 0.0,
+                  arm: Optional[FloatOrArray] = None):
     """The engine's named results over the positions of a kinetostatic solution [N, N m].
 
     Parameters
@@ -370,7 +380,7 @@ def engine_series(piston, topo, fr, motion, gas, inertia_accel=None, mass=0.0, a
     return out
 
 
-def gas_force(piston, programs, q, motion):
+def gas_force(piston: Any, programs: Sequence[Any], q: np.ndarray, motion: LinkageMotion):
     """Σ of the gas loads on ``piston`` along its ``d`` [N] at inputs ``q``."""
     dx, dy = piston.d
     total = np.zeros(np.shape(motion.feasible))
@@ -387,21 +397,22 @@ NOISE = 32.0
 EPS = float(np.finfo(float).eps)
 
 
-def noise_level(series):
+def noise_level(series: Dict[str, np.ndarray]):
     """The round-off of the results in ``series`` (symbol -> array) [N or N m]:
     :data:`NOISE` · EPS · their largest magnitude (forces and moments together)."""
     peak = max((float(np.max(np.abs(v))) for v in series.values() if np.size(v)), default=0.0)
     return NOISE * EPS * peak
 
 
-def is_constant(values, noise):
+def is_constant(values: Dict[str, np.ndarray], noise: FloatOrArray):
     """True when ``values`` vary by no more than the round-off ``noise`` (×100): an
     extreme of such a quantity has no location."""
     v = np.asarray(values, dtype=float)
     return v.size == 0 or float(np.max(v) - np.min(v)) <= 100.0 * noise
 
 
-def located_within(q, values, at, tol, noise, periodic=False):
+def located_within(q: np.ndarray, values: Dict[str, np.ndarray], at: FloatOrArray,
+                   tol: FloatOrArray, noise: FloatOrArray, periodic: bool = False):
     """How closely a refined extreme's input ``at`` is known [rad or m].
 
     The search compares values, so near a smooth extreme it cannot tell apart inputs
@@ -444,7 +455,8 @@ class EngineSweep:
     extremes: dict
 
 
-def engine_at(piston, topo, evaluator, q, mass, approx=None):
+def engine_at(piston: Any, topo: Topology, evaluator: Any, q: Any, mass: Any,
+              approx: Any = None):
     """``(series of the kinetostatics, engine series)`` at inputs ``q`` through a
     :class:`~mechcli.core.linkage.force_analysis.ForceEvaluator`; ``approx`` (the
     approximate model's :class:`~mechcli.core.linkage.approximate.SeriesInertia`)
@@ -456,7 +468,8 @@ def engine_at(piston, topo, evaluator, q, mass, approx=None):
     return fr, engine_series(piston, topo, fr, motion, gas, acc, mass, arm)
 
 
-def analyse_engine(piston, topo, evaluator, q, fr, motion, mass, approx=None,
+def analyse_engine(piston, topo, evaluator, q, fr,
+                   motion, mass, approx=None,
                    periodic=False, iterations=48):
     """:class:`EngineSweep` over the analysed positions ``q`` (with their
     kinetostatics ``fr`` and ``motion``)."""
@@ -480,7 +493,7 @@ def analyse_engine(piston, topo, evaluator, q, fr, motion, mass, approx=None,
     from mechcli.core.refine import golden_section_max
     signs = np.array([t[1] for t in targets])
 
-    def values(x):
+    def values(x: Any):
         _fr, ser = engine_at(piston, topo, evaluator, x, mass, approx)
         return np.array([ser[t[0]][i] for i, t in enumerate(targets)]) * signs
 

@@ -10,6 +10,8 @@ for a batch of M designs.
 
 from __future__ import annotations
 
+from typing import Any
+
 from mechcli.core.linkage.elements import RPR, RRP, RRR, Crank, Ground, PointOnLink
 from mechcli.core.linkage.engine import Linkage
 
@@ -19,7 +21,7 @@ SLIDER_CRANK_BRANCHES = {"right": 1, "left": -1}
 SHAPER_BRANCHES = {"left": -1, "right": 1}
 
 
-def _branch(branch, named):
+def _branch(branch: int, named: bool):
     if isinstance(branch, str):
         if branch not in named:
             raise ValueError(f"branch must be one of {sorted(named)} or +1/-1, got {branch!r}")
@@ -27,7 +29,8 @@ def _branch(branch, named):
     return branch
 
 
-def four_bar(l1, l2, l3, l4, branch=1) -> Linkage:
+def four_bar(l1, l2, l3, l4,
+             branch=1):
     """Four-bar linkage ABCD (图 1-2, 例 1-1).
 
     Parameters
@@ -46,7 +49,7 @@ def four_bar(l1, l2, l3, l4, branch=1) -> Linkage:
                        RRR("C", "B", 2, l2, "D", 3, l3, _branch(branch, FOUR_BAR_BRANCHES))))
 
 
-def slider_crank(l1, l2, e=0.0, branch=1) -> Linkage:
+def slider_crank(l1, l2, e=0.0, branch=1):
     """Offset slider-crank (图 1-4, 例 1-2).
 
     Parameters
@@ -68,7 +71,7 @@ def slider_crank(l1, l2, e=0.0, branch=1) -> Linkage:
                            _branch(branch, SLIDER_CRANK_BRANCHES), "3")))
 
 
-def guide_bar(l1, l4, e=0.0, branch=1) -> Linkage:
+def guide_bar(l1: Any, l4: Any, e: float = 0.0, branch: int = 1) -> Linkage:
     """Guide-bar (导杆) linkage (图 1-6, 例 1-3), oscillating (l1 < l4) or rotating.
 
     Parameters
@@ -89,7 +92,8 @@ def guide_bar(l1, l4, e=0.0, branch=1) -> Linkage:
                        RPR("B", 2, "C", 3, e, branch, "23")))
 
 
-def shaper(l1, l3, l4, l6, l6p, branch=-1) -> Linkage:
+def shaper(l1, l3, l4, l6,
+           l6p, branch=-1):
     """Shaper six-bar (牛头刨床, 图 1-8, 例 1-4).
 
     Parameters

@@ -20,16 +20,25 @@ all the rows at once (``tests/unit/test_speed_streaming.py``).
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING, Any
+
 import numpy as np
 
 from mechcli.core.linkage.engine import CHUNK, solve
+from mechcli.core.types import FloatOrArray
+
+if TYPE_CHECKING:
+    pass
+
+if TYPE_CHECKING:
+    pass
 
 #: rows of a streamed sweep that are analysed (every k-th): a 0.01° grid over a turn,
 #: the resolution of a default `kin` run, before the 0.5° search grid of the analysis
 ANALYSED = 36_001
 
 
-def rows_at(start, stop, count, idx):
+def rows_at(start: FloatOrArray, stop: FloatOrArray, count: int, idx: np.ndarray):
     """Rows ``idx`` (integers) of ``np.linspace(start, stop, count)``, bit for bit
     (the same operations: ``i * step + start``, the last row ``stop``)."""
     idx = np.asarray(idx)
@@ -42,7 +51,8 @@ def rows_at(start, stop, count, idx):
     return y
 
 
-def stream_grid(start, stop, count, extra=(), analysed=ANALYSED):
+def stream_grid(start: FloatOrArray, stop: FloatOrArray, count: int, extra: Any = (),
+                analysed: Any = ANALYSED):
     """The analysed rows of a streamed sweep: every k-th row of
     ``np.linspace(start, stop, count)`` (k the smallest stride giving at most
     *analysed* rows), the last row, and the row nearest each input of *extra*
@@ -60,7 +70,7 @@ def stream_grid(start, stop, count, extra=(), analysed=ANALYSED):
     return rows_at(start, stop, count, idx)
 
 
-def _corrections(dd):
+def _corrections(dd: FloatOrArray):
     """``np.unwrap``'s phase corrections of the differences ``dd`` (period 2π)."""
     high = np.pi
     ddmod = np.mod(dd + high, 2 * np.pi) - high
@@ -74,16 +84,16 @@ class _Unwrap:
     """``np.unwrap`` of one angle carried across chunks: the same differences,
     corrections and running sum as over the whole run at once."""
 
-    def __init__(self):
+    def __init__(self) -> None:
         self.last = None   # the previous raw value of the run
         self.total = 0.0   # the running sum of the corrections
         self.shift = 0.0
 
-    def start(self, shift):
+    def start(self, shift: Any) -> None:
         """A new run, its values shifted by ``-shift``."""
         self.last, self.total, self.shift = None, 0.0, shift
 
-    def __call__(self, p):
+    def __call__(self, p: Any):
         if p.size == 0:
             return p
         if self.last is None:
@@ -129,7 +139,8 @@ class StreamedRows:
     (None if there are none: the analysis saw every gap).
     """
 
-    def __init__(self, linkage, sweep, quantities, order, start, stop, count, result,
+    def __init__(self, linkage, sweep, quantities, order,
+                 start, stop, count, result,
                  chunk=CHUNK, progress=None):
         self.linkage, self.sweep, self.quantities, self.order = linkage, sweep, quantities, order
         self.start, self.stop, self.count = start, stop, count
@@ -191,7 +202,8 @@ class StreamedRows:
             yield (q if sel is None else q[sel]), values
 
     @staticmethod
-    def _unwrap(state, v, q, breaks, res, sym, multi, wrap):
+    def _unwrap(state, v, q, breaks, res, sym,
+                multi, wrap):
         """Unwrapped angles of one chunk: run by run (a run starts at each break)."""
         cuts = list(breaks) + [v.size]
         pieces = []
@@ -209,7 +221,7 @@ class StreamedRows:
             pieces.append(state(v[i0:i1]))
         return pieces[0] if len(pieces) == 1 else np.concatenate(pieces)
 
-    def _peak(self, sym, v, q):
+    def _peak(self, sym: str, v: Any, q: Any) -> None:
         if v.size == 0:
             return
         i, j = int(np.argmax(v)), int(np.argmin(v))

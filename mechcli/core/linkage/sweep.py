@@ -6,12 +6,13 @@ toggles, dead points and the :class:`SweepResult` of
 from __future__ import annotations
 
 import dataclasses
-from typing import TYPE_CHECKING, Callable, Dict, Optional, Tuple
+from typing import TYPE_CHECKING, Any, Callable, Dict, Optional, Sequence, Tuple
 
 import numpy as np
 
 from mechcli.core.linkage.engine import DriverMotion, Linkage, LinkageMotion
 from mechcli.core.records import record
+from mechcli.core.types import FloatOrArray
 
 if TYPE_CHECKING:  # the annotation of SweepResult.accuracy only
     from mechcli.core.linkage.accuracy import Accuracy
@@ -52,7 +53,7 @@ class Sweep:
     followers: Dict[int, Tuple[float, float]] = dataclasses.field(default_factory=dict)
     periodic: bool = False
 
-    def _at(self, value, q):
+    def _at(self, value: Any, q: np.ndarray):
         if callable(value):
             return np.asarray(value(q), dtype=float)
         if np.ndim(value) == 0:
@@ -74,11 +75,11 @@ class Sweep:
                              "between its values")
         return np.interp(q, nodes, value, period=2 * np.pi if self.periodic else None)
 
-    def speed(self, q):
+    def speed(self, q: np.ndarray):
         """Input velocity at ``q`` (a float when it is constant)."""
         return self._at(self.dq, q)
 
-    def inputs(self, q):
+    def inputs(self, q: np.ndarray):
         q = np.asarray(q, dtype=float)
         dq, ddq = self._at(self.dq, q), self._at(self.ddq, q)
         out = {self.driver: DriverMotion(q, dq, ddq)}
@@ -212,12 +213,12 @@ class SweepResult:
     zeros: Dict[str, list] = dataclasses.field(default_factory=dict)
 
 
-def _gamma_of(joint):
+def _gamma_of(joint: str):
     """The getter of the transmission angle at *joint* [rad]."""
     return lambda m: m.condition(joint).gamma
 
 
-def default_quantities(linkage: Linkage, order: int, tracers=()):
+def default_quantities(linkage: Linkage, order: int, tracers: Any = ()):
     """The book's quantities: angles/ω/α of every rotating non-driver link, every
     slide s/v/a, the transmission angle of every RRR dyad, and x, y (vx, vy, ax,
     ay) of every tracer point.
@@ -235,14 +236,14 @@ def default_quantities(linkage: Linkage, order: int, tracers=()):
          (("ax", "acceleration", "ax"), ("ay", "acceleration", "ay"))),
     )
 
-    def getter(group, key, attr):
+    def getter(group: Any, key: Any, attr: str):
         return lambda m: getattr(getattr(m, group)[key], attr)
 
     # a linkage given by its joints measures a link's angle from its first joint to its
     # second as drawn: the engine's angle plus a constant (Linkage.angle_offsets)
     offsets = dict(linkage.angle_offsets)
 
-    def angle(n):
+    def angle(n: int):
         off = offsets.get(n, 0.0)
         if not off:
             return getter("links", n, "theta")
@@ -271,9 +272,9 @@ def default_quantities(linkage: Linkage, order: int, tracers=()):
     return out
 
 
-def _take(motion: LinkageMotion, idx) -> LinkageMotion:
+def _take(motion: LinkageMotion, idx: Any) -> LinkageMotion:
     """Restrict every array of a motion to the positions ``idx``."""
-    def cut(x):
+    def cut(x: Any):
         return None if x is None else x[idx]
     pts = {k: type(v)(cut(v.x), cut(v.y), cut(v.vx), cut(v.vy), cut(v.ax), cut(v.ay))
            for k, v in motion.points.items()}
@@ -286,11 +287,11 @@ def _take(motion: LinkageMotion, idx) -> LinkageMotion:
                          sls, cds)
 
 
-def _wrap(x):
+def _wrap(x: FloatOrArray):
     return (x + np.pi) % (2 * np.pi) - np.pi
 
 
-def _periodic(x, q0, period):
+def _periodic(x: Any, q0: Any, period: Any):
     """``x`` mapped into [q0, q0 + period), snapping round-off next to q0 onto q0."""
     y = q0 + (x - q0) % period
     if abs(y - q0) < 1e-9 or abs(y - q0 - period) < 1e-9:
@@ -307,7 +308,7 @@ def _dedupe(toggles):
     return out
 
 
-def _unwrap_runs(v, runs, connected):
+def _unwrap_runs(v: Any, runs: Sequence[Tuple[int, int]], connected: bool):
     out = v.copy()
     for (i0, i1) in runs:
         seg = np.unwrap(v[i0:i1])
