@@ -104,6 +104,7 @@ def _close_figures():
 #: marked ``slow`` so that ``pytest -m "not slow"`` is a quick inner loop (README's test
 #: command still runs everything).  Measured with ``pytest --durations=0``.
 SLOW_MODULES = {
+    "test_figure_text",
     "test_fuzz_configs", "test_force_plots", "test_configs", "test_schema", "test_new_types",
     "test_student_figure_labels", "test_unknown_keys", "test_student_tables",
     "test_flywheel_course_problems", "test_student_cjk", "test_pictures_figures",

@@ -7,20 +7,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from mechcli.report import plotting
+from mechcli.report import plotting, words
 
-_T = {
-    "en": {"page": "Atlas page: A = {A:g}, B = {B:g}, C = {C:g} (crank = 1; one dash per {s:g}°)",
-           "chart": "Type chart (图 7)", "B": "B (follower / crank)", "C": "C (frame / crank)",
-           "path": "Path synthesis by atlas search", "x": "x / {u}", "y": "y / {u}",
-           "targets": "targets", "regions": ("crank-rocker", "double-crank", "double-rocker",
-                                             "change point"),
-           "none": "no curve: {why}"},
-    "zh": {"page": "图谱页: A = {A:g}, B = {B:g}, C = {C:g} (曲柄 = 1; 每段短线 {s:g}°)",
-           "chart": "机构类型图 (图 7)", "B": "B (摇杆 / 曲柄)", "C": "C (机架 / 曲柄)",
-           "path": "图谱检索轨迹综合", "x": "x / {u}", "y": "y / {u}", "targets": "给定点",
-           "regions": ("曲柄摇杆", "双曲柄", "双摇杆", "变点"), "none": "无曲线: {why}"},
-}
+_T = {lang: {**words.table(lang, "atlas_plots"), "regions": tuple(
+    words.say(lang, f"atlas_plots.regions_{j}") for j in range(4))} for lang in words.LANGUAGES}
 
 
 def write(spec, cases, outputs, lang):

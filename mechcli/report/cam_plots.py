@@ -10,30 +10,10 @@ import math
 
 import numpy as np
 
-from mechcli.report import plotting
-from mechcli.report.plotting import plt, save_png
+from mechcli.report import plotting, words
+from mechcli.report.plotting import plt
 
-TEXT = {
-    "en": {"delta": "cam angle δ / °", "s": "s / {u}", "psi": "ψ / °",
-           "v": "ds/dδ / ({u}/rad)", "a": "d²s/dδ² / ({u}/rad²)", "j": "d³s/dδ³ / ({u}/rad³)",
-           "vt": "v / ({u}/s)", "at": "a / ({u}/s²)", "jt": "j / ({u}/s³)",
-           "vpsi": "dψ/dδ", "apsi": "d²ψ/dδ² / (1/rad)", "jpsi": "d³ψ/dδ³ / (1/rad²)",
-           "vpsit": "ω / (rad/s)", "apsit": "ε / (rad/s²)", "jpsit": "dε/dt / (rad/s³)",
-           "base": "base circle", "pitch": "pitch curve", "work": "working curve",
-           "offset": "offset circle", "alpha": "pressure angle α / °",
-           "rho": "radius of curvature ρ / {u}", "rho_p": "pitch curve",
-           "rho_w": "working curve", "x": "x / {u}", "y": "y / {u}"},
-    "zh": {"delta": "凸轮转角 δ / °", "s": "位移 s / {u}", "psi": "摆角 ψ / °",
-           "v": "类速度 ds/dδ / ({u}/rad)", "a": "类加速度 d²s/dδ² / ({u}/rad²)",
-           "j": "类跃度 d³s/dδ³ / ({u}/rad³)",
-           "vt": "速度 v / ({u}/s)", "at": "加速度 a / ({u}/s²)", "jt": "跃度 j / ({u}/s³)",
-           "vpsi": "类角速度 dψ/dδ", "apsi": "类角加速度 d²ψ/dδ² / (1/rad)",
-           "jpsi": "类角跃度 d³ψ/dδ³ / (1/rad²)", "vpsit": "角速度 ω / (rad/s)",
-           "apsit": "角加速度 ε / (rad/s²)", "jpsit": "角跃度 dε/dt / (rad/s³)",
-           "base": "基圆", "pitch": "理论廓线", "work": "实际廓线", "offset": "偏距圆",
-           "alpha": "压力角 α / °", "rho": "曲率半径 ρ / {u}",
-           "rho_p": "理论廓线", "rho_w": "实际廓线", "x": "x / {u}", "y": "y / {u}"},
-}
+TEXT = {lang: words.table(lang, "cam_plots") for lang in words.LANGUAGES}
 
 
 def _t(lang, key, unit):
@@ -41,7 +21,6 @@ def _t(lang, key, unit):
 
 
 #: the phases of the allowed pressure angles' legend, en and zh
-_PHASE = {False: ("rise", "return"), True: ("推程", "回程")}
 
 
 def _boundaries(ax, design, label=None):
@@ -69,23 +48,22 @@ def plot_motion(cs, design, out, lang):
         ax.plot(d, y, lw=1.2)
         ax.set_ylabel(_t(lang, key, unit))
         _boundaries(ax, design)
-    _boundaries(axes[0], design, "运动段分界" if lang == "zh" else "segment boundary")
+    _boundaries(axes[0], design, words.say(lang, "cam_plots.boundary"))
     seen = set()
     for imp in design.impacts:
         ax = axes[1] if imp.kind == "rigid" else axes[2]
         ax.axvline(math.degrees(imp.delta), color="r" if imp.kind == "rigid" else "orange",
                    lw=1.0, alpha=0.7,
                    label=None if imp.kind in seen else (
-                       ("刚性冲击" if imp.kind == "rigid" else "柔性冲击") if lang == "zh"
-                       else f"{imp.kind} impact"))
+                       words.say(lang, f"cam_plots.impact_{imp.kind}")))
         seen.add(imp.kind)
     for ax in axes:
         if ax.get_legend_handles_labels()[0]:
             plotting.legend_outside(ax, fontsize=7)
     axes[-1].set_xlabel(_t(lang, "delta", unit))
     axes[-1].set_xlim(0, 360)
-    axes[0].set_title(plotting.title(cs.header.title))
-    return save_png(fig, out, "motion.png")
+    axes[0].set_title(plotting.title(cs.header.title), wrap=True)
+    return plotting.save_png(fig, out, "motion.png")
 
 
 def _circle(r, cx=0.0, cy=0.0, n=361):
@@ -155,9 +133,9 @@ def plot_profile(cs, design, out, lang):
     ax.set_aspect("equal")
     ax.set_xlabel(_t(lang, "x", unit))
     ax.set_ylabel(_t(lang, "y", unit))
-    ax.set_title(plotting.title(cs.header.title))
+    ax.set_title(plotting.title(cs.header.title), wrap=True)
     plotting.legend_outside(ax, fontsize=8)
-    return save_png(fig, out, "profile.png")
+    return plotting.save_png(fig, out, "profile.png")
 
 
 def plot_checks(cs, design, out, lang):
@@ -169,14 +147,14 @@ def plot_checks(cs, design, out, lang):
     for j, lim in enumerate((cs.limits.alpha_rise, cs.limits.alpha_return)):
         for sgn in (1, -1):
             a1.axhline(sgn * math.degrees(lim), color="r" if j == 0 else "m", lw=0.6, ls="--",
-                       label=(f"[α] {_PHASE[lang == 'zh'][j]} = "
+                       label=(f"[α] {words.say(lang, f'cam_plots.phase_{j}')} = "
                               f"{math.degrees(lim):g}°") if sgn == 1 else None)
     for ext in (design.checks.alpha_rise, design.checks.alpha_return):
         if ext is not None:
             a1.plot([math.degrees(ext.delta)], [math.degrees(ext.value) * np.sign(
                 np.interp(ext.delta, p.delta, p.alpha) or 1.0)], "ro", ms=4)
     a1.set_ylabel(_t(lang, "alpha", unit))
-    _boundaries(a1, design, "运动段分界" if lang == "zh" else "segment boundary")
+    _boundaries(a1, design, words.say(lang, "cam_plots.boundary"))
     plotting.legend_outside(a1, fontsize=7)
     lim = 4 * fol.r0 / u
     clipped = False
@@ -197,7 +175,7 @@ def plot_checks(cs, design, out, lang):
         plotting.text_notice(f"checks.png: the radius of curvature is drawn clipped to "
                              f"±{lim:.4g} {unit} (4 r0)")
     plotting.legend_outside(a2, fontsize=7)
-    return save_png(fig, out, "checks.png")
+    return plotting.save_png(fig, out, "checks.png")
 
 
 def plot_all(cs, design, out, lang):
@@ -228,7 +206,7 @@ def animate(cs, design, out, lang, fps=12, progress=False):
     ax.set_xlim(x0 - pad, x1 + pad)
     ax.set_ylim(y0 - pad, y1 + pad)
     ax.set_aspect("equal")
-    ax.set_title(plotting.title(cs.header.title), fontsize=10)
+    ax.set_title(plotting.title(cs.header.title), fontsize=10, wrap=True)
     ax.set_xlabel(_t(lang, "x", unit))
     ax.set_ylabel(_t(lang, "y", unit))
     cam_line, = ax.plot([], [], "b", lw=1.5)

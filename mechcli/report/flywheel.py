@@ -10,14 +10,12 @@ from __future__ import annotations
 
 import math
 
+from mechcli.report.kin import header
 from mechcli.report.table import Block, Report, book_title
+from mechcli.report.words import say
 
 #: rows of the printed table at most (the CSV has every point)
 TABLE_ROWS = 25
-
-
-def _label(lang, en, zh):
-    return zh if lang == "zh" else en
 
 
 def _f(x, nd=4):
@@ -178,21 +176,22 @@ def build_report(spec, sol, lang):
     m = sol.motion
     rep = Report(book_title(spec.header.title))
     n = len(m.phi)
+    phi = header("φ", "°", say(lang, "flywheel.angle"))
     idx = np.unique(np.linspace(0, n - 1, min(n, TABLE_ROWS)).round().astype(int))
     if not hasattr(m, "omega"):
-        heads = [_label(lang, "phi [deg]", "转角 φ/°"), "Je [kg m2]", "dJe/dφ [kg m2/rad]"]
+        heads = [phi, header("Je", "kg·m²"), header("dJe/dφ", "kg·m²/rad")]
         rows = [[_f(math.degrees(m.phi[i]), 2), _f(m.Je[i], 5), _f(m.dJe[i], 5)]
                 for i in idx]
         if sol.moment is not None:
-            heads.append("Me [N m]")
+            heads.append(header("Me", "N·m"))
             for row, i in zip(rows, idx):
                 row.append(_f(m.Me[i], 3))
     else:
-        heads = [_label(lang, "phi [deg]", "转角 φ/°"), "t [s]", "Je [kg m2]", "Me [N m]",
-                 "ω [rad/s]", "α [rad/s2]"]
+        heads = [phi, header("t", "s"), header("Je", "kg·m²"), header("Me", "N·m"),
+                 header("ω", "rad/s"), header("α", "rad/s²")]
         rows = [[_f(math.degrees(m.phi[i]), 2), _f(m.t[i], 5), _f(m.Je[i], 4),
                  _f(m.Me[i], 2), _f(m.omega[i], 5), _f(m.alpha[i], 3)] for i in idx]
-    rep.blocks.append(Block(_label(lang, "Motion of the equivalent link", "等效构件的运动"),
+    rep.blocks.append(Block(say(lang, "flywheel.motion"),
                             heads, rows))
     if sol.loops is not None:
         lp = sol.loops
@@ -201,60 +200,32 @@ def build_report(spec, sol, lang):
                  ("+" if lp.areas[i] >= 0 else "") + _f(lp.areas[i], 3),
                  _f(lp.cumulative[i + 1], 3)] for i in range(lp.areas.size)]
         rep.blocks.append(Block(
-            _label(lang, "Loops of the diagram about its mean (+ excess, − deficit energy)",
-                   "等效力矩曲线与平均值间的盈亏功"),
-            [_label(lang, "loop", "区段"), _label(lang, "from [deg]", "起 φ/°"),
-             _label(lang, "to [deg]", "止 φ/°"), "ΔE [J]", _label(lang, "E [J]", "累计 E/J")],
+            say(lang, "flywheel.loops"),
+            [say(lang, "flywheel.loop"), header("φ", "°", say(lang, "flywheel.from")),
+             header("φ", "°", say(lang, "flywheel.to")), header("ΔE", "J"),
+             header("E", "J", say(lang, "flywheel.cumulative"))],
             rows))
     r = results(spec, sol)
     kv = []
-    for key, en, zh, nd in (
-            ("Je_min_kg_m2", "Je min [kg m2]", "Je 最小值", 5),
-            ("Je_max_kg_m2", "Je max [kg m2]", "Je 最大值", 5),
-            ("method", "method", "方法", None), ("omega_max_rad_s", "ω max [rad/s]", "ωmax", 6),
-            ("omega_min_rad_s", "ω min [rad/s]", "ωmin", 6),
-            ("omega_mean_rad_s", "ω mean (eq. 6-26) [rad/s]", "ωm (式 6-26)", 6),
-            ("omega_avg_rad_s", "(ωmax + ωmin)/2 (eq. 6-27) [rad/s]", "ωm (式 6-27)", 6),
-            ("delta", "δ (with eq. 6-26)", "速度不均匀系数 δ", 6),
-            ("delta_avg", "δ (with eq. 6-27)", "δ (式 6-27)", 6),
-            ("dW_max_J", "ΔWmax [J]", "最大盈亏功 ΔWmax/J", 4),
-            ("cycle_deg", "cycle [deg]", "周期 φT/°", 2),
-            ("Mr_mean_N_m", "resisting moment = the mean [N m]", "阻抗力矩 (平均值)", 4),
-            ("Md_mean_N_m", "driving moment = the mean [N m]", "驱动力矩 (平均值)", 4),
-            ("work_per_cycle_J", "work per cycle [J]", "每周期功/J", 4),
-            ("M_mean_N_m", "mean moment [N m]", "平均力矩", 4),
-            ("power_mean_W", "mean power [W]", "平均功率/W", 3),
-            ("dE_max_J", "ΔWmax of the loops [J]", "盈亏功 ΔWmax (区段)", 4),
-            ("dE_max_trapezoid_J", "ΔWmax, tables read linearly (trapezoid) [J]",
-             "ΔWmax (梯形法)", 4),
-            ("phi_E_max_deg", "ω max at (loops) [deg]", "ωmax 位置/°", 3),
-            ("phi_E_min_deg", "ω min at (loops) [deg]", "ωmin 位置/°", 3),
-            ("n_mean_rpm", "n mean [r/min]", "平均转速 n/(r/min)", 4),
-            ("n_max_rpm", "n max [r/min]", "nmax", 4),
-            ("n_min_rpm", "n min [r/min]", "nmin", 4),
-            ("J_F_kg_m2", "flywheel J_F [kg m2]", "飞轮转动惯量 J_F", 4),
-            ("J_F_equation", "J_F by eq.", "J_F 公式", None),
-            ("delta_from_dW", "δ from ΔWmax (eq. 6-29)", "由 ΔWmax 得 δ", 6),
-            ("omega_max_from_dW_rad_s", "ω max (eq. 6-28) [rad/s]", "ωmax (式 6-28)", 6),
-            ("omega_min_from_dW_rad_s", "ω min (eq. 6-28) [rad/s]", "ωmin (式 6-28)", 6),
-            ("n_max_from_dW_rpm", "n max (eq. 6-28) [r/min]", "nmax (式 6-28)", 4),
-            ("n_min_from_dW_rpm", "n min (eq. 6-28) [r/min]", "nmin (式 6-28)", 4),
-            ("J_F_approx_kg_m2", "J_F by eq. 6-29 [kg m2]", "J_F (式 6-29)", 4),
-            ("J_F_delta", "δ with J_F", "加飞轮后 δ", 6),
-            ("flywheel_mass_kg", "flywheel mass [kg]", "飞轮质量/kg", 3),
-            ("flywheel_mass_approx_kg", "mass of J_F by eq. 6-29 [kg]", "飞轮质量 (式 6-29)", 3),
-            ("flywheel_width_m", "flywheel width [m]", "飞轮宽度/m", 5),
-            ("omega_inf_rad_s", "asymptotic ω [rad/s]", "稳定角速度 ω∞", 6),
-            ("t_final_s", "t at the end [s]", "终止时间 t/s", 6),
-            ("omega_final_rad_s", "ω at the end [rad/s]", "终止角速度", 6),
-            ("iterations", "iterations", "迭代次数", None),
-            ("periodicity_residual_rad_s", "|ω(T) − ω(0)| [rad/s]", "周期残差", None)):
+    for key, nd in (
+            ('Je_min_kg_m2', 5), ('Je_max_kg_m2', 5), ('method', None), ('omega_max_rad_s', 6),
+            ('omega_min_rad_s', 6), ('omega_mean_rad_s', 6), ('omega_avg_rad_s', 6), ('delta', 6),
+            ('delta_avg', 6), ('dW_max_J', 4), ('cycle_deg', 2), ('Mr_mean_N_m', 4),
+            ('Md_mean_N_m', 4), ('work_per_cycle_J', 4), ('M_mean_N_m', 4), ('power_mean_W', 3),
+            ('dE_max_J', 4), ('dE_max_trapezoid_J', 4), ('phi_E_max_deg', 3),
+            ('phi_E_min_deg', 3), ('n_mean_rpm', 4), ('n_max_rpm', 4), ('n_min_rpm', 4),
+            ('J_F_kg_m2', 4), ('J_F_equation', None), ('delta_from_dW', 6),
+            ('omega_max_from_dW_rad_s', 6), ('omega_min_from_dW_rad_s', 6),
+            ('n_max_from_dW_rpm', 4), ('n_min_from_dW_rpm', 4), ('J_F_approx_kg_m2', 4),
+            ('J_F_delta', 6), ('flywheel_mass_kg', 3), ('flywheel_mass_approx_kg', 3),
+            ('flywheel_width_m', 5), ('omega_inf_rad_s', 6), ('t_final_s', 6),
+            ('omega_final_rad_s', 6), ('iterations', None), ('periodicity_residual_rad_s', None)):
         if key in r:
             v = r[key]
             text = str(v) if nd is None and not isinstance(v, float) else \
                 (f"{v:.2e}" if nd is None else _f(v, nd))
-            kv.append([_label(lang, en, zh), text])
-    rep.blocks.append(Block(_label(lang, "Results", "计算结果"), rows=kv))
+            kv.append([say(lang, f"flywheel.r_{key}"), text])
+    rep.blocks.append(Block(say(lang, "flywheel.results"), rows=kv))
     return rep
 
 

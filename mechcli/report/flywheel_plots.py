@@ -3,15 +3,13 @@ the work ΔW(φ), ω(φ) and ω(t) (图 6-6 … 6-11)."""
 
 from __future__ import annotations
 
+import textwrap
+
 import numpy as np
 
-from mechcli.report import plotting
+from mechcli.report import plotting, words
 
-_T = {"en": {"je": "Equivalent inertia", "me": "Equivalent moment and work",
-             "w": "Speed of the equivalent link", "phi": "φ / °", "t": "t / s",
-             "iter": "period-map evaluation", "conv": "Convergence of the steady state"},
-      "zh": {"je": "等效转动惯量", "me": "等效力矩与盈亏功", "w": "等效构件角速度",
-             "phi": "转角 φ / °", "t": "时间 t / s", "iter": "迭代次数", "conv": "稳定运转的收敛"}}
+_T = {lang: words.table(lang, "flywheel_plots") for lang in words.LANGUAGES}
 
 
 def write(spec, sol, outputs, lang):
@@ -27,7 +25,7 @@ def write(spec, sol, outputs, lang):
     if not hasattr(m, "omega"):      # the equivalent model only: 图 6-4
         fig, ax = plt.subplots(figsize=(7, 4.5))
         ax.plot(deg, m.Je, "-", color="C0", label="$J_e$")
-        ax.set_title(plotting.title(spec.header.title) + "\n" + t["je"])
+        ax.set_title(plotting.title(spec.header.title) + "\n" + t["je"], wrap=True)
         ax.set_xlabel(t["phi"])
         ax.set_ylabel("$J_e$ / kg·m²  (—)")
         if not plotting.is_constant(m.dJe):
@@ -91,7 +89,8 @@ def _convergence(spec, sol, outputs, t):
     ax.semilogy(range(1, len(res) + 1), [max(r, floor) for r in res], "o-", color="C0")
     ax.set_xlabel(t["iter"])
     ax.set_ylabel("|ω(φ0 + T) − ω0| / (rad/s)")
-    ax.set_title(plotting.title(spec.header.title) + "\n" + t["conv"]
+    # wrapped by hand: a wrapped title's second line would not fit above the axes
+    ax.set_title(textwrap.fill(plotting.title(spec.header.title), 60) + "\n" + t["conv"]
                  + f" ({sol.steady.root})")
     plotting.save_png(fig, outputs, "convergence.png")
 

@@ -12,32 +12,11 @@ import math
 import numpy as np
 
 from mechcli.core.linkage.force_analysis import balancing_symbol
-from mechcli.report import plotting
+from mechcli.report import plotting, words
 from mechcli.report.force import input_factor
 from mechcli.report.kin_plots import Drawing, broken, extent, limits
 
-_TEXT = {
-    "en": {"pair": "Reaction F_R{lab}", "Mb": "Balancing torque {sym}",
-           "Fb": "Balancing force {sym}", "hodo": "Hodograph of F_R{lab}",
-           "crank": "crank angle θ{n} / °", "slide": "slide s{n} / {u}",
-           "shake_f": "Shaking force (force on the frame)",
-           "shake_m": "Shaking moment Msh (about the origin)", "power": "Input power P",
-           "active": "load '{name}' acts", "anim": "Pair reactions",
-           "at": "θ{n} = {v:.0f}°", "at_s": "s{n} = {v:.4g} {u}",
-           "piston": "Forces on the piston (toward the crank +)",
-           "rod": "Rod force, wall thrust and crank effort",
-           "torque": "Turning moment diagram T (mean {m:.4g} N·m)",
-           "start": "start", "origin": "origin"},
-    "zh": {"pair": "运动副反力 F_R{lab} 曲线图", "Mb": "平衡力矩 {sym} 曲线图",
-           "Fb": "平衡力 {sym} 曲线图", "hodo": "F_R{lab} 矢端曲线",
-           "crank": "曲柄转角 θ{n} / °", "slide": "滑块位移 s{n} / {u}",
-           "shake_f": "机架总反力 (摆动力) 曲线图", "shake_m": "机架总力矩 (摆动力矩) Msh 曲线图",
-           "power": "输入功率 P 曲线图", "active": "载荷 {name} 作用区间",
-           "anim": "运动副反力", "at": "θ{n} = {v:.0f}°", "at_s": "s{n} = {v:.4g} {u}",
-           "piston": "活塞上的力 (指向曲柄为正)", "rod": "连杆力、侧压力与曲柄切向力",
-           "torque": "曲轴转矩图 T (平均 {m:.4g} N·m)",
-           "start": "起点", "origin": "原点"},
-}
+_TEXT = {lang: words.table(lang, "force_plots") for lang in words.LANGUAGES}
 
 
 def _t(t, key, **kw):

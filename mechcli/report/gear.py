@@ -249,7 +249,7 @@ def findings(spec, solution):
             where = f"a' = {pr.a_w / sc:.3f} {u}"
             eps = pr.epsilon_alpha
             if eps < 1:
-                out.append((f"{where}: contact ratio epsilon_alpha = {eps:.3f} < 1, the mesh is "
+                out.append((f"{where}: contact ratio εα = {eps:.3f} < 1, the mesh is "
                             f"not continuous (a' differs from a = {pr.a / sc:.3f} {u} by "
                             f"{(pr.a_w - pr.a) / sc:+.3f} {u})", p.require_continuous))
             if pr.interference:
@@ -485,7 +485,7 @@ _ERROR_TEXT = {
         + (" of the internal pair" if v["internal"] else "") + ": the teeth would jam"),
     "no_contact": lambda v: (
         f"at a' = {v['a_w']:.6g} m the tip circles do not reach the line of action "
-        f"(epsilon_alpha = {v['epsilon']:.3g}): no contact"),
+        f"(εα = {v['epsilon']:.3g}): no contact"),
     "helical_centre_distance": lambda v: (
         f"a' = {v['a_w']:g} m is below mn (z1 + z2) / 2 = {v['limit']:g} m: no helix angle "
         "fits"),

@@ -10,12 +10,8 @@ import math
 
 import numpy as np
 
-from mechcli.report import plotting
+from mechcli.report import plotting, words
 from mechcli.report.plotting import plt
-
-
-def _t(lang, en, zh):
-    return zh if lang == "zh" else en
 
 
 def _circle(ax, r, style, label=None, lw=0.8, centre=(0.0, 0.0)):
@@ -29,23 +25,22 @@ def plot_involute(sol, spec, run, outputs):
     sc, u = spec.header.scale, spec.header.unit
     _, _, x, y = sol["curve"]
     fig, ax = plt.subplots(figsize=(6, 6))
-    ax.plot(x / sc, y / sc, "b-", lw=1.5, label=_t(lang, "involute", "渐开线"))
-    _circle(ax, spec.problem.rb / sc, "c--", _t(lang, "base circle", "基圆"))
+    ax.plot(x / sc, y / sc, "b-", lw=1.5, label=words.say(lang, "gear_plot.involute"))
+    _circle(ax, spec.problem.rb / sc, "c--", words.say(lang, "gear_plot.base"))
     ax.set_aspect("equal")
     ax.set_xlabel(plotting.axis_label("x", u))
     ax.set_ylabel(plotting.axis_label("y", u))
     # the legend in a row above the axes (it covers no curve), the title above it
-    ax.set_title(_t(lang, "Involute curve", "渐开线曲线"), pad=16)
+    ax.set_title(words.say(lang, "gear_plot.involute_curve"), pad=16)
     plotting.legend_above(ax, fontsize=7)
     plotting.save_png(fig, outputs, "involute.png")
 
 
 def _gear_axes(ax, g, sc, lang, centre=(0.0, 0.0), legend=True):
-    for r, style, en, zh in ((g.ra, "r:", "tip circle", "齿顶圆"),
-                             (g.r, "g-.", "reference circle", "分度圆"),
-                             (g.rb, "c--", "base circle", "基圆"),
-                             (g.rf, "b:", "root circle", "齿根圆")):
-        _circle(ax, r / sc, style, _t(lang, en, zh) if legend else None, centre=centre)
+    for r, style, key in ((g.ra, "r:", "tip"), (g.r, "g-.", "reference"), (g.rb, "c--", "base"),
+                          (g.rf, "b:", "root")):
+        _circle(ax, r / sc, style, words.say(lang, f"gear_plot.{key}") if legend else None,
+                centre=centre)
 
 
 def plot_gear(sol, spec, run, outputs):
@@ -61,15 +56,13 @@ def plot_gear(sol, spec, run, outputs):
         a.set_xlabel(plotting.axis_label("x", u))
         a.set_ylabel(plotting.axis_label("y", u))
     plotting.legend_above(ax, fontsize=7, ncol=4)   # above the axes: it covers no tooth
-    ax.set_title(_t(lang, f"Spur gear m = {g.m / sc:g}, z = {g.z}, x = {g.x:g}",
-                    f"渐开线直齿圆柱齿轮 m={g.m / sc:g}, z={g.z}, x={g.x:g}"), pad=16)
+    ax.set_title(words.say(lang, "gear_plot.gear", m=g.m / sc, z=g.z, x=g.x), pad=16)
     half = 1.6 * math.pi / g.z
     r0, r1 = g.rf / sc * 0.97, g.ra / sc * 1.02
     bx.set_xlim(-r1 * math.sin(half), r1 * math.sin(half))
     bx.set_ylim(r0 * math.cos(half), r1)
     _circle(bx, tooth.r_form / sc, "m-", lw=0.6)
-    bx.set_title(_t(lang, f"one tooth; involute from r = {tooth.r_form / sc:.3f} {u} (magenta)",
-                    f"单齿; 渐开线起始圆 r = {tooth.r_form / sc:.3f} {u}"), pad=16)
+    bx.set_title(words.say(lang, "gear_plot.tooth", r=tooth.r_form / sc, u=u), pad=16)
     plotting.save_png(fig, outputs, "gear.png")
 
 
@@ -106,9 +99,9 @@ def plot_pair(pair, spec, run, outputs):
     else:
         ax.fill(x2, y2, color="#fcbba1", zorder=0)
     ax.plot(x2, y2, "r-", lw=0.8)
-    _circle(ax, pair.dw1 / 2 / sc, "g-.", _t(lang, "operating pitch circles", "节圆"))
+    _circle(ax, pair.dw1 / 2 / sc, "g-.", words.say(lang, "gear_plot.pitch_w"))
     _circle(ax, pair.dw2 / 2 / sc, "g-.", centre=(0, c2 / sc))
-    _circle(ax, g1.rb / sc, "c--", _t(lang, "base circles", "基圆"))
+    _circle(ax, g1.rb / sc, "c--", words.say(lang, "gear_plot.bases"))
     _circle(ax, g2.rb / sc, "c--", centre=(0, c2 / sc))
     # line of action N1N2 through the pitch point at alpha' to the common tangent
     aw = pair.alpha_w
@@ -116,11 +109,11 @@ def plot_pair(pair, spec, run, outputs):
     n1 = g1.rb * foot
     n2 = np.array([0.0, c2]) + g2.rb * (foot if g2.internal else -foot)
     ax.plot([n1[0] / sc, n2[0] / sc], [n1[1] / sc, n2[1] / sc], "m-", lw=1.0,
-            label=_t(lang, "line of action N1N2", "理论啮合线 N1N2"))
+            label=words.say(lang, "gear_plot.line"))
     ax.plot([n1[0] / sc, n2[0] / sc], [n1[1] / sc, n2[1] / sc], "mo", ms=3)
     if contact.size:
         ax.plot(contact[:, 0] / sc, contact[:, 1] / sc, "ko", ms=5,
-                label=_t(lang, "points of contact", "啮合点"))
+                label=words.say(lang, "gear_plot.contact"))
     rw1 = pair.dw1 / 2
     span = max(4 * g1.p, 1.2 * pair.line_of_action)
     ax.set_xlim(-span / sc, span / sc)
@@ -129,10 +122,10 @@ def plot_pair(pair, spec, run, outputs):
     plotting.legend_above(ax, fontsize=7, ncol=4)   # above the axes: it covers no tooth
     ax.set_xlabel(plotting.axis_label("x", u))
     ax.set_ylabel(plotting.axis_label("y", u))
-    ax.set_title(_t(lang, f"z1 = {g1.z}, z2 = {g2.z}{' (internal)' if g2.internal else ''}, "
-                    f"a' = {pair.a_w / sc:g} {u}, ε_α = {pair.epsilon_alpha:.3f}",
-                    f"z1={g1.z}, z2={g2.z}{' (内齿轮)' if g2.internal else ''}, "
-                    f"a'={pair.a_w / sc:g}{u}, 重合度 {pair.epsilon_alpha:.3f}"), pad=16)
+    key = "gear_plot.pair_internal" if g2.internal else "gear_plot.pair"
+    # above the legend's row (legend_above)
+    ax.set_title(words.say(lang, key, z1=g1.z, z2=g2.z, a=pair.a_w / sc, u=u,
+                           eps=pair.epsilon_alpha), pad=24)
     plotting.save_png(fig, outputs, "pair.png")
 
 
@@ -178,10 +171,8 @@ def animate_pair(pair, spec, run, outputs, frames_per_pitch=20, pitches=2):
         pts = mesh.contact(k)
         dots.set_data(pts[:, 0] / sc, pts[:, 1] / sc)
         count = len(pts)
-        title.set_text(_t(lang, f"ε_α = {pair.epsilon_alpha:.3f}: {count} pair(s) in contact"
-                          + (" — NO CONTACT" if count == 0 else ""),
-                          f"重合度 {pair.epsilon_alpha:.3f}: {count} 对齿啮合"
-                          + (" — 无啮合!" if count == 0 else "")))
+        title.set_text(words.say(lang, "gear_plot.in_contact", eps=pair.epsilon_alpha, n=count)
+                       + (words.say(lang, "gear_plot.no_contact") if count == 0 else ""))
         title.set_color("red" if count == 0 else "black")
         label.set_text(f"φ₁ = {math.degrees(mesh.phi1[k] - mesh.phi1[0]):.1f}°")
         frames.grab()
@@ -209,20 +200,16 @@ def _generation_axes(ax, tooth, phi, spec, lang, teeth, cutter=True):
     ax.plot((c * out.x - s * out.y) / sc, (s * out.x + c * out.y) / sc, "k-", lw=1.3)
     _gear_axes(ax, g, sc, lang)
     if tooth.undercut:
-        _circle(ax, tooth.r_form / sc, "m-", _t(lang, "involute starts here (sharp cutter)",
-                                                  "渐开线起始圆 (尖角刀具)"), lw=0.8)
+        _circle(ax, tooth.r_form / sc, "m-", words.say(lang, "gear_plot.form"), lw=0.8)
     ax.set_aspect("equal")
     ax.set_xlabel(plotting.axis_label("x", u))
     ax.set_ylabel(plotting.axis_label("y", u))
-    ax.set_title(_t(lang, f"m = {g.m / sc:g}, z = {g.z}, α = {math.degrees(g.alpha):g}°, "
-                    f"x = {g.x:g}"
-                    + (": undercut (x < xmin)" if g.undercut else ": no undercut (x ≥ xmin)")
-                    + (f", this sharp cutter cuts {100 * tooth.undercut_fraction:.1f}% of the "
-                       "involute" if tooth.undercut else ""),
-                    f"m={g.m / sc:g}, z={g.z}, α={math.degrees(g.alpha):g}°, x={g.x:g}"
-                    + (": 根切 (x < xmin)" if g.undercut else ": 无根切 (x ≥ xmin)")
-                    + (f", 尖角刀具切去渐开线 {100 * tooth.undercut_fraction:.1f}%"
-                       if tooth.undercut else "")), fontsize=9)
+    # the verdict on a second line: the panels' titles stay apart
+    key = "gear_plot.undercut" if g.undercut else "gear_plot.no_undercut"
+    ax.set_title(words.say(lang, "gear_plot.cut", m=g.m / sc, z=g.z, alpha=math.degrees(g.alpha),
+                           x=g.x) + "\n" + words.say(lang, key)
+                 + (words.say(lang, "gear_plot.cuts", pct=100 * tooth.undercut_fraction)
+                    if tooth.undercut else ""), fontsize=9)
     lim = g.ra * 1.25 / sc
     ax.set_xlim(-lim, lim)
     ax.set_ylim(-(g.r + (g.x + 2) * g.m) / sc * 1.05, lim)
@@ -234,11 +221,10 @@ def plot_generation(sol, spec, run, outputs):
     lang = plotting.setup(run.lang)
     teeth = sol["teeth"]
     phi = sol["plan"].phi
-    fig, axes = plt.subplots(1, len(teeth), figsize=(6.5 * len(teeth), 6.5), squeeze=False)
+    fig, axes = plt.subplots(1, len(teeth), figsize=(6.5 * len(teeth), 7.5), squeeze=False)
     for ax, tooth in zip(axes[0], teeth):
         _generation_axes(ax, tooth, phi, spec, lang, spec.problem.cutter_teeth)
-    fig.suptitle(_t(lang, "Generation of an involute gear by a rack cutter",
-                    "渐开线齿轮范成的动态模拟"))
+    fig.suptitle(words.say(lang, "gear_plot.generation"))
     plotting.save_png(fig, outputs, "generation.png")
 
 

@@ -7,17 +7,10 @@ import math
 import numpy as np
 
 from mechcli.core.linkage import Bar, Block, Guide, Pivot, solve
-from mechcli.report import plotting
+from mechcli.report import plotting, words
 from mechcli.report.kin import factor_of, input_factor, pretty_unit
 
-_TITLES = {
-    "en": {"disp": "Displacement", "vel": "Velocity", "acc": "Acceleration",
-           "mech": "Mechanism at", "input": "crank angle {sym} / °", "curve": "Path of point",
-           "anim": "Motion", "path": "path of {name}", "const": "{sym} ≡ {v:.4g} {u}"},
-    "zh": {"disp": "位移线图", "vel": "速度线图", "acc": "加速度线图", "mech": "机构位置",
-           "input": "曲柄转角 {sym} / °", "curve": "轨迹 点", "anim": "运动仿真",
-           "path": "{name} 点轨迹", "const": "{sym} ≡ {v:.4g} {u}"},
-}
+_TITLES = {lang: words.table(lang, "kin_plots") for lang in words.LANGUAGES}
 
 
 def _groups(quantities):
@@ -337,6 +330,10 @@ def write(spec, quantities, result, sweep, outputs, lang, plots=True, animate=Fa
             ax.set_xlabel(input_label(spec, t))
             if groups[order]:
                 _plot_group(ax, spec, result, groups[order], x, t)
+                legend = ax.get_legend()
+                rows = -(-len(legend.texts) // 4) if legend is not None else 1
+                if rows > 1:   # the title above every row of the legend
+                    ax.set_title(title, pad=22 + 11 * (rows - 1), y=1.0)
                 ax.set_xlim(float(np.nanmin(x)), float(np.nanmax(x)))
             else:
                 ax.set_visible(False)

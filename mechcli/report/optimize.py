@@ -13,10 +13,7 @@ from __future__ import annotations
 import math
 
 from mechcli.report.table import Block, Report, book_title
-
-
-def _label(lang, en, zh):
-    return zh if lang == "zh" else en
+from mechcli.report.words import say
 
 
 def _unit_name(spec):
@@ -152,36 +149,37 @@ def build_report(spec, problem, result, details, lang):
     rep = Report(book_title(spec.header.title))
     rows = [[v.key, f"{v.start:.6g}", f"{v.lo:.6g}", f"{v.hi:.6g}", f"{x:.6f}"]
             for v, x in zip(spec.variables, result.x)]
-    rep.blocks.append(Block(_label(lang, "Design variables", "设计变量"),
-                            [_label(lang, "variable", "变量"), _label(lang, "start", "初值"),
-                             _label(lang, "lower", "下界"), _label(lang, "upper", "上界"),
+    rep.blocks.append(Block(say(lang, "optimize.variables"),
+                            [say(lang, "optimize.variable"), say(lang, "optimize.start"),
+                             say(lang, "optimize.lower"), say(lang, "optimize.upper"),
                              "x*"], rows))
     if problem.constraint_names:
-        crow = [[n, f"{g:.6g}", _label(lang, "active", "起作用") if a else ""]
+        crow = [[n.replace("gamma_", "γ"), f"{g:.6g}", say(lang, "optimize.active") if a else ""]
                 for n, g, a in zip(problem.constraint_names, _g_shown(spec, problem, result.g),
                                    result.active)]
-        rep.blocks.append(Block(_label(lang, "Constraints g(x) <= 0", "约束 g(x) <= 0"),
-                                [_label(lang, "constraint", "约束"), "g(x*)", ""], crow))
+        rep.blocks.append(Block(say(lang, "optimize.constraints"),
+                                [say(lang, "optimize.constraint"), "g(x*)", ""], crow))
     r = results(spec, problem, result, details)
-    kv = [[_label(lang, "objective f(x*)", "目标函数 f(x*)"), f"{r['f']:.6g} {r['f_unit']}"],
-          [_label(lang, "method", "方法"), result.method],
-          [_label(lang, "iterations", "迭代次数"), str(result.iterations)],
-          [_label(lang, "evaluations", "函数计算次数"), str(result.evaluations)],
-          [_label(lang, "time [s]", "时间/s"), f"{result.time_s:.3f}"],
-          [_label(lang, "converged", "收敛"), "yes" if result.success else "no"]]
+    kv = [[say(lang, "optimize.objective"), f"{r['f']:.6g} {r['f_unit'].replace('^2', '²')}"],
+          [say(lang, "optimize.method"), result.method],
+          [say(lang, "optimize.iterations"), str(result.iterations)],
+          [say(lang, "optimize.evaluations"), str(result.evaluations)],
+          [say(lang, "optimize.time"), f"{result.time_s:.3f}"],
+          [say(lang, "optimize.converged"),
+           say(lang, "optimize.yes" if result.success else "optimize.no")]]
     if "deviation_max_deg" in r:
-        kv.append([_label(lang, "largest deviation [deg]", "最大偏差/(°)"),
+        kv.append([say(lang, "optimize.deviation_max"),
                    f"{r['deviation_max_deg']:.4f}"])
-        kv.append([_label(lang, "phi0 [deg]", "φ0/(°)"), f"{r['phi0_deg']:.4f}"])
+        kv.append([say(lang, "optimize.phi0"), f"{r['phi0_deg']:.4f}"])
     if "alpha_exact_deg" in r:
-        kv.append([_label(lang, "cam's exact maximum [deg] at [deg]", "精确最大压力角/(°) 及转角"),
+        kv.append([say(lang, "optimize.alpha_exact"),
                    f"{r['alpha_exact_deg']:.6f} at {r['delta_exact_deg']:.6f}"])
-        kv.append([_label(lang, "difference in the cam angle [deg]", "转角误差/(°)"),
+        kv.append([say(lang, "optimize.delta_error"),
                    f"{r['delta_error_deg']:.2e}"])
     if "distance_max" in r:
-        kv.append([_label(lang, f"largest distance [{spec.header.unit}]", "最大距离"),
+        kv.append([say(lang, "optimize.distance_max", u=spec.header.unit),
                    f"{r['distance_max']:.6g}"])
-    rep.blocks.append(Block(_label(lang, "Optimum", "优化结果"), rows=kv))
+    rep.blocks.append(Block(say(lang, "optimize.optimum"), rows=kv))
     return rep
 
 

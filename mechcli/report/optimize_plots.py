@@ -15,25 +15,10 @@ import math
 
 import numpy as np
 
+from mechcli.report import words
 from mechcli.report.table import book_title
 
-_T = {"en": {"conv": "Convergence", "iter": "iteration", "record": "record",
-             "f": "objective f", "viol": "constraint violation",
-             "all_feasible": "every iterate is feasible", "tol": "feasibility tolerance",
-             "surf": "Objective surface", "infeasible": "infeasible", "start": "start x0",
-             "opt": "optimum x*", "path": "iterates", "target": "Target and achieved",
-             "tgt_fn": "target", "got_fn": "achieved", "dev": "deviation",
-             "input": "input φ / °", "input_s": "input s", "output": "output ψ / °",
-             "output_s": "output s", "points": "target points", "curve": "path of",
-             "at": "at the prescribed inputs", "best": "f* (best)"},
-      "zh": {"conv": "收敛过程", "iter": "迭代次数", "record": "记录", "f": "目标函数 f",
-             "viol": "约束违反量", "all_feasible": "每次迭代都可行", "tol": "可行容差",
-             "surf": "目标函数等值线", "infeasible": "不可行域", "start": "初始点 x0",
-             "opt": "最优点 x*", "path": "迭代路径", "target": "预期与实际",
-             "tgt_fn": "预期", "got_fn": "实际", "dev": "偏差",
-             "input": "输入角 φ / °", "input_s": "输入位移 s", "output": "输出角 ψ / °",
-             "output_s": "输出位移 s", "points": "给定点", "curve": "轨迹",
-             "at": "给定输入角处", "best": "最优值 f*"}}
+_T = {lang: words.table(lang, "optimize_plots") for lang in words.LANGUAGES}
 
 #: last parts of a dotted key that hold an angle in degrees (the rest are lengths)
 _ANGLE_KEYS = ("start", "stop", "step", "angle", "theta", "theta0", "phi", "phi0", "psi0",
@@ -45,7 +30,13 @@ def _var_label(spec, i):
     last = v.key.split(".")[-1]
     unit = "°" if v.goal or last in _ANGLE_KEYS else spec.header.unit
     from mechcli.report import plotting
-    return plotting.axis_label(v.key, unit)
+    # the book's symbol (l2, not the spec path mechanism.l2)
+    return plotting.axis_label(plotting.symbol(last), unit)
+
+
+def _f_unit(funit):
+    """The objective's unit as a figure writes it (rad², mm²; the JSON keeps f_unit's rad^2)."""
+    return funit.replace("^2", "²")
 
 
 def surface_span(problem, result, margin=0.5, crowded=3.0):
@@ -95,7 +86,8 @@ def _convergence_png(spec, problem, result, outputs, t, title):
                 label=f"{t['best']} = {result.f * factor:.6g}")
     if log_f:
         ax1.set_yscale("log")
-    ax1.set_ylabel(t["f"] if funit == "as the result" else plotting.axis_label(t["f"], funit))
+    ax1.set_ylabel(t["f"] if funit == "as the result"
+                   else plotting.axis_label(t["f"], _f_unit(funit)))
     ax1.legend(fontsize=8, loc="best")
     pos = v > 0
     if pos.any():
@@ -111,6 +103,19 @@ def _convergence_png(spec, problem, result, outputs, t, title):
     ax2.set_xlabel(t[xlabel])
     ax1.set_title(plotting.text(title) + "\n" + t["conv"] + f" ({result.method})", wrap=True)
     plotting.save_png(fig, outputs, "convergence.png")
+
+
+def _thin_labels(ax, labels, U, V, dx=0.12, dy=0.06):
+    """Keep one contour label of those closer than (dx, dy) of the box to each other (the
+    closed contours round an optimum put all their labels on one spot)."""
+    wu, wv = float(np.ptp(U)) or 1.0, float(np.ptp(V)) or 1.0
+    kept = []
+    for label in labels:
+        x, y = label.get_position()
+        if any(abs(x - a) / wu < dx and abs(y - b) / wv < dy for a, b in kept):
+            label.remove()
+        else:
+            kept.append((x, y))
 
 
 def _surface_png(spec, problem, result, surface, outputs, t, title):
@@ -136,10 +141,10 @@ def _surface_png(spec, problem, result, surface, outputs, t, title):
     if levels is not None:
         cf = ax.contourf(U, V, F, levels=levels, norm=norm, cmap="viridis", alpha=0.55)
         cs = ax.contour(U, V, F, levels=levels[::3], norm=norm, colors="k", linewidths=0.5)
-        ax.clabel(cs, fontsize=6, fmt="%.3g")
+        _thin_labels(ax, ax.clabel(cs, fontsize=6, fmt="%.3g"), U, V)
         cb = fig.colorbar(cf, ax=ax, ticks=levels[::4], format="%.3g")
         cb.minorticks_off()
-        cb.set_label("f" if funit == "as the result" else plotting.axis_label("f", funit))
+        cb.set_label("f" if funit == "as the result" else plotting.axis_label("f", _f_unit(funit)))
     bad = ~np.asarray(feas, dtype=bool)
     if bad.any():
         ax.contourf(U, V, bad.astype(float), levels=[0.5, 1.5], colors=["0.55"], alpha=0.45,

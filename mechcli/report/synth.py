@@ -10,7 +10,9 @@ from __future__ import annotations
 
 import math
 
+from mechcli.report.kin import header
 from mechcli.report.table import Block, Report, book_title
+from mechcli.report.words import say, section
 
 #: design value (core name, SI) -> (result key, how to show it): "deg" an angle,
 #: "len" a length, "" a plain number
@@ -37,12 +39,6 @@ ZH_KINDS = {"two_positions": "连杆两位置设计", "three_positions": "连杆
             "coupler_poses": "按连杆三位置 (位移矩阵) 设计", "burmester": "Burmester 点",
             "function": "函数生成机构设计", "slider_function": "曲柄滑块函数生成",
             "rocker_slider": "摇杆滑块机构设计", "quick_return": "按行程速比系数 K 设计"}
-ZH_DEFECTS = {"assembly": "无法装配", "branch": "分支 (装配模式) 缺陷", "circuit": "回路缺陷",
-              "order": "顺序缺陷"}
-
-
-def _label(lang, en, zh):
-    return zh if lang == "zh" else en
 
 
 def _xy(p, u):
@@ -185,60 +181,49 @@ def _blocks(prob, sol, u, unit, lang, prefix=""):
     n = 1
     if des is None:
         c = sol.extra
-        blocks.append(Block(prefix + _label(lang, "Burmester curves (four poses)",
-                                            "Burmester 曲线 (四位置)"),
-                            rows=[[_label(lang, "points on the curves", "曲线点数"),
+        blocks.append(Block(prefix + say(lang, "synth.burmester"),
+                            rows=[[say(lang, "synth.curve_points"),
                                    str(sum(len(b) for b in c.centre_branches()))]]))
         return blocks
     pivots = [k for k in ("A", "D", "C", "B1", "C1", "B2", "C2", "M1") if k in des.pivots]
     if pivots:
-        head = _label(lang, f"Result {n}: pivot coordinates (unit {unit})",
-                      f"计算结果 {n}: " + "、".join(pivots) + f" 坐标 (单位 {unit})")
+        head = say(lang, "synth.pivots", n=n, unit=unit, names=say(lang, "synth.sep").join(pivots))
         blocks.append(Block(prefix + head, ["", "x", "y"],
                             [[k, _f(des.pivots[k][0] / u), _f(des.pivots[k][1] / u)]
                              for k in pivots]))
         n += 1
     if "l" in des.values:
-        rows = [[_label(lang, "coupler / crank  l", "连杆相对长度 l"), _f(des.values["l"])],
-                [_label(lang, "rocker / crank  m", "摇杆相对长度 m"), _f(des.values["m"])],
-                [_label(lang, "frame / crank  n", "机架相对长度 n"), _f(des.values["n"])]]
-        blocks.append(Block(prefix + _label(lang, f"Result {n}: relative lengths",
-                                            f"计算结果 {n}: 相对长度"), rows=rows))
+        rows = [[say(lang, "synth.rel_l"), _f(des.values["l"])],
+                [say(lang, "synth.rel_m"), _f(des.values["m"])],
+                [say(lang, "synth.rel_n"), _f(des.values["n"])]]
+        blocks.append(Block(prefix + say(lang, "synth.relative", n=n), rows=rows))
         n += 1
     names = LINK_NAMES[des.kind]
     rows = [[label, _f(des.lengths[key] / u)] for key, label in names if key in des.lengths]
-    blocks.append(Block(prefix + _label(lang, f"Result {n}: link lengths (unit {unit})",
-                                        f"计算结果 {n}: 各杆长度 (单位 {unit})"), rows=rows))
+    blocks.append(Block(prefix + say(lang, "synth.lengths", n=n, unit=unit), rows=rows))
     n += 1
     extra = []
     v = des.values
-    for key, en, zh in (("alpha0", "alpha0 [deg]", "α0 (°)"), ("phi0", "phi0 [deg]", "φ0 (°)"),
-                        ("theta", "theta [deg]", "极位夹角 θ (°)"),
-                        ("psi", "psi [deg]", "摆角 ψ (°)"), ("K", "K", "行程速比系数 K"),
-                        ("gamma_1", "gamma1 [deg]", "传动角 γ1 (°)"),
-                        ("gamma_2", "gamma2 [deg]", "传动角 γ2 (°)"),
-                        ("error_phi_max", "max structural error, output [deg]",
-                         "最大结构误差 (输出角, °)"),
-                        ("error_y_max", "max structural error in y", "最大结构误差 (y)"),
-                        ("iterations", "iterations", "迭代次数")):
+    for key, angle in (("alpha0", True), ("phi0", True), ("theta", True), ("psi", True),
+                       ("K", False), ("gamma_1", True), ("gamma_2", True),
+                       ("error_phi_max", True), ("error_y_max", False), ("iterations", False)):
         if key in v and v[key] is not None \
                 and not (key == "iterations" and v.get("method") == "matrix"):
             val = v[key]
             text = str(val) if isinstance(val, int) else \
-                _f(math.degrees(val) if en.endswith("[deg]") else val,
+                _f(math.degrees(val) if angle else val,
                    6 if key.startswith("error") else 2)
-            extra.append([_label(lang, en, zh), text])
+            extra.append([say(lang, f"synth.v_{key}"), text])
     if extra:
-        blocks.append(Block(prefix + _label(lang, f"Result {n}: design figures",
-                                            f"计算结果 {n}: 设计参数"), rows=extra))
+        blocks.append(Block(prefix + say(lang, "synth.figures", n=n), rows=extra))
         n += 1
     if des.inputs is not None and len(des.inputs) and des.points:
-        heads = [_label(lang, "position", "位置"), "θ1 (°)"]
+        heads = [say(lang, "synth.position"), header("θ1", "°")]
         cols = []
         for name, pts in des.points.items():
             heads += [f"x{name}", f"y{name}"]
             cols.append(pts)
-        heads.append(_label(lang, "residual", "残差"))
+        heads.append(say(lang, "synth.residual"))
         rows = []
         for i, q in enumerate(des.inputs):
             row = [str(i + 1), _f(math.degrees(q))]
@@ -247,26 +232,22 @@ def _blocks(prob, sol, u, unit, lang, prefix=""):
             r = chk.residuals[i]
             row.append(f"{r:.1e}" if math.isfinite(r) else "—")
             rows.append(row)
-        blocks.append(Block(prefix + _label(lang, "Prescribed positions",
-                                            "预定位置"), heads, rows))
-    from mechcli.report.grashof import ZH_TYPES
-    kind_text = ZH_TYPES.get(chk.grashof_type, chk.grashof_type) if lang == "zh" \
-        else chk.grashof_type.replace("_", " ")
+        blocks.append(Block(prefix + say(lang, "synth.prescribed"), heads, rows))
+    forms = section("grashof").get(f"type_{chk.grashof_type}")
+    kind_text = (forms.get(lang) or forms["en"]) if forms else chk.grashof_type.replace("_", " ")
     if chk.cranks and des.kind == "four_bar":
-        kind_text += _label(lang, f" (crank: link {', '.join(map(str, chk.cranks))})",
-                            f" (曲柄: 杆 {', '.join(map(str, chk.cranks))})")
-    rows = [[_label(lang, "type", "机构类型"), kind_text],
-            [_label(lang, "largest residual (relative)", "最大残差 (相对)"),
+        kind_text += say(lang, "synth.crank", links=', '.join(map(str, chk.cranks)))
+    rows = [[say(lang, "synth.type"), kind_text],
+            [say(lang, "synth.residual_max"),
              f"{chk.residual_max:.2e}"]]
-    rows.append([_label(lang, "smallest transmission angle [deg]", "最小传动角 (°)"),
+    rows.append([say(lang, "synth.gamma_min"),
                  _f(math.degrees(chk.gamma_min)) if chk.gamma_min is not None
-                 else _label(lang, "— (not checked: the motion has a defect)",
-                             "— (运动有缺陷, 未校验)")])
-    rows.append([_label(lang, "defects", "缺陷"),
-                 ", ".join((ZH_DEFECTS.get(d.kind, d.kind) if lang == "zh" else d.kind)
+                 else say(lang, "synth.not_checked")])
+    rows.append([say(lang, "synth.defects"),
+                 ", ".join(say(lang, f"synth.defect_{d.kind}")
                            + ("" if d.position is None else f" @{d.position}")
-                           for d in chk.defects) or _label(lang, "none", "无")])
-    blocks.append(Block(prefix + _label(lang, "Check on the linkage engine", "机构运动校验"),
+                           for d in chk.defects) or say(lang, "synth.none")])
+    blocks.append(Block(prefix + say(lang, "synth.check"),
                         rows=rows))
     return blocks
 

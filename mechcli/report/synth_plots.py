@@ -9,20 +9,11 @@ import math
 import numpy as np
 
 from mechcli.core.linkage import DriverMotion, solve
-from mechcli.report import plotting
+from mechcli.report import plotting, words
 from mechcli.report.kin_plots import Drawing, limits
 from mechcli.report.table import book_title
 
-_T = {"en": {"pos": "Design in its prescribed positions", "err": "Structural error",
-             "x": "x", "ey": "error in y", "ephi": "error of the output angle / °",
-             "burm": "Burmester curves", "centre": "centre-point curve",
-             "circle": "circle-point curve", "poses": "poses",
-             "bpts": "Burmester points (centre ▲, circle ●)",
-             "lim": "Design at its two limit positions"},
-      "zh": {"pos": "预定位置", "err": "结构误差", "x": "x", "ey": "y 的误差",
-             "ephi": "输出角误差 / °", "burm": "Burmester 曲线", "centre": "圆心点曲线",
-             "circle": "圆点曲线", "poses": "位置", "bpts": "Burmester 点 (圆心点 ▲, 圆点 ●)",
-             "lim": "极限位置"}}
+_T = {lang: words.table(lang, "synth_plots") for lang in words.LANGUAGES}
 
 
 def _drive(chk, q):
@@ -42,6 +33,20 @@ def _limit_inputs(sol):
     return np.array([np.angle(complex(*des.pivots[b]) - a) for b in ("B1", "B2")])
 
 
+def _pose_label(ax, points, feasible, i, text):
+    """*text* beside ``points[i]``, pushed away from the other poses' points (C1 and C2 of
+    two near poses apart)."""
+    p = points[i]
+    others = points[feasible]
+    away = p - others.mean() if len(others) > 1 else 0
+    # coincident points (a pose repeated): the labels go round the point, one per quadrant
+    step = away if abs(away) > 1e-6 * max(1.0, abs(p)) else np.exp(1j * math.pi * (0.25 + i / 2))
+    off = 9 * step / abs(step)
+    ax.annotate(text, (p.real, p.imag), textcoords="offset points", xytext=(off.real, off.imag),
+                fontsize=8, color=f"C{i % 10}", ha="left" if off.real >= 0 else "right",
+                va="bottom" if off.imag >= 0 else "top")
+
+
 def _positions_png(sol, outputs, name, title, unit, k, t, q=None):
     from mechcli.report.plotting import plt
     des, chk = sol.design, sol.check
@@ -49,17 +54,18 @@ def _positions_png(sol, outputs, name, title, unit, k, t, q=None):
     q = np.asarray(chk.inputs if q is None else q, dtype=float)
     m = _drive(chk, q)
     fig, ax = plt.subplots(figsize=(6.5, 5.5))
+    named = des.points or (["C"] if "C" in m.points else [])
+    # the joints' names once (the first pose); the named points of every pose as C1, C2, …
+    first = int(np.argmax(m.feasible)) if m.feasible.any() else -1
     for i in range(len(q)):
         if not m.feasible[i]:
             continue
-        d = Drawing(ax, chk.linkage, m, 1 / k)
+        d = Drawing(ax, chk.linkage, m, 1 / k, labels=i == first and not named)
         d.update(m, i)
         for line in d.bar_lines + d.block_lines:
             line.set_color(f"C{i % 10}")
-        for pname in (des.points or (["C"] if "C" in m.points else [])):
-            p = m.points[pname].p[i] * k
-            ax.annotate(f"{pname}{i + 1}", (p.real, p.imag), textcoords="offset points",
-                        xytext=(4, 4), fontsize=8, color=f"C{i % 10}")
+        for pname in named:
+            _pose_label(ax, m.points[pname].p * k, m.feasible, i, f"{pname}{i + 1}")
     for pname, pts in des.points.items():
         pts = np.asarray(pts) * k
         ax.plot(pts.real, pts.imag, "x", color="k", ms=7)
@@ -71,7 +77,7 @@ def _positions_png(sol, outputs, name, title, unit, k, t, q=None):
             p = np.where(mp.feasible, p, np.nan)
             ax.plot(p.real, p.imag, ":", lw=1, color="0.4")
     limits(ax, m, k)
-    ax.set_title(plotting.text(title) + "\n" + (t["lim"] if limits_only else t["pos"]))
+    ax.set_title(plotting.text(title) + "\n" + (t["lim"] if limits_only else t["pos"]), wrap=True)
     ax.set_xlabel(plotting.axis_label("x", unit))
     ax.set_ylabel(plotting.axis_label("y", unit))
     plotting.save_png(fig, outputs, name)
@@ -91,7 +97,7 @@ def _error_png(sol, outputs, name, title, t):
     ax2.grid(False)
     plotting.tie_axis(ax, "C0", "left")
     plotting.tie_axis(ax2, "C1", "right")
-    ax.set_title(plotting.text(title) + "\n" + t["err"])
+    ax.set_title(plotting.text(title) + "\n" + t["err"], wrap=True)
     plotting.save_png(fig, outputs, name)
 
 
@@ -126,7 +132,8 @@ def _burmester_png(sol, prob, outputs, name, title, unit, k, t):
                         label=f"pair {j + 1}")
     ax.set_aspect("equal", adjustable="box")
     ax.legend(fontsize=7, loc="best")
-    ax.set_title(plotting.text(title) + "\n" + (t["burm"] if sol.design is None else t["bpts"]))
+    ax.set_title(plotting.text(title) + "\n" + (t["burm"] if sol.design is None else t["bpts"]),
+                 wrap=True)
     ax.set_xlabel(plotting.axis_label("x", unit))
     ax.set_ylabel(plotting.axis_label("y", unit))
     plotting.save_png(fig, outputs, name)
@@ -146,7 +153,7 @@ def _animate(sol, outputs, name, title, k, frames=72, unit=""):
     fig, ax = plt.subplots(figsize=(6.4, 5.2), dpi=plotting.GIF_DPI)
     d = Drawing(ax, chk.linkage, m, 1 / k)
     limits(ax, m, k)
-    ax.set_title(plotting.text(title), fontsize=10)
+    ax.set_title(plotting.text(title), fontsize=10, wrap=True)
     ax.set_xlabel(f"x / {unit}")
     ax.set_ylabel(f"y / {unit}")
     label = plotting.readout(ax)

@@ -250,10 +250,13 @@ def _interrupt_check(args, delay):
     import sys
     import time
 
-    before = set(glob.glob(os.path.join(__import__("tempfile").gettempdir(), "mechcli-check-*")))
+    # a temporary folder of its own (TMPDIR), so that other tests running beside it (pytest
+    # -n) leave nothing there
+    tmp = __import__("tempfile").mkdtemp(prefix="interrupt-")
+    before = set(glob.glob(os.path.join(tmp, "mechcli-check-*")))
     proc = subprocess.Popen([sys.executable, "-m", "mechcli", "check", *args],
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-                            start_new_session=True)
+                            start_new_session=True, env=dict(os.environ, TMPDIR=tmp))
     time.sleep(delay)
     os.killpg(proc.pid, signal.SIGINT)       # Ctrl-C: the whole process group
     try:
@@ -263,7 +266,7 @@ def _interrupt_check(args, delay):
         proc.communicate()
         pytest.fail("mechcli check hung after Ctrl-C")
     time.sleep(0.2)
-    after = set(glob.glob(os.path.join(__import__("tempfile").gettempdir(), "mechcli-check-*")))
+    after = set(glob.glob(os.path.join(tmp, "mechcli-check-*")))
     return proc.returncode, out, err, after - before
 
 

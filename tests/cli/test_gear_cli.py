@@ -67,7 +67,7 @@ def test_require_continuous_mesh_exits_3(tmp_path):
     proc = run_inprocess("gear", CH5 / "ex5-4.toml", "--set", "pair.require_continuous=true",
                    "--no-plot", "--out", tmp_path)
     assert proc.returncode == 3
-    assert "epsilon_alpha = 0.765 < 1" in proc.stderr
+    assert "εα = 0.765 < 1" in proc.stderr
 
 
 def test_forbidden_interference_exits_3(tmp_path):

@@ -19,11 +19,7 @@ BRANCH = re.compile(r"""\bif\s+zh\b|\bzh\s+else\b|lang\s*[!=]=\s*["']zh["']|["']
                     r"""|["']zh["']\s*:\s*[{(\[]""")
 
 #: report modules still carrying inline branches, with how many; this list only shrinks
-REMAINING = {
-    "atlas_plots.py": 1, "cam_plots.py": 5, "flywheel.py": 1, "flywheel_plots.py": 1,
-    "force_plots.py": 1, "gear_plot.py": 1, "kin_plots.py": 1, "optimize.py": 1,
-    "optimize_plots.py": 1, "synth.py": 3, "synth_plots.py": 1,
-}
+REMAINING: dict = {}
 
 
 def _fields(text):

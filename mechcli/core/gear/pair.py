@@ -339,7 +339,7 @@ def gear_pair(g1: SpurGear, g2: SpurGear, a_w: Optional[float] = None,
                         "internal pair: the teeth would jam", "jam", a_w=pair.a_w, a0=a0,
                         internal=True)
     if pair.epsilon_alpha <= 0:
-        raise MeshError(f"the tip circles do not reach the line of action (epsilon_alpha = "
+        raise MeshError(f"the tip circles do not reach the line of action (εα = "
                         f"{pair.epsilon_alpha:.3g}): no contact", "no_contact", a_w=pair.a_w,
                         epsilon=pair.epsilon_alpha)
     return pair

@@ -1,0 +1,84 @@
+"""Clean figures (issue 31 §4): every config's figures, drawn as ``mechcli`` saves them, keep
+all their text on the canvas and no two texts on top of each other (a title over a legend, C1
+printed over C, tick labels running into each other, contour labels piled at one point).
+
+The check uses matplotlib's own text extents (``Text.get_window_extent`` with the canvas's
+renderer) of every text actually drawn, taken where :func:`mechcli.report.plotting.save_png`
+would draw the figure (the test replaces it: the same layout, no PNG).  Overlap: two boxes
+intersecting by more than :data:`TOL` pixels both ways."""
+
+from __future__ import annotations
+
+import itertools
+
+import pytest
+
+from mechcli.batch import _read_command
+from mechcli.report import plotting
+from tests.conftest import CONFIGS, run_inprocess
+
+#: pixels two boxes may share (antialiasing, a descender touching the next line's ascender)
+TOL = 2.0
+#: a low resolution keeps the test quick; the layout is in inches, so the same overlaps show
+DPI = 60
+SPECS = sorted(CONFIGS.rglob("*.toml"))
+
+
+def _drawn_texts(monkeypatch):
+    """Patch Text.draw to record ``(text, bbox)`` of each visible, non-empty text drawn."""
+    import matplotlib.text
+
+    drawn = []
+    original = matplotlib.text.Text.draw
+
+    def draw(self, renderer, _original=original):
+        _original(self, renderer)
+        if self.get_visible() and self.get_text().strip() and renderer is not None:
+            drawn.append((self.get_text(), self.get_window_extent(renderer)))
+
+    monkeypatch.setattr(matplotlib.text.Text, "draw", draw)
+    return drawn
+
+
+def _problems(name, fig, texts):
+    """Texts off the canvas and overlapping pairs of one drawn figure."""
+    width, height = fig.canvas.get_width_height()
+    out = []
+    for text, box in texts:
+        if box.x0 < -TOL or box.y0 < -TOL or box.x1 > width + TOL or box.y1 > height + TOL:
+            out.append(f"{name}: {text!r} leaves the canvas ({box.x0:.0f}, {box.y0:.0f}, "
+                       f"{box.x1:.0f}, {box.y1:.0f}) of {width}x{height}")
+    for (ta, a), (tb, b) in itertools.combinations(texts, 2):
+        dx = min(a.x1, b.x1) - max(a.x0, b.x0)
+        dy = min(a.y1, b.y1) - max(a.y0, b.y0)
+        if dx > TOL and dy > TOL:
+            out.append(f"{name}: {ta!r} overlaps {tb!r}")
+    return out
+
+
+@pytest.mark.parametrize("spec", SPECS, ids=[str(p.relative_to(CONFIGS)) for p in SPECS])
+def test_figure_text_stays_on_the_canvas_and_apart(tmp_path, monkeypatch, spec):
+    command, err = _read_command(spec)
+    if command is None:
+        pytest.skip(f"no command: {err}")
+    drawn = _drawn_texts(monkeypatch)
+    found, figures = [], []
+
+    def save_png(fig, outputs, name, dpi=None, layout=True):
+        # draw as save_png does (CJK fallback, tight layout), then look at what was drawn
+        plotting._plain_math_beside_cjk(fig)
+        if layout and fig.get_layout_engine() is None:
+            plotting.tight(fig)
+        fig.set_dpi(DPI)
+        drawn.clear()
+        fig.canvas.draw()
+        figures.append(name)
+        found.extend(_problems(name, fig, list(drawn)))
+        plotting.close(fig)
+        return outputs.bytes(name, b"")     # no second drawing, no PNG encoding: time
+
+    monkeypatch.setattr(plotting, "save_png", save_png)
+    animate = [] if command == "grashof" else ["--no-animate"]
+    result = run_inprocess(command, spec, "-q", *animate, "--out", tmp_path)
+    assert result.returncode in (0, 3), result.stderr
+    assert not found, "\n".join(found)
