@@ -34,12 +34,13 @@ the joint, link, slider or driver at fault.
 from __future__ import annotations
 
 import math
+from typing import Any, Dict, Tuple
 
 from mechcli.spec.errors import SpecError
 from mechcli.spec.reader import MAX_LENGTH
 
 
-def read_joints(mech):
+def read_joints(mech: Any) -> Tuple[int, list, dict, list, Any]:
     """Read the joints form of ``[mechanism]``.
 
     Returns
@@ -53,9 +54,31 @@ def read_joints(mech):
     drawing : FromDrawing
         The structure, the drawing's input angles and the links' angle offsets.
     """
-    from mechcli.core.linkage.drawing import Drawing, DrawingError, Slider
+    from mechcli.core.linkage.drawing import Drawing, DrawingError
 
     frame = mech.integer("frame", lo=1)
+    joints = _read_joint_positions(mech)
+    links, link_paths = _read_links(mech, joints)
+    sliders, slider_paths = _read_sliders(mech, joints, links, frame)
+    drivers, driver_paths, followers, actuators = _read_drivers(mech, links, sliders)
+    drawing = Drawing(frame, joints, links, tuple(sliders), tuple(drivers), actuators,
+                      dict(followers))
+    try:
+        result = _solved_drawing(drawing)
+    except DrawingError as exc:
+        raise SpecError(mech.file, _where(mech, exc, link_paths, slider_paths, driver_paths,
+                                          drivers),
+                        "a drawing of a linkage the engine can solve", str(exc)) from None
+    if drivers:
+        q1 = result.inputs[drivers[0][0]]
+        followers = {k: (ratio, result.inputs[k] - ratio * q1 if phase is None else phase)
+                     for k, (ratio, phase) in followers.items()}
+    paths = [mech.key("joints")] * len(result.linkage.elements)
+    return frame, list(result.linkage.elements), followers, paths, result
+
+
+def _read_joint_positions(mech: Any) -> Dict[str, Tuple[float, float]]:
+    """``[mechanism.joints]``: every joint's drawn position [m]."""
     jt = mech.table("joints")
     joints = {}
     for name in jt.keys():
@@ -67,8 +90,13 @@ def read_joints(mech):
     jt.finish()
     if len(joints) < 2:
         raise mech.error("joints", "at least two joints", f"{len(joints)}")
+    return joints
 
-    links, link_paths = {}, {}
+
+def _read_links(mech: Any, joints: dict) -> Tuple[Dict[int, tuple], Dict[int, str]]:
+    """``[[mechanism.link]]``: each link's joints (and its spec path, for messages)."""
+    links: Dict[int, tuple] = {}
+    link_paths: Dict[int, str] = {}
     for t in mech.tables("link"):
         n = t.integer("number", lo=1)
         names = t.strings("joints")
@@ -84,6 +112,12 @@ def read_joints(mech):
         links[n] = tuple(names)
         link_paths[n] = t.path
         t.finish()
+    return links, link_paths
+
+
+def _read_sliders(mech: Any, joints: dict, links: dict, frame: int) -> Tuple[list, list]:
+    """``[[mechanism.slider]]``: each prismatic pair's block, guide and drawn line."""
+    from mechcli.core.linkage.drawing import Slider
 
     sliders, slider_paths = [], []
     for t in mech.tables("slider", []):
@@ -118,8 +152,16 @@ def read_joints(mech):
         sliders.append(Slider(block, guide, through, angle, t.name("name", None)))
         slider_paths.append(t.path)
         t.finish()
+    return sliders, slider_paths
 
-    drivers, driver_paths, followers, actuators = [], [], {}, {}
+
+def _read_drivers(mech: Any, links: dict, sliders: list) -> Tuple[list, list, dict, dict]:
+    """``[[mechanism.driver]]``: the cranks (link, pivot), the secondary drivers'
+    ``(ratio, phase or None)`` and the actuated slides."""
+    drivers: list = []
+    driver_paths: list = []
+    followers: dict = {}
+    actuators: dict = {}
     for i, d in enumerate(mech.tables("driver")):
         d.string("type", "crank", choices=["crank"])
         link = d.integer("link", lo=1)
@@ -141,24 +183,11 @@ def read_joints(mech):
             followers[link] = (follower_ratio(d),
                                None if phase is None else math.radians(phase))
         d.finish()
-
-    drawing = Drawing(frame, joints, links, tuple(sliders), tuple(drivers), actuators,
-                      dict(followers))
-    try:
-        result = _solved_drawing(drawing)
-    except DrawingError as exc:
-        raise SpecError(mech.file, _where(mech, exc, link_paths, slider_paths, driver_paths,
-                                          drivers),
-                        "a drawing of a linkage the engine can solve", str(exc)) from None
-    if drivers:
-        q1 = result.inputs[drivers[0][0]]
-        followers = {k: (ratio, result.inputs[k] - ratio * q1 if phase is None else phase)
-                     for k, (ratio, phase) in followers.items()}
-    paths = [mech.key("joints")] * len(result.linkage.elements)
-    return frame, list(result.linkage.elements), followers, paths, result
+    return drivers, driver_paths, followers, actuators
 
 
-def _where(mech, exc, link_paths, slider_paths, driver_paths, drivers):
+def _where(mech: Any, exc: Any, link_paths: dict, slider_paths: list, driver_paths: list,
+           drivers: list) -> str:
     """The spec key a :class:`DrawingError` is about."""
     if exc.what == "joint" and exc.name is not None:
         return mech.key(f"joints.{exc.name}")
@@ -180,7 +209,7 @@ _SOLVED: dict = {}
 _SOLVED_MAX = 8
 
 
-def _solved_drawing(drawing):
+def _solved_drawing(drawing: Any) -> Any:
     """:func:`~mechcli.core.linkage.drawing.from_drawing`, remembered for the last few
     drawings (the result is immutable records; the same drawing gives the same linkage)."""
     from mechcli.core.linkage.drawing import from_drawing

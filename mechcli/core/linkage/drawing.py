@@ -26,7 +26,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from typing import Optional
+from typing import Any, Optional
 
 import numpy as np
 
@@ -62,7 +62,7 @@ class DrawingError(ValueError):
         The joint's name, the link's number, the slider's index ...
     """
 
-    def __init__(self, message, what, name=None):
+    def __init__(self, message: str, what: str, name: Any = None) -> None:
         super().__init__(message)
         self.what = what
         self.name = name
@@ -137,23 +137,23 @@ class FromDrawing:
     mobility: object
 
 
-def _angle(v):
+def _angle(v: Any):
     return math.atan2(v[1], v[0])
 
 
-def _wrap(a):
+def _wrap(a: Any):
     return (a + math.pi) % (2 * math.pi) - math.pi
 
 
-def _unit(a):
+def _unit(a: Any):
     return np.array([math.cos(a), math.sin(a)])
 
 
-def _cross(u, v):
+def _cross(u: Any, v: Any):
     return float(u[0] * v[1] - u[1] * v[0])
 
 
-def _topology(drawing):
+def _topology(drawing: Any):
     """Mobility joints: one revolute per joint name (a compound hinge where more than
     two links meet), one prismatic pair per slider; the frame's joints."""
     for n, names in drawing.links.items():
@@ -166,7 +166,7 @@ def _topology(drawing):
     return joints, frame_joints
 
 
-def pairs_of_links(frame, links, sliders=()):
+def pairs_of_links(frame: int, links: Any, sliders: Any = ()):
     """The kinematic pairs of a linkage given by the joints its links carry.
 
     Parameters
@@ -189,7 +189,7 @@ def pairs_of_links(frame, links, sliders=()):
     DrawingError
         A joint on one link only when the frame is listed (it joins nothing).
     """
-    on = {}
+    on: dict = {}
     for n, names in links.items():
         for j in names:
             on.setdefault(j, []).append(n)
@@ -243,7 +243,7 @@ def from_drawing(drawing: Drawing) -> FromDrawing:
     return FromDrawing(linkage, structure, dict(b.inputs), offsets, mob)
 
 
-def _check_actuators(drawing, elements):
+def _check_actuators(drawing: Any, elements: Any):
     """Every actuator names the slide of an RPR group (a cylinder between pivots)."""
     slides = {el.slide_names(drawing.frame)[0] for el in elements if type(el) is RPR}
     for link, name in drawing.actuators.items():
@@ -257,21 +257,21 @@ def _check_actuators(drawing, elements):
 class _Builder:
     """Elements added group by group, each checked on the engine at the drawing."""
 
-    def __init__(self, drawing, joints, frame_joints):
+    def __init__(self, drawing: Any, joints: Any, frame_joints: Any):
         self.d = drawing
         self.xy = {k: (float(v[0]), float(v[1])) for k, v in drawing.joints.items()}
         self.frame = drawing.frame
-        self.elements = [Ground(j, *drawing.joints[j]) for j in frame_joints]
+        self.elements: list = [Ground(j, *drawing.joints[j]) for j in frame_joints]
         self.known = set(frame_joints)           # joints the elements position
         self.links = {self.frame}
-        self.inputs = {}
+        self.inputs: dict = {}
         self.engine_angle = {self.frame: 0.0}
         sizes = [abs(v) for xy in drawing.joints.values() for v in xy]
         self.scale = max(sizes + [1e-300])
         self.hinges = {j.name: j.links for j in joints if j.kind == "R"}
         self.sliders = {frozenset((s.block, s.guide)): s for s in drawing.sliders}
 
-    def _p(self, name):
+    def _p(self, name: str):
         return np.array(self.xy[name], dtype=float)
 
     # -- the engine at the drawing -------------------------------------------
@@ -284,7 +284,7 @@ class _Builder:
                   order=0)
         return m
 
-    def _check(self, made_links, group_name):
+    def _check(self, made_links: Any, group_name: Any):
         """Solve at the drawing: every known joint where drawn; the new links'
         engine angles; then the links' further joints as points on them."""
         m = self._solve()
@@ -302,7 +302,7 @@ class _Builder:
             self.engine_angle[n] = float(np.ravel(m.links[n].theta)[0])
         self._further_joints(made_links)
 
-    def _further_joints(self, made_links):
+    def _further_joints(self, made_links: Any):
         for n in made_links:
             names = self.d.links.get(n, ())
             origin = next((j for j in names if j in self.known), None)
@@ -320,7 +320,7 @@ class _Builder:
                 self.known.add(j)
 
     # -- drivers and groups ----------------------------------------------------
-    def crank(self, link, pivot):
+    def crank(self, link: int, pivot: Any):
         names = self.d.links.get(link, ())
         if pivot not in names:
             raise DrawingError(f"the crank's pivot '{pivot}' is not a joint of link {link} "
@@ -345,7 +345,7 @@ class _Builder:
         self.links.add(link)
         self._check((link,), f"crank {link}")
 
-    def group(self, g):
+    def group(self, g: Any):
         kind = g.type
         if kind == "RRR":
             self._rrr(g)
@@ -365,10 +365,10 @@ class _Builder:
         self.links.update(g.links)
         self._check(g.links, f"{kind} dyad of links {g.links[0]} and {g.links[1]}")
 
-    def _kind_of(self, pair):
+    def _kind_of(self, pair: Any):
         return "R" if pair in self.hinges else "P"
 
-    def _triad(self, g):
+    def _triad(self, g: Any):
         """A ternary link held by three binary links: :class:`~.triad.Triad`, its
         Newton started from a continuation table made here from the drawing."""
         from mechcli.core.linkage.triad import Triad, continuation_table
@@ -392,10 +392,11 @@ class _Builder:
         lengths = [float(np.hypot(*(self._p(j) - self._p(o)))) for j, o in zip(order, points)]
         (driver, q0), = self.inputs.items()
         pose0 = (float(p1[0]), float(p1[1]), _angle(e))
-        proto = Triad(tern, *order, *binaries, *points, *lengths, c, bp, bq, driver)
+        proto = Triad(tern, *order, *binaries, *points, *lengths, c, bp, bq,  # type: ignore[call-arg]
+                      driver)  # (the star-args are three each: mypy cannot count them)
         lk = self.linkage()
 
-        def known(q):
+        def known(q: Any):
             m = solve(lk, {driver: DriverMotion(np.asarray(q, dtype=float))}, order=0)
             return [m.points[p] for p in points]
 
@@ -406,146 +407,118 @@ class _Builder:
         self.links.update(g.links)
         self._check(g.links, f"triad of links {', '.join(map(str, g.links))}")
 
-    def _newton_group(self, g):
+    def _newton_group(self, g: Any) -> None:
         """A group with no closed form (a triad with sliders, class IV and up, an RPP
         dyad, a triad under two drivers): :class:`~.newton_group.NewtonGroup`, each
         link a body with the drawing's first joint as origin and its first-to-second
         joint direction as reference angle (a slider's block: the line's direction, so
         that the statics sees its pair's normal), started by continuation."""
-        from mechcli.core.linkage.newton_group import (
-            NewtonGroup,
-            best_conditioning,
-            continuation_table,
-            drawn_conditioning,
-            local,
-        )
+        from mechcli.core.linkage.newton_group import NewtonGroup
 
-        links = list(g.links)
-        idx = {ln: i for i, ln in enumerate(links)}
         sliders = [self._named(j) for j in g.joints if self._kind_of(j) == "P"]
-        angle, line_of = {}, []
-        for s in sliders:
-            mine = [ln for ln in (s.block, s.guide) if ln in idx]
-            free = [ln for ln in mine if ln not in angle]
-            if free:
-                angle[free[0]] = s.angle
-                line_of.append(free[0])
-                continue
-            turn = abs(_wrap(angle[mine[0]] - s.angle))
-            if min(turn, math.pi - turn) > 1e-9:
-                raise DrawingError(f"link {mine[0]} slides along two lines that are not "
-                                   f"parallel; the joints form solves a group whose blocks "
-                                   f"each slide along one direction", "link", mine[0])
-            line_of.append(mine[0])
-        origin = {}
-        for ln in links:
-            names = self.d.links.get(ln, ())
-            origin[ln] = tuple(self._p(names[0]))
-            if ln not in angle:
-                angle[ln] = _angle(self._p(names[1]) - self._p(names[0])) if len(names) > 1 \
-                    else 0.0
-        known = []
+        fr = _Bodies(self, list(g.links))
+        line_of = fr.orient(sliders)
+        pins = self._group_pins(g, fr)
+        slides = [self._group_slide(s, line_link, fr) for s, line_link in zip(sliders, line_of)]
+        (driver, _q0), *_rest = self.inputs.items()
+        ends = tuple((names[0], names[1] if len(names) > 1 else "")
+                     for names in (tuple(self.d.links.get(ln, ())) for ln in fr.links))
+        proto = NewtonGroup(tuple(fr.links), tuple(pins), tuple(slides), tuple(fr.known),
+                            driver, ends, g.type)
+        self._start_group(g, proto, fr.pose())
 
-        def end(ln, p):
-            """(body index, local x, local y) of the drawn point p fixed on link ln."""
-            if ln in idx:
-                return (idx[ln],) + local(origin[ln], angle[ln], p)
-            if ln == self.frame:
-                key = (ln, "")
-                o, th = (0.0, 0.0), 0.0
-            else:
-                o_name = next(j for j in self.d.links.get(ln, ()) if j in self.known)
-                key, o, th = (ln, o_name), self.xy[o_name], self.engine_angle[ln]
-            if key not in known:
-                known.append(key)
-            return (-1 - known.index(key),) + local(o, th, p)
-
-        def angle_of(ln):
-            return angle[ln] if ln in idx else self.engine_angle.get(ln, 0.0)
-
+    def _group_pins(self, g: Any, fr: _Bodies) -> list:
+        """The group's revolute pairs as :attr:`NewtonGroup.pins`: at a known joint, each
+        group link there pinned to it; inside the group, the first link's point pinned to
+        each other's."""
         pins = []
         for j in g.joints:
             if self._kind_of(j) != "R":
                 continue
-            at = [k for k in self.hinges[j] if k in idx]
+            at = [k for k in self.hinges[j] if k in fr.idx]
             p = self._p(j)
             if any(k in self.links for k in self.hinges[j]):
                 if j not in self.known:  # pragma: no cover - a known link's joints are known
                     raise DrawingError(f"joint '{j}' is not positioned", "joint", j)
-                pins += [(j,) + end(k, p) + (-1, 0.0, 0.0) for k in at]
+                pins += [(j,) + fr.end(k, p) + (-1, 0.0, 0.0) for k in at]
             else:
-                a = end(at[0], p)
-                pins += [(j,) + a + end(k, p) for k in at[1:]]
-        slides = []
-        for s, line_link in zip(sliders, line_of):
-            blk, gd = s.block, s.guide
-            p0, t = self._line(s)
-            names = list(self.d.links.get(blk, ())) + list(self.d.links.get(gd, ()))
-            pt = next((j for j in names if j in self.hinges), s.through)
-            p = self._p(pt)
-            h0 = float(-t[1] * (p[0] - p0[0]) + t[0] * (p[1] - p0[1]))
-            a, b = end(blk, p), end(gd, p0)
-            beta = _wrap(s.angle - angle_of(gd))
-            c0 = _wrap(angle_of(blk) - angle_of(gd))
-            roles = (gd, blk) if line_link == blk else (blk, gd)   # (guide, block): statics
-            name = _slide_symbol(s.name, blk, gd, self.frame)
-            slides.append((name, pt) + a + b + (float(beta), h0, float(c0), roles[1], roles[0]))
+                a = fr.end(at[0], p)
+                pins += [(j,) + a + fr.end(k, p) for k in at[1:]]
+        return pins
+
+    def _group_slide(self, s: Slider, line_link: int, fr: _Bodies) -> tuple:
+        """One prismatic pair as a :attr:`NewtonGroup.slides` entry: the block's point (its
+        first revolute joint as drawn) kept at its drawn offset from the guide's line."""
+        blk, gd = s.block, s.guide
+        p0, t = self._line(s)
+        names = list(self.d.links.get(blk, ())) + list(self.d.links.get(gd, ()))
+        pt = next((j for j in names if j in self.hinges), s.through)
+        p = self._p(pt)
+        h0 = float(-t[1] * (p[0] - p0[0]) + t[0] * (p[1] - p0[1]))
+        a, b = fr.end(blk, p), fr.end(gd, p0)
+        beta = _wrap(s.angle - fr.angle_of(gd))
+        c0 = _wrap(fr.angle_of(blk) - fr.angle_of(gd))
+        roles = (gd, blk) if line_link == blk else (blk, gd)   # (guide, block): statics
+        name = _slide_symbol(s.name, blk, gd, self.frame)
+        return (name, pt) + a + b + (float(beta), h0, float(c0), roles[1], roles[0])
+
+    def _start_group(self, g: Any, proto: Any, pose0: list) -> None:
+        """Refuse a group drawn at its dead point; continue it from the drawing over the
+        primary driver's turn (secondary drivers geared to it); add it and check it."""
+        from mechcli.core.linkage.newton_group import (
+            best_conditioning,
+            continuation_table,
+            drawn_conditioning,
+        )
+
         (driver, q0), *rest = self.inputs.items()
-        pose0 = []
-        for ln in links:
-            pose0 += [origin[ln][0], origin[ln][1], angle[ln]]
-        ends = tuple((names[0], names[1] if len(names) > 1 else "")
-                     for names in (tuple(self.d.links.get(ln, ())) for ln in links))
-        proto = NewtonGroup(tuple(links), tuple(pins), tuple(slides), tuple(known), driver,
-                            ends, g.type)
         lk = self.linkage()
         follow = {}
         for k, qk in rest:
             ratio, phase = self.d.followers.get(k, (1.0, None))
             follow[k] = (ratio, qk - ratio * q0 if phase is None else phase)
 
-        def known_motion(q):
+        def known_motion(q: Any) -> Any:
             q = np.asarray(q, dtype=float)
             ins = {driver: DriverMotion(q)}
             ins.update({k: DriverMotion(r * q + ph) for k, (r, ph) in follow.items()})
             return solve(lk, ins, order=0)
 
+        named = f"{g.type} of links {', '.join(map(str, g.links))}"
         at_drawing = drawn_conditioning(proto, known_motion(np.array([q0])), pose0,
                                         self.scale, self.frame)
         if at_drawing < TOGGLE_TOL:
-            raise DrawingError(f"the {g.type} of links {', '.join(map(str, g.links))} is drawn "
-                               f"at its dead point (its Jacobian is singular there): the "
-                               f"drawing fixes no assembly branch; draw it off the dead point",
-                               "link", g.links[0])
+            raise DrawingError(f"the {named} is drawn at its dead point (its Jacobian is "
+                               f"singular there): the drawing fixes no assembly branch; draw "
+                               f"it off the dead point", "link", g.links[0])
         try:
             table, period = continuation_table(proto, known_motion, q0, pose0, self.scale,
                                                self.frame)
         except ValueError as exc:
-            raise DrawingError(f"the {g.type} of links {', '.join(map(str, g.links))}: {exc}",
-                               "link", g.links[0]) from None
+            raise DrawingError(f"the {named}: {exc}", "link", g.links[0]) from None
         well = best_conditioning(proto, known_motion(table[0]), table, self.scale, self.frame)
         self.elements.append(dataclasses.replace(proto, table=table, period=period, well=well))
         self.known.update(proto.inner_joints)
         self.links.update(g.links)
-        self._check(g.links, f"{g.type} of links {', '.join(map(str, g.links))}")
+        self._check(g.links, named)
 
-    def _named(self, pair):
+    def _named(self, pair: Any):
         """The slider whose prismatic pair the decomposition calls *pair*."""
         return next(sl for sl in self.d.sliders
                     if (sl.name or f"{sl.block}{sl.guide}") == pair)
 
-    def _line(self, s):
+    def _line(self, s: Any):
         """The slider's line: a point on it and its unit direction, as drawn."""
         return self._p(s.through), _unit(s.angle)
 
-    def _branch_sign(self, value, joint, what):
+    def _branch_sign(self, value: Any, joint: Any, what: Any):
         if abs(value) <= TOGGLE_TOL * self.scale * self.scale:
             raise DrawingError(f"the {what} at joint '{joint}' is drawn at its dead point "
                                f"(its two links in line): the drawing fixes no assembly "
                                f"branch; draw it off the toggle", "joint", joint)
         return 1 if value > 0 else -1
 
-    def _rrr(self, g):
+    def _rrr(self, g: Any):
         (a, b), (oa, ji, ob) = g.links, g.joints
         pa, pj, pb = self._p(oa), self._p(ji), self._p(ob)
         br = self._branch_sign(_cross(pb - pa, pj - pa), ji, "RRR dyad")
@@ -553,7 +526,7 @@ class _Builder:
                                  float(np.hypot(*(pj - pb))), br))
         self.known.add(ji)
 
-    def _guide_frame(self, guide, s):
+    def _guide_frame(self, guide: Any, s: Any):
         """(guide_point, guide_angle, offset) of a line of sliding fixed on ``guide``."""
         p0, u = self._line(s)
         n = np.array([-u[1], u[0]])
@@ -575,7 +548,7 @@ class _Builder:
         offset = float((p0 - self._p(gp)) @ n)
         return gp, _wrap(s.angle - self.engine_angle[guide]), offset
 
-    def _rrp(self, g):
+    def _rrp(self, g: Any):
         (a, b), (oa, ji, op) = g.links, g.joints
         s = self._named(op)
         guide = s.guide if s.block == b else s.block
@@ -592,7 +565,7 @@ class _Builder:
                                  off, br, s.name))
         self.known.add(ji)
 
-    def _rpr(self, g):
+    def _rpr(self, g: Any):
         # RPR: the block's pin (outer R), the block-guide slide (inner P), the guide's
         # pivot (outer R); which link is the block the slider says
         a, (oa, ip, ob) = g.links[0], g.joints
@@ -609,7 +582,7 @@ class _Builder:
         offset = float((p0 - pc) @ n)
         self.elements.append(RPR(op, blk, oc, guide, offset, br, s.name))
 
-    def _prp(self, g):
+    def _prp(self, g: Any):
         (a, b), (oa, ji, ob) = g.links, g.joints
         keys = {}
         for x, pair, blk in (("a", oa, a), ("b", ob, b)):
@@ -632,4 +605,71 @@ class _Builder:
             off = _wrap(spec - self.engine_angle[n])
             if abs(off) > 1e-12:
                 out[n] = off
+        return out
+
+
+class _Bodies:
+    """The bodies of a Newton-solved group as drawn: each link's origin (its first joint)
+    and reference angle (first to second joint, or the line of a slider it carries), and
+    the known links its pairs refer to (:attr:`NewtonGroup.known`)."""
+
+    def __init__(self, b: _Builder, links: list) -> None:
+        self.b, self.links = b, links
+        self.idx = {ln: i for i, ln in enumerate(links)}
+        self.angle: dict = {}
+        self.origin: dict = {}
+        self.known: list = []
+
+    def orient(self, sliders: list) -> list:
+        """Give each slider's line to one of its group links (that link's angle is then
+        the line's); the links' origins and other angles from the drawing.  Returns the
+        link of each slider that carries its line."""
+        b, line_of = self.b, []
+        for s in sliders:
+            mine = [ln for ln in (s.block, s.guide) if ln in self.idx]
+            free = [ln for ln in mine if ln not in self.angle]
+            if free:
+                self.angle[free[0]] = s.angle
+                line_of.append(free[0])
+                continue
+            turn = abs(_wrap(self.angle[mine[0]] - s.angle))
+            if min(turn, math.pi - turn) > 1e-9:
+                raise DrawingError(f"link {mine[0]} slides along two lines that are not "
+                                   f"parallel; the joints form solves a group whose blocks "
+                                   f"each slide along one direction", "link", mine[0])
+            line_of.append(mine[0])
+        for ln in self.links:
+            names = b.d.links.get(ln, ())
+            self.origin[ln] = tuple(b._p(names[0]))
+            if ln not in self.angle:
+                self.angle[ln] = _angle(b._p(names[1]) - b._p(names[0])) \
+                    if len(names) > 1 else 0.0
+        return line_of
+
+    def end(self, ln: int, p: Any) -> tuple:
+        """(body index, local x, local y) of the drawn point p fixed on link ln (a known
+        link: index -1 - k of :attr:`known`)."""
+        from mechcli.core.linkage.newton_group import local
+
+        b = self.b
+        if ln in self.idx:
+            return (self.idx[ln],) + local(self.origin[ln], self.angle[ln], p)
+        if ln == b.frame:
+            key: tuple = (ln, "")
+            o, th = (0.0, 0.0), 0.0
+        else:
+            o_name = next(j for j in b.d.links.get(ln, ()) if j in b.known)
+            key, o, th = (ln, o_name), b.xy[o_name], b.engine_angle[ln]
+        if key not in self.known:
+            self.known.append(key)
+        return (-1 - self.known.index(key),) + local(o, th, p)
+
+    def angle_of(self, ln: int) -> float:
+        return self.angle[ln] if ln in self.idx else self.b.engine_angle.get(ln, 0.0)
+
+    def pose(self) -> list:
+        """The drawn poses ``(x, y, θ)`` of the bodies, in order (the table's start)."""
+        out: list = []
+        for ln in self.links:
+            out += [self.origin[ln][0], self.origin[ln][1], self.angle[ln]]
         return out

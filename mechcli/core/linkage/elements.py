@@ -336,7 +336,7 @@ def _flips(branch: int):
     return bool(np.any(np.not_equal(branch, 1)))
 
 
-def _slide_symbol(name: str, block: Any, guide: Any, frame: int):
+def _slide_symbol(name: Optional[str], block: Any, guide: Any, frame: int):
     """Slide symbol suffix: ``name`` if given, else ``<block>`` on a frame
     guide, ``<block><guide>`` on a moving one (RRP's rule)."""
     if name:

@@ -36,7 +36,7 @@ interpolated at its input angle, wherever the sweep or a refinement asks.
 from __future__ import annotations
 
 import math
-from typing import ClassVar, Tuple
+from typing import Any, ClassVar, Tuple
 
 import numpy as np
 
@@ -115,11 +115,11 @@ class Triad(Element):
     def makes(self):
         return self.joints, (self.link,) + self.binaries
 
-    def reported_links(self, frame):
+    def reported_links(self, frame: int):
         return (self.link,) + self.binaries
 
     # -- the solve ---------------------------------------------------------------
-    def start(self, q):
+    def start(self, q: Any):
         """The table's pose at the driver's angles ``q`` (the Newton start); for a
         batch of designs, each design's rows from its own table."""
         q = np.asarray(q, dtype=float)
@@ -131,7 +131,7 @@ class Triad(Element):
         return tuple(np.stack([r[i] for r in rows]) for i in range(3))
 
     @classmethod
-    def stack_fields(cls, elements, names):
+    def stack_fields(cls, elements: Any, names: Any):
         """:func:`~.engine.stack`: designs whose triads differ in their continuation
         tables (each drawing has its own) keep them per design."""
         if not set(names) <= {"table", "period"} or any(e.batch for e in elements):
@@ -139,7 +139,7 @@ class Triad(Element):
         return {"table": (), "period": 0.0,
                 "batch": tuple((e.table, e.period) for e in elements)}
 
-    def step(self, st):
+    def step(self, st: Any):
         K = [st.P[p] for p in self.points]
         q = st.inputs[self.driver].q
         x, y, phi = (st.full(v).copy() for v in self.start(q))
@@ -187,7 +187,7 @@ class Triad(Element):
             st.L[ln] = LinkState(np.arctan2(ry, rx), rx / self.lengths[k],
                                  ry / self.lengths[k], wk[k], alk[k])
 
-    def pairs(self, tb):
+    def pairs(self, tb: Any):
         for j in self.joints:
             tb.new_point(j, self.link)
         for j, ln, p in zip(self.joints, self.binaries, self.points):
@@ -197,18 +197,18 @@ class Triad(Element):
         tb.frames[self.link] = [self.joint_1, self.joint_2]
         return (self.link,) + self.binaries
 
-    def sketch(self, frame):
+    def sketch(self, frame: int):
         from mechcli.core.linkage.sketch import Bar
         j1, j2, j3 = self.joints
         return tuple(Bar(p, j) for p, j in zip(self.points, self.joints)) + (
             Bar(j1, j2), Bar(j2, j3), Bar(j3, j1))
 
 
-def _wrap(a):
+def _wrap(a: Any):
     return (a + np.pi) % (2 * np.pi) - np.pi
 
 
-def _geometry(tri, K, x, y, phi):
+def _geometry(tri: Any, K: Any, x: Any, y: Any, phi: Any):
     """r_k = J_k - K_k, t_k = dJ_k/dphi and R(phi) d_k at the pose."""
     c, s = np.cos(phi), np.sin(phi)
     r, t, Rd = [], [], []
@@ -220,11 +220,11 @@ def _geometry(tri, K, x, y, phi):
     return r, t, Rd
 
 
-def _matrix(r, t):
+def _matrix(r: Any, t: Any):
     return [(rk[0], rk[1], rk[0] * tk[0] + rk[1] * tk[1]) for rk, tk in zip(r, t)]
 
 
-def _cofactors(A):
+def _cofactors(A: Any):
     """The cofactors of the 3x3 matrix A (rows of arrays) and its determinant: the
     solves with one matrix share them (:func:`_solve`)."""
     (a, b, c), (d, e, f), (g, h, i) = A
@@ -235,7 +235,7 @@ def _cofactors(A):
     return ((c11, c12, c13), (c21, c22, c23), (c31, c32, c33)), det
 
 
-def _solve(cof, rhs, det):
+def _solve(cof: Any, rhs: Any, det: Any):
     """A u = rhs from A's cofactors: u = adj(A) rhs / det (Cramer's rule)."""
     (c11, c12, c13), (c21, c22, c23), (c31, c32, c33) = cof
     r1, r2, r3 = rhs
@@ -244,13 +244,13 @@ def _solve(cof, rhs, det):
             (c13 * r1 + c23 * r2 + c33 * r3) * inv)
 
 
-def _cramer(A, rhs, det=None):
+def _cramer(A: Any, rhs: Any, det: Any = None):
     """Solve the 3x3 systems A u = rhs (arrays of positions) by Cramer's rule."""
     cof, d = _cofactors(A)
     return _solve(cof, rhs, d if det is None else det)
 
 
-def _newton(tri, K, x, y, phi, scale):
+def _newton(tri: Any, K: Any, x: Any, y: Any, phi: Any, scale: float):
     """Newton on the closure equations from the pose (x, y, phi), in place; returns
     (converged mask, A, r, t, Rd) at the final pose.  Each iteration first measures
     the closure error |(|r_k| - l_k)| ~ |g_k| / l_k at the current pose and stops when
@@ -276,7 +276,7 @@ def _newton(tri, K, x, y, phi, scale):
     return ok, A, r, t, Rd
 
 
-def continuation_table(tri, known, q0, pose0, step=TABLE_STEP):
+def continuation_table(tri: Any, known: Any, q0: float, pose0: Any, step: float = TABLE_STEP):
     """The ternary link's pose against the driver's angle, by continuation from the
     drawing: ``known(q)`` gives the known points K_1..K_3 (PointState with x, y) at
     driver angles ``q`` (an array); ``pose0 = (x, y, phi)`` at ``q0``.  The marches and
@@ -287,7 +287,7 @@ def continuation_table(tri, known, q0, pose0, step=TABLE_STEP):
     scale = max([abs(v) for v in pose0[:2]] + [abs(tri.length_1), abs(tri.length_2),
                                                 abs(tri.length_3), 1e-300])
 
-    def advance(Kall, i, prev):
+    def advance(Kall: Any, i: Any, prev: Any):
         K = [_Pt(p.x[i], p.y[i]) for p in Kall]
         x, y, phi = (np.array(v, dtype=float) for v in prev)
         ok, _A, _r, _t, _Rd = _newton(tri, K, x, y, phi, scale)
@@ -298,7 +298,7 @@ def continuation_table(tri, known, q0, pose0, step=TABLE_STEP):
     return table_from_marches(known, advance, q0, pose0, scale, step)
 
 
-def _from_table(table, period, q):
+def _from_table(table: tuple, period: float, q: Any):
     """The pose ``(x, y, phi)`` interpolated in one continuation table at ``q``."""
     from mechcli.core.linkage.newton_group import _from_table as read
 
@@ -308,5 +308,5 @@ def _from_table(table, period, q):
 class _Pt:
     __slots__ = ("x", "y")
 
-    def __init__(self, x, y):
+    def __init__(self, x: Any, y: Any):
         self.x, self.y = x, y
