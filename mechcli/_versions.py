@@ -3,7 +3,7 @@
 ``mechcli --version`` and every run's ``outputs.json`` name the versions of numpy,
 scipy and matplotlib.  Importing :mod:`importlib.metadata` (email, zipfile, socket,
 pathlib ...) and letting it look a distribution up costs about 25 ms of a run of
-~100 ms (issue 17, start-up).  The version is one header of a file that is easy to
+~100 ms (start-up).  The version is one header of a file that is easy to
 find: the first ``NAME-VERSION.dist-info`` directory along :data:`sys.path` (the
 order :mod:`importlib.metadata` searches too) holds ``METADATA`` with a
 ``Version:`` line.  Anything else (an egg, a zip, an odd layout) falls back to

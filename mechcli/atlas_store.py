@@ -1,4 +1,4 @@
-"""Former name of :mod:`mechcli.runner.atlas_store` (moved there, issue 32), kept importable.
+"""Former name of :mod:`mechcli.runner.atlas_store` (moved there), kept importable.
 
 The module is registered under both names, so ``mechcli.atlas_store`` *is*
 ``mechcli.runner.atlas_store`` (attributes set on one, e.g. by a test's monkeypatch, are

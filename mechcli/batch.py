@@ -1,4 +1,4 @@
-"""Former name of :mod:`mechcli.runner.batch` (moved there, issue 32), kept importable.
+"""Former name of :mod:`mechcli.runner.batch` (moved there), kept importable.
 
 The module is registered under both names, so ``mechcli.batch`` *is*
 ``mechcli.runner.batch`` (attributes set on one, e.g. by a test's monkeypatch, are

@@ -4,7 +4,7 @@ Every problem, element and result type of mechcli is a frozen dataclass.  The st
 decorator writes the source of ``__init__``, ``__repr__``, ``__eq__``, ``__hash__``,
 ``__setattr__`` and ``__delattr__`` for each class and compiles it with ``exec`` (on
 Python < 3.13 one ``exec`` per method): about 0.5 ms a class, 17 ms of the 60 ms that
-``mechcli kin`` spent beyond ``import numpy`` for the 33 classes on its path (issue 17).
+``mechcli kin`` spent beyond ``import numpy`` for the 33 classes on its path.
 :func:`record` lets ``dataclasses`` collect the fields (no code generated) and gives the
 class the same methods as closures over the field names, so a class costs ~0.03 ms.
 

@@ -1,4 +1,4 @@
-"""The type aliases of mechcli's annotations (issue 32 §3), in one place.
+"""The type aliases of mechcli's annotations, in one place.
 
 Pure typing: imports nothing of mechcli and costs nothing at run time beyond
 ``typing`` (the modules that use the aliases import them under

@@ -1,4 +1,4 @@
-"""CAD files of the geometry a command draws: ``--export dxf,svg`` (issue 33 §1).
+"""CAD files of the geometry a command draws: ``--export dxf,svg``.
 
 A :class:`Sketch` holds closed or open polylines and circles, each on a named layer
 (one layer per kind of line: ``PROFILE``, ``PITCH``, ``OUTLINE``, ``LINKS``, ``PINS``,

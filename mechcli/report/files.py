@@ -21,7 +21,7 @@ through.  An OS error while writing there (``--out`` under a regular file, a
 read-only folder, a folder where the file should go) is the same error with
 the OS's reason: the user's ``--out`` is wrong, it is not a bug.
 
-A run's files are staged (issue 34 §2): :class:`Outputs` writes them into a hidden
+A run's files are staged: :class:`Outputs` writes them into a hidden
 folder beside ``--out`` (``.NAME.mechcli-<random>``), and :meth:`Outputs.manifest`
 commits the run: the earlier run's files that are still valid for the user (changed
 since, or never mechcli's) are hard-linked in, the manifest is written last, and the
@@ -96,7 +96,7 @@ def _temporary(path):
     ``O_EXCL`` and mode 0600, under a name tried again on a clash -- what
     :func:`tempfile.mkstemp` gives, without importing :mod:`tempfile` (with
     :mod:`shutil` and :mod:`random`, ~2.5 ms of every start-up where nothing else
-    imported them, issue 17)."""
+    imported them)."""
     for _ in range(100):
         name = os.path.join(path.parent, f".{path.name}.{os.urandom(6).hex()}.tmp")
         try:
@@ -209,7 +209,7 @@ def write_csv_stream(path, headers, chunks, digits=DEFAULT_DIGITS, guard=True,
     to a temporary file in the target folder, renamed over *path* at the end, so a
     refusal (a NaN or inf, :class:`OutputError`), an error or an interrupt midway
     leaves no half-written file.  The bytes are those :func:`write_csv` writes for
-    the same rows; only one chunk is held at a time (issue 17: a 1e7-row sweep).
+    the same rows; only one chunk is held at a time (a 1e7-row sweep).
     With *guard* (default) a SIGTERM meanwhile removes the temporary file too
     (:func:`_terminate_as_exit`); :func:`write_csv` leaves a small CSV without it.
     *size_hint*: the expected bytes, if known (:func:`_sha256` picks its hash by it).
@@ -306,7 +306,7 @@ def _sha256(data=b"", size=None):
     """A SHA-256 hash object (of *data*, bytes; *size*: the bytes it will be given in
     all, None if unknown).  For small data CPython's built-in implementation (``_sha2``
     from 3.12, ``_sha256`` before): :mod:`hashlib` loads OpenSSL first, 2.3 ms of a
-    ~130 ms ``kin`` run (issue 17).  For large or unknown sizes, and on other Pythons,
+    ~130 ms ``kin`` run.  For large or unknown sizes, and on other Pythons,
     :mod:`hashlib`'s, several times faster per byte.  Both give the same digest
     (``tests/unit/test_speed_streaming.py``)."""
     global _SHA256

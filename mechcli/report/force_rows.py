@@ -1,4 +1,4 @@
-"""``force.csv`` with both sides of every load switch (issue 20).
+"""``force.csv`` with both sides of every load switch.
 
 Where a conditional load switches on or off inside the sweep, the table gets two
 rows at the same input: the limit from the smaller input first, then from the

@@ -44,7 +44,7 @@ def csv_text(columns, digits=DEFAULT_DIGITS):
     return "\n".join(lines) + "\n"
 
 
-# -- result names with their unit (issue 18 item 8) ---------------------------------------
+# -- result names with their unit ---------------------------------------
 #: results that are lengths in the spec's unit: their names carry the unit, ``d`` ->
 #: ``d_mm``, ``a_w_2`` -> ``a_w_mm_2`` (a variant's index stays last, as in
 #: ``alpha_w_deg_2``); the bare names stay in the JSON as aliases for one release
@@ -177,7 +177,7 @@ def present(spec, solution, run, outputs):
     return rep, with_aliases(results, unit), warnings
 
 
-# -- undercut: one criterion, one warning (issue 20 section 3) ------------------------------
+# -- undercut: one criterion, one warning ------------------------------
 def undercut_margin_text(g, tooth, sc, u, lang="en"):
     """What a sharp-cornered cutter (the book's ``gear_cut``) cuts of the involute: the
     measure beside the criterion x >= x_min (a standard cutter's tip rounding spares

@@ -91,7 +91,7 @@ def fourbar_results(prob, an, inversions, ranges, scale):
         r["gamma_at_180_deg"] = _deg(m.gamma180)
     r["dead_points_output_driving_deg"] = [
         _deg(m.dead_theta3[j]) for j in (0, 1) if m.dead_output[j]]
-    # the name without its unit, kept as an alias for one release (issue 18 item 8)
+    # the name without its unit, kept as an alias for one release
     r["dead_points_output_driving"] = r["dead_points_output_driving_deg"]
     for k, inv in enumerate(inversions, start=1):
         r[f"inversion_frame{k}"] = inv.type
@@ -559,8 +559,8 @@ def present(spec, solution, lang, digits=DEFAULT_DIGITS):
 
 
 #: results that are lengths in the spec's unit, by kind: their names carry the unit
-#: (``longest`` -> ``longest_mm``); the bare names stay as aliases for one release (issue 18
-#: item 8).  A five-bar's ``shortest`` is two link numbers, not a length.
+#: (``longest`` -> ``longest_mm``); the bare names stay as aliases for one release.
+#: A five-bar's ``shortest`` is two link numbers, not a length.
 LENGTH_RESULTS = {
     "fourbar": frozenset(("longest", "shortest", "excess")),
     "slider_crank": frozenset(("stroke", "x_ext", "x_fold", "dead_points_slider_driving")),

@@ -464,7 +464,7 @@ def _is_slide(q):
 
 
 def slider_results(spec, quantities, result, approx=None):
-    """Named results of every slider (slide) output (issue 19): where it moves fastest
+    """Named results of every slider (slide) output: where it moves fastest
     in each direction and where its acceleration is 0.
 
     * ``<v>_max_forward_<u>``, ``..._at_<deg>``, ``..._at_<deg>_tol``: the greatest

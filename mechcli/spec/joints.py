@@ -1,4 +1,4 @@
-"""``[mechanism] type = "joints"``: a linkage given by its drawing (issue 30).
+"""``[mechanism] type = "joints"``: a linkage given by its drawing.
 
 ::
 

@@ -47,8 +47,8 @@ QUANTITIES = ("position", "velocity", "acceleration")
 #: the shaper with --animate at 0.89 GB (2,000,001 used to be allowed: 2.8 GB)
 MAX_POSITIONS = 600_001
 POSITIONS_WHY = "1 GiB budget at ~1.5 kB per position"
-#: `mechcli kin` streams a longer sweep to its CSV chunk by chunk in bounded memory (issue
-#: 17; the analysis, table and plots run on every k-th row, see InputSpec.count); the cap
+#: `mechcli kin` streams a longer sweep to its CSV chunk by chunk in bounded memory
+#: (the analysis, table and plots run on every k-th row, see InputSpec.count); the cap
 #: bounds the run's time and the CSV's size (~10 GB at 1e8 rows)
 MAX_STREAMED = 100_000_001
 STREAMED_WHY = f"rows past {MAX_POSITIONS:,} are streamed to the CSV"

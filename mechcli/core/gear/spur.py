@@ -246,7 +246,7 @@ class SpurGear:
     def undercut(self) -> bool:
         """True if the standard rack undercuts this gear (x < x_min); False for internal gears.
 
-        This is mechcli's undercut criterion (issue 20).  The standard rack cutter's tip
+        This is mechcli's undercut criterion.  The standard rack cutter's tip
         is rounded with the radius c* m / (1 - sin alpha), so its straight flank ends
         ha* m below its reference line; the gear is undercut when that end passes the
         tangent point N of the line of action: (ha* - x) m > r sin^2(alpha).  The book's

@@ -253,7 +253,7 @@ def _fields(el: Any):
 # ---------------------------------------------------------------------------
 # The motion records hold arrays, which ``==`` cannot compare as a whole: they compare
 # (and hash) by identity, ``eq=False``, which also spares the generated ``__eq__`` and
-# ``__hash__`` at start-up (issue 17).
+# ``__hash__`` at start-up.
 @record(eq=False)
 class PointMotion:
     """Motion of a point: coordinates x, y [m], velocity vx, vy [m/s] and

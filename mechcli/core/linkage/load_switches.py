@@ -3,8 +3,8 @@ velocity sign, a stroke band) switches on or off inside a force sweep, the
 kinetostatics at that very input once with the load off and once with it on.
 
 The reactions and the balancing torque jump there; a table of the sweep gives the
-two limits as two rows at the same input, the one of the smaller input first
-(issue 20), instead of one value on one side.  Each side is evaluated exactly at
+two limits as two rows at the same input, the one of the smaller input first,
+instead of one value on one side.  Each side is evaluated exactly at
 the switch, with every conditional load forced to the state it has on that side
 (no nudge of the input).
 

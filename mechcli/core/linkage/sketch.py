@@ -3,7 +3,7 @@
 <mechcli.core.linkage.elements.Element.sketch>` returns them).
 
 Kept apart from :mod:`.elements` so that a run that draws nothing (``kin --no-plot``)
-does not build their classes at start-up (issue 17); ``elements.Bar`` etc. and
+does not build their classes at start-up; ``elements.Bar`` etc. and
 ``mechcli.core.linkage.Bar`` still name them.
 
 May import: nothing of mechcli.

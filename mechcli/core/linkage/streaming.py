@@ -1,4 +1,4 @@
-"""Sweeps too long to hold in memory, solved and handed out chunk by chunk (issue 17).
+"""Sweeps too long to hold in memory, solved and handed out chunk by chunk.
 
 A streamed sweep is the rows of ``np.linspace(start, stop, count)`` for a
 ``count`` past what is kept in memory (``mechcli kin`` beyond 600,001

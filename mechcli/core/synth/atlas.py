@@ -1,4 +1,4 @@
-"""A digital Hrones–Nelson atlas (issue 15): coupler-curve pages, the type chart,
+"""A digital Hrones–Nelson atlas: coupler-curve pages, the type chart,
 an atlas of shape descriptors built at scale, path synthesis by atlas search and
 local refinement.
 
