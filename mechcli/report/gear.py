@@ -642,9 +642,9 @@ def present_involute(spec, sol, run, outputs):
     if run.plot:
         import numpy as np
 
-        from mechcli.report import gear_plot
+        from mechcli.report import gear_plots
         curve = tuple(np.asarray(c) for c in sol["curve"])
-        gear_plot.plot_involute({**sol, "curve": curve}, spec, run, outputs)
+        gear_plots.plot_involute({**sol, "curve": curve}, spec, run, outputs)
     return report, results, []
 
 
@@ -760,8 +760,8 @@ def present_spur(spec, sol, run, outputs):
                                lang)])
     outputs.csv("gear.csv", [(f"x_{u}", outline.x / sc), (f"y_{u}", outline.y / sc)])
     if run.plot:
-        from mechcli.report import gear_plot
-        gear_plot.plot_gear(sol, spec, run, outputs)
+        from mechcli.report import gear_plots
+        gear_plots.plot_gear(sol, spec, run, outputs)
     return report, results, warnings
 
 
@@ -931,15 +931,15 @@ def present_pair(spec, pairs, run, outputs):
 
 
 def _pictures(run, animate, kind, solution, spec, outputs):
-    """``<kind>.png`` unless --no-plot, and the GIF when asked (gear_plot's
+    """``<kind>.png`` unless --no-plot, and the GIF when asked (gear_plots's
     ``plot_<kind>`` / ``animate_<kind>``; matplotlib imported only here)."""
     if not (run.plot or animate):
         return
-    from mechcli.report import gear_plot
+    from mechcli.report import gear_plots
     if run.plot:
-        getattr(gear_plot, f"plot_{kind}")(solution, spec, run, outputs)
+        getattr(gear_plots, f"plot_{kind}")(solution, spec, run, outputs)
     if animate:
-        getattr(gear_plot, f"animate_{kind}")(solution, spec, run, outputs)
+        getattr(gear_plots, f"animate_{kind}")(solution, spec, run, outputs)
 
 
 # -- generation (gear_cut) ------------------------------------------------------------

@@ -86,7 +86,7 @@ OWN_CORE = {
     "mechcli.report.cam": "mechcli.core.cam",
     "mechcli.report.cam_plots": "mechcli.core.cam",
     "mechcli.report.gear": "mechcli.core.gear",
-    "mechcli.report.gear_plot": "mechcli.core.gear",
+    "mechcli.report.gear_plots": "mechcli.core.gear",
     "mechcli.report.grashof": "mechcli.core.grashof",
     # the structural analysis of grashof's mobility kind and of a linkage by its joints
     "mechcli.report.structure": "mechcli.core.grashof",
@@ -116,7 +116,7 @@ REPORT_CORE_FUNCTIONS = {
     "mechcli.report.force": {"is_constant", "noise_level"},
     "mechcli.report.cam_plots": {"working_outline"},
     "mechcli.report.gear": {"degrees_minutes_seconds", "format_dms"},
-    "mechcli.report.gear_plot": {"gear_outline", "generated_tooth", "ring_outline",
+    "mechcli.report.gear_plots": {"gear_outline", "generated_tooth", "ring_outline",
                                  "mesh_positions", "cutter_positions"},
 }
 

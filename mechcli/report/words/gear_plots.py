@@ -1,4 +1,4 @@
-"""The wording catalogue's ``gear_plot`` section: the labels of mechcli/report/gear_plot.py's
+"""The wording catalogue's ``gear_plots`` section: the labels of mechcli/report/gear_plots.py's
 figures (see the package docstring)."""
 
 WORDS = {

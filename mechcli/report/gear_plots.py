@@ -25,13 +25,13 @@ def plot_involute(sol, spec, run, outputs):
     sc, u = spec.header.scale, spec.header.unit
     _, _, x, y = sol["curve"]
     fig, ax = plt.subplots(figsize=(6, 6))
-    ax.plot(x / sc, y / sc, "b-", lw=1.5, label=words.say(lang, "gear_plot.involute"))
-    _circle(ax, spec.problem.rb / sc, "c--", words.say(lang, "gear_plot.base"))
+    ax.plot(x / sc, y / sc, "b-", lw=1.5, label=words.say(lang, "gear_plots.involute"))
+    _circle(ax, spec.problem.rb / sc, "c--", words.say(lang, "gear_plots.base"))
     ax.set_aspect("equal")
     ax.set_xlabel(plotting.axis_label("x", u))
     ax.set_ylabel(plotting.axis_label("y", u))
     # the legend in a row above the axes (it covers no curve), the title above it
-    ax.set_title(words.say(lang, "gear_plot.involute_curve"), pad=16)
+    ax.set_title(words.say(lang, "gear_plots.involute_curve"), pad=16)
     plotting.legend_above(ax, fontsize=7)
     plotting.save_png(fig, outputs, "involute.png")
 
@@ -39,7 +39,7 @@ def plot_involute(sol, spec, run, outputs):
 def _gear_axes(ax, g, sc, lang, centre=(0.0, 0.0), legend=True):
     for r, style, key in ((g.ra, "r:", "tip"), (g.r, "g-.", "reference"), (g.rb, "c--", "base"),
                           (g.rf, "b:", "root")):
-        _circle(ax, r / sc, style, words.say(lang, f"gear_plot.{key}") if legend else None,
+        _circle(ax, r / sc, style, words.say(lang, f"gear_plots.{key}") if legend else None,
                 centre=centre)
 
 
@@ -56,13 +56,13 @@ def plot_gear(sol, spec, run, outputs):
         a.set_xlabel(plotting.axis_label("x", u))
         a.set_ylabel(plotting.axis_label("y", u))
     plotting.legend_above(ax, fontsize=7, ncol=4)   # above the axes: it covers no tooth
-    ax.set_title(words.say(lang, "gear_plot.gear", m=g.m / sc, z=g.z, x=g.x), pad=16)
+    ax.set_title(words.say(lang, "gear_plots.gear", m=g.m / sc, z=g.z, x=g.x), pad=16)
     half = 1.6 * math.pi / g.z
     r0, r1 = g.rf / sc * 0.97, g.ra / sc * 1.02
     bx.set_xlim(-r1 * math.sin(half), r1 * math.sin(half))
     bx.set_ylim(r0 * math.cos(half), r1)
     _circle(bx, tooth.r_form / sc, "m-", lw=0.6)
-    bx.set_title(words.say(lang, "gear_plot.tooth", r=tooth.r_form / sc, u=u), pad=16)
+    bx.set_title(words.say(lang, "gear_plots.tooth", r=tooth.r_form / sc, u=u), pad=16)
     plotting.save_png(fig, outputs, "gear.png")
 
 
@@ -99,9 +99,9 @@ def plot_pair(pair, spec, run, outputs):
     else:
         ax.fill(x2, y2, color="#fcbba1", zorder=0)
     ax.plot(x2, y2, "r-", lw=0.8)
-    _circle(ax, pair.dw1 / 2 / sc, "g-.", words.say(lang, "gear_plot.pitch_w"))
+    _circle(ax, pair.dw1 / 2 / sc, "g-.", words.say(lang, "gear_plots.pitch_w"))
     _circle(ax, pair.dw2 / 2 / sc, "g-.", centre=(0, c2 / sc))
-    _circle(ax, g1.rb / sc, "c--", words.say(lang, "gear_plot.bases"))
+    _circle(ax, g1.rb / sc, "c--", words.say(lang, "gear_plots.bases"))
     _circle(ax, g2.rb / sc, "c--", centre=(0, c2 / sc))
     # line of action N1N2 through the pitch point at alpha' to the common tangent
     aw = pair.alpha_w
@@ -109,11 +109,11 @@ def plot_pair(pair, spec, run, outputs):
     n1 = g1.rb * foot
     n2 = np.array([0.0, c2]) + g2.rb * (foot if g2.internal else -foot)
     ax.plot([n1[0] / sc, n2[0] / sc], [n1[1] / sc, n2[1] / sc], "m-", lw=1.0,
-            label=words.say(lang, "gear_plot.line"))
+            label=words.say(lang, "gear_plots.line"))
     ax.plot([n1[0] / sc, n2[0] / sc], [n1[1] / sc, n2[1] / sc], "mo", ms=3)
     if contact.size:
         ax.plot(contact[:, 0] / sc, contact[:, 1] / sc, "ko", ms=5,
-                label=words.say(lang, "gear_plot.contact"))
+                label=words.say(lang, "gear_plots.contact"))
     rw1 = pair.dw1 / 2
     span = max(4 * g1.p, 1.2 * pair.line_of_action)
     ax.set_xlim(-span / sc, span / sc)
@@ -122,7 +122,7 @@ def plot_pair(pair, spec, run, outputs):
     plotting.legend_above(ax, fontsize=7, ncol=4)   # above the axes: it covers no tooth
     ax.set_xlabel(plotting.axis_label("x", u))
     ax.set_ylabel(plotting.axis_label("y", u))
-    key = "gear_plot.pair_internal" if g2.internal else "gear_plot.pair"
+    key = "gear_plots.pair_internal" if g2.internal else "gear_plots.pair"
     # above the legend's row (legend_above)
     ax.set_title(words.say(lang, key, z1=g1.z, z2=g2.z, a=pair.a_w / sc, u=u,
                            eps=pair.epsilon_alpha), pad=24)
@@ -171,8 +171,8 @@ def animate_pair(pair, spec, run, outputs, frames_per_pitch=20, pitches=2):
         pts = mesh.contact(k)
         dots.set_data(pts[:, 0] / sc, pts[:, 1] / sc)
         count = len(pts)
-        title.set_text(words.say(lang, "gear_plot.in_contact", eps=pair.epsilon_alpha, n=count)
-                       + (words.say(lang, "gear_plot.no_contact") if count == 0 else ""))
+        title.set_text(words.say(lang, "gear_plots.in_contact", eps=pair.epsilon_alpha, n=count)
+                       + (words.say(lang, "gear_plots.no_contact") if count == 0 else ""))
         title.set_color("red" if count == 0 else "black")
         label.set_text(f"φ₁ = {math.degrees(mesh.phi1[k] - mesh.phi1[0]):.1f}°")
         frames.grab()
@@ -200,15 +200,15 @@ def _generation_axes(ax, tooth, phi, spec, lang, teeth, cutter=True):
     ax.plot((c * out.x - s * out.y) / sc, (s * out.x + c * out.y) / sc, "k-", lw=1.3)
     _gear_axes(ax, g, sc, lang)
     if tooth.undercut:
-        _circle(ax, tooth.r_form / sc, "m-", words.say(lang, "gear_plot.form"), lw=0.8)
+        _circle(ax, tooth.r_form / sc, "m-", words.say(lang, "gear_plots.form"), lw=0.8)
     ax.set_aspect("equal")
     ax.set_xlabel(plotting.axis_label("x", u))
     ax.set_ylabel(plotting.axis_label("y", u))
     # the verdict on a second line: the panels' titles stay apart
-    key = "gear_plot.undercut" if g.undercut else "gear_plot.no_undercut"
-    ax.set_title(words.say(lang, "gear_plot.cut", m=g.m / sc, z=g.z, alpha=math.degrees(g.alpha),
+    key = "gear_plots.undercut" if g.undercut else "gear_plots.no_undercut"
+    ax.set_title(words.say(lang, "gear_plots.cut", m=g.m / sc, z=g.z, alpha=math.degrees(g.alpha),
                            x=g.x) + "\n" + words.say(lang, key)
-                 + (words.say(lang, "gear_plot.cuts", pct=100 * tooth.undercut_fraction)
+                 + (words.say(lang, "gear_plots.cuts", pct=100 * tooth.undercut_fraction)
                     if tooth.undercut else ""), fontsize=9)
     lim = g.ra * 1.25 / sc
     ax.set_xlim(-lim, lim)
@@ -224,7 +224,7 @@ def plot_generation(sol, spec, run, outputs):
     fig, axes = plt.subplots(1, len(teeth), figsize=(6.5 * len(teeth), 7.5), squeeze=False)
     for ax, tooth in zip(axes[0], teeth):
         _generation_axes(ax, tooth, phi, spec, lang, spec.problem.cutter_teeth)
-    fig.suptitle(words.say(lang, "gear_plot.generation"))
+    fig.suptitle(words.say(lang, "gear_plots.generation"))
     plotting.save_png(fig, outputs, "generation.png")
 
 
