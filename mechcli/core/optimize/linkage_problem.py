@@ -12,7 +12,7 @@ on the engine once per term and returns an
 from __future__ import annotations
 
 import math
-from typing import Callable, Optional, Tuple
+from typing import Any, Callable, Optional, Tuple
 
 import numpy as np
 
@@ -77,7 +77,7 @@ class CrankConditions:
     """The book's g1 … g6: the four-bar's link 1 is a crank (式 7-8 … 7-11)."""
 
 
-def constraint_names(constraints, extra=()):
+def constraint_names(constraints: Any, extra: Any = ()):
     """One name per column of g; a name met again gets ``_2``, ``_3`` … (the
     first keeps the plain name: ``gamma_min``)."""
     names = []
@@ -118,8 +118,9 @@ class LinkageEvaluator:
         compute (results of another command, one design at a time).
     """
 
-    def __init__(self, candidates: Callable, driver: int, goal=None, constraints=(),
-                 samples: int = 360, extra=None, extra_names=(), followers=None):
+    def __init__(self, candidates: Callable, driver: int, goal: Any = None, constraints: Any = (),
+                 samples: int = 360, extra: Any = None, extra_names: Any = (),
+                 followers: Any = None):
         self.candidates = candidates
         self.driver = driver
         self.followers = dict(followers or {})
@@ -130,7 +131,7 @@ class LinkageEvaluator:
         self.names = constraint_names(self.constraints, extra_names)
 
     # -- the goal ---------------------------------------------------------
-    def _function(self, pop, goal, params):
+    def _function(self, pop: Any, goal: Any, params: Any):
         if isinstance(goal.phi0, str):
             phi0, ok0 = terms.input_limit(pop, goal.output, goal.phi0.split("_")[1])
         else:
@@ -143,7 +144,7 @@ class LinkageEvaluator:
                             * np.ones((q.shape[0], 1)), q], axis=1)
         return terms.measure(dev, goal.measure), ok & ok0, q
 
-    def _path(self, pop, goal, params):
+    def _path(self, pop: Any, goal: Any, params: Any):
         theta0 = params.get("theta0", goal.theta0)
         d, ok = terms.path_deviation(pop, goal.point, goal.targets, goal.angles, theta0)
         q = None
@@ -151,7 +152,7 @@ class LinkageEvaluator:
             q = np.asarray(theta0, dtype=float).reshape(-1, 1) + goal.angles[None, :]
         return terms.measure(d, goal.measure), ok, q
 
-    def _dense(self, q):
+    def _dense(self, q: Any):
         """The goal's input range (M, N) sampled as densely as a revolution's
         ``samples`` (the goal's own positions included), for the constraints
         ``over = "range"``."""
@@ -162,7 +163,7 @@ class LinkageEvaluator:
         t = np.linspace(0.0, 1.0, n)
         return np.sort(np.concatenate([lo + (hi - lo) * t, q], axis=-1), axis=-1)
 
-    def details(self, X):
+    def details(self, X: Any):
         """Per-design details for the report: deviations and inputs (M, N)."""
         linkage, built, params = self.candidates(np.atleast_2d(X))
         pop = terms.Population(linkage, self.driver, self.samples, self.followers)
@@ -183,7 +184,7 @@ class LinkageEvaluator:
             out.update(dist=d, theta0=np.asarray(theta0, dtype=float).reshape(-1))
         return out
 
-    def __call__(self, X) -> Evaluation:
+    def __call__(self, X: Any) -> Evaluation:
         X = np.atleast_2d(np.asarray(X, dtype=float))
         M = X.shape[0]
         linkage, built, params = self.candidates(X)

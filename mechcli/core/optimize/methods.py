@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import math
 import time
+from typing import Any, Callable, Optional
 
 import numpy as np
 
@@ -42,7 +43,7 @@ class _Smooth:
     """f, g and their finite-difference gradients at x, from one population
     evaluation of the stencil (cached on x)."""
 
-    def __init__(self, problem, central=True, size=None):
+    def __init__(self, problem: Any, central: bool = True, size: Any = None):
         self.p = problem
         self.central = central
         self.key = None
@@ -52,7 +53,7 @@ class _Smooth:
         # length in metres and one in millimetres get the same relative step)
         self.size = np.ones(problem.n) if size is None else np.asarray(size, dtype=float)
 
-    def _at(self, x):
+    def _at(self, x: Any):
         x = np.asarray(x, dtype=float)
         key = x.tobytes()
         if key == self.key:
@@ -94,24 +95,25 @@ class _Smooth:
         self.df, self.dg = df, dg
         self.key = key
 
-    def f(self, x):
+    def f(self, x: Any):
         self._at(x)
         return self.f0
 
-    def grad(self, x):
+    def grad(self, x: Any):
         self._at(x)
         return self.df
 
-    def g(self, x):
+    def g(self, x: Any):
         self._at(x)
         return self.g0
 
-    def jac(self, x):
+    def jac(self, x: Any):
         self._at(x)
         return self.dg
 
 
-def _finish(problem, x, method, message, converged, iterations, started, starts=(), extra=None):
+def _finish(problem: Any, x: Any, method: str, message: str, converged: bool, iterations: int,
+            started: Any, starts: Any = (), extra: Any = None):
     f, g, ok = problem.one(x)
     feasible = bool(problem.feasible(g, ok))
     return Result(np.asarray(x, dtype=float), f, g, problem.active(g), feasible,
@@ -120,7 +122,8 @@ def _finish(problem, x, method, message, converged, iterations, started, starts=
                   tuple(starts), extra)
 
 
-def _record(problem, iteration, x, progress=None, total=None):
+def _record(problem: Any, iteration: int, x: Any, progress: Optional[Callable] = None,
+            total: Optional[int] = None):
     f, g, ok = problem.one(x)
     violation = problem.violation(g, ok)
     problem.record(iteration, x, f, violation, ok)
@@ -129,7 +132,7 @@ def _record(problem, iteration, x, progress=None, total=None):
                  evaluable=bool(ok))
 
 
-def sizes(problem, x0):
+def sizes(problem: Any, x0: Any):
     """Each variable's typical size: |start|, or a tenth of its bounds' span
     when the start is 0 (1 when that is not finite either)."""
     x0 = np.abs(np.asarray(x0, dtype=float))
@@ -138,7 +141,8 @@ def sizes(problem, x0):
     return np.where(x0 > 0, x0, alt)
 
 
-def _local(problem, method, x0, tol, maxiter, central=True, progress=None, done=0):
+def _local(problem: Any, method: str, x0: Any, tol: float, maxiter: int, central: bool = True,
+           progress: Optional[Callable] = None, done: int = 0):
     """A local method on the scaled problem: u = x / size (every variable of
     order 1), F = f / |f(start)|, G = g / scale; so tol means the same whatever
     the unit of the lengths (a four-bar in metres or in millimetres)."""
@@ -153,20 +157,20 @@ def _local(problem, method, x0, tol, maxiter, central=True, progress=None, done=
     u0 = np.asarray(x0, dtype=float) / size
     it = [0]
 
-    def F(u):
+    def F(u: Any):
         v = sm.f(u * size)
         return v / fref if sm.ok0 else _WALL + float(problem.violation(sm.g0, False))
 
-    def DF(u):
+    def DF(u: Any):
         return sm.grad(u * size) * size / fref
 
-    def G(u):
+    def G(u: Any):
         return sm.g(u * size) / cs
 
-    def DG(u):
+    def DG(u: Any):
         return sm.jac(u * size) * size[None, :] / cs[:, None]
 
-    def cb(uk, *args):
+    def cb(uk: Any, *args: Any):
         it[0] += 1
         # the count goes on over the starts of a multi-start (*done* before this one)
         _record(problem, it[0], np.asarray(getattr(uk, "x", uk)) * size,
@@ -199,7 +203,7 @@ def _local(problem, method, x0, tol, maxiter, central=True, progress=None, done=
             res.message = (f"stopped with the duality measure {res.duality:.1e} above tol "
                            f"(the design may lie inside an active constraint)")
     else:   # nelder-mead with an extreme barrier
-        def barrier(u):
+        def barrier(u: Any):
             f, g, ok = problem.one(u * size)
             if problem.feasible(g, ok):
                 return f / fref
@@ -224,7 +228,8 @@ _BARRIER_DECAY = 0.2
 _RESTARTS = 12
 
 
-def _trust_constr(F, DF, u0, bounds, cons, tol, maxiter, cb):
+def _trust_constr(F: Any, DF: Any, u0: Any, bounds: Any, cons: Any, tol: float, maxiter: int,
+                  cb: Any):
     """scipy's trust-constr, continued until its design's duality measure is
     at most ``tol``; returns scipy's last result (``duality`` added) and the
     iterations of all its runs.
@@ -273,7 +278,7 @@ def _trust_constr(F, DF, u0, bounds, cons, tol, maxiter, cb):
     return best, nit
 
 
-def _duality(res, bounds, cons):
+def _duality(res: Any, bounds: Any, cons: Any):
     """The duality measure of a trust-constr result: the mean over its
     inequalities of |multiplier x distance to the nearer bound| (scipy lists
     the constraints' values and multipliers in the order given, the bounds
@@ -291,7 +296,7 @@ def _duality(res, bounds, cons):
     return total / max(m, 1)
 
 
-def _check_start(problem, x0, method):
+def _check_start(problem: Any, x0: Any, method: str):
     f, g, ok = problem.one(x0)
     # SLSQP and trust-constr walk from an infeasible start to the feasible
     # region (the book's 例 7-1 starts at x0 = [6, 2.5], which violates g7);
@@ -306,20 +311,22 @@ def _check_start(problem, x0, method):
             evaluable=ok, g=g)
 
 
-def _de(problem, tol, maxiter, popsize, seed, polish, central, progress=None):
+def _de(problem: Any, tol: float, maxiter: int, popsize: int, seed: Any, polish: bool,
+        central: bool,
+        progress: Optional[Callable] = None):
     from scipy import optimize
 
     ev0 = problem.evaluate(problem.start[None, :])
     ref = abs(float(ev0.f[0])) if ev0.ok[0] and ev0.f[0] != 0 else 1.0
     it = [0]
 
-    def fun(xt):                        # xt: (n, S), vectorized
+    def fun(xt: Any):                        # xt: (n, S), vectorized
         ev = problem.evaluate(xt.T)
         feas = problem.feasible(ev.g, ev.ok)
         pen = _WALL + problem.violation(ev.g, ev.ok)
         return np.where(feas, ev.f / ref, pen)
 
-    def cb(intermediate_result):
+    def cb(intermediate_result: Any):
         it[0] += 1
         _record(problem, it[0], intermediate_result.x, progress, maxiter)
 
@@ -349,7 +356,7 @@ def _de(problem, tol, maxiter, popsize, seed, polish, central, progress=None):
     return x, converged, it[0], message
 
 
-def _scalar(problem, method, tol, maxiter):
+def _scalar(problem: Any, method: str, tol: float, maxiter: int):
     from mechcli.core.refine import golden_section_max
     lo, hi = float(problem.lo[0]), float(problem.hi[0])
     if method == "golden":
@@ -358,7 +365,7 @@ def _scalar(problem, method, tol, maxiter):
         steps = max(1, math.ceil(math.log(max(tol, 1e-15) / (hi - lo)) / math.log(0.6180339887)))
         steps = min(steps, maxiter)
 
-        def neg(x):
+        def neg(x: Any):
             ev = problem.evaluate(np.asarray(x, dtype=float).reshape(-1, 1))
             feas = problem.feasible(ev.g, ev.ok)
             # every step evaluates one new point: it is the step's row of the history
@@ -372,7 +379,7 @@ def _scalar(problem, method, tol, maxiter):
         return np.array([float(x[0])]), True, steps, f"golden section, {steps} steps"
     from scipy import optimize
 
-    def f1(x):
+    def f1(x: Any):
         f, g, ok = problem.one(np.array([x]))
         return f if problem.feasible(g, ok) else _WALL + float(problem.violation(g, ok))
 
@@ -382,8 +389,10 @@ def _scalar(problem, method, tol, maxiter):
     return np.array([res.x]), bool(res.success), res.nit, str(res.message)
 
 
-def minimize(problem: Problem, method="slsqp", *, tol=1e-10, maxiter=1000, popsize=15,
-             seed=None, starts=1, polish=True, central=True, progress=None) -> Result:
+def minimize(problem: Problem, method: str = "slsqp", *, tol: float = 1e-10, maxiter: int = 1000,
+             popsize: int = 15,
+             seed: Optional[int] = None, starts: int = 1, polish: bool = True, central: bool = True,
+             progress: Optional[Callable] = None) -> Result:
     """Minimize ``problem`` by ``method`` (one of :data:`METHODS`).
 
     *progress*, if given, is called as ``progress(done, total, f=, violation=,

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from typing import Any
 
 import numpy as np
 
@@ -22,11 +23,11 @@ from mechcli.core.records import record
 MEASURES = ("sum_squares", "rms", "mean_abs", "max_abs")
 
 
-def _wrap(a):
+def _wrap(a: Any):
     return (a + math.pi) % (2 * math.pi) - math.pi
 
 
-def measure(dev, kind, ok=None):
+def measure(dev: Any, kind: Any, ok: Any = None):
     """Reduce deviations (M, N) to one number per candidate by ``kind``."""
     dev = np.asarray(dev, dtype=float)
     if ok is not None:
@@ -42,7 +43,7 @@ def measure(dev, kind, ok=None):
     raise ValueError(f"measure must be one of {MEASURES}, got {kind!r}")
 
 
-def output_of(motion, output):
+def output_of(motion: Any, output: Any):
     """(value, rate, acceleration) of an output: a link number (angle) or a
     slide name (``"3"``, ``"E"``)."""
     if isinstance(output, str):
@@ -63,7 +64,7 @@ class Population:
     followers: dict = dataclasses.field(default_factory=dict)
     _rev: dict = dataclasses.field(default_factory=dict)
 
-    def inputs(self, q):
+    def inputs(self, q: Any):
         """Driver inputs at primary positions q (secondary drivers follow by
         ``{link: (ratio, phase)}``), at unit speed."""
         out = {self.driver: DriverMotion(q, 1.0, 0.0)}
@@ -76,7 +77,7 @@ class Population:
         shape = self.linkage.shape
         return shape[0] if shape else 1
 
-    def revolution(self, order=1):
+    def revolution(self, order: Any = 1):
         """The motion at ``samples`` crank angles k·360°/samples (0° and 180°
         among them), order >= ``order``; results (M, samples)."""
         for o in (order, 1, 2):
@@ -87,17 +88,17 @@ class Population:
         self._rev[order] = m
         return m
 
-    def at(self, q, order=0):
+    def at(self, q: Any, order: Any = 0):
         """The motion at input positions ``q`` (M, N) or (N,)."""
         return solve(self.linkage, self.inputs(q), order=order)
 
 
-def _column(a, size):
+def _column(a: Any, size: Any):
     a = np.asarray(a, dtype=float)
     return np.broadcast_to(a.reshape(-1), (size,)) if a.size in (1, size) else a
 
 
-def input_limit(pop: Population, output, which="min", iterations=12):
+def input_limit(pop: Population, output: Any, which: Any = "min", iterations: int = 12):
     """Input angle [rad] where the output is least (``which="min"``) or
     greatest (``"max"``) over a revolution: the book's limit position of a
     rocker (例 7-1's φ0, the crank's right limit, is where the rocker angle is
@@ -131,7 +132,8 @@ def input_limit(pop: Population, output, which="min", iterations=12):
     return np.mod(q, 2 * math.pi), ok
 
 
-def function_deviation(pop: Population, output, phi0, dphi, dpsi, psi0=None, scale=1.0):
+def function_deviation(pop: Population, output: Any, phi0: Any, dphi: Any, dpsi: Any,
+                       psi0: Any = None, scale: float = 1.0):
     """Deviation of a function generator at input positions ``phi0 + dphi``:
     ``(psi - psi0) - dpsi`` with ``psi0`` the output at ``phi0`` (when None)
     or given.  Angles in rad (a slide output in m, divided by ``scale``).
@@ -155,7 +157,8 @@ def function_deviation(pop: Population, output, phi0, dphi, dpsi, psi0=None, sca
     return dev, val[:, 1:], q[:, 1:], ok
 
 
-def path_deviation(pop: Population, point, targets, angles=None, theta0=None):
+def path_deviation(pop: Population, point: Any, targets: Any, angles: Any = None,
+                   theta0: Any = None):
     """Distance of a traced point's path to target points [m].
 
     With ``angles`` (K,) the point is taken at the inputs ``theta0 + angles``
@@ -202,7 +205,7 @@ def path_deviation(pop: Population, point, targets, angles=None, theta0=None):
     return np.where(ok[:, None], d, 0.0), ok
 
 
-def _parabola_extreme(y, k, which, cyclic=True):
+def _parabola_extreme(y: Any, k: Any, which: Any, cyclic: Any = True):
     """Vertex of the parabola through samples k-1, k, k+1 of y (M, S): cyclic over a
     revolution; over a range an end sample is its own extreme (no neighbour beyond)."""
     S = y.shape[-1]
@@ -220,7 +223,7 @@ def _parabola_extreme(y, k, which, cyclic=True):
     return np.minimum(v, y1) if which == "min" else np.maximum(v, y1)
 
 
-def joint_angles(m, joints):
+def joint_angles(m: Any, joints: Any):
     """The angle at each RRR joint (between its two links, 0…π) [rad], (M, S, J)."""
     out = []
     for j in joints:
@@ -231,7 +234,7 @@ def joint_angles(m, joints):
     return out
 
 
-def transmission_range(m, joints, cyclic=True):
+def transmission_range(m: Any, joints: Any, cyclic: Any = True):
     """Least and greatest joint angle over the positions of ``m`` (refined by
     a parabola through the extreme sample and its neighbours; ``cyclic``: the
     positions are a whole revolution), over all ``joints``; ``(mu_min, mu_max,
@@ -253,14 +256,14 @@ def transmission_range(m, joints, cyclic=True):
     return np.where(ok, lo, 0.0), np.where(ok, hi, 0.0), ok
 
 
-def failed_fraction(m):
+def failed_fraction(m: Any):
     """Fraction of positions where the linkage does not assemble or is at a
     dead point, (M,)."""
     reg = np.atleast_2d(m.regular)
     return 1.0 - np.mean(reg, axis=-1)
 
 
-def four_bar_lengths(linkage):
+def four_bar_lengths(linkage: Any):
     """(l1 crank, l2 coupler, l3 rocker, l4 frame) of a four-bar (a crank and an
     RRR dyad closing on a ground point), each (M,) for a batch; DescribedError
     ``reason="not_four_bar"`` otherwise."""
@@ -292,7 +295,7 @@ def four_bar_lengths(linkage):
 CRANK_NAMES = ("g1", "g2", "g3", "g4", "g5", "g6")
 
 
-def crank_conditions(l1, l2, l3, l4):
+def crank_conditions(l1: Any, l2: Any, l3: Any, l4: Any):
     """The book's g1 … g6 (<= 0 when link 1 can turn fully as a crank), (M, 6)."""
     l1, l2, l3, l4 = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (l1, l2, l3, l4)))
     return np.stack([l1 - l2, l1 - l3, l1 - l4, l1 + l4 - l2 - l3, l1 + l2 - l3 - l4,
