@@ -79,7 +79,7 @@ class RunOptions:
         out = opts.pop("out", None)
         sets = tuple(opts.get("sets", ()) or ())
         name = stem or (spec.stem if spec else "mechcli")
-        report_run.begin(spec.stem if spec else name)
+        report_run.begin(spec.stem if spec else name, opts.get("dpi"))
         if out is not None and not str(out).strip():
             # an empty --out would write into the working folder: say so, never guess
             import click

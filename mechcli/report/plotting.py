@@ -62,15 +62,11 @@ def set_dpi(value):
 
 def dpi():
     """Resolution of a PNG: :func:`set_dpi`'s value, else the running command's
-    ``--dpi`` option, else :data:`DEFAULT_DPI`."""
+    ``--dpi`` (its run options, :func:`mechcli.report.run.begin`), else
+    :data:`DEFAULT_DPI`."""
     if _dpi_override is not None:
         return _dpi_override
-    try:
-        import click
-    except ImportError:   # a library caller without click
-        return DEFAULT_DPI
-    ctx = click.get_current_context(silent=True)
-    value = ctx.params.get("dpi") if ctx is not None else None
+    value = _run.current_dpi()
     return int(value) if value else DEFAULT_DPI
 
 

@@ -26,13 +26,22 @@ class _Current:
     stem = None
     #: one-line notices the pictures raised (no CJK font, glyphs missing), in order
     notices: list = []
+    #: the run's ``--dpi`` (None outside a command: the pictures' default)
+    dpi = None
 
 
-def begin(stem):
+def begin(stem, dpi=None):
     """Start a run: remember the spec stem (figure titles fall back to it when their
-    Chinese cannot be drawn) and forget the notices of any earlier run."""
+    Chinese cannot be drawn) and the resolution its pictures are written at, and forget
+    the notices of any earlier run."""
     _Current.stem = stem
     _Current.notices = []
+    _Current.dpi = dpi
+
+
+def current_dpi():
+    """The ``--dpi`` given to :func:`begin`, or None outside a run."""
+    return _Current.dpi
 
 
 def current_stem():
