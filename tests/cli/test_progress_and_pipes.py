@@ -69,7 +69,7 @@ def test_a_bar_appears_only_on_a_terminal_after_the_delay_and_never_with_quiet()
     assert tty.getvalue() == "" and p.bar is None
     now[0] = DELAY + 0.1
     step(3)
-    assert p.bar is not None
+    assert p.bar is not None and "3/10" in tty.getvalue()     # drawn now, not at close
     p.close()
     assert "work: chunks" in tty.getvalue() and "3/10" in tty.getvalue()
     # a pipe or a file, or -q on a terminal: nothing, however long the work

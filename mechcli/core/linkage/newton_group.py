@@ -614,7 +614,8 @@ def table_from_marches(known: Callable, advance: Callable, q0: float,
 
     qf, fwd, stopped_f = march(1)
     width = len(pose0)
-    if not stopped_f and not _jumped(_unturned(fwd[-1], fwd[0]), fwd[0], 1e-6 * scale):
+    # periodic: after the turn every body is back where it was drawn (angles and origins)
+    if not stopped_f and not _moved(fwd[0], _unturned(fwd[-1], fwd[0]), 1e-6, 1e-6 * scale):
         return _columns(qf[:-1], fwd[:-1], width), 2 * math.pi   # all but q0 + 2π
     qb, bwd, stopped_b = march(-1)
     qs = qb[1:][::-1] + qf
@@ -648,26 +649,28 @@ def _unturned(pose: Sequence[float], ref: Sequence[float]) -> Tuple[float, ...]:
     return tuple(out)
 
 
+def _moved(a: Sequence[Arr], b: Sequence[Arr], angle: float, length: Arr) -> Arr:
+    """Where the poses ``b`` are over ``angle`` [rad] (a body's turn) or ``length`` (a
+    body's origin) from the poses ``a``: per position for arrays, a bool for floats."""
+    far = np.zeros(np.shape(a[0]), dtype=bool)
+    with np.errstate(invalid="ignore"):
+        for k in range(0, len(a), 3):
+            far |= np.abs(np.subtract(b[k + 2], a[k + 2])) > angle
+            far |= np.hypot(np.subtract(b[k], a[k]), np.subtract(b[k + 1], a[k + 1])) > length
+    return far
+
+
 def _jumped(prev: Sequence[float], nxt: Sequence[float], scale: float) -> bool:
     """A continuation step that left the branch: an angle turned by over 0.5 rad or a
     body moved by over a fifth of the linkage's size in one step."""
-    for k in range(0, len(prev), 3):
-        if (abs(nxt[k + 2] - prev[k + 2]) > 0.5
-                or math.hypot(nxt[k] - prev[k], nxt[k + 1] - prev[k + 1]) > 0.2 * scale):
-            return True
-    return False
+    return bool(_moved(prev, nxt, 0.5, 0.2 * scale))
 
 
-def _left_branch(u0: Sequence[Arr], u: Sequence[Arr], scale: float) -> Arr:
+def _left_branch(u0: Sequence[Arr], u: Sequence[Arr], scale: Arr) -> Arr:
     """Positions where Newton ended far from its start (an angle by over 0.25 rad, a
     body by over a tenth of the linkage's size): on another assembly branch, which the
     table (made in 0.5° steps) would have started next to."""
-    far = np.zeros(np.shape(u[0]), dtype=bool)
-    with np.errstate(invalid="ignore"):
-        for k in range(0, len(u), 3):
-            far |= np.abs(u[k + 2] - u0[k + 2]) > 0.25
-            far |= np.hypot(u[k] - u0[k], u[k + 1] - u0[k + 1]) > 0.1 * scale
-    return far
+    return _moved(u0, u, 0.25, 0.1 * scale)
 
 
 def _wrap(a: Arr) -> Arr:
