@@ -3,11 +3,10 @@ the work ΔW(φ), ω(φ) and ω(t) (图 6-6 … 6-11)."""
 
 from __future__ import annotations
 
-import textwrap
-
 import numpy as np
 
 from mechcli.report import plotting, words
+from mechcli.report.table import wrap
 
 _T = {lang: words.table(lang, "flywheel_plots") for lang in words.LANGUAGES}
 
@@ -89,8 +88,9 @@ def _convergence(spec, sol, outputs, t):
     ax.semilogy(range(1, len(res) + 1), [max(r, floor) for r in res], "o-", color="C0")
     ax.set_xlabel(t["iter"])
     ax.set_ylabel("|ω(φ0 + T) − ω0| / (rad/s)")
-    # wrapped by hand: a wrapped title's second line would not fit above the axes
-    ax.set_title(textwrap.fill(plotting.title(spec.header.title), 60) + "\n" + t["conv"]
+    # wrapped by hand, in display columns (a Chinese character takes two): a title
+    # wrapped by matplotlib would not leave room for its second line above the axes
+    ax.set_title("\n".join(wrap(plotting.title(spec.header.title), 60)) + "\n" + t["conv"]
                  + f" ({sol.steady.root})")
     plotting.save_png(fig, outputs, "convergence.png")
 

@@ -161,7 +161,8 @@ def _surface_png(spec, problem, result, surface, outputs, t, title):
     ax.set_xlabel(_var_label(spec, 0))
     ax.set_ylabel(_var_label(spec, 1))
     ax.legend(fontsize=7, loc="best", framealpha=0.85)
-    ax.set_title(plotting.text(title) + "\n" + t["surf"], wrap=True)
+    # pad: above the colour bar's top tick label, which stands half a line over the axes
+    ax.set_title(plotting.text(title) + "\n" + t["surf"], wrap=True, pad=12)
     plotting.save_png(fig, outputs, "surface.png")
 
 

@@ -37,6 +37,11 @@ ACCURACY_WARN = 8.0
 #: (tests/unit/test_accuracy_estimate.py): the estimate of the worst position is
 #: within 0.2 digits of the true loss there (without C it was 0.6 digits optimistic).
 ACCURACY_C = (4.0, 1.0, 3.0)
+#: a result below this fraction of its natural magnitude (:func:`natural_scales`) is
+#: round-off: seven digits of headroom over the ~1e-16 of double precision for the
+#: amplification near a singular position
+NOISE_REL = 1e-9
+
 _ORDER_OF_KIND = {"angle": 0, "length": 0, "angvel": 1, "velocity": 1, "angacc": 2,
                   "acceleration": 2}
 
@@ -157,6 +162,36 @@ def _digits(err_over_scale: FloatOrArray):
     return np.clip(-np.log10(r), 0.0, FULL_DIGITS)
 
 
+def natural_scales(linkage: Linkage, sweep: Sweep, q: np.ndarray):
+    """``((1, ω, ω² + |α|), L)``: the natural magnitudes of positions, velocities and
+    accelerations of the linkage at inputs ``q`` (arrays, per radian: ω and α the
+    input's speed and acceleration, divided by the linkage's size ``L`` for a slide);
+    a length, velocity or acceleration is ``L`` times its order's.  The round-off of a
+    result is measured against them: a quantity that is zero in truth computes as
+    noise of about EPS times its natural magnitude."""
+    rotary = linkage.driver(sweep.driver).rotary
+    L = float(np.max(linkage.scale()))
+    speed = np.abs(np.broadcast_to(np.asarray(sweep.speed(q), dtype=float), q.shape))
+    accel = np.abs(np.broadcast_to(np.asarray(sweep._at(sweep.ddq, q), dtype=float), q.shape))
+    if not rotary:
+        speed, accel = speed / L, accel / L
+    return (np.ones_like(q), speed, speed * speed + accel), L
+
+
+def noise_floor(linkage: Linkage, sweep: Sweep, q: np.ndarray, kind: str,
+                rel: float = NOISE_REL):
+    """The magnitude below which a quantity of ``kind`` (``angle``, ``angvel`` …) at
+    inputs ``q`` is round-off, not motion: ``rel`` times the largest natural magnitude
+    of its order (:func:`natural_scales`), SI units (:data:`NOISE_REL`).  None for a
+    kind without an order."""
+    k = _ORDER_OF_KIND.get(kind)
+    if k is None or not np.size(q):
+        return None
+    natural, L = natural_scales(linkage, sweep, np.asarray(q, dtype=float))
+    length = kind in ("length", "velocity", "acceleration")
+    return rel * float(np.max(natural[k])) * (L if length else 1.0)
+
+
 def estimate_accuracy(linkage: Linkage, sweep: Sweep, quantities: Sequence[Any],
                       values: Dict[str, np.ndarray], extremes: Any, q: np.ndarray,
                       motion: LinkageMotion, segment: Any):
@@ -167,13 +202,7 @@ def estimate_accuracy(linkage: Linkage, sweep: Sweep, quantities: Sequence[Any],
     of every input.
     """
     amp = amplification(linkage, motion)
-    rotary = linkage.driver(sweep.driver).rotary
-    L = float(np.max(linkage.scale()))
-    speed = np.abs(np.broadcast_to(np.asarray(sweep.speed(q), dtype=float), q.shape))
-    accel = np.abs(np.broadcast_to(np.asarray(sweep._at(sweep.ddq, q), dtype=float), q.shape))
-    if not rotary:
-        speed, accel = speed / L, accel / L
-    natural = (np.ones_like(q), speed, speed * speed + accel)
+    natural, L = natural_scales(linkage, sweep, q)
     digits, worst, by_q = {}, {}, {}
     for qt in quantities:
         k = _ORDER_OF_KIND.get(qt.kind)
@@ -187,8 +216,11 @@ def estimate_accuracy(linkage: Linkage, sweep: Sweep, quantities: Sequence[Any],
         if k == 0:
             # an angle is good to EPS of a radian, a length to EPS of the linkage
             peak = max(peak, L if length else 1.0)
-        if peak == 0.0:
-            continue   # identically zero (no input speed): exact
+        if peak <= NOISE_REL * float(np.max(natural[k], initial=0.0)) * (L if length else 1.0):
+            # identically zero (no input speed), or zero in truth and computed as
+            # round-off (a coupler's α when it only translates): no digits to count
+            # against a peak that is itself noise
+            continue
         kappa = amp.get(qt.source, amp[("all",)]) if qt.source else amp[("all",)]
         kappa = np.broadcast_to(kappa, q.shape)
         if k == 0:
