@@ -433,12 +433,14 @@ def scalar_results(spec, quantities, result, accuracy_warn=None, approx=None):
         for name, e in (("max", hi), ("min", lo)):
             if e.bounded:
                 out[f"{q.symbol}_{name}_{u}"] = e.value * f
-                out[f"{q.symbol}_{name}_at_{at_unit}"] = e.at * fin
-                # how closely the refinement located it, and what reading it off
-                # the CSV rows would cost (refined extreme minus best sample)
-                out[f"{q.symbol}_{name}_at_{at_unit}_tol"] = e.tol * fin
+                if not e.constant:   # a quantity constant to round-off: no location
+                    out[f"{q.symbol}_{name}_at_{at_unit}"] = e.at * fin
+                    # how closely the refinement located it, and what reading it off
+                    # the CSV rows would cost (refined extreme minus best sample)
+                    out[f"{q.symbol}_{name}_at_{at_unit}_tol"] = e.tol * fin
                 best = np.max(samples) if name == "max" else np.min(samples)
-                out[f"{q.symbol}_{name}_grid_error_{u}"] = float(e.value - best) * f + 0.0
+                out[f"{q.symbol}_{name}_grid_error_{u}"] = \
+                    0.0 if e.constant else float(e.value - best) * f + 0.0
             else:
                 unbounded.append({"quantity": f"{q.symbol}_{name}", "towards": e.at * fin})
         if q.kind == "length" and q.symbol.startswith("s"):
@@ -490,8 +492,9 @@ def slider_results(spec, quantities, result, approx=None):
             for name, e, sign in (("forward", hi, 1.0), ("backward", lo, -1.0)):
                 if e.bounded and sign * e.value > 0:
                     out[f"{q.symbol}_max_{name}_{u}"] = sign * e.value * f
-                    out[f"{q.symbol}_max_{name}_at_{at_unit}"] = e.at * fin
-                    out[f"{q.symbol}_max_{name}_at_{at_unit}_tol"] = e.tol * fin
+                    if not e.constant:
+                        out[f"{q.symbol}_max_{name}_at_{at_unit}"] = e.at * fin
+                        out[f"{q.symbol}_max_{name}_at_{at_unit}_tol"] = e.tol * fin
         if q.kind == "acceleration" and q.symbol in zeros and approx is None:
             out[f"{q.symbol}_zero_at_{at_unit}"] = [a * fin for a, _t in zeros[q.symbol]]
             out[f"{q.symbol}_zero_at_{at_unit}_tol"] = [t * fin for _a, t in zeros[q.symbol]]
@@ -561,8 +564,10 @@ def table_rows(spec, result, step):
 
 
 def _extreme_tol(result):
-    """The largest refinement tolerance of the bounded extremes [rad or m]."""
-    tols = [e.tol for pair in result.extremes.values() for e in pair if e.bounded]
+    """The largest refinement tolerance of the bounded extremes [rad or m] (of the
+    quantities that are not constant to round-off)."""
+    tols = [e.tol for pair in result.extremes.values() for e in pair
+            if e.bounded and not e.constant]
     return max(tols) if tols else 0.0
 
 
@@ -617,7 +622,9 @@ def build_report(spec, quantities, result, lang="en", approx=None):
         f = factor_of(q.kind, spec.header.scale)
         cells = [_label(q, unit, lang)]
         for e in (hi, lo):
-            if e.bounded:
+            if e.constant:   # constant to round-off: no location
+                cells += [fixed(e.value * f, digits), say(lang, "common.constant")]
+            elif e.bounded:
                 cells += [fixed(e.value * f, digits), fixed(e.at * fin, 4)]
             else:
                 cells += [say(lang, "kin.unbounded"), "→ " + fixed(e.at * fin, 4)]

@@ -63,3 +63,23 @@ def test_kin_counts_no_digits_of_a_zero_and_warns_not(tmp_path):
     assert acc["by_quantity"]["a3"] >= 12          # a3 = −2rω1² cos θ1 (hand) is exact
     assert acc["accelerations"] == acc["by_quantity"]["a3"]
     assert not any("alpha2" in w for w in out["warnings"])
+
+
+def test_a_constant_quantity_has_its_value_and_no_location(tmp_path):
+    """ω2 ≡ −ω1 = −10 rad/s and α2 ≡ 0 (hand, above): the extremes say so, with no input
+    angle (the search stopped somewhere in noise: 习题 1-15 reported ω2's max at −76.5°
+    and its min at −77°); s3 = 2r cos θ1 keeps its located max at θ1 = 0 (hand)."""
+    res = run_inprocess("kin", CONFIGS / "ch1" / "exercise1-15.toml", "--json", "-q",
+                        "--no-plot", "--out", tmp_path)
+    assert res.returncode == 0, res.stderr
+    r = json.loads(res.stdout)["results"]
+    assert math.isclose(r["omega2_max_rad_s"], -W1, rel_tol=1e-12)
+    assert math.isclose(r["omega2_min_rad_s"], -W1, rel_tol=1e-12)
+    assert r["alpha2_max_rad_s2"] == 0.0 and r["alpha2_min_rad_s2"] == 0.0
+    for sym in ("omega2", "alpha2"):
+        assert not any(k.startswith(f"{sym}_") and "_at_" in k for k in r), sym
+    assert r["alpha2_max_grid_error_rad_s2"] == 0.0
+    assert abs(r["s3_max_at_deg"]) <= r["s3_max_at_deg_tol"] + 1e-9
+    assert math.isclose(r["s3_max_mm"], 200.0, rel_tol=1e-12)
+    table = (tmp_path / "report.txt").read_text(encoding="utf-8")
+    assert table.count("constant") == 4          # the ω2 and α2 rows, max and min cells

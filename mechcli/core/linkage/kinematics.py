@@ -20,7 +20,7 @@ runs them (:func:`analyse_sweep`) and re-exports their public names.
 from __future__ import annotations
 
 import dataclasses
-from typing import TYPE_CHECKING, Any, Dict, Sequence
+from typing import TYPE_CHECKING, Any, Dict, Sequence, Tuple
 
 import numpy as np
 
@@ -31,11 +31,13 @@ from mechcli.core.linkage.accuracy import (
     ACCURACY_WARN,
     EPS,
     FULL_DIGITS,
+    NOISE_REL,
     Accuracy,
     AccuracyRange,
     _accuracy_of_sweep,
     amplification,
     estimate_accuracy,
+    noise_floor,
 )
 from mechcli.core.linkage.engine import Linkage, solve
 from mechcli.core.linkage.extremes import _Domain, _slide_zeros, refine_extremes, zero_crossings
@@ -140,6 +142,7 @@ def analyse_sweep(linkage: Linkage, sweep: Sweep, quantities: Sequence[Any], ord
     domain = _Domain(q, runs, grid.lo_ext, grid.hi_ext, grid.connected, period,
                      (q_all[0], q_all[-1]))
     ext = refine_extremes(linkage, sweep, order, quantities, values, domain) if extremes else {}
+    ext = _constant_marked(linkage, sweep, quantities, values, ext, q)
     zeros = _slide_zeros(linkage, sweep, order, quantities, values, q, runs,
                          sweep.periodic and grid.connected, q_all[0], period) if extremes else {}
     keep, out_runs, out_motion, out_values = _output_rows(out_idx, good, grid, grid_motion,
@@ -155,6 +158,31 @@ def analyse_sweep(linkage: Linkage, sweep: Sweep, quantities: Sequence[Any], ord
     deads = _one_per_dead_point(ex.deads, sweep, q_all[0], period)
     return SweepResult(q_rows, out_values, ext, ex.excluded, toggles, out_motion, out_runs,
                        accuracy, ex.tol, deads, zeros)
+
+
+def _constant_marked(linkage: Linkage, sweep: Sweep, quantities: Sequence[Any],
+                     values: Dict[str, np.ndarray], ext: Dict[str, Tuple[Extreme, Extreme]],
+                     q: np.ndarray):
+    """*ext* with the extremes of every quantity that spreads over the sweep by no more
+    than round-off marked ``constant``: :data:`~mechcli.core.linkage.accuracy.NOISE_REL`
+    of its largest magnitude or of its kind's natural magnitude
+    (:func:`~mechcli.core.linkage.accuracy.noise_floor`); one that is zero in truth (all
+    its values below that floor) has the value 0."""
+    out = dict(ext)
+    for qt in quantities:
+        if qt.symbol not in ext:
+            continue
+        v = np.asarray(values[qt.symbol], dtype=float)
+        v = v[np.isfinite(v)]
+        floor = noise_floor(linkage, sweep, q, qt.kind)
+        if floor is None or v.size == 0:
+            continue
+        if float(np.ptp(v)) <= max(floor, NOISE_REL * float(np.max(np.abs(v)))):
+            zero = float(np.max(np.abs(v))) <= floor   # zero in truth: its noise is no value
+            hi, lo = (dataclasses.replace(e, constant=True, value=0.0 if zero else e.value)
+                      for e in ext[qt.symbol])
+            out[qt.symbol] = (hi, lo)
+    return out
 
 
 def _analysis_grid(linkage: Linkage, sweep: Sweep, q_out: np.ndarray):

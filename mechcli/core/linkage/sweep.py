@@ -125,6 +125,10 @@ class Extreme:
     #: half-width of the final bracket of the refinement [rad or m]: the
     #: extreme's input lies within ``at ± tol``
     tol: float = 0.0
+    #: the quantity does not vary beyond round-off over the sweep (a coupler's ω that
+    #: equals the crank's, an α that is zero in truth): ``value`` holds everywhere and
+    #: ``at`` is only where the search stopped, not a location
+    constant: bool = False
 
 
 @record
