@@ -14,7 +14,9 @@ lines:
 * ``rho_grid`` / ``rho_refined``: the same for the smallest radius of curvature;
 * ``time``: profile + all checks, median of repeated runs (compute only: no
   spec reading, no files); then everything ``mechcli cam`` computes at the
-  default step, and the wall time of a whole command-line run.
+  default step, and the wall time of a whole command-line run;
+* ``peak_rss``: the peak RSS of whole runs at two steps and its growth per profile
+  point, the figure behind ``mechcli.spec.cam.MAX_POINTS`` (the 1 GiB budget).
 
 Run: ``python benchmarks/bench_cam.py [--json]``.
 """
@@ -144,10 +146,30 @@ def bench_cli():
     print(f"ex4-1_cli_no_plot_over_import_numpy: {min(times) / min(base):.2f} x")
 
 
+def bench_peak_rss():
+    """Peak RSS of ``mechcli cam`` (例 4-1, no plots) at 36,000 and 360,000 profile points
+    and its growth per point: ``mechcli.spec.cam.MAX_POINTS`` is the 1 GiB budget over
+    this growth (plots and animation add a few percent), rounded down."""
+    import tempfile
+
+    from benchmarks.bench_kin import _peak_rss_run
+
+    root = Path(__file__).resolve().parent.parent
+    spec = str(root / "configs" / "ch4" / "ex4-1.toml")
+    rss = {}
+    with tempfile.TemporaryDirectory() as out:
+        for step, n in (("0.01", 36_000), ("0.001", 360_000)):
+            rss[n] = _peak_rss_run(["cam", spec, "--set", f"sampling.step={step}", "--out", out,
+                                    "--no-plot", "--quiet"])[1]
+            print(f"ex4-1_cam_{n}_points_peak_rss: {rss[n] / 2**20:.0f} MB")
+    print(f"cam_peak_rss_per_point: {(rss[360_000] - rss[36_000]) / 324_000:.0f} B")
+
+
 if __name__ == "__main__":
     def _all():
         main()
         bench_design()
         bench_cli()
+        bench_peak_rss()
 
     run(_all)

@@ -8,7 +8,9 @@ timed in the same run: Mb and the reactions on the way to it; with ``every_outpu
 everything the engine call returns: every reaction, the frame's force and moment, the
 power, the balance check); also against the general elimination of every block (the
 closed-form dyad statics switched off); the fixed cost of one kinetostatics call (one
-position, given its motion) <= 0.5 ms, against one position solve.
+position, given its motion) <= 0.5 ms, against one position solve.  The peak RSS of
+whole runs and its growth per position (``force_peak_rss_per_position``), the figure
+behind ``mechcli.spec.force.MAX_POSITIONS`` (the 1 GiB budget).
 
 Usage: python benchmarks/bench_force.py [--quick] [--json]
 """
@@ -238,6 +240,57 @@ def main(quick=False):
             t = best_of(lambda: subprocess.run(cmd, check=True), 1 if quick else 3)
             print(f"process_force_ex2-4_{label}: {t:.2f} s")
             print(f"process_force_ex2-4_{label}_over_import_numpy: {t / base:.1f} x")
+    crossovers(spec, sweep, unit, progs, rep)
+    peak_rss(quick)
+
+
+def crossovers(spec, sweep, unit, progs, rep):
+    """The lengths at which ``kinetostatics`` changes method (例 2-4, given the motion):
+    ``DENSE_MAX`` (LAPACK's batched solve up to it, the structured elimination or the
+    closed form beyond) and ``DIRECTION_MIN`` (a link's cosine and sine from its
+    element's points beyond it, from its angle up to it), each side forced in turn."""
+    for n in sorted({1, 64, 128, 256, 36001, kinetostatics.DENSE_MAX}):
+        q = np.linspace(0, 2 * np.pi, n)
+        m = solve(spec.linkage, sweep.inputs(q), 2)
+        u = solve(spec.linkage, unit.inputs(q), 1)
+        loads = [p.evaluate(q, m)[0] for p in progs]
+        for cond in (False, True):
+            times = {}
+            for label, attr, forced in (("dense", "DENSE_MAX", 10**9),
+                                        ("structured", "DENSE_MAX", 0),
+                                        ("from_points", "DIRECTION_MIN", 0),
+                                        ("from_angle", "DIRECTION_MIN", 10**9)):
+                kept = getattr(kinetostatics, attr)
+                setattr(kinetostatics, attr, forced)
+                try:
+                    times[label] = best_of(
+                        lambda: solve_forces(spec.topology, m, spec.bodies, loads, spec.gravity,
+                                             u, condition=cond), 20 * rep if n < 1000 else rep)
+                finally:
+                    setattr(kinetostatics, attr, kept)
+            tag = f"ex2-4_forces_{n}{'_with_condition' if cond else ''}"
+            print(f"{tag}_dense_over_structured: {times['dense'] / times['structured']:.2f} x "
+                  f"(DENSE_MAX = {kinetostatics.DENSE_MAX})")
+            print(f"{tag}_directions_from_points_over_from_angle: "
+                  f"{times['from_points'] / times['from_angle']:.2f} x "
+                  f"(DIRECTION_MIN = {kinetostatics.DIRECTION_MIN})")
+
+
+def peak_rss(quick):
+    """Peak RSS of ``mechcli force`` (例 2-4, no plots) at two sweep lengths and its growth
+    per position: ``mechcli.spec.force.MAX_POSITIONS`` is the 1 GiB budget over this
+    growth, rounded down for deeper linkages and more loads."""
+    from benchmarks.bench_kin import _peak_rss_run
+
+    lo, hi = (10_001, 40_001) if quick else (10_001, 100_001)
+    rss = {}
+    with tempfile.TemporaryDirectory() as tmp:
+        for n in (lo, hi):
+            rss[n] = _peak_rss_run(["force", str(ROOT / "configs" / "ch2" / "ex2-4.toml"),
+                                    "--set", f"input.count={n}", "--out", tmp, "--no-plot",
+                                    "--quiet"])[1]
+            print(f"ex2-4_force_{n}_positions_peak_rss: {rss[n] / 2**20:.0f} MB")
+    print(f"force_peak_rss_per_position: {(rss[hi] - rss[lo]) / (hi - lo):.0f} B")
 
 
 if __name__ == "__main__":

@@ -121,7 +121,7 @@ def structural_error_samples(t_base):
     import math
 
     from mechcli.core.synth.function import function_generator
-    from mechcli.core.synth.functions import make_function
+    from mechcli.core.synth.targets import make_function
 
     f = make_function("log10")
 

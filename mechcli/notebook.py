@@ -231,7 +231,7 @@ def _kin_of_motion(m, linkage, unit="m", tracers=None):
 
     from mechcli.core.linkage import LinkageMotion, PointOnLink
     from mechcli.core.linkage.sweep import _take, _unwrap_runs, default_quantities
-    from mechcli.core.refine import true_runs
+    from mechcli.core.numerics import true_runs
 
     if not isinstance(m, LinkageMotion):
         raise TypeError(f"expected a LinkageMotion of mechcli.solve or a result of "

@@ -227,7 +227,10 @@ def export_option(func):
 
 
 def common_options(func):
-    """Decorate a click command with the options every subcommand shares."""
+    """Decorate a click command with the options every subcommand shares (and show the
+    report layer's :class:`~mechcli.report.run.RunUsageError` as click's usage error:
+    exit 2, the command's name before the message)."""
+    func = _usage_errors(func)
     opts = [
         click.option("--out", "-o", "out", type=click.Path(file_okay=False),
                      default=None,
@@ -259,3 +262,19 @@ def common_options(func):
     for opt in reversed(opts):
         func = opt(func)
     return func
+
+
+def _usage_errors(func):
+    """*func* raising click's ``UsageError`` for the report layer's ``RunUsageError``."""
+    import functools
+
+    @functools.wraps(func)
+    def run(*args, **kwargs):
+        try:
+            return func(*args, **kwargs)
+        except ValueError as exc:
+            from mechcli.report.run import RunUsageError
+            if isinstance(exc, RunUsageError):
+                raise click.UsageError(str(exc)) from None
+            raise
+    return run

@@ -174,7 +174,7 @@ def export(spec, optimum, poses, run, outputs):
     import numpy as np
 
     from mechcli.core.linkage import DriverMotion, solve
-    from mechcli.core.refine import true_runs
+    from mechcli.core.numerics import true_runs
     from mechcli.report import cad
     from mechcli.spec.optimize import problem_root, read_problem
     if poses is None:

@@ -122,7 +122,7 @@ def export(spec, solutions, run, outputs):
     import numpy as np
 
     from mechcli.core.linkage import DriverMotion, solve
-    from mechcli.core.refine import true_runs
+    from mechcli.core.numerics import true_runs
     from mechcli.report import cad
     warnings, written = [], False
     for i, sol in enumerate(solutions):

@@ -60,3 +60,7 @@ class AssemblyError(UnsolvableError):
 
 class ConvergenceError(RuntimeError):
     """An iterative method did not converge (exit code 3)."""
+
+    #: what the method reached, where its raiser attaches it (an optimization's
+    #: ``Result``); not set otherwise
+    result: Any

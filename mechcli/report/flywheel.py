@@ -250,6 +250,10 @@ def error_message(exc, spec):
     if reason in ("no_loops", "no_steady_state") and "net_work" in v:
         text += (f" (the net work per cycle is {v['net_work']:.6g} J: make a term the mean, "
                  'e.g. resisting = "mean")')
+    if reason == "end" and "to_angle" in v:
+        text += (": give phi_end_deg (omega_end and t_end need the closed form: a constant "
+                 "inertia and a moment of the speed only)" if v["to_angle"]
+                 else ": give omega_end or t_end")
     if reason in ("cannot_assemble", "dead_point", "inertia_vanishes") and "angle" in v:
         text += f" (at phi = {math.degrees(v['angle']):.6g} deg)"
     return f"{where}: {text}" if where else text

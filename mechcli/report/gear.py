@@ -501,6 +501,10 @@ _ERROR_TEXT = {
         "(efficiency <= 0)"),
     "bevel_face": lambda v: (
         f"face width {v['b']:.6g} m is not below the cone distance R = {v['R']:.6g} m"),
+    "both_given": lambda v: "give a_w or alpha_w, not both",
+    "root_factors": lambda v: (
+        f"no {math.degrees(v['angle']):.0f}-degree tangent on the root fillet" if "angle" in v
+        else "the tooth has no root section"),
     "crown_bevel": lambda v: (
         f"pitch-cone angles {math.degrees(v['delta1']):.3f}° and "
         f"{math.degrees(v['delta2']):.3f}°: a cone of 90° or more is a crown or internal bevel "

@@ -3,19 +3,83 @@ table or the JSON."""
 
 from __future__ import annotations
 
-import click
+import codecs
+import re
+import sys
 
 from mechcli.report import jsonout
 from mechcli.report.table import Block, Report, print_rich, render_text, terminal_width
 from mechcli.report.words import say
 
 
+class RunUsageError(ValueError):
+    """An option of the run that does not fit its results (``--columns`` naming no
+    column): the command layer shows it as a usage error (exit 2)."""
+
+
 def _is_terminal():
-    import sys
     try:
         return sys.stdout.isatty()
     except (AttributeError, ValueError):   # replaced or closed
         return False
+
+
+#: an ANSI escape sequence (colour, style), as click strips it
+_ANSI = re.compile(r"\033\[[0-?]*[ -/]*[@-~]")
+
+
+def _stream(err=False):
+    """``sys.stdout`` (``sys.stderr``), or a UTF-8 writer on its bytes when it is set to
+    ASCII, as ``click.echo`` writes (None: no stream)."""
+    stream = sys.stderr if err else sys.stdout
+    if stream is None:
+        return None
+    encoding = getattr(stream, "encoding", None) or "ascii"
+    try:
+        ascii_ = codecs.lookup(encoding).name == "ascii"
+    except LookupError:
+        ascii_ = False
+    buffer = getattr(stream, "buffer", None)
+    if not ascii_ or buffer is None:
+        return stream
+    return _Utf8(stream, buffer)
+
+
+class _Utf8:
+    """A text writer on a binary stream in UTF-8, unencodable text replaced."""
+
+    def __init__(self, text, buffer):
+        self.text, self.buffer = text, buffer
+
+    def write(self, s):
+        self.text.flush()
+        self.buffer.write(s.encode("utf-8", "replace"))
+
+    def flush(self):
+        self.buffer.flush()
+
+    def isatty(self):
+        return self.text.isatty()
+
+
+def echo(message, nl=True, err=False):
+    """Write *message* (and a newline) to stdout (stderr) and flush, as ``click.echo``
+    writes text: ANSI escapes stripped when the stream is not a terminal."""
+    stream = _stream(err)
+    if stream is None:
+        return
+    out = message + "\n" if nl else message
+    if not out:
+        stream.flush()
+        return
+    try:
+        tty = stream.isatty()
+    except Exception:   # noqa: BLE001 -- as click: a stream that cannot tell is no terminal
+        tty = False
+    if not tty:
+        out = _ANSI.sub("", out)
+    stream.write(out)
+    stream.flush()
 
 
 class _Current:
@@ -119,7 +183,7 @@ def finish(run, command, report, results, outputs, warnings=()):
             report = select_columns(report, run.columns)
         except ValueError as exc:
             outputs.discard()
-            raise click.UsageError(str(exc)) from None
+            raise RunUsageError(str(exc)) from None
     warnings = _merge_warnings(warnings)
     shown = list(report.notes)
     # report.txt says what was solved (the given data, the spec and its hash, the --set
@@ -134,7 +198,7 @@ def finish(run, command, report, results, outputs, warnings=()):
         warnings.append(f"kept {', '.join(kept)} in {outputs.out_dir}: written by an earlier "
                         "run and changed since, so not this run's output")
     if run.json:
-        click.echo(jsonout.dumps(command, run.spec_path, results, outputs.files, warnings,
+        echo(jsonout.dumps(command, run.spec_path, results, outputs.files, warnings,
                                  manifest=manifest, removed=removed, kept=outputs.reused))
         return
     if not run.quiet:
@@ -144,18 +208,18 @@ def finish(run, command, report, results, outputs, warnings=()):
         if _is_terminal():
             print_rich(report)
         else:   # a pipe, a file, a Makefile: the plain text, without importing rich
-            click.echo(render_text(report, width=terminal_width()), nl=False)
-        click.echo("written: " + ", ".join(str(f) for f in outputs.files))
+            echo(render_text(report, width=terminal_width()), nl=False)
+        echo("written: " + ", ".join(str(f) for f in outputs.files))
         if outputs.reused:
-            click.echo("kept (from an earlier run of the same spec and --set values): "
+            echo("kept (from an earlier run of the same spec and --set values): "
                        + ", ".join(outputs.reused))
         if removed:
-            click.echo("removed (stale, from an earlier run): " + ", ".join(removed))
+            echo("removed (stale, from an earlier run): " + ", ".join(removed))
     where = f"{run.spec_path}: " if run.spec_path else ""    # traceable in a parallel batch
     for w in warnings:
         if run.quiet and w.startswith(NO_CJK):   # -q: not the fonts, every other warning
             continue
-        click.echo(f"mechcli: warning: {where}{w}", err=True)
+        echo(f"mechcli: warning: {where}{w}", err=True)
 
 
 #: spec keys that are the book's Greek letters: written as the letters in report.txt

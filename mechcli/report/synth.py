@@ -417,6 +417,7 @@ _REASON_KEYS = {
     "singular": ("theta1", "x", "s", "phi", "function"),
     "no_solution": ("theta3", "s", "function"),
     "no_motion": ("s",),
+    "origins": ("alpha0", "phi0"), "points_given": ("x",),
     "K": ("K",), "pivot_line_misses": ("pivot_line",), "pivot_line_unusable": ("pivot_line",),
     "crank_range": ("crank",), "coupler_range": ("coupler",), "frame_range": ("frame",),
     "offset": ("e",), "limit_angle": ("limit_angle",), "pairs": ("pairs",),
@@ -448,10 +449,22 @@ def error_message(exc, spec, prob):
         why = str(exc).split(": ", 1)[-1]
         text = (f"x0 = {v['x0']:g} .. xm = {v['xm']:g} leaves the domain of the function "
                 f"at x = {v['x']:g} ({why})")
+    elif reason == "origins":
+        text = {0: "5 precision points determine both origins: give neither alpha0 nor phi0",
+                1: "4 precision points leave one origin to solve: give alpha0 or phi0, not "
+                   "both",
+                2: "least squares needs both origins alpha0 and phi0"}[v["wanted"]]
+    elif reason == "points_given":
+        text = "Chebyshev spacing computes the points: give n, not x"
     elif reason == "not_rigid":
         text += (": |BC| = " + ", ".join(f"{x / u:.6g}" for x in v["lengths"]) + f" {unit} "
                  f"differ by more than rigid_tol = {v['tol']:g} of the positions' size")
     elif reason == "K" and "hi" in v:
+        if "theta_limit" in v:      # the offset slider-crank
+            text = (f"no offset slider-crank has a limit-position angle of "
+                    f"{math.degrees(v['theta_limit']):g} degrees or more (K >= {v['hi']:g})")
+        elif "psi" in v:            # the crank-rocker of a swing: θ < 90° + ψ/2
+            text += " (theta must stay below 90 degrees + swing/2)"
         text += f" (K must lie in ({v['lo']:g}, {v['hi']:.6g}))"
     elif reason in ("crank_range", "coupler_range", "frame_range", "offset") and "hi" in v:
         closed = "]" if reason == "offset" else ")"
@@ -460,6 +473,8 @@ def error_message(exc, spec, prob):
         text += (f": with these a, b the line meets it for c in [{v['lo'] / u:.6g}, "
                  f"{v['hi'] / u:.6g}] {unit}")
     elif reason == "swing" and "hi" in v:
+        text = (f"the rocker's swing must lie strictly between {math.degrees(v['lo']):g} and "
+                f"{math.degrees(v['hi']):g} degrees")
         text += (f" (it must lie between {math.degrees(v['lo']):g} and "
                  f"{math.degrees(v['hi']):g} deg)")
     return f"{where}: {text}"

@@ -38,10 +38,9 @@ DEFAULT_STEP_DEG = 0.1
 
 #: memory budget of one ``mechcli cam`` run (any accepted spec), bytes
 MEMORY_BUDGET = 2**30  # 1 GiB
-#: peak RSS grows by ~1.2 kB per profile point (measured 2026-11-23 with /usr/bin/time -v,
-#: ``mechcli cam configs/ch4/ex4-1.toml --set sampling.step=S --no-plot --quiet``,
-#: S = 0.01 … 0.0005 deg: 1,183 B/point; ex4-3 and exercise4-7 1,227 B/point, 0.92 GB
-#: at 720,000 points, plots and animation included): 720,000 points per revolution,
+#: the most profile points per revolution: the budget over the peak RSS a run grows by
+#: per point (taken as ~1.2 kB, POINTS_WHY; ``cam_peak_rss_per_point`` of
+#: benchmarks/bench_cam.py measures it), plots and animation included, rounded down;
 #: i.e. a step of at least 0.0005 deg
 MAX_POINTS = 720_000
 #: shortest segment [deg]: the tolerance to which the segments must sum to 360 deg

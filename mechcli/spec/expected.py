@@ -24,10 +24,25 @@ from __future__ import annotations
 
 import math
 import re
+from typing import TYPE_CHECKING, Any, Dict, Iterable, List, Optional, Tuple, Union
 
 from mechcli.core.records import record
 from mechcli.spec.errors import SpecError, closest
 from mechcli.spec.reader import load_spec
+
+if TYPE_CHECKING:
+    import os
+
+    from typing_extensions import TypeGuard
+
+    from mechcli.spec.reader import Section
+
+#: the text of a number literal, or of each element of a one-line array
+LiteralText = Union[str, List[str]]
+#: one expected value: a number (as a float), a boolean or a string
+Scalar = Union[float, bool, str]
+#: a tolerance: absolute, one per element of an array, None for an exact comparison
+Tol = Union[Optional[float], List[Optional[float]]]
 
 #: a TOML decimal number literal (no inf/nan/hex: those take the fallback)
 _NUMBER = re.compile(r"[+-]?(\d[\d_]*)(?:\.([\d_]*))?(?:[eE]([+-]?[\d_]+))?")
@@ -41,7 +56,7 @@ SLACK = 1e-9
 WANT = "a number, a boolean, a string, an array of those or { value = …, tol = … }"
 
 
-def tolerance_of_literal(text):
+def tolerance_of_literal(text: str) -> Optional[float]:
     """Half a unit of the last digit of a TOML number literal; None if *text*
     is not a decimal number literal (``inf``, ``0x1f``, a string...).
 
@@ -56,14 +71,14 @@ def tolerance_of_literal(text):
     return 0.5 * 10.0 ** (exp - len(frac))
 
 
-def _tolerance_of_float(value):
+def _tolerance_of_float(value: float) -> Optional[float]:
     """Fallback when no literal text is known: the shortest repr of the float
     (trailing zeros are lost there)."""
     text = repr(float(value))
     return tolerance_of_literal(text) if "n" not in text else None
 
 
-def _leading_literal(rest):
+def _leading_literal(rest: str) -> Optional[LiteralText]:
     """The scalar or array literal at the start of *rest* (text after ``=``)."""
     rest = rest.strip()
     if rest.startswith("["):
@@ -82,7 +97,7 @@ def _leading_literal(rest):
     return m.group(0) if m else None
 
 
-def _literal_of(rest):
+def _literal_of(rest: str) -> Optional[LiteralText]:
     rest = rest.strip()
     if rest.startswith("{"):
         m = _VALUE_IN_TABLE.search(rest)
@@ -90,11 +105,11 @@ def _literal_of(rest):
     return _leading_literal(rest)
 
 
-def _unquote(key):
+def _unquote(key: str) -> str:
     return key[1:-1] if key[:1] in "\"'" and key[-1:] == key[:1] else key
 
 
-def _split_inline(body):
+def _split_inline(body: str) -> List[str]:
     """The ``key = value`` items of the inside of a one-line inline table,
     split at the commas outside brackets, braces and strings."""
     items, depth, quote, start = [], 0, None, 0
@@ -114,7 +129,7 @@ def _split_inline(body):
     return [it for it in items if it.strip()]
 
 
-def _inline_table_texts(rest):
+def _inline_table_texts(rest: str) -> Dict[str, LiteralText]:
     """``{key: literal}`` of a one-line inline table ``{ K = 1.20, … }``
     (the text after ``expected =``)."""
     rest = rest.strip()
@@ -139,7 +154,7 @@ def _inline_table_texts(rest):
     return out
 
 
-def literal_texts(text):
+def literal_texts(text: str) -> Dict[str, LiteralText]:
     """``{key: literal}`` of the ``[expected]`` table in a spec's TOML text.
 
     A literal is the number's text (``"1.2300"``), or a list of the element
@@ -149,9 +164,9 @@ def literal_texts(text):
     and the ``value = …`` of an ``[expected.KEY]`` table, are found too.
     Lines inside multi-line strings are skipped.
     """
-    out = {}
-    table = ""
-    in_string = None
+    out: Dict[str, LiteralText] = {}
+    table: Optional[str] = ""
+    in_string: Optional[str] = None
     for line in text.splitlines():
         if in_string:
             if line.count(in_string) % 2:
@@ -190,9 +205,10 @@ def literal_texts(text):
     return out
 
 
-def override_texts(sets):
+def override_texts(sets: Iterable[str]) -> Dict[str, LiteralText]:
     """``{key: literal}`` for ``--set expected.KEY=VALUE`` overrides (last wins)."""
-    out = {}
+    out: Dict[str, LiteralText] = {}
+    lit: Optional[LiteralText]
     for text in sets:
         key, sep, raw = text.partition("=")
         key = key.strip()
@@ -231,8 +247,8 @@ class Expected:
     """
 
     name: str
-    value: object
-    tol: object
+    value: Union[Scalar, List[Scalar]]
+    tol: Tol
 
 
 @record
@@ -251,17 +267,18 @@ class Check:
     tol: object
     deviation: float
 
-    def as_dict(self):
+    def as_dict(self) -> Dict[str, object]:
         dev = self.deviation if math.isfinite(self.deviation) else None
         return {"key": self.name, "held": self.held, "expected": self.expected,
                 "got": self.got, "tol": self.tol, "deviation": dev}
 
 
-def _is_number(x):
+def _is_number(x: object) -> TypeGuard[float]:
     return isinstance(x, (int, float)) and not isinstance(x, bool)
 
 
-def _scalar(sec, key, raw, literal):
+def _scalar(sec: Section, key: str, raw: object, literal: Optional[LiteralText]
+            ) -> Tuple[Scalar, Optional[float]]:
     """(value, tol) of one scalar; None if it is not a scalar we accept."""
     if isinstance(raw, (bool, str)):
         return raw, None
@@ -273,7 +290,7 @@ def _scalar(sec, key, raw, literal):
     raise SpecError(sec.file, sec.key(key), WANT, _show(raw))
 
 
-def _show(raw):
+def _show(raw: object) -> str:
     if isinstance(raw, dict):
         return "a table"
     if isinstance(raw, list):
@@ -281,7 +298,8 @@ def _show(raw):
     return f"{raw!r} ({type(raw).__name__})"
 
 
-def _array(sec, name, raw, literal):
+def _array(sec: Section, name: str, raw: List[object], literal: Optional[LiteralText]
+           ) -> Tuple[List[Scalar], List[Optional[float]]]:
     if not raw:
         raise SpecError(sec.file, sec.key(name), "a non-empty array", "an empty array")
     texts = literal if isinstance(literal, list) and len(literal) == len(raw) else [None] * len(raw)
@@ -296,7 +314,7 @@ def _array(sec, name, raw, literal):
     return values, tols
 
 
-def _positive(sub, key):
+def _positive(sub: Section, key: str) -> Optional[float]:
     value = sub.raw(key, None)
     if value is None:
         return None
@@ -305,7 +323,7 @@ def _positive(sub, key):
     return float(value)
 
 
-def read_expected(root, sets=()):
+def read_expected(root: Section, sets: Iterable[str] = ()) -> Dict[str, Expected]:
     """Read and validate the optional ``[expected]`` table of a spec.
 
     Parameters
@@ -350,6 +368,8 @@ def read_expected(root, sets=()):
             if tol is not None and rtol:
                 raise SpecError(sub.file, sub.key("rtol" if sub.has("rtol") else "rel"),
                                 "either tol or rtol, not both", "both")
+            values: Union[Scalar, List[Scalar]]
+            tols: Tol
             if isinstance(value, list):
                 values, tols = _array(sub, "value", value, lit)
                 if any(isinstance(v, (bool, str)) for v in values) and (tol or rtol):
@@ -361,14 +381,15 @@ def read_expected(root, sets=()):
                 raise SpecError(sub.file, sub.key("value"),
                                 "a number or an array of numbers", _show(value))
             if tol is not None or rtol:
-                def _tol(v):
+                def _tol(v: float) -> float:
                     t = tol if tol is not None else abs(v) * rtol[0]
                     if not t > 0:
                         raise SpecError(sub.file, sub.key("rtol" if sub.has("rtol") else "rel"),
                                         "a non-zero value for a relative tolerance (use tol)",
                                         "value 0")
                     return t
-                tols = [_tol(v) for v in values] if isinstance(values, list) else _tol(values)
+                # (numbers: a boolean or a string with a tolerance was refused above)
+                tols = [_tol(v) for v in values] if isinstance(values, list) else _tol(values)  # type: ignore[arg-type]
             out[name] = Expected(name, values, tols)
         elif isinstance(raw, list):
             values, tols = _array(sec, name, raw, lit)
@@ -379,13 +400,14 @@ def read_expected(root, sets=()):
     return out
 
 
-def _one(value, tol, got):
+def _one(value: Scalar, tol: Optional[float], got: object) -> Tuple[bool, float]:
     """(held, deviation) of one scalar."""
     if tol is None:
         same = type(got) is type(value) and got == value
         return same, 0.0 if same else math.inf
     if not _is_number(got) or not math.isfinite(got):
         return False, math.inf
+    assert not isinstance(value, str)  # a tolerance is a number's
     dev = abs(got - value) / tol
     return dev <= 1 + SLACK, dev
 
@@ -393,7 +415,7 @@ def _one(value, tol, got):
 _MISSING = object()
 
 
-def lookup(results, name, default=_MISSING):
+def lookup(results: Dict[str, Any], name: str, default: object = _MISSING) -> Any:
     """The result *name* names: a key of *results*, or a dotted path into nested
     results (``"cases.0.l1"``: key ``cases``, item 0 (0-based, as in the JSON),
     key ``l1``); *default* (or a private sentinel) when there is none."""
@@ -402,7 +424,7 @@ def lookup(results, name, default=_MISSING):
     return _walk(results, name.split("."), default)
 
 
-def _walk(node, parts, default):
+def _walk(node: object, parts: List[str], default: object) -> Any:
     """Follow *parts* into *node*; a dict key may itself hold dots (``optimize``'s
     ``x`` is keyed by dotted spec paths: ``"x.mechanism.l2"``), so the longest
     joined run of parts that is a key is tried first."""
@@ -421,12 +443,12 @@ def _walk(node, parts, default):
     return default
 
 
-def has_result(results, name):
+def has_result(results: Dict[str, Any], name: str) -> bool:
     """Does *name* (a key or a dotted path, see :func:`lookup`) name a result?"""
     return lookup(results, name) is not _MISSING
 
 
-def compare(expected, results):
+def compare(expected: Dict[str, Expected], results: Dict[str, Any]) -> List[Check]:
     """Compare every expected value with the run's *results*.
 
     Parameters
@@ -451,16 +473,19 @@ def compare(expected, results):
             if not isinstance(got, (list, tuple)) or len(got) != len(exp.value):
                 out.append(Check(name, False, exp.value, got, exp.tol, math.inf))
                 continue
+            assert isinstance(exp.tol, list)  # an array's tolerances: one per element
             pairs = [_one(v, t, g) for v, t, g in zip(exp.value, exp.tol, got)]
             out.append(Check(name, all(h for h, _ in pairs), exp.value, list(got), exp.tol,
                              max(d for _, d in pairs)))
             continue
+        assert not isinstance(exp.tol, list)  # a scalar's tolerance
         held, dev = _one(exp.value, exp.tol, got)
         out.append(Check(name, held, exp.value, got, exp.tol, dev))
     return out
 
 
-def evaluate(path, sets, results):
+def evaluate(path: Union[str, os.PathLike], sets: Iterable[str], results: Dict[str, Any]
+             ) -> List[Check]:
     """Read the ``[expected]`` table of the spec at *path* (with *sets*) and
     compare it with *results*; an expected key that names no result is a
     :class:`SpecError` (exit 2, with did-you-mean), as in every command."""
@@ -468,7 +493,8 @@ def evaluate(path, sets, results):
     return compare(read_expected(load_spec(path, sets), sets), results)
 
 
-def check_expected(path, overrides, results):
+def check_expected(path: Optional[Union[str, os.PathLike]], overrides: Iterable[str],
+                   results: Dict[str, Any]) -> None:
     """Reject an ``[expected]`` key that names no result of the run (exit 2).
 
     The keys of ``[expected]`` are compared with the keys of *results* (the

@@ -74,11 +74,10 @@ MAX_FACTOR = 1e6
 
 #: memory budget of one ``mechcli force`` run (any accepted spec), bytes
 MEMORY_BUDGET = 2**30  # 1 GiB
-#: peak RSS grows by ~9.1 kB per position (measured 2026-11-23 with /usr/bin/time -v,
-#: ``mechcli force configs/ch2/ex2-4.toml --set input.count=N --no-plot --quiet``,
-#: N = 10,001 … 400,001: fit 9,113 B/position + 38 MB; 0.95 GB at 100,001, plots
-#: included; exercise2-8.toml 8.4 kB/position): 113,700 positions fit in 1 GiB,
-#: rounded down to 100,001 for deeper linkages and more loads
+#: the most positions of a sweep: the budget over the peak RSS a run grows by per
+#: position (taken as ~9.1 kB, POSITIONS_WHY; ``force_peak_rss_per_position`` of
+#: benchmarks/bench_force.py measures it), rounded down for deeper linkages, more loads
+#: and plots
 MAX_POSITIONS = 100_001
 POSITIONS_WHY = "1 GiB budget at ~9.1 kB per position"
 

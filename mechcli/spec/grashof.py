@@ -279,7 +279,8 @@ def _read_mobility_links(sec: Section, frame: int, local: int, redundant: int) -
     except DrawingError as exc:
         where = next(t for n, t in paths.items() if exc.name in links[n])
         raise where.error("joints", "joints that each join two links or a link to the "
-                          "frame", str(exc)) from None
+                          "frame", str(exc) + (" (a point on a link is a [[mechanism.point]])"
+                                               if exc.lone else "")) from None
     joints = [JointSpec(j.kind, j.links, j.name) for j in pairs]
     return _mobility_problem(sec, joints, frame, local, redundant, "links")
 

@@ -68,7 +68,9 @@ def read_joints(mech: Any) -> Tuple[int, list, dict, list, Any]:
     except DrawingError as exc:
         raise SpecError(mech.file, _where(mech, exc, link_paths, slider_paths, driver_paths,
                                           drivers),
-                        "a drawing of a linkage the engine can solve", str(exc)) from None
+                        "a drawing of a linkage the engine can solve", str(exc)
+                        + (" (a point on a link is a [[mechanism.point]])" if exc.lone else "")
+                        ) from None
     if drivers:
         q1 = result.inputs[drivers[0][0]]
         followers = {k: (ratio, result.inputs[k] - ratio * q1 if phase is None else phase)

@@ -41,10 +41,10 @@ from mechcli.spec.reader import MAX_LENGTH, MIN_LENGTH, Section, load_spec
 
 MECHANISMS = ("four_bar", "slider_crank", "guide_bar", "shaper", "general", "joints")
 QUANTITIES = ("position", "velocity", "acceleration")
-#: the 1 GiB memory budget of every command: peak RSS measured 2026-11-23 with plots at
-#: 400,001 positions is 0.59 GB for the shaper of 例 1-4 and 0.62 GB for the two-driver
-#: five-bar (~1.46 kB per position + 35 MB); at 600,001 the five-bar peaks at 0.93 GB,
-#: the shaper with --animate at 0.89 GB (2,000,001 used to be allowed: 2.8 GB)
+#: the most positions held in memory: the 1 GiB memory budget of every command over the
+#: peak RSS a run takes per position (taken as ~1.5 kB, POSITIONS_WHY, for the deepest
+#: presets with plots or animation; ``kin_in_memory_600001_peak_rss_per_position`` of
+#: benchmarks/bench_kin.py measures it), rounded down
 MAX_POSITIONS = 600_001
 POSITIONS_WHY = "1 GiB budget at ~1.5 kB per position"
 #: `mechcli kin` streams a longer sweep to its CSV chunk by chunk in bounded memory

@@ -704,7 +704,7 @@ def function_targets(spec: OptimizeSpec) -> Tuple[np.ndarray, np.ndarray]:
     if "dphi" in obj:
         return (np.asarray(obj["dphi"], dtype=float), np.asarray(obj["dpsi"], dtype=float))
     from mechcli.core.errors import DescribedError
-    from mechcli.core.synth.functions import make_function
+    from mechcli.core.synth.targets import make_function
     f = make_function(obj["function"], exponent=obj.get("exponent"), coeffs=obj.get("coeffs"))
     try:
         f.check_domain(obj["x0"], obj["xm"])

@@ -33,7 +33,7 @@ GRID_POINTS_MAX = 100_000
 #: most target points of a path: the refinement's arrays grow with revolution samples x
 #: targets x a stencil (500 points: about 0.3 GB)
 PATH_POINTS_MAX = 500
-#: the named functions of function generation (core.synth.functions.NAMES)
+#: the named functions of function generation (core.synth.targets.NAMES)
 FUNCTIONS = ("log10", "ln", "sqrt", "power", "sin", "cos", "tan", "exp", "reciprocal",
              "polynomial")
 #: largest number of cases in one spec (each is a design and a picture)

@@ -66,6 +66,22 @@ def test_a_stalling_machine_is_exit_3_with_the_angle(tmp_path):
     assert "[motion] omega0" in line and "2.86479 deg" in line
 
 
+@pytest.mark.parametrize("end, method, words", [
+    ("phi_end_deg = 360", "closed_form", "not an angle: give omega_end or t_end"),
+    ("t_end = 0.1", "RK45", "method RK45 runs to an angle: give phi_end_deg (omega_end and "
+     "t_end need the closed form"),
+])
+def test_an_end_the_method_cannot_reach_names_the_keys(tmp_path, end, method, words):
+    """The core says which end its method runs to; the report names the spec's keys."""
+    text = (CH6 / "ex6-3.toml").read_text(encoding="utf-8").replace(
+        "t_end = 0.1", f'{end}\nmethod = "{method}"')
+    spec = write(tmp_path, text)
+    proc = run_inprocess("flywheel", spec, "--quiet", "--no-plot", "--out", tmp_path / "o")
+    assert proc.returncode == 3, proc.stderr
+    line = one_line_error(proc)
+    assert "[motion]: " in line and words in line
+
+
 @pytest.mark.parametrize("body, key", [
     ('[inertia]\nJ = -1\n[moment]\nconstant = 1\n[motion]\nomega0 = 1\nphi_end_deg = 10',
      "[inertia] J"),
@@ -182,3 +198,29 @@ def test_the_approximate_flywheel_uses_the_work_at_the_mean_speed(tmp_path):
     r = _json(CH6 / "flywheel-sizing.toml", "--out", tmp_path)["results"]
     assert r["J_F_approx_kg_m2"] == pytest.approx(549.06, abs=0.01)
     assert r["J_F_kg_m2"] == pytest.approx(504.63, abs=0.01)
+
+
+def test_a_steady_state_on_a_flywheel_alone(tmp_path):
+    """No [inertia]: the machine's inertia is the flywheel's J = 30 kg·m² alone (was an
+    internal error: the steady state was skipped for a machine of no inertia of its own)."""
+    spec = write(tmp_path, """command = "flywheel"
+title = "a flywheel alone"
+units = "m"
+[moment]
+drive = [5500, 1000]
+[moment.resisting_table]
+phi_deg = [0, 90, 180, 270, 360]
+M = [789, 100, 700, 100, 789]
+method = "linear"
+[flywheel]
+J = 30
+[motion]
+kind = "steady"
+omega0 = 5
+""")
+    r = _json(spec, "--out", tmp_path / "o")["results"]
+    # ωm by hand: (5500 − mean Mr)/1000, the table's trapezoidal mean
+    # ((789 + 100) + (100 + 700) + (700 + 100) + (100 + 789)) / 8 = 422.25 N·m
+    assert r["omega_mean_rad_s"] == pytest.approx((5500 - 422.25) / 1000, abs=1e-9)
+    assert r["periodicity_residual_rad_s"] < 1e-9
+    assert r["omega_final_rad_s"] == pytest.approx(r["omega0_rad_s"], abs=1e-9)

@@ -105,6 +105,15 @@ def test_cases_give_one_result_each_and_dotted_expected_keys(tmp_path):
     # two extra conditions where the K design takes one
     ('kind = "quick_return"\nK = 1.25\nrocker = 290\nswing = 34\ncrank = 77\nframe = 277',
      2, "exactly one extra condition"),
+    # K = 50 with a swing of 34°: θ must stay below 90° + 34°/2 = 107°, K below
+    # (180 + 107)/(180 − 107) = 287/73 = 3.93151 (by hand); the report words the degrees
+    ('kind = "quick_return"\nK = 50\nrocker = 290\nswing = 34\ncrank = 77', 3,
+     "[synthesis] K: no crank-rocker has this time ratio with this swing (theta must stay "
+     "below 90 degrees + swing/2) (K must lie in (1, 3.93151))"),
+    # K = 5: θ = 120° >= 90°, beyond every offset slider-crank (K = 3 is θ = 90°)
+    ('kind = "quick_return"\nlinkage = "slider_crank"\nK = 5\nH = 50\ne = 20', 3,
+     "[synthesis] K: no offset slider-crank has a limit-position angle of 90 degrees or more "
+     "(K >= 3) (K must lie in (1, 3))"),
     # a swing of half a turn
     ('kind = "quick_return"\nK = 1.25\nrocker = 290\nswing = 180\ncrank = 77', 2, "swing"),
     # lg x of x <= 0

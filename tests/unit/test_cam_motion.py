@@ -123,7 +123,7 @@ def test_multiple_rises_and_partial_lifts():
 
 
 @pytest.mark.parametrize("segments, match", [
-    ([("rise", RAD(180), "sine", 0.01), ("return", RAD(170), "sine", 0.01)], "360"),
+    ([("rise", RAD(180), "sine", 0.01), ("return", RAD(170), "sine", 0.01)], "full turn"),
     ([("rise", RAD(180), "sine", 0.01), ("return", RAD(180), "sine", 0.005)], "return"),
     ([("rise", RAD(180), "bogus", 0.01), ("return", RAD(180), "sine", 0.01)], "valid"),
 ])
@@ -131,3 +131,13 @@ def test_bad_programs_raise(segments, match):
     with pytest.raises(ValueError, match=match):
         prog = build_program(segments, 0.01)
         prog.evaluate(np.array([0.1]))
+
+
+def test_spans_short_of_a_turn_carry_their_sum():
+    """The core words no unit: the sum is a number (rad) for the spec layer to word."""
+    from mechcli.core.errors import DescribedError
+    with pytest.raises(DescribedError) as err:
+        build_program([("rise", RAD(180), "sine", 0.01), ("return", RAD(170), "sine", 0.01)],
+                      0.01)
+    assert err.value.reason == "span_sum"
+    assert err.value.values["total"] == pytest.approx(RAD(350), rel=1e-15)   # 180° + 170°

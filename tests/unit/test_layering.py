@@ -14,10 +14,12 @@ alike), not on its text:
   functions named in :data:`SPEC_CORE_FUNCTIONS`.
 * ``mechcli.report`` words and draws results and does not solve another
   command's problem: it imports nothing of ``commands``, ``cli``,
-  ``options``; of ``spec`` only what :data:`REPORT_SPEC_IMPORTS` allows; from
-  the core only classes (result types) and constants, plus the functions
-  named per module in :data:`REPORT_CORE_FUNCTIONS`, each of which must live
-  in the core package of the report module's own command.
+  ``options``, nor click (it writes through plain functions and raises plain
+  exceptions that the command layer turns into click's); of ``spec`` only what
+  :data:`REPORT_SPEC_IMPORTS` allows; from the core only classes (result
+  types) and constants, plus the functions named per module in
+  :data:`REPORT_CORE_FUNCTIONS`, each of which must live in the core package
+  of the report module's own command.
 * ``mechcli.runner`` (the batch behind ``mechcli check``, the atlas on disk,
   another command's results in process) is orchestration beside ``commands``:
   each of its modules imports of mechcli only the packages named in
@@ -50,6 +52,9 @@ PACKAGE = Path(mechcli.__file__).resolve().parent
 CORE_FORBIDDEN_LIBRARIES = {"click", "rich", "matplotlib", "PIL", "tomllib", "tomli"}
 #: ... nor the spec layer (it reads TOML, but shows and draws nothing)
 SPEC_FORBIDDEN_LIBRARIES = {"click", "rich", "matplotlib", "PIL"}
+#: ... nor the report layer the command-line library (it shows tables with rich and
+#: draws with matplotlib, but the options and usage errors are the command layer's)
+REPORT_FORBIDDEN_LIBRARIES = {"click"}
 
 #: functions of the core the spec layer may call: they build a model from
 #: numbers (presets, constructors), they do not solve it
@@ -257,6 +262,8 @@ def _violations():
                 out.add(label)
             if top in SPEC_FORBIDDEN_LIBRARIES and layer == "spec":
                 out.add(label)
+            if top in REPORT_FORBIDDEN_LIBRARIES and layer == "report":
+                out.add(label)
             if any(_within(module, f"mechcli.{x}") for x in ("commands", "cli", "options")):
                 out.add(label)
             if layer == "spec" and _within(module, "mechcli.report"):
@@ -364,11 +371,12 @@ def test_contract_tables_name_real_modules():
 
 
 def test_the_contract_catches_what_it_forbids(tmp_path, monkeypatch):
-    """The checker itself: a core module importing click, a spec module calling a solver."""
+    """The checker itself: a core module importing click, a spec module calling a solver,
+    a report module importing click."""
     probe = {"mechcli.core.fake": "import click\nfrom mechcli.spec import errors\n",
              "mechcli.spec.fake": "def f():\n    from mechcli.core.linkage import solve\n",
              "mechcli.runner.atlas_store": "import rich\nfrom mechcli.report import cad\n",
-             "mechcli.report.fake": "from mechcli import batch\n"}
+             "mechcli.report.fake": "from mechcli import batch\ndef f():\n    import click\n"}
     found = set()
     for name, text in probe.items():
         path = tmp_path / (name.rpartition(".")[2] + ".py")
@@ -379,7 +387,7 @@ def test_the_contract_catches_what_it_forbids(tmp_path, monkeypatch):
                      "mechcli.spec.fake -> mechcli.core.linkage.solve",
                      "mechcli.runner.atlas_store -> rich",
                      "mechcli.runner.atlas_store -> mechcli.report.cad",
-                     "mechcli.report.fake -> mechcli.batch"}
+                     "mechcli.report.fake -> mechcli.batch", "mechcli.report.fake -> click"}
 
 
 def test_core_does_not_open_files():

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from mechcli.core.linkage import kinematics
-from mechcli.core.refine import bisect, bracketed_root, sorted_union
+from mechcli.core.numerics import bisect, bracketed_root, sorted_union
 from mechcli.spec.kin import load_kin_spec
 
 from tests.conftest import ROOT
@@ -26,7 +26,7 @@ def test_sorted_union_is_union1d():
 
 
 def test_sorted_union_does_not_import_numpy_ma():
-    code = ("import sys, numpy; from mechcli.core.refine import sorted_union;"
+    code = ("import sys, numpy; from mechcli.core.numerics import sorted_union;"
             "sorted_union([3.0, 1.0], [1.0, 2.0]); print('numpy.ma' in sys.modules)")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                          cwd=ROOT, check=True).stdout.strip()
@@ -52,7 +52,7 @@ def test_bracketed_root_matches_bisection_in_few_calls():
     assert np.all(np.abs(b - a) <= 1e-13 * np.maximum(1.0, np.abs(a)))
     np.testing.assert_allclose(0.5 * (a + b), root, rtol=0, atol=2e-13)
     # bisection takes 44 calls for these brackets, the secant alone 13; with its guard
-    # probe past each step (refine.GUARD) 6
+    # probe past each step (numerics.GUARD) 6
     assert f.calls <= 8
 
 

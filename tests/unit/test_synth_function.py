@@ -19,7 +19,7 @@ from mechcli.core.errors import DescribedError
 from mechcli.core.linkage import DriverMotion, solve
 from mechcli.core.synth.function import (chebyshev_points, freudenstein, function_generator,
                                          rocker_slider, slider_crank_function)
-from mechcli.core.synth.functions import NAMES, make_function, table_function
+from mechcli.core.synth.targets import NAMES, make_function, table_function
 
 deg = np.radians
 
@@ -485,3 +485,13 @@ def test_cubic_table_is_exact_for_a_cubic_and_linear_table_for_a_line():
     assert e.value.reason == "domain" and e.value.values["x"] == -0.1
     with pytest.raises(ValueError):
         table_function([1.0, 1.0, 2.0], [0.0, 1.0, 2.0])    # x not increasing
+
+
+def test_the_former_name_of_the_target_functions_is_the_same_module():
+    """``mechcli.core.synth.functions`` (the name before issue 32 §5) is
+    :mod:`mechcli.core.synth.targets` itself."""
+    import mechcli.core.synth.functions
+    import mechcli.core.synth.targets
+    from mechcli.core.synth.functions import make_function as former
+    assert mechcli.core.synth.functions is mechcli.core.synth.targets
+    assert former is make_function

@@ -7,5 +7,5 @@ Errors carry numbers (SI, radians), no units or spec keys
 (:class:`.geometry.CamError`).
 
 May import: numpy, scipy, :mod:`mechcli.core.errors` and
-:mod:`mechcli.core.refine`; nothing of spec, report, commands or cli.
+:mod:`mechcli.core.numerics`; nothing of spec, report, commands or cli.
 """

@@ -20,8 +20,8 @@ from mechcli.core.cam.geometry import (
     pitch_corners,
     pressure_angle_and_rate,
 )
+from mechcli.core.numerics import maximize_piecewise
 from mechcli.core.records import record
-from mechcli.core.refine import maximize_piecewise
 
 if TYPE_CHECKING:
     from mechcli.core.cam.geometry import Follower
@@ -49,7 +49,7 @@ def maximize_on_pieces(program: MotionProgram, pieces: Any, func: Callable[..., 
 
     Notes
     -----
-    :func:`mechcli.core.refine.maximize_piecewise` on the follower state of
+    :func:`mechcli.core.numerics.maximize_piecewise` on the follower state of
     each piece: the coarse maximum is bracketed between its grid neighbours and
     the root of dg/dδ refined; a maximum at a piece end (one-sided, e.g. a kink)
     is taken as is.  This replaces the golden-section search of 例 7-2 (whose

@@ -40,8 +40,8 @@ import numpy as np
 
 from mechcli.core.cam.motion import MotionProgram
 from mechcli.core.errors import DescribedError
+from mechcli.core.numerics import sign_changes
 from mechcli.core.records import record
-from mechcli.core.refine import sign_changes
 
 FOLLOWER_MOTIONS = ("translating", "oscillating")
 FOLLOWER_CONTACTS = ("knife", "roller", "flat")

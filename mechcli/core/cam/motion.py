@@ -30,6 +30,7 @@ from typing import TYPE_CHECKING, Any, Callable, List, Optional, Tuple, Union
 
 import numpy as np
 
+from mechcli.core.errors import DescribedError
 from mechcli.core.records import record
 
 if TYPE_CHECKING:
@@ -595,8 +596,10 @@ def build_program(segments: Any, stroke: float, angular: bool = False) -> Motion
     ValueError
         If the spans do not sum to 2π, the follower does not come back to its
         start, the displacement leaves ``[0, stroke]``, or a polynomial law
-        does not go from ``f(0) = 0`` to ``f(1) = 1``.  The spec layer checks
-        all of this first and names the key.
+        does not go from ``f(0) = 0`` to ``f(1) = 1`` (the spans: a
+        :class:`~mechcli.core.errors.DescribedError`, reason ``"span_sum"``,
+        value ``total`` [rad]).  The spec layer checks all of this first and
+        names the key.
     """
     out = []
     start = 0.0
@@ -619,7 +622,8 @@ def build_program(segments: Any, stroke: float, angular: bool = False) -> Motion
         if s < -1e-12 * stroke or s > stroke * (1 + 1e-12):
             raise ValueError("the displacement leaves [0, stroke]")
     if abs(start - 2 * math.pi) > 1e-9:
-        raise ValueError(f"segment spans sum to {math.degrees(start)} deg, not 360")
+        raise DescribedError("the segment spans do not sum to a full turn", "span_sum",
+                             total=start)
     if abs(s) > 1e-9 * stroke:
         raise ValueError("the follower does not return to its start position")
     return MotionProgram(tuple(out), stroke, angular)

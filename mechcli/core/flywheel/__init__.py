@@ -7,6 +7,6 @@ gear train (:mod:`.equivalent`); the equation of motion of that model, its speed
 and the flywheel that bounds it (:mod:`.motion`).
 
 May import: numpy, scipy (inside the functions that need it), :mod:`mechcli.core.errors`,
-:mod:`mechcli.core.refine` and :mod:`mechcli.core.linkage`; nothing of spec, report, commands
+:mod:`mechcli.core.numerics` and :mod:`mechcli.core.linkage`; nothing of spec, report, commands
 or cli.
 """

@@ -98,7 +98,9 @@ def energy_loops(moment: MomentModel, phi0: float, period: float, omega_m: float
         return moment.energy(phi0, p) - b * omega_m * (p - phi0)
 
     def f(p: np.ndarray) -> np.ndarray:
-        return moment(p, omega_m)
+        m = moment(p, omega_m)
+        assert isinstance(m, np.ndarray)  # p is an array
+        return m
 
     grid = np.unique(np.concatenate((np.linspace(phi0, phi0 + T, SAMPLES + 1),
                                      moment.breaks_between(phi0, phi0 + T))))

@@ -236,6 +236,7 @@ class TableInertia(InertiaModel):
     """
 
     constant = False
+    period: float
     METHODS = ("cubic", "linear", "fourier")
 
     def __init__(self, phi: np.ndarray, J: np.ndarray, *, method: str = "cubic",
@@ -317,11 +318,13 @@ def _point_motion(m: LinkageMotion, topo: Topology, link: int, origin: str, alon
     """Velocity (and acceleration) coefficients of a point fixed on ``link``: ``origin +
     (along + i normal) e^{iθ}``, or the midpoint of the link's two points when ``along``
     is None (:func:`~mechcli.core.linkage.force_model.com_of`'s convention)."""
+    # (ignored below: m is solved to order 1, 2 with acc, so its velocities and accelerations
+    # are not None; along is None only for a link with a second point, com_of's midpoint)
     o = m.points[origin]
     if along is None:
-        p = m.points[topo.frames[link][1]]
-        v = (0.5 * (o.vx + p.vx), 0.5 * (o.vy + p.vy))
-        return v + ((0.5 * (o.ax + p.ax), 0.5 * (o.ay + p.ay)) if acc else (None, None))
+        p = m.points[topo.frames[link][1]]  # type: ignore[index]
+        v = (0.5 * (o.vx + p.vx), 0.5 * (o.vy + p.vy))  # type: ignore[operator]
+        return v + ((0.5 * (o.ax + p.ax), 0.5 * (o.ay + p.ay)) if acc else (None, None))  # type: ignore[operator]
     if not (np.any(along) or np.any(normal)):
         return (o.vx, o.vy) + ((o.ax, o.ay) if acc else (None, None))
     k = m.links[link]
@@ -330,7 +333,7 @@ def _point_motion(m: LinkageMotion, topo: Topology, link: int, origin: str, alon
     vx, vy = o.vx - k.omega * ry, o.vy + k.omega * rx
     if not acc:
         return vx, vy, None, None
-    w2 = k.omega * k.omega
+    w2 = k.omega * k.omega  # type: ignore[operator]
     return vx, vy, o.ax - k.alpha * ry - w2 * rx, o.ay + k.alpha * rx - w2 * ry
 
 
@@ -540,7 +543,8 @@ def linkage_moment(linkage: Linkage, topo: Topology, bodies: Any,
             _check_on_link(topo, link, b.origin, f"the body of link {link}")
             if not np.any(b.mass) or not (gx or gy):
                 continue
-            vx, vy, _ax, _ay = _point_motion(m, topo, link, *com_of(topo, b, link), False)
+            where: Tuple[str, Optional[float], Optional[float]] = com_of(topo, b, link)
+            vx, vy, _ax, _ay = _point_motion(m, topo, link, *where, False)
             Me = Me + b.mass * (gx * vx + gy * vy)
     for p in programs:
         if p.band is not None and p.band_limits is None:
@@ -583,6 +587,8 @@ class SampledInertia(InertiaModel):
     samples : int
         Angles per period (3600: every 0.1°).
     """
+
+    period: float
 
     def __init__(self, model: LinkageInertia, samples: int = 3600) -> None:
         if model.period is None:

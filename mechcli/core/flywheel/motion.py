@@ -44,21 +44,17 @@ from __future__ import annotations
 import bisect
 import dataclasses
 import math
-from typing import TYPE_CHECKING, Any, Callable, Dict, List, Optional, Tuple, Union
+from typing import TYPE_CHECKING, Any, Callable, Dict, List, Optional, Tuple, Type, Union
 
 import numpy as np
 
 from mechcli.core.errors import ConvergenceError, DescribedError
+from mechcli.core.numerics import gauss_legendre
 from mechcli.core.records import record
-from mechcli.core.refine import gauss_legendre
 
 if TYPE_CHECKING:
-    from mechcli.core.flywheel.equivalent import (
-        ConstantInertia,
-        TableInertia,
-        ZeroInertia,
-    )
-    from mechcli.core.types import FloatOrArray
+    from mechcli.core.flywheel.equivalent import InertiaModel
+    from mechcli.core.types import FloatOrArray, IntArray
 
 TWO_PI = 2.0 * math.pi
 
@@ -93,13 +89,18 @@ class _ConstantInertia:
         phi = np.asarray(phi, dtype=float)
         return np.full_like(phi, self.value), np.zeros_like(phi)
 
-    def plus(self, J: Any):
+    def plus(self, J: float) -> _ConstantInertia:
         return _ConstantInertia(self.value + J)
 
 
-def _as_inertia(inertia: Any) -> Any:
+if TYPE_CHECKING:
+    #: what the solvers take as Je(φ): a model of :mod:`.equivalent` or a plain number's
+    Inertia = Union[InertiaModel, _ConstantInertia]
+
+
+def _as_inertia(inertia: Union[Inertia, float, np.floating, np.integer]) -> Inertia:
     if isinstance(inertia, (int, float, np.floating, np.integer)):
-        return _ConstantInertia(inertia)
+        return _ConstantInertia(float(inertia))
     return inertia
 
 
@@ -155,7 +156,7 @@ class _Piecewise:
             return self._m0[i] + self._slopes[i] * (x - starts[i])
         return 0.0
 
-    def _reduce(self, phi: np.ndarray) -> Any:
+    def _reduce(self, phi: FloatOrArray) -> Any:
         phi = np.asarray(phi, dtype=float)
         if not self.periodic:
             return phi, np.zeros_like(phi)
@@ -166,7 +167,7 @@ class _Piecewise:
         over = x >= self.base + T
         return np.where(over, x - T, x), turns + over
 
-    def _index(self, x: FloatOrArray) -> FloatOrArray:
+    def _index(self, x: FloatOrArray) -> IntArray:
         return np.clip(np.searchsorted(self.starts, x, side="right") - 1, 0, len(self.starts) - 1)
 
     def __call__(self, phi: FloatOrArray) -> Any:
@@ -206,7 +207,7 @@ class _PeriodicCubic:
         """``M(p)`` for one float angle."""
         return float(self.spline(self.base + (p - self.base) % self.period))
 
-    def _reduce(self, phi: np.ndarray) -> Any:
+    def _reduce(self, phi: FloatOrArray) -> Any:
         phi = np.asarray(phi, dtype=float)
         turns = np.floor((phi - self.base) / self.period)
         return phi - self.period * turns, turns
@@ -246,7 +247,7 @@ class _PeriodicQuadratic(_PeriodicCubic):
         self.knots = np.append(x0, xp[-1])
         self._lists = (x0.tolist(), self.c0.tolist(), self.c1.tolist(), self.c2.tolist())
 
-    def _index(self, x: FloatOrArray) -> FloatOrArray:
+    def _index(self, x: FloatOrArray) -> IntArray:
         return np.clip(np.searchsorted(self.starts, x, side="right") - 1, 0,
                        self.starts.size - 1)
 
@@ -350,7 +351,7 @@ class MomentModel:
         self.a, self.b = (0.0, 0.0) if linear is None else (float(linear[0]), float(linear[1]))
         if not (math.isfinite(self.a) and math.isfinite(self.b)):
             raise ValueError("the linear moment must be finite")
-        self._table = None
+        self._table: Optional[Union[_Piecewise, _PeriodicCubic]] = None
         if table is not None:
             method = table[2] if len(table) > 2 else "linear"
             xp, fp = _closed_table(table[0], table[1], T)
@@ -403,18 +404,19 @@ class MomentModel:
         self.depends_on_omega = self.b != 0.0
         self.depends_on_phi = periodic_varies or aperiodic
         self.period = T if periodic_varies and not aperiodic else None
-        knots, base = [], 0.0
+        periodic_knots: List[np.ndarray] = []
+        base = 0.0
         for part in (self._table, self._seg):
             if part is not None and part.periodic:
                 base = part.base
-                knots.append(part.knots)
-        if knots:
-            k = np.concatenate(knots)
+                periodic_knots.append(part.knots)
+        if periodic_knots:
+            k = np.concatenate(periodic_knots)
             k = base + np.mod(k - base, T)
             knots = np.unique(k)
         else:
             knots = np.empty(0)
-        aper = self._seg.knots if aperiodic else np.empty(0)
+        aper = self._seg.knots if aperiodic and self._seg is not None else np.empty(0)
         self.breaks = (knots, base, aper, T)
 
     def scalar(self, p: float, w: float) -> float:
@@ -497,7 +499,7 @@ def _breaks_in(breaks: Optional[Tuple[np.ndarray, float, np.ndarray, float]], lo
     return allk[(allk > lo + tol) & (allk < hi - tol)]
 
 
-def _all_breaks(inertia: Any, moment: MomentModel, lo: float, hi: float) -> np.ndarray:
+def _all_breaks(inertia: Inertia, moment: MomentModel, lo: float, hi: float) -> np.ndarray:
     out = [_breaks_in(_breaks_of(moment), lo, hi), _breaks_in(_breaks_of(inertia), lo, hi)]
     return np.unique(np.concatenate(out))
 
@@ -639,8 +641,8 @@ def _stall_angle(g: Callable[..., Any], lo: float, hi: float) -> float:
     return float(brentq(g, lo, hi, xtol=1e-13 * max(1.0, abs(hi)), rtol=4 * np.finfo(float).eps))
 
 
-def _check_energy_stall(inertia: Any, moment: MomentModel, phi0: float, E0: float, phi_end: float,
-                        fine: np.ndarray) -> None:
+def _check_energy_stall(inertia: Inertia, moment: MomentModel, phi0: float, E0: float,
+                        phi_end: float, fine: np.ndarray) -> None:
     """Raise ``"stall"`` where ``E0 + W(φ)`` first reaches 0 on ``[phi0, phi_end]``."""
     from scipy.optimize import minimize_scalar
 
@@ -648,6 +650,7 @@ def _check_energy_stall(inertia: Any, moment: MomentModel, phi0: float, E0: floa
         return E0 + float(moment.energy(phi0, p))
 
     e = E0 + moment.energy(phi0, fine)
+    assert isinstance(e, np.ndarray)  # fine is an array
     if E0 <= 0 and float(moment.phi_part(phi0)) <= 0:
         raise DescribedError("the machine does not start", reason="stall", phi=float(phi0))
     bad = np.flatnonzero(e[1:] <= 0)
@@ -665,8 +668,8 @@ def _check_energy_stall(inertia: Any, moment: MomentModel, phi0: float, E0: floa
                              phi=_stall_angle(g, fine[first - 1], fine[first]))
 
 
-def energy_solution(inertia: Any, moment: MomentModel, phi0: float, omega0: float, phi: Any
-                   ) -> Motion:
+def energy_solution(inertia: Union[Inertia, float], moment: MomentModel, phi0: float,
+                    omega0: float, phi: Any) -> Motion:
     """The exact motion under a moment of φ alone by the energy integral (eqs 6-11, 6-12).
 
     ``ω(φ) = sqrt((Je0 ω0² + 2W(φ)) / Je(φ))`` with ``W = ∫_{φ0}^{φ} Me dφ`` exact
@@ -728,6 +731,7 @@ def energy_solution(inertia: Any, moment: MomentModel, phi0: float, omega0: floa
     Je, dJe = inertia(phi)
     omega = omega_at(phi)
     Me = moment(phi, omega)
+    assert isinstance(Me, np.ndarray)  # phi is an array
     alpha = (Me - 0.5 * dJe * omega ** 2) / Je
     return Motion(phi=phi, t=t, omega=omega, alpha=alpha, Je=np.asarray(Je, float),
                   dJe=np.asarray(dJe, float), Me=Me, method="energy")
@@ -857,7 +861,7 @@ def _solver_class(method: str) -> Any:
 MAX_STEPS = 200_000
 
 
-def _ode(inertia: Union[ConstantInertia, TableInertia, _ConstantInertia], moment: MomentModel,
+def _ode(inertia: Inertia, moment: MomentModel,
          phi0: float, omega0: float, phi_end: float, method: str, rtol: float, atol: float) -> _Run:
     """Integrate ``dE/dφ = Me(φ, ω)``, ``ω = sqrt(2E/Je)`` (eq 6-5) piece by piece.
 
@@ -914,14 +918,14 @@ def _ode(inertia: Union[ConstantInertia, TableInertia, _ConstantInertia], moment
     return _Run(los, his, dense, nfev, E)
 
 
-def _omega_of(run: _Run, inertia: Union[ConstantInertia, TableInertia, _ConstantInertia]
+def _omega_of(run: _Run, inertia: Inertia
              ) -> Callable[..., Any]:
     def omega(p: np.ndarray) -> np.ndarray:
         return np.sqrt(np.maximum(2.0 * run.E(p) / inertia(p)[0], 0.0))
     return omega
 
 
-def _motion_from_run(run: _Run, inertia: Union[ConstantInertia, TableInertia, _ConstantInertia],
+def _motion_from_run(run: _Run, inertia: Inertia,
                      moment: MomentModel, phi: np.ndarray, method: str, rtol: float, atol: float
                     ) -> Motion:
     omega_at = _omega_of(run, inertia)
@@ -937,7 +941,7 @@ def _motion_from_run(run: _Run, inertia: Union[ConstantInertia, TableInertia, _C
                   nfev=run.nfev, rtol=rtol, atol=atol)
 
 
-def _book(inertia: Union[TableInertia, _ConstantInertia], moment: MomentModel, phi0: float,
+def _book(inertia: Inertia, moment: MomentModel, phi0: float,
           omega0: float, phi_end: float, step: float) -> Tuple[Any, ...]:
     """The book's explicit scheme (eqs 6-22, 6-23) on the grid ``phi0 + k·Δφ``.
 
@@ -950,14 +954,17 @@ def _book(inertia: Union[TableInertia, _ConstantInertia], moment: MomentModel, p
     J, dJ = inertia(phi)
     J = np.broadcast_to(np.asarray(J, dtype=float), phi.shape)
     fast = isinstance(moment, MomentModel)
+    Pl: List[float] = []
     if fast:
         P = moment.phi_part(phi)
+        assert isinstance(P, np.ndarray)  # phi is an array
+        Pl = P.tolist()
         c = moment.omega_coefficient
     omega = np.empty(n + 1)
     omega[0] = w = float(omega0)
     if not w > 0:
         raise ValueError("the book's scheme divides by ω: it cannot start from rest")
-    Jl, Pl = J.tolist(), (P.tolist() if fast else None)
+    Jl = J.tolist()
     for i in range(n):
         m = Pl[i] + c * w if fast else float(moment(phi[i], w))
         w_next = m * h / (Jl[i] * w) + (3.0 * Jl[i] - Jl[i + 1]) / (2.0 * Jl[i]) * w
@@ -968,7 +975,7 @@ def _book(inertia: Union[TableInertia, _ConstantInertia], moment: MomentModel, p
     return phi, omega, np.asarray(dJ, float) * np.ones_like(phi), J, h, n
 
 
-def _book_motion(inertia: Union[TableInertia, _ConstantInertia], moment: MomentModel, phi0: float,
+def _book_motion(inertia: Inertia, moment: MomentModel, phi0: float,
                  omega0: float, phi_end: float, step: float) -> Motion:
     phi, omega, dJ, J, h, n = _book(inertia, moment, phi0, omega0, phi_end, step)
     Me = moment(phi, omega)
@@ -990,7 +997,7 @@ def _check_method(method: str, step: Optional[float]) -> None:
         raise ValueError("the book's scheme needs a positive step")
 
 
-def integrate(inertia: Union[ConstantInertia, TableInertia, float], moment: MomentModel,
+def integrate(inertia: Union[Inertia, float], moment: MomentModel,
               phi0: float, omega0: float, phi_end: float, *, method: str = "DOP853",
               rtol: float = 1e-10, atol: float = 1e-12, step: Optional[float] = None,
               points: Optional[int] = None) -> Motion:
@@ -1051,6 +1058,7 @@ def integrate(inertia: Union[ConstantInertia, TableInertia, float], moment: Mome
     if not omega0 >= 0:
         raise ValueError("the initial speed must not be negative")
     if method == "book":
+        assert step is not None  # _check_method
         return _book_motion(inertia, moment, phi0, omega0, phi_end, step)
     run = _ode(inertia, moment, phi0, omega0, phi_end, method, rtol, atol)
     return _motion_from_run(run, inertia, moment, _grid(phi0, phi_end, points), method,
@@ -1060,7 +1068,7 @@ def integrate(inertia: Union[ConstantInertia, TableInertia, float], moment: Mome
 # --------------------------------------------------------------------------- steady state
 
 
-def cycle(*periods: Any) -> float:
+def cycle(*periods: Optional[float]) -> float:
     """The cycle of models of these periods [rad] (None: constant): the longest, which
     every other must divide (2π and 4π: 4π, a four-stroke engine); 2π when none varies.
 
@@ -1081,7 +1089,7 @@ def cycle(*periods: Any) -> float:
     return T
 
 
-def _period(inertia: Any, moment: MomentModel) -> float:
+def _period(inertia: Inertia, moment: MomentModel) -> float:
     if getattr(inertia, "period", None) is None and not getattr(inertia, "constant", False):
         raise ValueError("the steady state needs a periodic or constant inertia")
     if moment.depends_on_phi and moment.period is None:
@@ -1114,7 +1122,7 @@ def _summary(motion: Motion, omega0: float, omega_max: float, omega_min: float, 
                        iterations=int(it), residual=float(res), root=root, nfev=int(nfev))
 
 
-def _steady_energy(inertia: Union[ConstantInertia, ZeroInertia, _ConstantInertia],
+def _steady_energy(inertia: Inertia,
                    moment: MomentModel, phi0: float, T: float, omega_mean: float, tol: float,
                    max_iter: int, points: int) -> SteadyState:
     """Me(φ) only: every ω0 is periodic when the work per period vanishes; pick the mean."""
@@ -1156,7 +1164,7 @@ def _steady_energy(inertia: Union[ConstantInertia, ZeroInertia, _ConstantInertia
         return np.sqrt(np.maximum((Je0 * w0 * w0 + 2 * moment.energy(phi0, p))
                                   / inertia(p)[0], 0.0))
 
-    def E_f(p: np.ndarray) -> np.ndarray:
+    def E_f(p: np.ndarray) -> FloatOrArray:
         return moment.energy(phi0, p)
 
     imax, imin = int(np.argmax(m.omega)), int(np.argmin(m.omega))
@@ -1171,7 +1179,8 @@ def _steady_energy(inertia: Union[ConstantInertia, ZeroInertia, _ConstantInertia
                     res, "mean", 0)
 
 
-def steady_state(inertia: Any, moment: MomentModel, *, omega_guess: float, method: str = "DOP853",
+def steady_state(inertia: Union[Inertia, float], moment: MomentModel, *, omega_guess: float,
+                 method: str = "DOP853",
                  rtol: float = 1e-10, atol: float = 1e-12, step: Optional[float] = None,
                  root: str = "shooting", tol: float = 1e-12, max_iter: int = 200,
                  points: int = 361, phi0: float = 0.0) -> SteadyState:
@@ -1246,8 +1255,10 @@ def steady_state(inertia: Any, moment: MomentModel, *, omega_guess: float, metho
         w0, iterations = _shooting_root(pm, g, tol, max_iter)
     pm.advance(w0)
     w_end, run = pm.cache[w0]
+    assert w_end is not None  # the root does not stall
     trail = tuple((w, pm.cache[w][0]) for w in pm.history)
     if method == "book":
+        assert step is not None  # _check_method
         m = _book_motion(inertia, moment, phi0, w0, phi0 + T, step)
         imax, imin = int(np.argmax(m.omega)), int(np.argmin(m.omega))
         mean = float(np.trapezoid(m.omega, m.phi)) / T
@@ -1256,6 +1267,7 @@ def steady_state(inertia: Any, moment: MomentModel, *, omega_guess: float, metho
             m, w0, m.omega[imax], m.omega[imin], m.phi[imax], m.phi[imin], mean,
             float(W.max() - W.min()), iterations, abs(w_end - w0), root, pm.evaluations),
             history=trail)
+    assert run is not None  # the solver's run (not the book's scheme)
     phi = _grid(phi0, phi0 + T, points)
     m = _motion_from_run(run, inertia, moment, phi, method, rtol, atol)
     m = dataclasses.replace(m, nfev=run.nfev)
@@ -1279,15 +1291,16 @@ class _PeriodMap:
     integrated, ``evaluations`` the moment evaluations they cost, ``history`` the
     starts in order."""
 
-    def __init__(self, inertia: Union[ConstantInertia, TableInertia], moment: MomentModel,
+    def __init__(self, inertia: Inertia, moment: MomentModel,
                  phi0: float, T: float, method: str, rtol: float, atol: float,
                  step: Optional[float]) -> None:
         self.inertia, self.moment, self.phi0, self.T = inertia, moment, phi0, T
         self.method, self.rtol, self.atol, self.step = method, rtol, atol, step
-        self.cache, self.history = {}, []
+        self.cache: Dict[float, Tuple[Optional[float], Optional[_Run]]] = {}
+        self.history: List[float] = []
         self.calls = self.evaluations = 0
 
-    def advance(self, w0: float) -> float:
+    def advance(self, w0: float) -> Optional[float]:
         """ω at the period end (``None`` on a stall)."""
         if w0 in self.cache:
             return self.cache[w0][0]
@@ -1296,6 +1309,7 @@ class _PeriodMap:
         inertia, moment, phi0, T = self.inertia, self.moment, self.phi0, self.T
         try:
             if self.method == "book":
+                assert self.step is not None  # _check_method
                 ph, om, *_ = _book(inertia, moment, phi0, w0, phi0 + T, self.step)
                 self.evaluations += ph.size - 1
                 self.cache[w0] = (float(om[-1]), None)
@@ -1318,7 +1332,7 @@ class _PeriodMap:
 
 
 def _repeat_root(pm: _PeriodMap, g: float, tol: float, max_iter: int
-                ) -> Optional[Tuple[float, int]]:
+                ) -> Tuple[float, int]:
     """The book's loop: each period from the last one's end speed until ``|Δω| < tol``:
     ``(ω0, periods)``."""
     w, it = g, 0
@@ -1426,7 +1440,8 @@ def flywheel_approx(dW_max: float, omega_m: float, delta: float, Je: float = 0.0
     return total - Je
 
 
-def flywheel_exact(inertia: Any, moment: Any, delta: float, *, omega_guess: float,
+def flywheel_exact(inertia: Union[Inertia, float], moment: MomentModel, delta: float, *,
+                   omega_guess: float,
                    method: str = "DOP853", rtol: float = 1e-10, atol: float = 1e-12,
                    step: Optional[float] = None, mean: str = "integral", tol: float = 1e-9,
                    max_iter: int = 100, points: int = 361,
@@ -1489,22 +1504,22 @@ class _FlywheelRun:
     """The steady states of :func:`flywheel_exact`'s machine with a trial flywheel ``J_F``
     (the mean-speed guess carried from one to the next when the moment depends on ω)."""
 
-    def __init__(self, inertia: Any, moment: Any, target: float, guess: float, mean: str,
-                 has_swing: bool, options: Dict[str, Any]) -> None:
+    def __init__(self, inertia: Inertia, moment: MomentModel, target: float, guess: float,
+                 mean: str, has_swing: bool, options: Dict[str, Any]) -> None:
         self.inertia, self.moment, self.target = inertia, moment, target
         self.guess, self.mean, self.options = guess, mean, options
         self.fixed_mean = not moment.depends_on_omega
         #: the errors that mean "cannot run at that mean speed" (caught only with a swing)
-        self.cannot: Tuple[type, ...] = (DescribedError,) if has_swing else ()
+        self.cannot: Tuple[Type[DescribedError], ...] = (DescribedError,) if has_swing else ()
 
-    def ss(self, JF: float) -> Any:
+    def ss(self, JF: float) -> SteadyState:
         s = steady_state(self.inertia.plus(JF) if JF else self.inertia, self.moment,
                          omega_guess=self.guess, **self.options)
         if not self.fixed_mean:
             self.guess = s.omega0
         return s
 
-    def d_of(self, s: Any) -> float:
+    def d_of(self, s: SteadyState) -> float:
         return s.delta if self.mean == "integral" else s.delta_avg
 
     def h(self, JF: float) -> float:

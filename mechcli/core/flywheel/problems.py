@@ -93,7 +93,8 @@ def build_inertia(part: Any, linkage: Optional[Linkage] = None, bodies: Any = No
                   followers: Optional[Dict[Any, Any]] = None) -> Any:
     """The inertia model of the spec's ``inertia`` part."""
     if part.kind == "linkage":
-        return eq.LinkageInertia(linkage, bodies, followers=followers or None,
+        # (the spec gives the linkage with an inertia of kind "linkage")
+        return eq.LinkageInertia(linkage, bodies, followers=followers or None,  # type: ignore[arg-type]
                                  derivative=part.derivative, step=part.step)
     if part.kind == "table":
         return eq.TableInertia(np.asarray(part.phi), np.asarray(part.values), method=part.method,
@@ -138,7 +139,8 @@ def _tables(part: Any, linkage_moment: Optional[Any], cycle: float, only: Option
         return tabs[0]
     if all(np.array_equal(t[0], tabs[0][0]) for t in tabs) \
             and len({t[2] for t in tabs}) == 1:
-        return tabs[0][0], sum(t[1] for t in tabs), tabs[0][2]
+        # (a sum of two or more arrays: an array, never sum's start 0)
+        return tabs[0][0], sum(t[1] for t in tabs), tabs[0][2]  # type: ignore[return-value]
     # linear tables on other angles: their sum is linear on the union of the angles
     base = tabs[0][0][0]
     grid = np.unique(np.concatenate([np.mod(t[0][:-1] - base, cycle) for t in tabs])) + base
@@ -148,8 +150,8 @@ def _tables(part: Any, linkage_moment: Optional[Any], cycle: float, only: Option
     return grid, total, "linear"
 
 
-def _harmonic(h: Tuple[float, Tuple[float], Tuple[Any, ...], float], cycle: float
-             ) -> Tuple[float, Tuple[float], Tuple[Any, ...]]:
+def _harmonic(h: Tuple[float, Tuple[float, ...], Tuple[float, ...], float], cycle: float
+             ) -> Tuple[float, Tuple[float, ...], Tuple[float, ...]]:
     """``(a0, a, b)`` of a series of period ``h[3]`` as harmonics of the cycle."""
     a0, a, b, period = h
     m = int(round(cycle / period))
@@ -160,7 +162,7 @@ def _harmonic(h: Tuple[float, Tuple[float], Tuple[Any, ...], float], cycle: floa
         full = np.zeros(m * len(c))
         full[m - 1::m] = c
         out.append(tuple(full))
-    return (a0,) + tuple(out)
+    return (a0,) + tuple(out)  # type: ignore[return-value]  # (out holds a and b)
 
 
 def _segments(part: Any, cycle: float) -> Optional[List[Tuple[float, float, float, float]]]:
@@ -194,7 +196,8 @@ def moment_cycle(part: Any) -> float:
 def build_moment(part: Any, linkage: Optional[Linkage] = None, topo: Optional[Topology] = None,
                  bodies: Any = None, gravity: Optional[Tuple[float, float]] = None,
                  loads: Tuple[Any, ...] = (), followers: Optional[Dict[Any, Any]] = None,
-                 shift: float = 0.0) -> Tuple[MomentModel, None]:
+                 shift: float = 0.0
+                 ) -> Tuple[MomentModel, Optional[Tuple[np.ndarray, np.ndarray, str]]]:
     """The moment model of the spec's ``moment`` part (and the linkage's loads), over its
     cycle; ``shift`` [N m] is added to the constant (the balancing mean)."""
     cycle = moment_cycle(part)
@@ -202,7 +205,8 @@ def build_moment(part: Any, linkage: Optional[Linkage] = None, topo: Optional[To
     if part.loads and linkage is not None:
         loads = _with_band_limits(linkage, loads, followers)
         phi = np.linspace(0.0, 2 * np.pi, LOAD_SAMPLES, endpoint=False)
-        M = eq.linkage_moment(linkage, topo, bodies, gravity, list(loads), phi,
+        # (the spec gives the topology with the linkage)
+        M = eq.linkage_moment(linkage, topo, bodies, gravity, list(loads), phi,  # type: ignore[arg-type]
                               followers=followers or None)
         lm = (phi, np.asarray(M, dtype=float), "linear")
     constant = part.constant - part.resisting + shift
@@ -216,7 +220,8 @@ def build_moment(part: Any, linkage: Optional[Linkage] = None, topo: Optional[To
         # the loads' Me is smooth between the angles where a load switches on or off: the
         # integrators stop there (and at the user's own knots), not at every sample
         own = mo.MomentModel(table=_tables(part, None, cycle), **terms).breaks
-        switches = _switches(linkage, _with_band_limits(linkage, loads, followers), lm[0],
+        # (lm is set only with a linkage)
+        switches = _switches(linkage, _with_band_limits(linkage, loads, followers), lm[0],  # type: ignore[arg-type]
                              followers)
         switches = (switches[:, None] + 2 * np.pi * np.arange(
             int(round(cycle / (2 * np.pi))))[None, :]).ravel()
@@ -253,7 +258,7 @@ def _term_works(part: Any, lm: Optional[Any], cycle: float, omega_m: float
     return works
 
 
-def _with_band_limits(linkage: Any, loads: Any, followers: Any):
+def _with_band_limits(linkage: Linkage, loads: Any, followers: Optional[Dict[Any, Any]]):
     """Loads acting over a band of a slide's stroke (例 2-4's cutting force) get the
     stroke's absolute limits, refined on the exact solution as ``force`` does."""
     if not any(p.band is not None for p in loads):
@@ -272,7 +277,8 @@ def _with_band_limits(linkage: Any, loads: Any, followers: Any):
     return out
 
 
-def _switches(linkage: Any, loads: Any, phi: Any, followers: Any):
+def _switches(linkage: Linkage, loads: Any, phi: np.ndarray, followers: Optional[Dict[Any, Any]]
+              ) -> np.ndarray:
     """The sample angles at which a load's program switches (its window, velocity sign or
     stroke band): where the loads' Me may jump."""
     from mechcli.core.linkage.kinematics import Sweep
@@ -290,7 +296,7 @@ def _switches(linkage: Any, loads: Any, phi: Any, followers: Any):
     return np.concatenate(out) if out else np.empty(0)
 
 
-def _auto(kind: str, inertia: Any, moment: MomentModel, end: str, omega0: float) -> str:
+def _auto(kind: str, inertia: mo.Inertia, moment: MomentModel, end: str, omega0: float) -> str:
     """The method for the problem: exact where a closed form or the energy integral
     applies, else DOP853 -- or Radau when the motor's damping b makes the equation stiff
     (b/(Je ω) per radian large: a steep motor line on a light machine)."""
@@ -309,7 +315,8 @@ def _auto(kind: str, inertia: Any, moment: MomentModel, end: str, omega0: float)
 STIFF = 50.0
 
 
-def _swing_at_mean(moment: Any, phi0: Any, omega_m: Any, period: Any, n: int = 7201):
+def _swing_at_mean(moment: MomentModel, phi0: float, omega_m: float, period: float,
+                   n: int = 7201) -> float:
     """ΔWmax of eq. 6-29 as taught: the swing of the work of Me(φ, ωm) at the mean speed
     over a cycle (the φ-part exactly, minus b ωm φ)."""
     phi = np.linspace(phi0, phi0 + period, n)
@@ -417,7 +424,8 @@ def solve_flywheel(spec: Any) -> FlywheelSolution:
             raise DescribedError("the equivalent inertia vanishes: no link with mass moves "
                                  "there (ω would be unbounded)", reason="inertia_vanishes",
                                  angle=float(grid[int(np.argmin(Je))]))
-    moment = lm = None
+    moment: Any = None      # a MomentModel: None only for a model without [moment]
+    lm = None
     sol = {}
     if spec.moment is not None:
         mcycle = moment_cycle(spec.moment)
@@ -451,8 +459,8 @@ def solve_flywheel(spec: Any) -> FlywheelSolution:
         a, b = float(moment.phi_part(0.0)), moment.b
         times = None if ms.t_end is None else np.linspace(0.0, ms.t_end, ms.points)
         if end == "phi":
-            raise DescribedError("the closed form runs to a speed or a time, not an angle: "
-                                 "give omega_end or t_end", reason="end")
+            raise DescribedError("the closed form runs to a speed or a time, not an angle",
+                                 reason="end", to_angle=False)
         mot = mo.linear_closed_form(J, a, b, 0.0, ms.omega0, omega_end=ms.omega_end,
                                     t=times, points=ms.points)
         if ms.phi0:             # the closed form counts φ from 0: start at phi0_deg
@@ -461,9 +469,7 @@ def solve_flywheel(spec: Any) -> FlywheelSolution:
         return FlywheelSolution(inertia, moment, mot, None, method,
                                 omega_inf=(a / b) if b else None, **sol)
     if end != "phi":
-        raise DescribedError(f"method {method} runs to an angle: give phi_end_deg (omega_end "
-                             "and t_end need the closed form: a constant inertia and a "
-                             "moment of the speed only)", reason="end")
+        raise DescribedError(f"method {method} runs to an angle", reason="end", to_angle=True)
     if method == "energy":
         if moment.depends_on_omega:
             raise DescribedError("the energy integral needs a moment of the angle only",
@@ -535,7 +541,7 @@ def _steady(spec: Any, inertia: Union[ConstantInertia, TableInertia, ZeroInertia
     steady = dict(omega_guess=ms.omega0, method=method, root=ms.root, tol=ms.tol,
                   max_iter=ms.max_iter, points=ms.points, phi0=ms.phi0, **kw)
     st = None
-    if not zero:
+    if not zero or fly.J:   # a machine of no inertia of its own runs on a given flywheel
         try:
             st = mo.steady_state(inertia, moment, **steady)
         except DescribedError as e:
@@ -550,6 +556,9 @@ def _steady(spec: Any, inertia: Union[ConstantInertia, TableInertia, ZeroInertia
         omega_m = ms.omega0
     _figures(spec, moment, lm, cycle, ms.phi0, omega_m, sol)
     if fly.delta is None:
+        if st is None:   # no inertia at all: nothing bounds the speed's change
+            raise DescribedError("the machine has no inertia and no flywheel is given: its "
+                                 "speed is not determined", reason="no_inertia")
         sol.update(_shape(fly, fly.J) if fly.J else {})
         return FlywheelSolution(inertia, moment, st.motion, st, method, J_F=fly.J or None,
                                 **sol)
@@ -564,7 +573,8 @@ def _steady(spec: Any, inertia: Union[ConstantInertia, TableInertia, ZeroInertia
         if st is None:
             raise
     J_F = mo.flywheel_exact(inertia, moment, fly.delta, omega_guess=ms.omega0, method=method,
-                            points=ms.points, swing=(dW, omega_m, Je_mean), **kw)
+                            points=ms.points, swing=(dW, omega_m, Je_mean),
+                            **kw)  # type: ignore[arg-type]  # (kw: rtol, atol, step)
     st2 = mo.steady_state(inertia.plus(J_F), moment, **steady)
     if st is None:
         st, sol["motion_with_J_F"] = st2, True

@@ -22,6 +22,6 @@ problems
 
 May import: numpy and scipy (lazily: involute, spur, pair, helical, bevel,
 worm and problems load without numpy so the scalar kinds start fast),
-:mod:`mechcli.core.errors` and :mod:`mechcli.core.refine`; nothing of spec,
+:mod:`mechcli.core.errors` and :mod:`mechcli.core.numerics`; nothing of spec,
 report, commands or cli.
 """

@@ -110,8 +110,9 @@ def check_mountings(g1: SpurGear, g2: SpurGear, a_w: Sequence[float] = (),
                 bad = a < a0 * (1 - 1e-12)
             if bad:
                 where = f"in ({lo:.6g}, {a0:.6g}]" if internal else f">= {a0:.6g}"
+                by = "centre distance" if given == "a_w" else "operating pressure angle"
                 raise MeshError(
-                    f"mounting {given}[{i}]: a' = {a:.6g} is not {where}, where the teeth "
+                    f"mounting by {by} [{i}]: a' = {a:.6g} is not {where}, where the teeth "
                     "neither jam nor overlap their base circles", "mounting",
                     given=given, index=i, a_w=a, alpha_w=None if given == "a_w" else value,
                     a0=a0, lo=lo, internal=internal, thin=thin)
@@ -310,7 +311,8 @@ def gear_pair(g1: SpurGear, g2: SpurGear, a_w: Optional[float] = None,
     Raises
     ------
     MeshError
-        Different modules or pressure angles; a' on the jamming side of the
+        Different modules or pressure angles; both a_w and alpha_w given
+        (reason ``"both_given"``); a' on the jamming side of the
         zero-backlash distance; the tips do not reach the line of
         action (epsilon_alpha <= 0: the gears do not touch).
     """
@@ -321,7 +323,8 @@ def gear_pair(g1: SpurGear, g2: SpurGear, a_w: Optional[float] = None,
         raise MeshError("an internal pair needs an external pinion (gear 1) and a ring gear 2 "
                         "with more teeth")
     if a_w is not None and alpha_w is not None:
-        raise ValueError("give a_w or alpha_w, not both")
+        raise MeshError("the centre distance and the operating pressure angle are both "
+                        "given (each fixes the other)", "both_given")
     if a_w is None and alpha_w is None:
         alpha_w = zero_backlash_pressure_angle(g1, g2)
     if a_w is None:   # (alpha_w is given or was just found)

@@ -92,7 +92,8 @@ def root_factors(z: int, mn: float, alpha_n: float, x: float, da: float, beta: f
     ------
     MeasurementError
         reason ``"root_factors"``: the iteration for the 30-degree tangent does not
-        converge, or the tooth has no root section (too few teeth for this shift).
+        converge (value ``angle`` = π/6 besides ``z``, ``x``), or the tooth has no
+        root section (too few teeth for this shift).
     """
     h_fP = 1.25 * mn if h_fP is None else h_fP
     rho_fP = 0.38 * mn if rho_fP is None else rho_fP
@@ -110,8 +111,8 @@ def root_factors(z: int, mn: float, alpha_n: float, x: float, da: float, beta: f
             break
         theta = new
     else:
-        raise MeasurementError("no 30-degree tangent on the root fillet", "root_factors", z=z,
-                               x=x)
+        raise MeasurementError("no tangent on the root fillet at the critical section's "
+                               "angle", "root_factors", z=z, x=x, angle=math.pi / 6)
     s_fn = mn * (zn * math.sin(math.pi / 3 - theta)
                  + math.sqrt(3) * (g / math.cos(theta) - rho_fP / mn))
     denom = zn * math.cos(theta) ** 2 - 2 * g

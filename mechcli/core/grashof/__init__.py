@@ -21,7 +21,7 @@ analysis
 
 May import: numpy (not in :mod:`.chain`, :mod:`.analysis` and :mod:`.mobility`
 at module level; no scipy), :mod:`mechcli.core.errors`,
-:mod:`mechcli.core.refine` and :mod:`mechcli.core.linkage`; nothing of spec,
+:mod:`mechcli.core.numerics` and :mod:`mechcli.core.linkage`; nothing of spec,
 report, commands or cli.  Errors carry their numbers as attributes and no unit
 names; the report layer words them.
 """

@@ -10,7 +10,7 @@ extremes (:mod:`.kinematics`), kinetostatics (:mod:`.kinetostatics`) and the
 force sweep (:mod:`.force_analysis`).
 
 May import: numpy, scipy, :mod:`mechcli.core.errors` and
-:mod:`mechcli.core.refine`; nothing of spec, report, commands or cli.
+:mod:`mechcli.core.numerics`; nothing of spec, report, commands or cli.
 
 The names below are the package's public face (``from mechcli.core.linkage
 import solve, four_bar``).

@@ -11,8 +11,8 @@ import numpy as np
 
 from mechcli.core.linkage.engine import Linkage, LinkageMotion, solve
 from mechcli.core.linkage.sweep import _take
+from mechcli.core.numerics import true_runs
 from mechcli.core.records import record
-from mechcli.core.refine import true_runs
 from mechcli.core.types import FloatOrArray
 
 if TYPE_CHECKING:

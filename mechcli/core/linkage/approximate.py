@@ -29,7 +29,7 @@ from typing import TYPE_CHECKING, Any, Callable, Dict, Optional, Sequence, Tuple
 
 import numpy as np
 
-from mechcli.core.refine import bracketed_root
+from mechcli.core.numerics import bracketed_root
 from mechcli.core.types import FloatOrArray
 
 if TYPE_CHECKING:
@@ -125,7 +125,7 @@ def extremes(q: Any, values: Any, func: Callable[..., Any],
 
     ``slope(x) -> (d/dθ, d²/dθ², rounding of d/dθ)`` (arrays) is the closed-form
     derivative: the extreme is its root, closed by a safeguarded secant
-    (:func:`~mechcli.core.refine.bracketed_root`) to a float spacing, and ``tol`` is
+    (:func:`~mechcli.core.numerics.bracketed_root`) to a float spacing, and ``tol`` is
     half the final bracket or the rounding of the derivative over its slope, whichever is
     larger.  An extreme at an end of the sweep (no root of the slope beside the best
     sample) is that sample, exactly (``tol = 0``).

@@ -60,12 +60,15 @@ class DrawingError(ValueError):
         ``"joint"``, ``"link"``, ``"slider"``, ``"driver"`` or ``"drivers"``.
     name : str or int or None
         The joint's name, the link's number, the slider's index ...
+    lone : bool
+        A joint on one link only (the spec layer says what such a point is).
     """
 
-    def __init__(self, message: str, what: str, name: Any = None) -> None:
+    def __init__(self, message: str, what: str, name: Any = None, lone: bool = False) -> None:
         super().__init__(message)
         self.what = what
         self.name = name
+        self.lone = lone
 
 
 @record
@@ -159,8 +162,8 @@ def _topology(drawing: Any):
     for n, names in drawing.links.items():
         for j in names:
             if j not in drawing.joints:
-                raise DrawingError(f"link {n} names joint '{j}', which [mechanism.joints] "
-                                   f"does not place", "link", n)
+                raise DrawingError(f"link {n} names joint '{j}', which the drawing does not "
+                                   "place", "link", n)
     joints = pairs_of_links(drawing.frame, drawing.links, drawing.sliders)
     frame_joints = [j.name for j in joints if j.kind == "R" and drawing.frame in j.links]
     return joints, frame_joints
@@ -200,8 +203,7 @@ def pairs_of_links(frame: int, links: Any, sliders: Any = ()):
             on_links = [frame] + on_links            # a pivot of the frame
         if len(on_links) < 2:
             raise DrawingError(f"joint '{j}' is on link {on_links[0]} only: a joint joins "
-                               f"two links (a point on a link is a [[mechanism.point]])",
-                               "joint", j)
+                               "two links", "joint", j, lone=True)
         joints.append(Joint("R", tuple(on_links), j))
     for s in sliders:
         joints.append(Joint("P", (s.block, s.guide), s.name or f"{s.block}{s.guide}"))

@@ -13,8 +13,8 @@ import numpy as np
 from mechcli.core.linkage.accuracy import EPS
 from mechcli.core.linkage.engine import solve
 from mechcli.core.linkage.sweep import Extreme, _periodic, _wrap
+from mechcli.core.numerics import bracketed_root
 from mechcli.core.records import record
-from mechcli.core.refine import bracketed_root
 from mechcli.core.types import FloatOrArray
 
 if TYPE_CHECKING:
@@ -252,7 +252,7 @@ def refine_extremes(linkage: Linkage, sweep: Any, order: int, quantities: Sequen
     refined on the exact derivative (the next-order quantity of the engine),
     or on a central difference (h = 1e-5 rad) for quantities without one: by
     a safeguarded secant where the derivative changes sign across the
-    bracket (:func:`~mechcli.core.refine.bracketed_root`, a few solves), by
+    bracket (:func:`~mechcli.core.numerics.bracketed_root`, a few solves), by
     bisection on its sign otherwise; the best refined value wins, reported with the
     input where it was evaluated.  A central difference's bracket closes no further
     than its rounding error (:func:`_difference_tol`); its tolerance adds the bias of the

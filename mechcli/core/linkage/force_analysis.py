@@ -17,8 +17,7 @@ from mechcli.core.linkage.accuracy import EPS, Accuracy, _digits, amplification
 from mechcli.core.linkage.engine import solve
 from mechcli.core.linkage.kinematics import SEARCH_STEP, Sweep, analyse_sweep
 from mechcli.core.linkage.kinetostatics import COND_FLAG, ForceResult, solve_forces
-from mechcli.core.records import record
-from mechcli.core.refine import (
+from mechcli.core.numerics import (
     bisect,
     gauss_legendre,
     golden_section_max,
@@ -26,6 +25,7 @@ from mechcli.core.refine import (
     sorted_union,
     true_runs,
 )
+from mechcli.core.records import record
 from mechcli.core.types import FloatOrArray
 
 if TYPE_CHECKING:
@@ -386,12 +386,12 @@ def _balancing_mean_rms(linkage: Linkage, pipe: ForceEvaluator, grid: _Grid,
 
 
 def _golden_tol(lo: FloatOrArray, hi: FloatOrArray, iterations: int, rtol: float = 1e-10):
-    """How closely :func:`~mechcli.core.refine.golden_section_max` locates each maximum:
+    """How closely :func:`~mechcli.core.numerics.golden_section_max` locates each maximum:
     half its final bracket (the brackets shrink together by ``GOLDEN`` per step until
     every one is shorter than ``rtol · max(1, |lo|)``), but never less than what
     comparing values allows near a smooth maximum, about ``sqrt(EPS) · max(1, |x|)``
     (two inputs closer than that give values equal to round-off)."""
-    from mechcli.core.refine import GOLDEN
+    from mechcli.core.numerics import GOLDEN
     lo, hi = np.asarray(lo, dtype=float), np.asarray(hi, dtype=float)
     width = np.abs(hi - lo)
     need = rtol * np.maximum(1.0, np.abs(lo))

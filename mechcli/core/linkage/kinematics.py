@@ -65,8 +65,8 @@ from mechcli.core.linkage.sweep import (
     _unwrap_runs,
     default_quantities,
 )
+from mechcli.core.numerics import sorted_union, true_runs
 from mechcli.core.records import record
-from mechcli.core.refine import sorted_union, true_runs
 
 if TYPE_CHECKING:
     from mechcli.core.linkage.engine import LinkageMotion

@@ -145,18 +145,18 @@ _Plan, _plan = force_plan.Plan, force_plan.plan
 #: above this many positions a link's cosine and sine come from its element's points
 #: (:meth:`~mechcli.core.linkage.elements.Element.direction`, ~9 passes over memory)
 #: rather than ``np.cos`` and ``np.sin`` of its angle (~20 ns a position, but two calls
-#: instead of nine).  Measured on 例 2-4 (2026-11-25): the fixed cost of one position
-#: 0.448 ms from the points, 0.42 ms from the angle; 36,001 positions 0.6 ms less.
+#: instead of nine): the angle's two calls win on a short sweep, the points on a long
+#: one (``…_directions_from_points_over_from_angle`` of benchmarks/bench_force.py).
 DIRECTION_MIN = 64
 
 #: at most this many positions are solved by LAPACK's batched solve (a few
 #: microseconds per call); longer sweeps by the structured elimination
-#: (:func:`~mechcli.core.linkage.elimination.gauss`), which skips the zeros.  Measured
-#: on 例 2-4 (2026-11-25): one position 0.31 vs 0.56 ms (0.35 vs 0.78 with the
-#: condition numbers); even at 128 (0.83 vs 0.88 ms with them), the elimination ahead
-#: from 256 (1.31 vs 0.98 ms).  With the condition numbers the closed form
-#: (:func:`_solve_closed`) takes over from the same length (one position: 0.60 vs 0.40
-#: ms the whole call by LAPACK); without them it is used at every length.
+#: (:func:`~mechcli.core.linkage.elimination.gauss`), which skips the zeros: LAPACK
+#: wins on a short sweep, the elimination on a long one, about even at this length
+#: (``…_dense_over_structured`` of benchmarks/bench_force.py, with and without the
+#: condition numbers).  With the condition numbers the closed form
+#: (:func:`_solve_closed`) takes over from the same length (on one position the whole
+#: call by LAPACK is faster); without them it is used at every length.
 DENSE_MAX = 128
 
 

@@ -11,7 +11,7 @@ import numpy as np
 
 from mechcli.core.linkage.engine import solve
 from mechcli.core.linkage.sweep import NEAR_TOGGLE_SIN, DeadPoint, Toggle
-from mechcli.core.refine import bisect
+from mechcli.core.numerics import bisect
 from mechcli.core.types import FloatOrArray
 
 if TYPE_CHECKING:

@@ -267,7 +267,7 @@ def split_mean(pipe: ForceEvaluator, result: Any):
     """
     from mechcli.core.linkage.force_analysis import balancing_symbol
     from mechcli.core.linkage.kinematics import SEARCH_STEP
-    from mechcli.core.refine import gauss_legendre, mean_rms, sorted_union
+    from mechcli.core.numerics import gauss_legendre, mean_rms, sorted_union
 
     q = np.asarray(result.q, dtype=float)
     runs = [(a, b) for a, b in (list(result.kin.runs) or [(0, q.size)]) if b - a >= 2]

@@ -490,7 +490,7 @@ def analyse_engine(piston, topo, evaluator, q, fr,
             targets.append((sym, sign, k))
             lo.append(a)
             hi.append(b)
-    from mechcli.core.refine import golden_section_max
+    from mechcli.core.numerics import golden_section_max
     signs = np.array([t[1] for t in targets])
 
     def values(x: Any):

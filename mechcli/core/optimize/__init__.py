@@ -8,12 +8,12 @@ path errors, transmission angles, assembly over a range, the crank conditions
 of the book's g1...g6) and the methods (:mod:`.methods`: SLSQP, trust-constr,
 Nelder-Mead, differential evolution, golden section, Brent, multi-start; all
 from ``scipy.optimize`` except the book's golden section, which is
-:func:`mechcli.core.refine.golden_section_max`).
+:func:`mechcli.core.numerics.golden_section_max`).
 
 Design variables are plain numbers (the spec's numbers, e.g. millimetres and
 degrees); the core never sees a unit or a spec key: :mod:`.build` makes the
 problem from the numbers the spec layer has read and checked.
 
 May import: numpy, scipy (inside functions), :mod:`mechcli.core.errors`,
-:mod:`mechcli.core.refine`, :mod:`mechcli.core.linkage`.
+:mod:`mechcli.core.numerics`, :mod:`mechcli.core.linkage`.
 """

@@ -12,12 +12,20 @@ nothing is worded.
 
 from __future__ import annotations
 
-from typing import Any, Callable, List, Optional, Sequence, Tuple
+from typing import TYPE_CHECKING, Any, Callable, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
 from mechcli.core.optimize import linkage_problem as lp
 from mechcli.core.optimize.problem import Problem, Variable
+
+if TYPE_CHECKING:
+    from mechcli.core.cam.design import CamDesign
+    from mechcli.core.linkage import Linkage
+    from mechcli.core.optimize.cam_problem import PressureAngle
+
+#: the goal of a linkage problem (None for a result objective)
+Goal = Optional[Union[lp.FunctionGoal, lp.PathGoal]]
 
 #: a bound on another command's result: (result key, lower or None, upper or None)
 Bound = Tuple[str, Optional[float], Optional[float]]
@@ -64,7 +72,7 @@ def bound_scales(bounds: Sequence[Bound]) -> List[float]:
     return scales
 
 
-def linkage_problem(candidates: Any, variables: Sequence[Variable], goal: Any,
+def linkage_problem(candidates: Any, variables: Sequence[Variable], goal: Goal,
                     constraints: Sequence[dict], samples: int,
                     extra: Optional[Callable] = None, extra_names: Sequence[str] = (),
                     bounds: Sequence[Bound] = ()) -> Tuple[Problem, lp.LinkageEvaluator]:
@@ -81,7 +89,7 @@ def linkage_problem(candidates: Any, variables: Sequence[Variable], goal: Any,
     return Problem(list(variables), evaluator, evaluator.names, scales=scales), evaluator
 
 
-def optimum_poses(linkage: Any, q: np.ndarray, rotary: bool, goal: Any,
+def optimum_poses(linkage: Linkage, q: np.ndarray, rotary: bool, goal: Goal,
                   details: dict) -> dict:
     """The optimum *linkage* moved through the inputs *q* of its driver (and posed
     at a path goal's angles from the optimum theta0): what the pictures and
@@ -93,12 +101,14 @@ def optimum_poses(linkage: Any, q: np.ndarray, rotary: bool, goal: Any,
              "motion": solve(linkage, {drv.link: DriverMotion(q)}, order=0), "at": None,
              "size": float(getattr(goal, "scale", 1.0))}
     if getattr(goal, "angles", None) is not None and "theta0" in details:
+        assert isinstance(goal, lp.PathGoal)  # the goal with angles
         qa = float(details["theta0"][0]) + np.asarray(goal.angles, dtype=float)
         poses["at"] = solve(linkage, {drv.link: DriverMotion(qa)}, order=0)
     return poses
 
 
-def cam_problem(design: Any, maximize: bool, variable: Variable) -> Tuple[Problem, Any]:
+def cam_problem(design: CamDesign, maximize: bool, variable: Variable
+                ) -> Tuple[Problem, PressureAngle]:
     """例 7-2: the pressure angle of a cam *design* over the cam angle (the one
     *variable*, degrees), with the cam's exact refinement of the same maximum
     (the root of dα/dδ) beside it as the evaluator's ``exact``."""

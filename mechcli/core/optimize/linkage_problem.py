@@ -12,13 +12,16 @@ on the engine once per term and returns an
 from __future__ import annotations
 
 import math
-from typing import Any, Callable, Optional, Tuple
+from typing import TYPE_CHECKING, Any, Callable, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
 from mechcli.core.optimize import terms
 from mechcli.core.optimize.problem import Evaluation
 from mechcli.core.records import record
+
+if TYPE_CHECKING:
+    from mechcli.core.types import Array, BoolArray
 
 
 @record
@@ -32,7 +35,7 @@ class FunctionGoal:
     ``scale`` divides a slide's deviation (1 for angles).
     """
 
-    output: object
+    output: Union[int, str]
     phi0: object
     dphi: np.ndarray
     dpsi: np.ndarray
@@ -77,7 +80,7 @@ class CrankConditions:
     """The book's g1 … g6: the four-bar's link 1 is a crank (式 7-8 … 7-11)."""
 
 
-def constraint_names(constraints: Any, extra: Any = ()):
+def constraint_names(constraints: Sequence[object], extra: Sequence[str] = ()) -> List[str]:
     """One name per column of g; a name met again gets ``_2``, ``_3`` … (the
     first keeps the plain name: ``gamma_min``)."""
     names = []
@@ -89,7 +92,8 @@ def constraint_names(constraints: Any, extra: Any = ()):
         elif isinstance(c, CrankConditions):
             names += list(terms.CRANK_NAMES)
     names += list(extra)
-    out, seen = [], {}
+    out: List[str] = []
+    seen: Dict[str, int] = {}
     for n in names:
         seen[n] = seen.get(n, 0) + 1
         out.append(n if seen[n] == 1 else f"{n}_{seen[n]}")
@@ -118,9 +122,12 @@ class LinkageEvaluator:
         compute (results of another command, one design at a time).
     """
 
-    def __init__(self, candidates: Callable, driver: int, goal: Any = None, constraints: Any = (),
-                 samples: int = 360, extra: Any = None, extra_names: Any = (),
-                 followers: Any = None):
+    def __init__(self, candidates: Callable, driver: int,
+                 goal: Optional[Union[FunctionGoal, PathGoal]] = None,
+                 constraints: Sequence[Union[Transmission, Assembly, CrankConditions]] = (),
+                 samples: int = 360, extra: Optional[Callable] = None,
+                 extra_names: Sequence[str] = (),
+                 followers: Optional[Dict[int, Tuple[float, float]]] = None):
         self.candidates = candidates
         self.driver = driver
         self.followers = dict(followers or {})
@@ -131,7 +138,9 @@ class LinkageEvaluator:
         self.names = constraint_names(self.constraints, extra_names)
 
     # -- the goal ---------------------------------------------------------
-    def _function(self, pop: Any, goal: Any, params: Any):
+    def _function(self, pop: terms.Population, goal: FunctionGoal, params: Dict[str, Any]
+                  ) -> Tuple[Array, BoolArray, Array]:
+        ok0: Union[BoolArray, bool]
         if isinstance(goal.phi0, str):
             phi0, ok0 = terms.input_limit(pop, goal.output, goal.phi0.split("_")[1])
         else:
@@ -144,7 +153,8 @@ class LinkageEvaluator:
                             * np.ones((q.shape[0], 1)), q], axis=1)
         return terms.measure(dev, goal.measure), ok & ok0, q
 
-    def _path(self, pop: Any, goal: Any, params: Any):
+    def _path(self, pop: terms.Population, goal: PathGoal, params: Dict[str, Any]
+              ) -> Tuple[Array, BoolArray, Optional[Array]]:
         theta0 = params.get("theta0", goal.theta0)
         d, ok = terms.path_deviation(pop, goal.point, goal.targets, goal.angles, theta0)
         q = None
@@ -152,7 +162,7 @@ class LinkageEvaluator:
             q = np.asarray(theta0, dtype=float).reshape(-1, 1) + goal.angles[None, :]
         return terms.measure(d, goal.measure), ok, q
 
-    def _dense(self, q: Any):
+    def _dense(self, q: Array) -> Array:
         """The goal's input range (M, N) sampled as densely as a revolution's
         ``samples`` (the goal's own positions included), for the constraints
         ``over = "range"``."""
@@ -163,7 +173,7 @@ class LinkageEvaluator:
         t = np.linspace(0.0, 1.0, n)
         return np.sort(np.concatenate([lo + (hi - lo) * t, q], axis=-1), axis=-1)
 
-    def details(self, X: Any):
+    def details(self, X: Array) -> Dict[str, Any]:
         """Per-design details for the report: deviations and inputs (M, N)."""
         linkage, built, params = self.candidates(np.atleast_2d(X))
         pop = terms.Population(linkage, self.driver, self.samples, self.followers)
@@ -184,7 +194,7 @@ class LinkageEvaluator:
             out.update(dist=d, theta0=np.asarray(theta0, dtype=float).reshape(-1))
         return out
 
-    def __call__(self, X: Any) -> Evaluation:
+    def __call__(self, X: Array) -> Evaluation:
         X = np.atleast_2d(np.asarray(X, dtype=float))
         M = X.shape[0]
         linkage, built, params = self.candidates(X)
@@ -207,6 +217,7 @@ class LinkageEvaluator:
             # dead points need the velocity solve; angles and assembly do not
             order = 1 if isinstance(c, Assembly) else 0
             if ranged:
+                assert q_range is not None  # ranged
                 m = pop.at(self._dense(q_range), order=order)
             else:
                 m = pop.revolution(order)

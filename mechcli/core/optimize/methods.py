@@ -11,7 +11,7 @@
   beats infeasible, infeasible ranked by violation); the best design is
   polished by SLSQP;
 * ``golden``: the book's golden section on one variable
-  (:func:`mechcli.core.refine.golden_section_max`), ``brent``: bounded Brent
+  (:func:`mechcli.core.numerics.golden_section_max`), ``brent``: bounded Brent
   (``scipy.optimize.minimize_scalar``);
 * multi-start: a local method from the given start and ``starts - 1`` more
   points of a Latin hypercube (seeded), keeping the best feasible end.
@@ -21,12 +21,15 @@ from __future__ import annotations
 
 import math
 import time
-from typing import Any, Callable, Optional
+from typing import TYPE_CHECKING, Any, Callable, Optional, Sequence, Tuple
 
 import numpy as np
 
 from mechcli.core.errors import ConvergenceError, DescribedError
 from mechcli.core.optimize.problem import Problem, Result
+
+if TYPE_CHECKING:
+    from mechcli.core.types import Array
 
 #: method names
 METHODS = ("slsqp", "trust-constr", "nelder-mead", "differential_evolution", "golden",
@@ -43,17 +46,17 @@ class _Smooth:
     """f, g and their finite-difference gradients at x, from one population
     evaluation of the stencil (cached on x)."""
 
-    def __init__(self, problem: Any, central: bool = True, size: Any = None):
+    def __init__(self, problem: Problem, central: bool = True, size: Optional[Array] = None):
         self.p = problem
         self.central = central
-        self.key = None
+        self.key: Optional[bytes] = None
         span = np.where(np.isfinite(problem.hi - problem.lo), problem.hi - problem.lo, 1.0)
         self.h_floor = 1e-9 * np.maximum(span, 1e-12)
         # each variable's typical size: the steps are relative to it, never to 1 (a
         # length in metres and one in millimetres get the same relative step)
         self.size = np.ones(problem.n) if size is None else np.asarray(size, dtype=float)
 
-    def _at(self, x: Any):
+    def _at(self, x: Array) -> None:
         x = np.asarray(x, dtype=float)
         key = x.tobytes()
         if key == self.key:
@@ -95,25 +98,26 @@ class _Smooth:
         self.df, self.dg = df, dg
         self.key = key
 
-    def f(self, x: Any):
+    def f(self, x: Array) -> float:
         self._at(x)
         return self.f0
 
-    def grad(self, x: Any):
+    def grad(self, x: Array) -> Array:
         self._at(x)
         return self.df
 
-    def g(self, x: Any):
+    def g(self, x: Array) -> Array:
         self._at(x)
         return self.g0
 
-    def jac(self, x: Any):
+    def jac(self, x: Array) -> Array:
         self._at(x)
         return self.dg
 
 
-def _finish(problem: Any, x: Any, method: str, message: str, converged: bool, iterations: int,
-            started: Any, starts: Any = (), extra: Any = None):
+def _finish(problem: Problem, x: Array, method: str, message: str, converged: bool,
+            iterations: int, started: float, starts: Sequence[tuple] = (),
+            extra: Optional[dict] = None) -> Result:
     f, g, ok = problem.one(x)
     feasible = bool(problem.feasible(g, ok))
     return Result(np.asarray(x, dtype=float), f, g, problem.active(g), feasible,
@@ -122,8 +126,8 @@ def _finish(problem: Any, x: Any, method: str, message: str, converged: bool, it
                   tuple(starts), extra)
 
 
-def _record(problem: Any, iteration: int, x: Any, progress: Optional[Callable] = None,
-            total: Optional[int] = None):
+def _record(problem: Problem, iteration: int, x: Array, progress: Optional[Callable] = None,
+            total: Optional[int] = None) -> None:
     f, g, ok = problem.one(x)
     violation = problem.violation(g, ok)
     problem.record(iteration, x, f, violation, ok)
@@ -132,7 +136,7 @@ def _record(problem: Any, iteration: int, x: Any, progress: Optional[Callable] =
                  evaluable=bool(ok))
 
 
-def sizes(problem: Any, x0: Any):
+def sizes(problem: Problem, x0: Array) -> Array:
     """Each variable's typical size: |start|, or a tenth of its bounds' span
     when the start is 0 (1 when that is not finite either)."""
     x0 = np.abs(np.asarray(x0, dtype=float))
@@ -141,8 +145,9 @@ def sizes(problem: Any, x0: Any):
     return np.where(x0 > 0, x0, alt)
 
 
-def _local(problem: Any, method: str, x0: Any, tol: float, maxiter: int, central: bool = True,
-           progress: Optional[Callable] = None, done: int = 0):
+def _local(problem: Problem, method: str, x0: Array, tol: float, maxiter: int,
+           central: bool = True, progress: Optional[Callable] = None, done: int = 0
+           ) -> Tuple[Array, bool, int, str]:
     """A local method on the scaled problem: u = x / size (every variable of
     order 1), F = f / |f(start)|, G = g / scale; so tol means the same whatever
     the unit of the lengths (a four-bar in metres or in millimetres)."""
@@ -157,17 +162,17 @@ def _local(problem: Any, method: str, x0: Any, tol: float, maxiter: int, central
     u0 = np.asarray(x0, dtype=float) / size
     it = [0]
 
-    def F(u: Any):
+    def F(u: Array) -> float:
         v = sm.f(u * size)
         return v / fref if sm.ok0 else _WALL + float(problem.violation(sm.g0, False))
 
-    def DF(u: Any):
+    def DF(u: Array) -> Array:
         return sm.grad(u * size) * size / fref
 
-    def G(u: Any):
+    def G(u: Array) -> Array:
         return sm.g(u * size) / cs
 
-    def DG(u: Any):
+    def DG(u: Array) -> Array:
         return sm.jac(u * size) * size[None, :] / cs[:, None]
 
     def cb(uk: Any, *args: Any):
@@ -203,7 +208,7 @@ def _local(problem: Any, method: str, x0: Any, tol: float, maxiter: int, central
             res.message = (f"stopped with the duality measure {res.duality:.1e} above tol "
                            f"(the design may lie inside an active constraint)")
     else:   # nelder-mead with an extreme barrier
-        def barrier(u: Any):
+        def barrier(u: Array) -> float:
             f, g, ok = problem.one(u * size)
             if problem.feasible(g, ok):
                 return f / fref
@@ -228,8 +233,9 @@ _BARRIER_DECAY = 0.2
 _RESTARTS = 12
 
 
-def _trust_constr(F: Any, DF: Any, u0: Any, bounds: Any, cons: Any, tol: float, maxiter: int,
-                  cb: Any):
+def _trust_constr(F: Callable[[Array], float], DF: Callable[[Array], Array], u0: Array,
+                  bounds: Any, cons: Any, tol: float, maxiter: int,
+                  cb: Callable[..., None]) -> Tuple[Any, int]:
     """scipy's trust-constr, continued until its design's duality measure is
     at most ``tol``; returns scipy's last result (``duality`` added) and the
     iterations of all its runs.
@@ -296,7 +302,7 @@ def _duality(res: Any, bounds: Any, cons: Any):
     return total / max(m, 1)
 
 
-def _check_start(problem: Any, x0: Any, method: str):
+def _check_start(problem: Problem, x0: Array, method: str) -> None:
     f, g, ok = problem.one(x0)
     # SLSQP and trust-constr walk from an infeasible start to the feasible
     # region (the book's 例 7-1 starts at x0 = [6, 2.5], which violates g7);
@@ -311,16 +317,16 @@ def _check_start(problem: Any, x0: Any, method: str):
             evaluable=ok, g=g)
 
 
-def _de(problem: Any, tol: float, maxiter: int, popsize: int, seed: Any, polish: bool,
-        central: bool,
-        progress: Optional[Callable] = None):
+def _de(problem: Problem, tol: float, maxiter: int, popsize: int, seed: Optional[int],
+        polish: bool, central: bool,
+        progress: Optional[Callable] = None) -> Tuple[Array, bool, int, str]:
     from scipy import optimize
 
     ev0 = problem.evaluate(problem.start[None, :])
     ref = abs(float(ev0.f[0])) if ev0.ok[0] and ev0.f[0] != 0 else 1.0
     it = [0]
 
-    def fun(xt: Any):                        # xt: (n, S), vectorized
+    def fun(xt: Array) -> Array:             # xt: (n, S), vectorized
         ev = problem.evaluate(xt.T)
         feas = problem.feasible(ev.g, ev.ok)
         pen = _WALL + problem.violation(ev.g, ev.ok)
@@ -356,8 +362,9 @@ def _de(problem: Any, tol: float, maxiter: int, popsize: int, seed: Any, polish:
     return x, converged, it[0], message
 
 
-def _scalar(problem: Any, method: str, tol: float, maxiter: int):
-    from mechcli.core.refine import golden_section_max
+def _scalar(problem: Problem, method: str, tol: float, maxiter: int
+            ) -> Tuple[Array, bool, int, str]:
+    from mechcli.core.numerics import golden_section_max
     lo, hi = float(problem.lo[0]), float(problem.hi[0])
     if method == "golden":
         # the book's golden section (例 7-2): shrink [lo, hi] by 0.618 per step
@@ -365,7 +372,7 @@ def _scalar(problem: Any, method: str, tol: float, maxiter: int):
         steps = max(1, math.ceil(math.log(max(tol, 1e-15) / (hi - lo)) / math.log(0.6180339887)))
         steps = min(steps, maxiter)
 
-        def neg(x: Any):
+        def neg(x: Array) -> Array:
             ev = problem.evaluate(np.asarray(x, dtype=float).reshape(-1, 1))
             feas = problem.feasible(ev.g, ev.ok)
             # every step evaluates one new point: it is the step's row of the history
@@ -379,7 +386,7 @@ def _scalar(problem: Any, method: str, tol: float, maxiter: int):
         return np.array([float(x[0])]), True, steps, f"golden section, {steps} steps"
     from scipy import optimize
 
-    def f1(x: Any):
+    def f1(x: float) -> float:
         f, g, ok = problem.one(np.array([x]))
         return f if problem.feasible(g, ok) else _WALL + float(problem.violation(g, ok))
 

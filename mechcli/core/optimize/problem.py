@@ -10,11 +10,14 @@ never NaN, it is simply infeasible).
 from __future__ import annotations
 
 import time
-from typing import Any, Callable, List, Optional, Tuple
+from typing import TYPE_CHECKING, Callable, Dict, Iterable, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
 from mechcli.core.records import record
+
+if TYPE_CHECKING:
+    from mechcli.core.types import Array, BoolArray, FloatOrArray
 
 
 @record
@@ -39,7 +42,7 @@ class Evaluation:
     ok: np.ndarray
 
     @staticmethod
-    def concat(parts: Any):
+    def concat(parts: Sequence[Evaluation]) -> Evaluation:
         return Evaluation(np.concatenate([p.f for p in parts]),
                           np.concatenate([p.g for p in parts]),
                           np.concatenate([p.ok for p in parts]))
@@ -86,9 +89,10 @@ class Problem:
     #: a constraint within this of its bound is reported active
     ACTIVE_TOL = 1e-5
 
-    def __init__(self, variables: Any, evaluate: Any, constraint_names: Any = (),
-                 mapper: Any = None, chunk: int = 512,
-                 scales: Any = None):
+    def __init__(self, variables: Sequence[Variable], evaluate: Evaluator,
+                 constraint_names: Sequence[str] = (),
+                 mapper: Optional[Callable[..., Iterable[Evaluation]]] = None, chunk: int = 512,
+                 scales: Optional[Sequence[float]] = None):
         self.variables = tuple(variables)
         self._evaluate = evaluate
         self.constraint_names = tuple(constraint_names)
@@ -100,7 +104,7 @@ class Problem:
         self.calls = 0
         self.history: List[Record] = []
         self.started = time.perf_counter()
-        self._cache = {}
+        self._cache: Dict[bytes, Tuple[float, np.ndarray, bool]] = {}
 
     @property
     def n(self):
@@ -118,7 +122,7 @@ class Problem:
     def start(self):
         return np.array([v.start for v in self.variables])
 
-    def evaluate(self, X: Any) -> Evaluation:
+    def evaluate(self, X: Array) -> Evaluation:
         """Evaluate a population (M, n) through the mapper, in chunks."""
         X = np.atleast_2d(np.asarray(X, dtype=float))
         M = X.shape[0]
@@ -132,7 +136,7 @@ class Problem:
                              f"candidates and {len(self.constraint_names)} constraints")
         return ev
 
-    def one(self, x: Any) -> Tuple[float, np.ndarray, bool]:
+    def one(self, x: Array) -> Tuple[float, np.ndarray, bool]:
         """f, g, ok of one design (cached on its exact value)."""
         key = np.asarray(x, dtype=float).tobytes()
         hit = self._cache.get(key)
@@ -144,18 +148,18 @@ class Problem:
             self._cache[key] = hit
         return hit
 
-    def violation(self, g: Any, ok: Any = True):
+    def violation(self, g: Array, ok: Union[BoolArray, bool] = True) -> Array:
         """Total violation (>= 0): each constraint's excess over its scale, plus 1
         for a design that cannot be evaluated."""
         g = np.asarray(g, dtype=float)
         v = np.sum(np.maximum(g, 0.0) / self.scales, axis=-1)
         return np.where(ok, v, v + 1.0)
 
-    def feasible(self, g: Any, ok: Any = True):
+    def feasible(self, g: Array, ok: Union[BoolArray, bool] = True) -> BoolArray:
         g = np.asarray(g, dtype=float)
         return np.asarray(ok) & np.all(g <= self.FEASIBLE_TOL * self.scales, axis=-1)
 
-    def active(self, g: Any):
+    def active(self, g: Array) -> BoolArray:
         """Which constraints are active (within ACTIVE_TOL of their bound) at ``g``.
         A constraint that is 0 whenever it is met (``assembly``: the fraction of
         positions that fail) is never called active."""
@@ -164,7 +168,8 @@ class Problem:
         flat = np.array([n.startswith("assembly") for n in self.constraint_names], dtype=bool)
         return act & ~(flat & (g <= 0))
 
-    def record(self, iteration: int, x: Any, f: Any, violation: Any, evaluable: Any = True):
+    def record(self, iteration: int, x: Array, f: float, violation: FloatOrArray,
+               evaluable: bool = True) -> None:
         self.history.append(Record(int(iteration), self.evaluations,
                                    time.perf_counter() - self.started,
                                    np.array(x, dtype=float), float(f), float(violation),
@@ -214,7 +219,9 @@ class Result:
     extra: Optional[dict] = None
 
 
-def grid(problem: Problem, i: int, j: int, x: Any, count: int = 41, span: Any = None):
+def grid(problem: Problem, i: int, j: int, x: Array, count: int = 41,
+         span: Optional[Tuple[Tuple[float, float], Tuple[float, float]]] = None
+         ) -> Tuple[Array, Array, Array, BoolArray]:
     """The objective and feasibility on a grid of variables i and j (the others
     at ``x``): ``(u, v, F, feasible)`` with F of shape (count, count), rows
     along v; for the surface plot (the book's ``crankobjfun_VR``).  One

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from typing import Any
+from typing import TYPE_CHECKING, Any, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -19,15 +19,22 @@ from mechcli.core.errors import DescribedError
 from mechcli.core.linkage import RRR, Crank, DriverMotion, Ground, solve
 from mechcli.core.records import record
 
+if TYPE_CHECKING:
+    from mechcli.core.linkage import Linkage, LinkageMotion
+    from mechcli.core.types import Array, BoolArray, FloatOrArray, IntArray
+
+#: an output: a link number (its angle) or a slide name
+Output = Union[int, str]
+
 #: measures of a deviation vector (function or path error)
 MEASURES = ("sum_squares", "rms", "mean_abs", "max_abs")
 
 
-def _wrap(a: Any):
+def _wrap(a: FloatOrArray) -> FloatOrArray:
     return (a + math.pi) % (2 * math.pi) - math.pi
 
 
-def measure(dev: Any, kind: Any, ok: Any = None):
+def measure(dev: Array, kind: str, ok: Optional[BoolArray] = None) -> Array:
     """Reduce deviations (M, N) to one number per candidate by ``kind``."""
     dev = np.asarray(dev, dtype=float)
     if ok is not None:
@@ -43,7 +50,7 @@ def measure(dev: Any, kind: Any, ok: Any = None):
     raise ValueError(f"measure must be one of {MEASURES}, got {kind!r}")
 
 
-def output_of(motion: Any, output: Any):
+def output_of(motion: LinkageMotion, output: Output) -> Tuple[Any, Any, Any]:
     """(value, rate, acceleration) of an output: a link number (angle) or a
     slide name (``"3"``, ``"E"``)."""
     if isinstance(output, str):
@@ -64,7 +71,7 @@ class Population:
     followers: dict = dataclasses.field(default_factory=dict)
     _rev: dict = dataclasses.field(default_factory=dict)
 
-    def inputs(self, q: Any):
+    def inputs(self, q: FloatOrArray) -> Dict[int, DriverMotion]:
         """Driver inputs at primary positions q (secondary drivers follow by
         ``{link: (ratio, phase)}``), at unit speed."""
         out = {self.driver: DriverMotion(q, 1.0, 0.0)}
@@ -77,7 +84,7 @@ class Population:
         shape = self.linkage.shape
         return shape[0] if shape else 1
 
-    def revolution(self, order: Any = 1):
+    def revolution(self, order: int = 1) -> LinkageMotion:
         """The motion at ``samples`` crank angles k·360°/samples (0° and 180°
         among them), order >= ``order``; results (M, samples)."""
         for o in (order, 1, 2):
@@ -88,17 +95,18 @@ class Population:
         self._rev[order] = m
         return m
 
-    def at(self, q: Any, order: Any = 0):
+    def at(self, q: Array, order: int = 0) -> LinkageMotion:
         """The motion at input positions ``q`` (M, N) or (N,)."""
         return solve(self.linkage, self.inputs(q), order=order)
 
 
-def _column(a: Any, size: Any):
+def _column(a: FloatOrArray, size: int) -> Array:
     a = np.asarray(a, dtype=float)
     return np.broadcast_to(a.reshape(-1), (size,)) if a.size in (1, size) else a
 
 
-def input_limit(pop: Population, output: Any, which: Any = "min", iterations: int = 12):
+def input_limit(pop: Population, output: Output, which: str = "min", iterations: int = 12
+                ) -> Tuple[Array, BoolArray]:
     """Input angle [rad] where the output is least (``which="min"``) or
     greatest (``"max"``) over a revolution: the book's limit position of a
     rocker (例 7-1's φ0, the crank's right limit, is where the rocker angle is
@@ -132,8 +140,9 @@ def input_limit(pop: Population, output: Any, which: Any = "min", iterations: in
     return np.mod(q, 2 * math.pi), ok
 
 
-def function_deviation(pop: Population, output: Any, phi0: Any, dphi: Any, dpsi: Any,
-                       psi0: Any = None, scale: float = 1.0):
+def function_deviation(pop: Population, output: Output, phi0: FloatOrArray, dphi: Array,
+                       dpsi: Array, psi0: Optional[FloatOrArray] = None, scale: float = 1.0
+                       ) -> Tuple[Array, Array, Array, BoolArray]:
     """Deviation of a function generator at input positions ``phi0 + dphi``:
     ``(psi - psi0) - dpsi`` with ``psi0`` the output at ``phi0`` (when None)
     or given.  Angles in rad (a slide output in m, divided by ``scale``).
@@ -157,8 +166,8 @@ def function_deviation(pop: Population, output: Any, phi0: Any, dphi: Any, dpsi:
     return dev, val[:, 1:], q[:, 1:], ok
 
 
-def path_deviation(pop: Population, point: Any, targets: Any, angles: Any = None,
-                   theta0: Any = None):
+def path_deviation(pop: Population, point: str, targets: Array, angles: Optional[Array] = None,
+                   theta0: Any = None) -> Tuple[Array, BoolArray]:
     """Distance of a traced point's path to target points [m].
 
     With ``angles`` (K,) the point is taken at the inputs ``theta0 + angles``
@@ -190,7 +199,7 @@ def path_deviation(pop: Population, point: Any, targets: Any, angles: Any = None
     S = px.shape[-1]
     d2 = (px[..., None] - tx) ** 2 + (py[..., None] - ty) ** 2          # (M, S, K)
     j = np.argmin(d2, axis=-2)                                           # (M, K)
-    best = None
+    best: Optional[Array] = None
     for a_off, b_off in ((-1, 0), (0, 1)):
         ia, ib = (j + a_off) % S, (j + b_off) % S
         ax, ay = np.take_along_axis(px, ia, -1), np.take_along_axis(py, ia, -1)
@@ -201,11 +210,12 @@ def path_deviation(pop: Population, point: Any, targets: Any, angles: Any = None
         dx, dy = ax + t * ex - tx, ay + t * ey - ty
         dd = dx * dx + dy * dy
         best = dd if best is None else np.minimum(best, dd)
+    assert best is not None  # two segments were measured
     d = np.sqrt(best)                                                    # (M, K)
     return np.where(ok[:, None], d, 0.0), ok
 
 
-def _parabola_extreme(y: Any, k: Any, which: Any, cyclic: Any = True):
+def _parabola_extreme(y: Array, k: IntArray, which: str, cyclic: bool = True) -> Array:
     """Vertex of the parabola through samples k-1, k, k+1 of y (M, S): cyclic over a
     revolution; over a range an end sample is its own extreme (no neighbour beyond)."""
     S = y.shape[-1]
@@ -223,7 +233,7 @@ def _parabola_extreme(y: Any, k: Any, which: Any, cyclic: Any = True):
     return np.minimum(v, y1) if which == "min" else np.maximum(v, y1)
 
 
-def joint_angles(m: Any, joints: Any):
+def joint_angles(m: LinkageMotion, joints: Sequence[str]) -> List[Array]:
     """The angle at each RRR joint (between its two links, 0…π) [rad], (M, S, J)."""
     out = []
     for j in joints:
@@ -234,7 +244,8 @@ def joint_angles(m: Any, joints: Any):
     return out
 
 
-def transmission_range(m: Any, joints: Any, cyclic: Any = True):
+def transmission_range(m: LinkageMotion, joints: Sequence[str], cyclic: bool = True
+                       ) -> Tuple[Array, Array, BoolArray]:
     """Least and greatest joint angle over the positions of ``m`` (refined by
     a parabola through the extreme sample and its neighbours; ``cyclic``: the
     positions are a whole revolution), over all ``joints``; ``(mu_min, mu_max,
@@ -253,17 +264,18 @@ def transmission_range(m: Any, joints: Any, cyclic: Any = True):
         lo = vmin if lo is None else np.minimum(lo, vmin)
         hi = vmax if hi is None else np.maximum(hi, vmax)
     ok = np.atleast_1d(ok)
-    return np.where(ok, lo, 0.0), np.where(ok, hi, 0.0), ok
+    # (lo and hi are None only without joints: the callers pass at least one)
+    return np.where(ok, lo, 0.0), np.where(ok, hi, 0.0), ok  # type: ignore[arg-type]
 
 
-def failed_fraction(m: Any):
+def failed_fraction(m: LinkageMotion) -> Array:
     """Fraction of positions where the linkage does not assemble or is at a
     dead point, (M,)."""
     reg = np.atleast_2d(m.regular)
     return 1.0 - np.mean(reg, axis=-1)
 
 
-def four_bar_lengths(linkage: Any):
+def four_bar_lengths(linkage: Linkage) -> Tuple[Array, ...]:
     """(l1 crank, l2 coupler, l3 rocker, l4 frame) of a four-bar (a crank and an
     RRR dyad closing on a ground point), each (M,) for a batch; DescribedError
     ``reason="not_four_bar"`` otherwise."""
@@ -295,7 +307,8 @@ def four_bar_lengths(linkage: Any):
 CRANK_NAMES = ("g1", "g2", "g3", "g4", "g5", "g6")
 
 
-def crank_conditions(l1: Any, l2: Any, l3: Any, l4: Any):
+def crank_conditions(l1: FloatOrArray, l2: FloatOrArray, l3: FloatOrArray, l4: FloatOrArray
+                     ) -> Array:
     """The book's g1 … g6 (<= 0 when link 1 can turn fully as a crank), (M, 6)."""
     l1, l2, l3, l4 = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (l1, l2, l3, l4)))
     return np.stack([l1 - l2, l1 - l3, l1 - l4, l1 + l4 - l2 - l3, l1 + l2 - l3 - l4,

@@ -22,8 +22,10 @@ function
     Function generation: Freudenstein's equation at 3–5 precision points,
     Chebyshev spacing, least squares, slider-crank and rocker–slider;
     the structural error.
-functions
-    The named functions y = f(x) a spec may ask for (never text evaluated).
+targets
+    The target functions y = f(x) a function generator is asked to reproduce:
+    named ones a spec may ask for (never text evaluated) and tables of points.
+    (``functions``, its former name, is the same module.)
 quick_return
     Design from the time ratio K: crank-rocker (the four cases of 【例 3-8】),
     offset slider-crank, guide-bar.
@@ -33,7 +35,7 @@ verify
 
 May import: numpy, scipy (inside the functions that need it, so that kinds
 without a nonlinear solve start fast), :mod:`mechcli.core.errors`,
-:mod:`mechcli.core.refine`, :mod:`mechcli.core.linkage` and
+:mod:`mechcli.core.numerics`, :mod:`mechcli.core.linkage` and
 :mod:`mechcli.core.grashof`; nothing of spec, report, commands or cli.  SI
 units and radians; errors carry numbers (:class:`~mechcli.core.errors.DescribedError`)
 and no unit names.

@@ -34,7 +34,7 @@ from __future__ import annotations
 
 import functools
 import math
-from typing import TYPE_CHECKING, Any, Dict, Optional, Tuple
+from typing import TYPE_CHECKING, Any, Dict, List, Optional, Tuple, cast
 
 import numpy as np
 
@@ -93,9 +93,11 @@ def atlas_linkage(A: FloatOrArray, B: FloatOrArray, C: FloatOrArray, gx: FloatOr
     B -> D) as the atlas draws it.  Every argument may be an array (a batch
     of linkages: e.g. shape (M, 1) against crank angles (N,)).
     """
-    return Linkage(4, (Ground("A", 0.0, 0.0), Ground("D", C, 0.0), Crank(1, "A", "B", 1.0),
-                       RRR("C", "B", 2, A, "D", 3, B, branch),
-                       PointOnLink("P", 2, "B", gx, gy)))
+    # the elements' fields are annotated float, but the engine takes arrays (a batch)
+    return Linkage(4, (Ground("A", 0.0, 0.0), Ground("D", C, 0.0),  # type: ignore[arg-type]
+                       Crank(1, "A", "B", 1.0),
+                       RRR("C", "B", 2, A, "D", 3, B, branch),  # type: ignore[arg-type]
+                       PointOnLink("P", 2, "B", gx, gy)))  # type: ignore[arg-type]
 
 
 def _lengths(A: FloatOrArray, B: FloatOrArray, C: FloatOrArray) -> np.ndarray:
@@ -449,7 +451,8 @@ def _curves(params: np.ndarray, step: float = STEP) -> Tuple[np.ndarray, np.ndar
     P = np.asarray(params, dtype=float)
     theta = np.arange(POSITIONS) * step if step == STEP else \
         np.arange(int(round(2 * math.pi / step))) * step
-    lk = atlas_linkage(*(P[:, j:j + 1] for j in range(5)))
+    # the columns are A … gy (mypy checks starred items against branch too)
+    lk = atlas_linkage(*(P[:, j:j + 1] for j in range(5)))  # type: ignore[arg-type]
     m = solve(lk, {1: DriverMotion(theta)}, order=0)
     p = m.points["P"]
     shape = (P.shape[0], theta.size)
@@ -621,10 +624,14 @@ def placed_linkage(A: FloatOrArray, B: FloatOrArray, C: FloatOrArray, gx: FloatO
     """The atlas linkage moved to crank pivot (tx, ty), frame direction
     ``rotation`` and crank length ``scale``; arrays broadcast (a population)."""
     c, s = np.cos(rotation), np.sin(rotation)
-    return Linkage(4, (Ground("A", tx, ty), Ground("D", tx + scale * C * c, ty + scale * C * s),
-                       Crank(1, "A", "B", scale),
-                       RRR("C", "B", 2, scale * A, "D", 3, scale * B, branch),
-                       PointOnLink("P", 2, "B", scale * gx, scale * gy)))
+    # the elements' fields are annotated float, but the engine takes arrays (a population)
+    return Linkage(4, (Ground("A", tx, ty),  # type: ignore[arg-type]
+                       Ground("D", tx + scale * C * c,  # type: ignore[arg-type]
+                              ty + scale * C * s),  # type: ignore[arg-type]
+                       Crank(1, "A", "B", scale),  # type: ignore[arg-type]
+                       RRR("C", "B", 2, scale * A, "D", 3, scale * B,  # type: ignore[arg-type]
+                           branch),
+                       PointOnLink("P", 2, "B", scale * gx, scale * gy)))  # type: ignore[arg-type]
 
 
 _MARGIN = 1e-4
@@ -664,7 +671,8 @@ class _PathFit:
         self.q = np.arange(int(samples)) * (2 * math.pi / int(samples))
 
     def candidates(self, X: np.ndarray) -> Tuple[Linkage, np.ndarray, Dict[Any, Any]]:
-        lk = placed_linkage(*(X[:, j:j + 1] for j in range(9)))
+        # the columns are A … scale (mypy checks starred items against branch too)
+        lk = placed_linkage(*(X[:, j:j + 1] for j in range(9)))  # type: ignore[arg-type]
         return lk, np.all(np.isfinite(X), axis=1), {}
 
     def foot(self, X: np.ndarray) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -697,6 +705,7 @@ class _PathFit:
                 better = np.abs(pz_c - self.T[None, :]) < np.abs(pz_b - self.T[None, :])
                 best = (np.where(better, th_c, th_b), np.where(better, pz_c, pz_b),
                         ok_b & ok_c)
+        assert best is not None   # at least one start
         return best
 
     def _newton(self, lk: Linkage, th: np.ndarray, ok: np.ndarray
@@ -751,6 +760,7 @@ def _initial_placement(match: Match, z: np.ndarray, samples: int = 720
         if best is None or abs(s[i]) > best[0]:
             lam = s[i] / np.sum(np.abs(cc) ** 2)
             best = (abs(s[i]), lam, t0 - lam * c0)
+    assert best is not None   # set by the first curve
     _, lam, t = best
     return t.real, t.imag, float(np.angle(lam)), float(abs(lam))
 
@@ -869,8 +879,9 @@ def _polish(fit: _PathFit, x: np.ndarray) -> Optional[np.ndarray]:
 
     def points(V: np.ndarray) -> Tuple[np.ndarray, np.ndarray]:   # V (M, n [+ K])
         X = V[:, :n]
-        lk = placed_linkage(*(X[:, j:j + 1] for j in range(9)))
-        q = (X[:, 7:8] + X[:, 9:10] + fit.angles[None, :]) if timed else V[:, n:]
+        # the columns are A … scale (mypy checks starred items against branch too)
+        lk = placed_linkage(*(X[:, j:j + 1] for j in range(9)))  # type: ignore[arg-type]
+        q = (X[:, 7:8] + X[:, 9:10] + cast(np.ndarray, fit.angles)[None, :]) if timed else V[:, n:]
         m = solve(lk, {1: DriverMotion(q)}, order=0)
         p = m.points["P"]
         return np.broadcast_to(p.x + 1j * p.y, q.shape), np.all(m.feasible, axis=1)
@@ -935,13 +946,15 @@ def path_synthesis(matches: Any, x: Any, y: Any, angles: Optional[Any] = None,
         lo, hi, ok = terms.transmission_range(pop.revolution(0), ["C"])
         out.append(PathCandidate(m, ref, float(np.ravel(lo)[0]), float(np.ravel(hi)[0]),
                                  chain_kind(A, B, C)[0]))
-    out.sort(key=lambda c: c.refined.error_rms)
+    # every candidate here has its refinement (refine returns one)
+    out.sort(key=lambda c: cast(Refined, c.refined).error_rms)
     # matches that refine to the same linkage are one candidate
-    distinct = []
+    distinct: List[PathCandidate] = []
     for c in out:
-        v = np.array([c.refined.x_opt[k] for k in ("A", "B", "C", "gx", "gy")])
+        v = np.array([cast(Refined, c.refined).x_opt[k] for k in ("A", "B", "C", "gx", "gy")])
         if all(np.max(np.abs(v - w)) > 1e-6 * max(1.0, float(np.max(np.abs(v))))
-               for w in (np.array([d.refined.x_opt[k] for k in ("A", "B", "C", "gx", "gy")])
+               for w in (np.array([cast(Refined, d.refined).x_opt[k]
+                                   for k in ("A", "B", "C", "gx", "gy")])
                          for d in distinct)):
             distinct.append(c)
     return distinct

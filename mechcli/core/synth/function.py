@@ -20,7 +20,7 @@ the slider pin.  SI units and radians.
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING, Any, Dict, List, Optional, Sequence, Tuple
+from typing import TYPE_CHECKING, Any, Dict, List, Optional, Sequence, Tuple, cast
 
 import numpy as np
 
@@ -30,7 +30,7 @@ from mechcli.core.records import record
 from mechcli.core.synth.design import LinkageDesign, branch_of, four_bar_design, slider_crank_design
 
 if TYPE_CHECKING:
-    from mechcli.core.synth.functions import Function
+    from mechcli.core.synth.targets import Function
     from mechcli.core.types import FloatOrArray
 
 #: a linear system whose smallest singular value is below this fraction of its
@@ -158,7 +158,7 @@ def _four_bar(t1: np.ndarray, t3: np.ndarray, P: np.ndarray, ratios: Tuple[float
                   residual=float(np.max(np.abs(A @ P_normalised - rhs))),
                   branches=_branches(t1, t3, l, m, n, a0, p0))
     return four_bar_design((0.0, 0.0), (d.real, 0.0), b[0], c[0], inputs=t1 + a0,
-                           angles={3: _wrap(t3 + p0)}, values=values)
+                           angles={3: cast(np.ndarray, _wrap(t3 + p0))}, values=values)
 
 
 def _newton_roots(t1: np.ndarray, t3: np.ndarray, a0: Optional[float], p0: Optional[float]
@@ -220,7 +220,7 @@ def _newton_roots(t1: np.ndarray, t3: np.ndarray, a0: Optional[float], p0: Optio
     aa, pp = origins(z)
     A, rhs = _freudenstein_system(t1[None, :], t3[None, :], aa[:, None], pp[:, None])
     res = np.max(np.abs(np.einsum("sij,sj->si", A, z[:, :3]) - rhs), axis=1)
-    roots = []
+    roots: List[Tuple[np.ndarray, Any, int]] = []
     for s in np.flatnonzero(alive & (res < ROOT_TOL)):
         ratios = _ratios(z[s, :3], float(aa[s]), float(pp[s]))
         if ratios is None:
@@ -282,9 +282,10 @@ def freudenstein(theta1: np.ndarray, theta3: np.ndarray, *, alpha0: Optional[flo
     Raises
     ------
     ValueError
-        N outside 3–5, lengths that differ, origins given that N solves for
-        (or both given at N = 4), a non-positive crank.
+        N outside 3–5, lengths that differ, a non-positive crank.
     DescribedError
+        ``"origins"``: origins given that N solves for, or both given at N = 4
+        (values ``points`` N, ``wanted`` the number of origins to give);
         ``"singular"``: repeated points or a singular system (values
         ``rcond`` or ``first, second``); ``"no_solution"``: no real linkage
         (a link of zero or infinite length: a ratio outside
@@ -314,8 +315,9 @@ def freudenstein(theta1: np.ndarray, theta3: np.ndarray, *, alpha0: Optional[flo
         raise ValueError(f"Freudenstein's equation takes 3 to 5 precision points, got {N}")
     crank = _positive("crank", crank)
     a0, p0 = _origins(N, alpha0, phi0)
-    if N == 3:
-        return _linear(t1, t3, a0, p0, crank, "the precision points give no real four-bar "
+    if N == 3:  # _origins gives both origins at 3 points
+        return _linear(t1, t3, cast(float, a0), cast(float, p0), crank,
+                       "the precision points give no real four-bar "
                        "(a link would have zero or infinite length)")
     return _nonlinear(t1, t3, a0, p0, crank)
 
@@ -333,13 +335,13 @@ def _origins(N: int, alpha0: Optional[float], phi0: Optional[float]
         a0, p0 = (0.0 if a0 is None else a0), (0.0 if p0 is None else p0)
     elif N == 4:
         if a0 is not None and p0 is not None:
-            raise ValueError("4 precision points leave one origin to solve: give alpha0 or "
-                             "phi0, not both")
+            raise DescribedError("4 precision points leave one origin to solve, but both are "
+                                 "given", reason="origins", points=4, wanted=1)
         if a0 is None and p0 is None:
             a0 = 0.0
     elif a0 is not None or p0 is not None:
-        raise ValueError("5 precision points determine both origins: give neither alpha0 "
-                         "nor phi0")
+        raise DescribedError("5 precision points determine both origins, but an origin is "
+                             "given", reason="origins", points=5, wanted=0)
     return a0, p0
 
 
@@ -391,7 +393,7 @@ def _linear(t1: np.ndarray, t3: np.ndarray, a0: float, p0: float, crank: float, 
     if ratios is None:
         raise DescribedError(why, reason="no_solution", P0=float(P[0]), P1=float(P[1]),
                              P2=float(P[2]))
-    values = {"iterations": 0}
+    values: Dict[str, float] = {"iterations": 0}
     if len(t1) > 3:
         values["residual_rms"] = float(np.sqrt(np.mean((A @ P - rhs) ** 2)))
     return _four_bar(t1, t3, P, ratios, crank, values)
@@ -413,7 +415,7 @@ def function_generator(f: Function, x0: float, xm: float, *, alpha_m: float, phi
     Parameters
     ----------
     f : Function
-        The desired function (:mod:`~mechcli.core.synth.functions`); its
+        The desired function (:mod:`~mechcli.core.synth.targets`); its
         domain is checked on [x0, xm].
     x0, xm : float
         The range of x, x0 < xm.
@@ -467,12 +469,13 @@ def function_generator(f: Function, x0: float, xm: float, *, alpha_m: float, phi
     ------
     ValueError
         An unknown method, x0 >= xm, a count of points the method does not
-        allow, points outside [x0, xm], missing origins for least squares.
+        allow, points outside [x0, xm].
     DescribedError
-        ``"domain"`` (f undefined on [x0, xm]); ``"swing"`` (|αm| or |φm| is 0
-        or >= π; values ``alpha_m, phi_m``); ``"flat"`` (f(x0) = f(xm): the
-        rocker's scale is undefined; values ``y0, ym``); and those of
-        :func:`freudenstein`.
+        ``"origins"``: missing origins for least squares (value ``wanted`` 2);
+        ``"points_given"``: points given to the Chebyshev spacing; ``"domain"``
+        (f undefined on [x0, xm]); ``"swing"`` (|αm| or |φm| is 0 or >= π;
+        values ``alpha_m, phi_m``); ``"flat"`` (f(x0) = f(xm): the rocker's
+        scale is undefined; values ``y0, ym``); and those of :func:`freudenstein`.
 
     Notes
     -----
@@ -487,8 +490,9 @@ def function_generator(f: Function, x0: float, xm: float, *, alpha_m: float, phi
     scale, samples = _scale(f, x0, xm, alpha_m, phi_m, samples)
     xs = _points(f, method, x, n, scale.x0, scale.xm, alpha0, phi0)
     ys, alpha, phi = scale.angles(xs)
-    if method == "least_squares":
-        design = _least_squares(alpha, phi, float(alpha0), float(phi0), _positive("crank", crank))
+    if method == "least_squares":  # both origins given (_points checked)
+        design = _least_squares(alpha, phi, float(cast(float, alpha0)), float(cast(float, phi0)),
+                                _positive("crank", crank))
     else:
         design = freudenstein(alpha, phi, alpha0=alpha0, phi0=phi0, crank=crank)
     values = _structural_error(design, scale, samples, method, xs, ys, alpha, phi)
@@ -552,11 +556,13 @@ def _points(f: Any, method: str, x: Optional[Sequence[float]], n: Optional[int],
             raise ValueError(f"n = {n} but {xs.size} points are given")
     elif method == "chebyshev":
         if x is not None:
-            raise ValueError("Chebyshev spacing computes the points: give n, not x")
+            raise DescribedError("Chebyshev spacing computes the points, but points are given",
+                                 reason="points_given")
         xs = chebyshev_points(x0, xm, 3 if n is None else n)
     else:
         if alpha0 is None or phi0 is None:
-            raise ValueError("least squares needs both origins alpha0 and phi0")
+            raise DescribedError("least squares needs both origins", reason="origins",
+                                 wanted=2)
         if x is not None:
             xs = _vector("x", x)
             if n is not None and int(n) != xs.size:

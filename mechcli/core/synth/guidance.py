@@ -53,7 +53,7 @@ An iterative solve that does not converge raises
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING, Any, List, Optional, Tuple
+from typing import TYPE_CHECKING, Any, List, Optional, Tuple, cast
 
 import numpy as np
 
@@ -587,7 +587,7 @@ def _poses(M: Any, phi: Any, n: int) -> Tuple[np.ndarray, np.ndarray, float, np.
         for j in range(i + 1, len(Mz)):
             # a pose repeated (phi one turn apart is the same pose): one equation short
             if abs(Mz[j] - Mz[i]) <= COINCIDENT_TOL * L \
-                    and abs(_wrap(ph[j] - ph[i])) <= COINCIDENT_TOL:
+                    and abs(cast(float, _wrap(ph[j] - ph[i]))) <= COINCIDENT_TOL:
                 raise DescribedError(f"poses {i + 1} and {j + 1} are the same pose",
                                      reason="coincident", positions=(i + 1, j + 1))
     return (Mz - Mz[0]) / L, np.exp(1j * (ph - ph[0])), L, Mz
@@ -776,7 +776,8 @@ def _poles(m: np.ndarray, E: np.ndarray) -> List[complex]:
 
 def _runs(start_ok: np.ndarray, good: np.ndarray) -> List[np.ndarray]:
     """Runs of ``good`` samples, a new run also where ``start_ok`` is False."""
-    runs, cur = [], []
+    runs: List[np.ndarray] = []
+    cur: List[int] = []
     for k in range(len(good)):
         if not good[k]:
             if cur:
@@ -979,9 +980,10 @@ def _polish_circle_point(c0: complex, N0: np.ndarray, Nu: np.ndarray, Nv: np.nda
     x = np.array([c.real, c.imag, *n0])
     with np.errstate(over="ignore", invalid="ignore"):
         # a start that diverges overflows: it is no solution, and is dropped below
-        x = _newton_circle_point(x, n0, N0, Nu, Nv, iterations)
-    if x is None:
+        polished = _newton_circle_point(x, n0, N0, Nu, Nv, iterations)
+    if polished is None:
         return None
+    x = polished
     N = N0 + x[0] * Nu + x[1] * Nv
     s = np.linalg.svd(N, compute_uv=False)
     if s[-1] > 1e-10 * s[0]:

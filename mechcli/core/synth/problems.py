@@ -79,7 +79,7 @@ def _design(kind: str, d: Any) -> Any:
         if "theta1" in d:
             return function.freudenstein(d["theta1"], d["theta3"], alpha0=d["alpha0"],
                                          phi0=d["phi0"], crank=d["crank"]), None
-        from mechcli.core.synth.functions import make_function, table_function
+        from mechcli.core.synth.targets import make_function, table_function
         if d["function"] == "table":
             f = table_function(d["table_x"], d["table_y"], interpolation=d["interpolation"])
             x0 = d["x0"] if d["x0"] is not None else min(d["table_x"])

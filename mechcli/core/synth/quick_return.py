@@ -31,7 +31,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from typing import Any, List, Optional, Sequence, Tuple
+from typing import Any, Dict, List, Optional, Sequence, Tuple, cast
 
 import numpy as np
 
@@ -43,8 +43,8 @@ from mechcli.core.grashof.fourbar import (
     analyse_slider_crank,
 )
 from mechcli.core.linkage.presets import guide_bar as guide_bar_linkage
+from mechcli.core.numerics import golden_section_max
 from mechcli.core.records import record
-from mechcli.core.refine import golden_section_max
 from mechcli.core.synth.design import LinkageDesign, four_bar_design, slider_crank_design
 
 Point = Tuple[float, float]
@@ -204,7 +204,7 @@ def pivot_circle(K: float, rocker: float, swing: float) -> PivotCircle:
     DescribedError
         reason ``"K"``: K <= 1 (values ``K``, ``lo``), or θ >= (π + ψ)/2, no
         crank-rocker has such a quick return with this swing (values ``K``,
-        ``theta``, ``lo`` = 1, ``hi`` the largest K, ``theta_max``);
+        ``theta``, ``lo`` = 1, ``hi`` the largest K, ``theta_max``, ``psi``);
         reason ``"swing"``: ψ outside (0, π) (values ``psi``, ``lo``, ``hi``).
 
     Notes
@@ -223,14 +223,13 @@ def pivot_circle(K: float, rocker: float, swing: float) -> PivotCircle:
     l3 = _positive("rocker", rocker)
     psi = float(swing)
     if not (0.0 < psi < math.pi):
-        raise DescribedError("the rocker's swing must lie strictly between 0 and 180 degrees",
+        raise DescribedError("the rocker's swing must lie strictly between 0 and half a turn",
                              reason="swing", psi=psi, lo=0.0, hi=math.pi)
     theta_max = (math.pi + psi) / 2
     if theta >= theta_max:
         raise DescribedError(
-            "no crank-rocker has this time ratio with this swing (theta must stay below "
-            "90 degrees + swing/2)", reason="K", K=float(K), theta=theta, lo=1.0,
-            hi=time_ratio(theta_max), theta_max=theta_max, psi=psi)
+            "no crank-rocker has this time ratio with this swing", reason="K", K=float(K),
+            theta=theta, lo=1.0, hi=time_ratio(theta_max), theta_max=theta_max, psi=psi)
     s, c = math.sin(psi / 2), math.cos(psi / 2)
     C1, C2 = np.array([-l3 * s, l3 * c]), np.array([l3 * s, l3 * c])
     R = l3 * s / math.sin(theta)                                    # eq. 3-40
@@ -399,7 +398,7 @@ def _on_pivot_line(circle: PivotCircle, pivot_line: Sequence[float], K: float,
         cands = [_crank_rocker_at(circle, p, K, gamma_allowed, "left" if i == 0 else "right")
                  for i, p in enumerate(pts) if ok[i]]
         if cands:
-            return max(cands, key=lambda d: d.values["gamma_min"])
+            return max(cands, key=lambda d: cast(float, d.values["gamma_min"]))
     else:
         i = 0 if branch == "left" else 1
         if ok[i]:
@@ -425,7 +424,7 @@ def _pivot_from_length(circle: PivotCircle, crank: Optional[float], coupler: Opt
         l2 = _positive("coupler", coupler)
         _check_range("coupler", "coupler_range", "l2", l2, circle.coupler)
         return circle.from_delta(math.acos(l2 / (2 * R * math.cos(th / 2))))
-    l4 = _positive("frame", frame)
+    l4 = _positive("frame", cast(float, frame))  # the one length given
     _check_range("frame", "frame_range", "l4", l4, circle.frame)
     yo = circle.O[1]
     if yo == 0.0:      # D is the centre of L: every A is l3 from D, the range is empty
@@ -493,7 +492,7 @@ def crank_rocker_from_K_limit_angle(K: float, rocker: float, frame: float,
     s1 = float(np.hypot(*C1))
     phi1 = math.atan2(C1[1], C1[0])
     target_theta3 = math.pi - delta                # the core's angle of DC from +x
-    found = {}
+    found: Dict[str, Tuple[float, float, float, np.ndarray, Any]] = {}
     for sign in (1, -1):
         phi = phi1 + sign * theta
         b = d * math.cos(phi)
@@ -601,7 +600,8 @@ def slider_crank_from_K(K: float, H: float, e: float, *,
         H <= 0.
     DescribedError
         reason ``"K"``: K <= 1 (values ``K``, ``lo``) or θ >= 90° (values
-        ``K``, ``theta``, ``hi`` = 3: no offset slider-crank reaches it);
+        ``K``, ``theta``, ``hi`` = 3, ``theta_limit`` = π/2: no offset
+        slider-crank reaches it);
         reason ``"offset"``: e = 0 (a centred slider-crank has K = 1) or
         |e| > e_max = H cot θ (values ``e``, ``lo`` = 0, ``hi`` = e_max,
         ``H``, ``theta``).
@@ -623,9 +623,9 @@ def slider_crank_from_K(K: float, H: float, e: float, *,
     H = _positive("H", H)
     e = float(e)
     if theta >= math.pi / 2 * (1 - 1e-15):
-        raise DescribedError("no offset slider-crank has a limit-position angle of 90 "
-                             "degrees or more (K >= 3)", reason="K", K=float(K),
-                             theta=theta, lo=1.0, hi=3.0)
+        raise DescribedError("no offset slider-crank has a limit-position angle of a "
+                             "quarter turn or more (K >= 3)", reason="K", K=float(K),
+                             theta=theta, lo=1.0, hi=3.0, theta_limit=math.pi / 2)
     e_max = H / math.tan(theta)
     ea = abs(e)
     if not (0.0 < ea <= e_max * (1 + CHANGE_POINT_RTOL)):
@@ -759,7 +759,7 @@ def guide_bar_from_K(K: float, *, crank: Optional[float] = None,
         l4 = _positive("frame", frame)
         l1 = l4 * half
     else:
-        l1 = _positive("crank", crank)
+        l1 = _positive("crank", cast(float, crank))  # exactly one of crank, frame
         l4 = l1 / half
     A = np.array([0.0, l4])
     q = (-theta / 2, -math.pi + theta / 2)     # crank angles at the limits: AB ⟂ CB

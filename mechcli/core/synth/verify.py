@@ -26,7 +26,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from typing import TYPE_CHECKING, Any, List, Optional, Tuple
+from typing import TYPE_CHECKING, Any, Dict, List, Optional, Tuple, cast
 
 import numpy as np
 
@@ -119,14 +119,16 @@ class Verification:
 def _flipped(linkage: Linkage) -> Linkage:
     """The same linkage in the other assembly mode (every dyad's branch negated)."""
     return Linkage(linkage.frame, tuple(
-        dataclasses.replace(el, branch=-el.branch) if hasattr(el, "branch") else el
+        # every element with a branch (a dyad) is a record, i.e. a dataclass
+        dataclasses.replace(el, branch=-el.branch)  # type: ignore[type-var]
+        if hasattr(el, "branch") else el
         for el in linkage.elements))
 
 
 def _residuals(design: LinkageDesign, m: LinkageMotion) -> np.ndarray:
     """Relative residual at each prescribed position (NaN where infeasible)."""
     size = design.size
-    res = np.zeros(len(design.inputs))
+    res = np.zeros(len(cast(np.ndarray, design.inputs)))  # a design with positions
     for name, target in design.points.items():
         p = m.points[name]
         res = np.maximum(res, np.abs((p.x + 1j * p.y) - np.asarray(target)) / size)
@@ -156,8 +158,8 @@ def _type(design: LinkageDesign, driver: int = 1) -> Any:
         an = analyse_fourbar([L["l1"], L["l2"], L["l3"], L["l4"]], input_link=driver,
                              crossed=crossed, require_closure=False)
         mt = an.merit
-        figures = {"K": float(mt.K[0]), "psi": float(mt.psi[0]), "theta": float(mt.theta[0])} \
-            if mt.has_limits[0] else {}
+        figures: Dict[str, Any] = {"K": float(mt.K[0]), "psi": float(mt.psi[0]),
+                                   "theta": float(mt.theta[0])} if mt.has_limits[0] else {}
         figures["cranks"] = an.klass.cranks(0)
         return an.klass.types[0], bool(mt.input_turns[0]), float(mt.gamma_min[0]), figures
     if design.kind == "slider_crank":
@@ -187,7 +189,7 @@ def _orders(q: np.ndarray) -> List[Tuple[int, np.ndarray]]:
 
 
 def _path_check(linkage: Linkage, q0: float, sign: int, travel: np.ndarray
-               ) -> Tuple[None, None, float]:
+               ) -> Tuple[Optional[int], Optional[float], Optional[float]]:
     """Solve along one direction; (index of the first position not reached, angle of the
     first bad sample or None, γmin over the path or None)."""
     total = travel[-1]
@@ -207,7 +209,8 @@ def _path_check(linkage: Linkage, q0: float, sign: int, travel: np.ndarray
     return reached, float(q0 + sign * s[bad]), gamma
 
 
-def _crank_path(linkage: Linkage, q: np.ndarray) -> Tuple[int, float, float, None]:
+def _crank_path(linkage: Linkage, q: np.ndarray
+                ) -> Tuple[int, float, Optional[float], Optional[Defect]]:
     """A crank turns one way: the positions must come in order within one turn."""
     orders = _orders(q)
     if not orders:
@@ -219,10 +222,12 @@ def _crank_path(linkage: Linkage, q: np.ndarray) -> Tuple[int, float, float, Non
             return sign, float(q[0] + sign * travel[-1]), g, None
         if first_fail is None:
             first_fail = (reached, at)
+    assert first_fail is not None   # orders is not empty and every one failed
     return 0, float(q[0]), None, Defect("circuit", first_fail[0] + 1, first_fail[1])
 
 
-def _rocker_path(linkage: Linkage, q: np.ndarray) -> Tuple[int, float, float, None]:
+def _rocker_path(linkage: Linkage, q: np.ndarray
+                 ) -> Tuple[int, float, Optional[float], Optional[Defect]]:
     """An input that does not turn fully may reverse: each step from one position to
     the next must be possible one way or the other without disassembly."""
     signs, gammas, stop = [], [], float(q[0])
@@ -291,13 +296,14 @@ def verify(design: LinkageDesign, driver: int = 1) -> Verification:
     cranks = tuple(figures.pop("cranks", ()))
     if design.inputs is None or len(design.inputs) == 0:
         # a design from K: the core's figures of the designed lengths against the targets
-        targets = {k: design.values[k] for k in ("K", "psi") if k in design.values}
+        targets: Dict[str, Any] = {k: design.values[k] for k in ("K", "psi")
+                                   if k in design.values}
         if "H" in design.lengths:
             targets["H"] = design.lengths["H"]
         res = np.array([abs(figures[k] - v) / max(abs(v), 1e-300) if k in figures
                         else np.nan for k, v in targets.items()])
         finite = res[np.isfinite(res)]
-        defects = ()
+        dead_points: Tuple[Defect, ...] = ()
         if turns:
             # the crank must turn a full revolution on the engine without a dead point
             # (a slider-crank with a + e = b exactly has one at the crank's top)
@@ -308,9 +314,9 @@ def verify(design: LinkageDesign, driver: int = 1) -> Verification:
             if m.conditions:
                 sing |= m.conditions[0].sin_gamma <= DEAD_POINT_SIN
             if sing.any():
-                defects = (Defect("circuit", None, float(q[int(np.argmax(sing))])),)
+                dead_points = (Defect("circuit", None, float(q[int(np.argmax(sing))])),)
         return Verification(res, float(finite.max()) if finite.size else 0.0, kind, turns,
-                            gamma_turn, 1, 0.0, TWO_PI, defects, driver, design.linkage, None,
+                            gamma_turn, 1, 0.0, TWO_PI, dead_points, driver, design.linkage, None,
                             cranks)
     q = np.asarray(design.inputs, dtype=float)
     link = design.linkage.drivers[0].link
