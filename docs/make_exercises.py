@@ -11,13 +11,13 @@ those values come from:
 * a ``# EXPECTED-SOURCE: ...`` comment line in the config, when it has one;
 * otherwise what its comments (or description) name: the book's printed values, a
   reference (``tests/reference/<file>.py``), a test that checks it independently
-  (``tests/unit/test_<name>.py``), a hand derivation ("hand calculation", "by hand",
+  (``tests/unit/<core package>/test_<name>.py``), a hand derivation ("hand calculation", "by hand",
   "closed form", ...); a 【例】 that names none of them: the book's printed results.
 
     python docs/make_exercises.py          # rewrite docs/exercises.md
     python docs/make_exercises.py --check  # exit 1 if docs/exercises.md is stale
 
-``tests/unit/test_exercises_index.py`` runs the check, so the index can never drift
+``tests/unit/exercises/test_exercises_index.py`` runs the check, so the index can never drift
 from ``configs/``.  Standard library only (``tomllib``, ``tomli`` before Python 3.11).
 """
 
@@ -40,7 +40,7 @@ CONFIGS = ROOT / "configs"
 NAME = re.compile(r"^(ex|exercise)(\d+)-(\d+)(?:-.+)?\.toml$")
 MARKER = re.compile(r"^#\s*EXPECTED-SOURCE:\s*(.+?)\s*$", re.M)
 REFERENCE = re.compile(r"tests/reference/([A-Za-z0-9_]+\.py)")
-TEST = re.compile(r"tests/(?:unit|cli|property)/test_[A-Za-z0-9_]+\.py")
+TEST = re.compile(r"tests/(?:unit|cli|property)/(?:[a-z]+/)?test_[A-Za-z0-9_]+\.py")
 HAND = re.compile(r"hand calculation|hand derivation|by hand|closed form|hand-derived|"
                   r"cosine (?:rule|law)|independent check|independent calculation|"
                   r"independent hand|values are independent", re.I)

@@ -308,7 +308,7 @@ def _sha256(data=b"", size=None):
     from 3.12, ``_sha256`` before): :mod:`hashlib` loads OpenSSL first, 2.3 ms of a
     ~130 ms ``kin`` run.  For large or unknown sizes, and on other Pythons,
     :mod:`hashlib`'s, several times faster per byte.  Both give the same digest
-    (``tests/unit/test_speed_streaming.py``)."""
+    (``tests/unit/linkage/test_speed_streaming.py``)."""
     global _SHA256
     n = len(data) if size is None and data else size
     if n is None or n > _BUILTIN_HASH_MAX or sys.implementation.name != "cpython":

@@ -17,7 +17,7 @@ import pytest
 from numpy.polynomial import Polynomial
 
 from tests.conftest import CONFIGS, one_line_error, run_inprocess, run_json
-from tests.unit.test_cam_polynomial import SPEC
+from tests.unit.cam.test_cam_polynomial import SPEC
 
 CH4 = CONFIGS / "ch4"
 

@@ -1,5 +1,5 @@
 """``mechcli force`` with engine loads, end to end: the configs, the report, the CSV, the
-exit codes and one-line messages of bad specs (numbers: tests/unit/test_engine_loads.py)."""
+exit codes and one-line messages of bad specs (numbers: tests/unit/linkage/test_engine_loads.py)."""
 
 import json
 import math

@@ -245,7 +245,7 @@ def test_interference_warning_gives_the_gear_the_end_and_the_excess(tmp_path):
                                      (57, "gear 1 (z = 20) is undercut"),
                                      (56.5, "gear 1 (z = 20) is undercut")])
 def test_strength_split_without_a_usable_pair_is_one_line(tmp_path, a_w, why):
-    # the only equal-strength split is no usable pair (tests/unit/test_gear_loads.py checks
+    # the only equal-strength split is no usable pair (tests/unit/gear/test_gear_loads.py checks
     # the numbers): refused like any x_split without solution, naming x_split and why
     proc = run_inprocess("gear", _spec(tmp_path, SHIFTED + f'a_w = {a_w}\nx_split = '
                                        '"strength"\n'), "--no-plot", "--out", tmp_path / "o")

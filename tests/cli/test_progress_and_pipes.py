@@ -22,7 +22,7 @@ EX1_1 = CONFIGS / "ch1" / "ex1-1.toml"
 #: rich's box drawing (U+2500 ... U+257F) and an ANSI escape
 BOX = re.compile("[\u2500-\u257f]")
 ESC = "\x1b"
-#: a small atlas (as tests/unit/test_atlas.py's): 3 chunks of 100 rows
+#: a small atlas (as tests/unit/synth/test_atlas.py's): 3 chunks of 100 rows
 SMALL = dict(A_range=(2.0, 3.0, 3), B_range=(2.0, 3.0, 3), C_range=(2.0, 3.0, 3),
              grid=([0.0, 0.5, 1.0, 1.5], [-0.5, 0.5, 1.0]))
 
@@ -133,7 +133,7 @@ def test_a_streamed_sweep_reports_the_rows_solved_after_every_chunk():
     from mechcli.spec.kin import load_kin_spec
 
     # 例 1-1 with a 220 mm crank: the crank cannot turn through 109.7° ... 250.3°, so some
-    # chunks keep none of their rows (as tests/unit/test_speed_streaming.py's gap test)
+    # chunks keep none of their rows (as tests/unit/linkage/test_speed_streaming.py's gap test)
     spec = load_kin_spec(EX1_1, ["mechanism.l1=220", "input.partial=true",
                                  "input.count=20001"])
     inp, quantities = spec.input, default_quantities(spec.linkage, 2)

@@ -69,7 +69,7 @@ def test_fourbar_text_form_imports_no_heavy_library(tmp_path):
     versions = json.loads((tmp_path / "outputs.json").read_text())["versions"]
     assert versions["numpy"] == _installed("numpy") and versions["python"] == _python()
     # the crank-rocker of the quick form: K = 1.0971 (law of cosines, see
-    # tests/unit/test_speed_grashof_scalar.py::test_example_3_1_crank_rocker)
+    # tests/unit/grashof/test_speed_grashof_scalar.py::test_example_3_1_crank_rocker)
     assert "crank rocker" in proc.stdout and "1.0971" in proc.stdout
     row = (tmp_path / "grashof.csv").read_text().splitlines()[1].split(",")
     assert row[6] == "crank_rocker" and float(row[11]) == pytest.approx(1.0970658942, abs=1e-9)

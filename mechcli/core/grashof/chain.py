@@ -5,7 +5,7 @@ would cost more than everything else the command does.  This module is the
 scalar twin of :mod:`.fourbar` (the vectorized form for batches, type charts
 and synthesis) and imports nothing but :mod:`math`, :mod:`typing` and
 :mod:`mechcli.core.errors`; the two are checked against each other in
-``tests/unit/test_speed_grashof_scalar.py``.  Its results are named tuples, not
+``tests/unit/grashof/test_speed_grashof_scalar.py``.  Its results are named tuples, not
 dataclasses: a frozen dataclass costs about 1 ms of start-up to create, a named
 tuple a twentieth of that.
 

@@ -34,7 +34,7 @@ ACCURACY_WARN = 8.0
 #: scale L, times omega1**k, with alpha1 added for k = 2), where kappa is the product
 #: of 1/sin(gamma) of the dyads it depends on.  C is calibrated against a 60-digit
 #: mpmath reference of a four-bar at 1e-3 ... 1e-13 from its change point
-#: (tests/unit/test_accuracy_estimate.py): the estimate of the worst position is
+#: (tests/unit/linkage/test_accuracy_estimate.py): the estimate of the worst position is
 #: within 0.2 digits of the true loss there (without C it was 0.6 digits optimistic).
 ACCURACY_C = (4.0, 1.0, 3.0)
 #: a result below this fraction of its natural magnitude (:func:`natural_scales`) is

@@ -49,7 +49,7 @@ class ForceExtreme:
 #: of the kinetostatic system and kappa the kinematic amplification
 #: (:func:`~mechcli.core.linkage.kinematics.amplification`).  Calibrated on 例 2-1 at
 #: 1e-2 ... 1e-12 from its change point against a 60-digit mpmath reference
-#: (tests/unit/test_accuracy_estimate.py): within 0.5 digits of the true loss.
+#: (tests/unit/linkage/test_accuracy_estimate.py): within 0.5 digits of the true loss.
 FORCE_C = 1.0
 
 

@@ -40,7 +40,7 @@ def _bisect_boundaries(linkage: Linkage, sweep: Sweep, order: int, good: np.ndar
 SIN_ZERO = 1e-13
 #: the rounding of a dyad's sin(gamma)^2 (proportional to its discriminant), relative to
 #: 1: a few operations on the rounded inputs (a crank's cos/sin, the lengths).  Measured
-#: on the four-bar gap of tests/unit/test_gap_boundaries.py against a 40-digit root:
+#: on the four-bar gap of tests/unit/linkage/test_gap_boundaries.py against a 40-digit root:
 #: 9.4 EPS; about 3.5 times that is taken
 ROUNDING = 32 * float(np.finfo(float).eps)
 

@@ -57,7 +57,7 @@ TABLE_STEP = math.radians(0.5)
 #: the reported condition is 1/κ₁ relative to the table's best, times this margin:
 #: the digits-lost estimate (the dyads' model, docs/accuracy.md) then stays within about
 #: a digit of the truth on the optimistic side near a singular position (measured against
-#: 60-digit solutions, tests/unit/test_triad_accuracy.py: +1.0 … −2.9 digits)
+#: 60-digit solutions, tests/unit/linkage/test_triad_accuracy.py: +1.0 … −2.9 digits)
 MARGIN = 1.0 / 3.0
 #: where the branch ends (a dead point) the continuation closes in on it to this [rad]
 FOLD_TOL = 1e-11

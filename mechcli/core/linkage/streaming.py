@@ -15,7 +15,7 @@ quantity over all rows, to check the refined extremes against.
 
 Rows are bit for bit those of ``np.linspace`` (:func:`rows_at`), and for a
 sweep without gaps the values are bit for bit those of ``analyse_sweep`` over
-all the rows at once (``tests/unit/test_speed_streaming.py``).
+all the rows at once (``tests/unit/linkage/test_speed_streaming.py``).
 """
 
 from __future__ import annotations

@@ -156,7 +156,7 @@ def test_force_estimate_within_one_digit_near_the_change_point(tmp_path, distanc
     from mechcli.spec.force import load_force_spec
     import pathlib
     l4_mm = 1300 - distance * 1700
-    src = (pathlib.Path(__file__).parents[2] / "configs/ch2/ex2-1.toml").read_text("utf-8")
+    src = (pathlib.Path(__file__).parents[3] / "configs/ch2/ex2-1.toml").read_text("utf-8")
     spec_path = tmp_path / "near.toml"
     spec_path.write_text(src.replace("l4 = 1200", f"l4 = {l4_mm!r}"), encoding="utf-8")
     spec = load_force_spec(str(spec_path))

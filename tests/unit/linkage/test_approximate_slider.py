@@ -85,7 +85,7 @@ def test_docs_table_values():
     assert d["s"] == pytest.approx(0.00245, abs=5e-6)
 
 
-ROOT = pathlib.Path(__file__).resolve().parents[2]
+ROOT = pathlib.Path(__file__).resolve().parents[3]
 
 
 class _Run:
@@ -129,7 +129,7 @@ def test_exact_default_has_no_model_keys(tmp_path):
 
 def test_force_takes_the_approximate_model_and_flywheel_refuses_it(tmp_path):
     """force builds the piston's inertia force on the series (docs/approximate.md; its
-    numbers are tested in tests/unit/test_engine_loads.py); flywheel moves the exact linkage
+    numbers are tested in tests/unit/linkage/test_engine_loads.py); flywheel moves the exact linkage
     and refuses the key (exit 2 naming it), never silently ignoring it."""
     from tests.conftest import one_line_error, run_inprocess
     base = (ROOT / "configs" / "ch2" / "ex2-2.toml").read_text(encoding="utf-8")

@@ -26,7 +26,7 @@ from mechcli.report.files import write_csv, write_csv_stream
 from mechcli.spec.kin import MAX_POSITIONS, MAX_STREAMED, load_kin_spec
 from tests.conftest import run_inprocess
 
-EX1_1 = Path(__file__).resolve().parents[2] / "configs" / "ch1" / "ex1-1.toml"
+EX1_1 = Path(__file__).resolve().parents[3] / "configs" / "ch1" / "ex1-1.toml"
 #: 360° / 0.00036° = 1e6 steps: 1,000,001 rows, past kin's in-memory 600,001
 STEP = "input.step=0.00036"
 ROWS = 1_000_001

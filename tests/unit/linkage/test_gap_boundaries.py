@@ -42,7 +42,7 @@ def crank_limit(l1, l4, far):
 
 
 def test_narrow_gap_of_a_crank_is_the_cosine_law_root():
-    # the gap between grid points of tests/unit/test_kinematics.py: B is farther than
+    # the gap between grid points of tests/unit/linkage/test_kinematics.py: B is farther than
     # l2 + l3 = 399.999 from D for theta1 in 179.7041° ... 180.2959°
     res = sweep(fourbar(100, 250, 149.999, 300), 0.5, 360.5, 1.0)
     (start, stop, why), = res.excluded

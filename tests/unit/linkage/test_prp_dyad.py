@@ -16,7 +16,7 @@ import pytest
 from mechcli.core.linkage import PRP, Crank, DriverMotion, Ground, Linkage, solve
 from mechcli.core.linkage.kinetostatics import Body, ForceModelError, Load, solve_forces, topology
 from tests.conftest import run_inprocess, write_spec
-from tests.unit.test_kinetostatics import _equilibrium_residual
+from tests.unit.linkage.test_kinetostatics import _equilibrium_residual
 
 EPS = np.finfo(float).eps
 D = 0.2  # [m] distance of the tangent mechanism's slider line from the crank pivot
