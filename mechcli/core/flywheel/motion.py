@@ -1257,17 +1257,34 @@ def steady_state(inertia: Union[Inertia, float], moment: MomentModel, *, omega_g
     w_end, run = pm.cache[w0]
     assert w_end is not None  # the root does not stall
     trail = tuple((w, pm.cache[w][0]) for w in pm.history)
+    found = (iterations, abs(w_end - w0), root, pm.evaluations)
     if method == "book":
         assert step is not None  # _check_method
-        m = _book_motion(inertia, moment, phi0, w0, phi0 + T, step)
-        imax, imin = int(np.argmax(m.omega)), int(np.argmin(m.omega))
-        mean = float(np.trapezoid(m.omega, m.phi)) / T
-        W = np.concatenate(([0.0], np.cumsum(0.5 * (m.Me[1:] + m.Me[:-1]) * np.diff(m.phi))))
-        return dataclasses.replace(_summary(
-            m, w0, m.omega[imax], m.omega[imin], m.phi[imax], m.phi[imin], mean,
-            float(W.max() - W.min()), iterations, abs(w_end - w0), root, pm.evaluations),
-            history=trail)
-    assert run is not None  # the solver's run (not the book's scheme)
+        st = _book_period(inertia, moment, phi0, T, w0, step, found)
+    else:
+        assert run is not None  # the solver's run (not the book's scheme)
+        st = _run_period(run, inertia, moment, phi0, T, w0, points, method, rtol, atol, found)
+    return dataclasses.replace(st, history=trail)
+
+
+def _book_period(inertia: Inertia, moment: MomentModel, phi0: float, T: float, w0: float,
+                 step: float, found: Tuple[int, float, str, int]) -> SteadyState:
+    """The steady period by the book's scheme from ``w0``: its grid's extremes, the
+    trapezoidal mean and work swing; *found* is (iterations, residual, root, evaluations)."""
+    m = _book_motion(inertia, moment, phi0, w0, phi0 + T, step)
+    imax, imin = int(np.argmax(m.omega)), int(np.argmin(m.omega))
+    mean = float(np.trapezoid(m.omega, m.phi)) / T
+    W = np.concatenate(([0.0], np.cumsum(0.5 * (m.Me[1:] + m.Me[:-1]) * np.diff(m.phi))))
+    return _summary(m, w0, m.omega[imax], m.omega[imin], m.phi[imax], m.phi[imin], mean,
+                    float(W.max() - W.min()), *found)
+
+
+def _run_period(run: Any, inertia: Inertia, moment: MomentModel, phi0: float, T: float,
+                w0: float, points: int, method: str, rtol: float, atol: float,
+                found: Tuple[int, float, str, int]) -> SteadyState:
+    """The steady period from a solver's *run*: the extremes of ω and of the energy
+    refined on the dense output, the mean by Gauss–Legendre between the steps; *found*
+    is (iterations, residual, root, evaluations)."""
     phi = _grid(phi0, phi0 + T, points)
     m = _motion_from_run(run, inertia, moment, phi, method, rtol, atol)
     m = dataclasses.replace(m, nfev=run.nfev)
@@ -1280,9 +1297,7 @@ def steady_state(inertia: Union[Inertia, float], moment: MomentModel, *, omega_g
     E = m.energy
     _, e_max = _extreme(run.E, phi, int(np.argmax(E)), 1.0)
     _, e_min = _extreme(run.E, phi, int(np.argmin(E)), -1.0)
-    return dataclasses.replace(_summary(m, w0, w_max, w_min, p_max, p_min, mean,
-                                        e_max - e_min, iterations, abs(w_end - w0), root,
-                                        pm.evaluations), history=trail)
+    return _summary(m, w0, w_max, w_min, p_max, p_min, mean, e_max - e_min, *found)
 
 
 class _PeriodMap:
