@@ -159,7 +159,7 @@ def _streamed_grid_errors(spec, quantities, result, rows, results, report):
         top, _at, bottom, _at2 = rows.peaks[q.symbol]
         for name, e, best in zip(("max", "min"), result.extremes[q.symbol], (top, bottom)):
             key = f"{q.symbol}_{name}_grid_error_{u}"
-            if key in results:
+            if key in results and not e.constant:   # a constant's rows differ by noise
                 results[key] = float(e.value - best) * f + 0.0
 
 
@@ -178,6 +178,8 @@ def _streamed_warnings(spec, quantities, result, rows, report):
         if q.symbol not in result.extremes or q.symbol not in rows.peaks:
             continue
         hi, lo = result.extremes[q.symbol]
+        if hi.constant:   # constant to round-off: its rows differ from it by noise only
+            continue
         top, at_top, bottom, at_bottom = rows.peaks[q.symbol]
         slack = 1e-9 * max(abs(hi.value), abs(lo.value), 1e-300)
         if (hi.bounded and top > hi.value + slack) or (lo.bounded and bottom < lo.value - slack):

@@ -58,18 +58,26 @@ class ResultTerms:
             except (UnsolvableError, SpecError, ArithmeticError):
                 ok[k] = False
                 continue
-            if self.objective and f is not None:
-                key, sign = self.objective
-                f[k] = sign * float(r[key])
-            j = 0
-            for key, lo, hi in self.bounds:
-                if lo is not None:
-                    g[k, j] = lo - float(r[key])
-                    j += 1
-                if hi is not None:
-                    g[k, j] = float(r[key]) - hi
-                    j += 1
+            try:
+                self._read(r, k, f, g)
+            except KeyError:
+                # a design whose result has no such value (the location of an extreme
+                # of a quantity that is constant there): not a design the terms can rate
+                ok[k] = False
         return f, g, ok
+
+    def _read(self, r: Dict[str, Any], k: int, f: Optional[np.ndarray], g: np.ndarray) -> None:
+        if self.objective and f is not None:
+            key, sign = self.objective
+            f[k] = sign * float(r[key])
+        j = 0
+        for key, lo, hi in self.bounds:
+            if lo is not None:
+                g[k, j] = lo - float(r[key])
+                j += 1
+            if hi is not None:
+                g[k, j] = float(r[key]) - hi
+                j += 1
 
     def at_start(self) -> Dict[str, Any]:
         """The results at the start design; a start the command cannot solve is

@@ -38,9 +38,12 @@ ACCURACY_WARN = 8.0
 #: within 0.2 digits of the true loss there (without C it was 0.6 digits optimistic).
 ACCURACY_C = (4.0, 1.0, 3.0)
 #: a result below this fraction of its natural magnitude (:func:`natural_scales`) is
-#: round-off: seven digits of headroom over the ~1e-16 of double precision for the
-#: amplification near a singular position
-NOISE_REL = 1e-9
+#: round-off: 1e4 EPS, four digits of headroom over double precision for the amplification
+#: κ^(k+1) of a quantity of order k near a singular position (an acceleration's noise
+#: reaches it at κ ≈ 15).  Nearer a singular position the noise shows, with the digits
+#: warning that says so; a real value this small against ω² is not taken for noise (an α
+#: of 1e-6 rad/s² beside ω = 100 rad/s is 1e-10 of ω², above the floor)
+NOISE_REL = 1e4 * EPS
 
 _ORDER_OF_KIND = {"angle": 0, "length": 0, "angvel": 1, "velocity": 1, "angacc": 2,
                   "acceleration": 2}

@@ -6,7 +6,7 @@ its arc: the engine computes α2 as noise of ~1e-12 rad/s².  Counting that nois
 against its own peak reported "alpha2 keeps about 0.0 correct significant digits" and the
 figure drew the noise as a curve with a 1e-12 axis.  The round-off is measured against the
 natural magnitude of an angular acceleration, ω1² + |α1| = 100 rad/s² (hand), times
-:data:`~mechcli.core.linkage.accuracy.NOISE_REL` = 1e-9.
+:data:`~mechcli.core.linkage.accuracy.NOISE_REL` = 1e4 ε ≈ 2.2e-12.
 """
 
 import json
@@ -83,3 +83,43 @@ def test_a_constant_quantity_has_its_value_and_no_location(tmp_path):
     assert math.isclose(r["s3_max_mm"], 200.0, rel_tol=1e-12)
     table = (tmp_path / "report.txt").read_text(encoding="utf-8")
     assert table.count("constant") == 4          # the ω2 and α2 rows, max and min cells
+
+
+def test_a_small_real_value_is_not_round_off():
+    """A parallelogram four-bar (l1 = l3 = 0.1, l2 = l4 = 0.3 m, open) at ω1 = 100 rad/s and
+    α1 = 1e-6 rad/s²: by hand the coupler translates (θ2 ≡ 0: ω2 = α2 = 0) and the rocker
+    copies the crank (ω3 ≡ ω1, α3 ≡ α1 = 1e-6).  α3 is 1e-10 of ω1² = 1e4, far above the
+    round-off (~1e-12 rad/s² here): constant, but 1e-6, not 0 (a review's probe: with a floor
+    of 1e-9 ω1² it read 0)."""
+    from mechcli.core.linkage import four_bar
+    from mechcli.core.linkage.kinematics import analyse_sweep, default_quantities
+
+    lk = four_bar(0.1, 0.3, 0.1, 0.3)
+    # between its change points at 0° and 180°, where α's round-off ~ ε κ³ ω1² grows past 1e-9
+    th = np.radians(np.arange(30.0, 150.5, 1.0))
+    res = analyse_sweep(lk, Sweep(1, th, 100.0, 1e-6), default_quantities(lk, 2), 2)
+    hi, lo = res.extremes["alpha3"]
+    assert hi.constant and lo.constant
+    # the extremes of a constant are its values at two samples: 1e-6 within the round-off
+    assert abs(hi.value - 1e-6) <= 1e-9 and abs(lo.value - 1e-6) <= 1e-9
+    w_hi, _ = res.extremes["omega3"]
+    assert w_hi.constant and math.isclose(w_hi.value, 100.0, rel_tol=1e-12)
+    a2, _ = res.extremes["alpha2"]
+    assert a2.constant and a2.value == 0.0
+    assert not res.extremes["theta3"][0].constant      # θ3 = θ1 turns
+
+
+def test_optimize_rates_no_design_whose_result_lacks_the_key():
+    """A term read from another command's results (runner.results.ResultTerms) whose key a
+    design's results do not have (the location of a constant quantity's extreme) makes that
+    design unrated (ok False), where it raised KeyError (a review's probe)."""
+    from mechcli.runner.results import ResultTerms
+
+    terms = ResultTerms.__new__(ResultTerms)
+    terms.objective = ("omega2_max_at_deg", 1.0)
+    terms.bounds = [("omega2_max_rad_s", None, 50.0)]
+    terms.results = lambda x: {"omega2_max_rad_s": 10.0} if x[0] > 0 else \
+        {"omega2_max_rad_s": 10.0, "omega2_max_at_deg": 30.0}
+    f, g, ok = terms(np.array([[1.0], [-1.0]]))
+    assert ok.tolist() == [False, True]
+    assert f[1] == 30.0 and g[1, 0] == 10.0 - 50.0
