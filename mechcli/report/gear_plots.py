@@ -56,7 +56,7 @@ def plot_gear(sol, spec, run, outputs):
         a.set_xlabel(plotting.axis_label("x", u))
         a.set_ylabel(plotting.axis_label("y", u))
     plotting.legend_above(ax, fontsize=7, ncol=4)   # above the axes: it covers no tooth
-    ax.set_title(words.say(lang, "gear_plots.gear", m=g.m / sc, z=g.z, x=g.x), pad=16)
+    ax.set_title(words.say(lang, "gear_plots.gear", m=g.m / sc, z=g.z, x=g.x), pad=20)
     half = 1.6 * math.pi / g.z
     r0, r1 = g.rf / sc * 0.97, g.ra / sc * 1.02
     bx.set_xlim(-r1 * math.sin(half), r1 * math.sin(half))

@@ -57,8 +57,11 @@ def _problems(name, fig, texts):
     return out
 
 
+@pytest.mark.parametrize("lang", ["en", "zh"])
 @pytest.mark.parametrize("spec", SPECS, ids=[str(p.relative_to(CONFIGS)) for p in SPECS])
-def test_figure_text_stays_on_the_canvas_and_apart(tmp_path, monkeypatch, spec):
+def test_figure_text_stays_on_the_canvas_and_apart(tmp_path, monkeypatch, spec, lang):
+    """Both languages: Chinese labels are taller (a gear's title sat on its legend's row
+    in ``--lang zh`` only)."""
     command, err = _read_command(spec)
     assert command is not None, err          # every config names the command that runs it
     drawn = _drawn_texts(monkeypatch)
@@ -76,6 +79,6 @@ def test_figure_text_stays_on_the_canvas_and_apart(tmp_path, monkeypatch, spec):
 
     monkeypatch.setattr(plotting, "save_png", save_png)
     animate = [] if command == "grashof" else ["--no-animate"]
-    result = run_inprocess(command, spec, "-q", *animate, "--out", tmp_path)
+    result = run_inprocess(command, spec, "-q", "--lang", lang, *animate, "--out", tmp_path)
     assert result.returncode in (0, 3), result.stderr
     assert not found, "\n".join(found)
