@@ -166,8 +166,8 @@ def _constant_marked(linkage: Linkage, sweep: Sweep, quantities: Sequence[Any],
     """*ext* with the extremes of every quantity that spreads over the sweep by no more
     than round-off marked ``constant``: :data:`~mechcli.core.linkage.accuracy.NOISE_REL`
     of its largest magnitude or of its kind's natural magnitude
-    (:func:`~mechcli.core.linkage.accuracy.noise_floor`); one that is zero in truth (all
-    its values below that floor) has the value 0."""
+    (:func:`~mechcli.core.linkage.accuracy.noise_floor`), with the mean of its samples as
+    both values; one that is zero in truth (all its values below that floor) has 0."""
     out = dict(ext)
     for qt in quantities:
         if qt.symbol not in ext:
@@ -178,9 +178,11 @@ def _constant_marked(linkage: Linkage, sweep: Sweep, quantities: Sequence[Any],
         if floor is None or v.size == 0:
             continue
         if float(np.ptp(v)) <= max(floor, NOISE_REL * float(np.max(np.abs(v)))):
-            zero = float(np.max(np.abs(v))) <= floor   # zero in truth: its noise is no value
-            hi, lo = (dataclasses.replace(e, constant=True, value=0.0 if zero else e.value)
-                      for e in ext[qt.symbol])
+            # one value for max and min: the samples' mean (two samples' noise apart, they
+            # read 9.9999999999995 and 10.0000000000006); zero in truth: its noise is no value
+            zero = float(np.max(np.abs(v))) <= floor
+            value = 0.0 if zero else float(np.mean(v))
+            hi, lo = (dataclasses.replace(e, constant=True, value=value) for e in ext[qt.symbol])
             out[qt.symbol] = (hi, lo)
     return out
 
