@@ -41,19 +41,7 @@ def input_label(spec, t):
     return f"{plotting.symbol(f's{n}')} / {spec.header.unit}"
 
 
-def _noise_floors(spec, sweep, result):
-    """Kind -> the magnitude below which a plotted value of that kind is round-off, in
-    the plotted units (:func:`~mechcli.core.linkage.accuracy.noise_floor`)."""
-    from mechcli.core.linkage.accuracy import noise_floor
-
-    out = {}
-    for kind in ("angle", "angvel", "angacc", "length", "velocity", "acceleration"):
-        floor = noise_floor(spec.linkage, sweep, result.q, kind)
-        out[kind] = 0.0 if floor is None else floor * factor_of(kind, spec.header.scale)
-    return out
-
-
-def _plot_group(ax, spec, result, qs, x, t, floors=None):
+def _plot_group(ax, spec, result, qs, x, t):
     """Angular quantities on the left axis, linear ones on a twin axis (plotyy).
 
     A curve that does not vary (zero or constant) gets no axis of its own: it is
@@ -66,13 +54,16 @@ def _plot_group(ax, spec, result, qs, x, t, floors=None):
     handles, constant = [], []
     drawn = []
     for q in qs:
-        v = result.values[q.symbol] * factor_of(q.kind, scale)
-        floor = (floors or {}).get(q.kind, 0.0)
-        if plotting.is_constant(v, floor=floor):
+        f = factor_of(q.kind, scale)
+        v = result.values[q.symbol] * f
+        ext = result.extremes.get(q.symbol)
+        if ext is not None and ext[0].constant:   # constant to round-off (the engine says)
+            constant.append(Line2D([], [], ls="none", label=t["const"].format(
+                sym=plotting.symbol(q.symbol), v=ext[0].value * f + 0.0,
+                u=pretty_unit(q.kind, unit))))
+        elif plotting.is_constant(v):
             finite = v[np.isfinite(v)]
             val = float(finite[0]) if finite.size else 0.0
-            if abs(val) <= floor:   # zero in truth, computed as round-off
-                val = 0.0
             constant.append(Line2D([], [], ls="none", label=t["const"].format(
                 sym=plotting.symbol(q.symbol), v=val + 0.0, u=pretty_unit(q.kind, unit))))
         else:
@@ -336,7 +327,6 @@ def write(spec, quantities, result, sweep, outputs, lang, plots=True, animate=Fa
     n_in = spec.input.driver
     if plots:
         groups = _groups(quantities)
-        floors = _noise_floors(spec, sweep, result)
         fig, axs = plotting.subplots(2, 2, figsize=(11, 8.5))
         for ax, order, title in zip(axs.flat[:3], (0, 1, 2), (t["disp"], t["vel"], t["acc"])):
             # y=1.0: the title stays where matplotlib's automatic placement puts it
@@ -345,7 +335,7 @@ def write(spec, quantities, result, sweep, outputs, lang, plots=True, animate=Fa
             ax.set_title(title, pad=22, y=1.0)
             ax.set_xlabel(input_label(spec, t))
             if groups[order]:
-                _plot_group(ax, spec, result, groups[order], x, t, floors)
+                _plot_group(ax, spec, result, groups[order], x, t)
                 legend = ax.get_legend()
                 rows = -(-len(legend.texts) // 4) if legend is not None else 1
                 if rows > 1:   # the title above every row of the legend

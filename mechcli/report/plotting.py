@@ -639,10 +639,8 @@ AXIS_LABEL = re.compile(r"^\S.*? / (\([^()]+\)|[^\s/()]+)(  \(—\)|  \(- -\))?$
 
 # -- legends, twin axes and clipping ------------------------------------------------------
 
-def is_constant(values, rel=1e-9, floor=0.0):
-    """True when the finite *values* do not vary (a zero or constant curve): they spread
-    over no more than *rel* times their magnitude, or than *floor*, the round-off of a
-    quantity of their kind (a value that is zero in truth computes as noise ~1e-12)."""
+def is_constant(values, rel=1e-9):
+    """True when the finite *values* do not vary (a zero or constant curve)."""
     import numpy as np
 
     v = np.asarray(values, dtype=float)
@@ -650,8 +648,7 @@ def is_constant(values, rel=1e-9, floor=0.0):
     if v.size == 0:
         return True
     scale = max(float(np.max(np.abs(v))), 1e-300)
-    return (float(np.ptp(v)) <= max(rel * scale, floor)
-            or float(np.max(np.abs(v))) == 0.0)
+    return float(np.ptp(v)) <= rel * scale or float(np.max(np.abs(v))) == 0.0
 
 
 def legend_above(ax, handles=None, labels=None, fontsize=8, ncol=None):

@@ -113,7 +113,7 @@ OWN_CORE = {
 #: report module -> core functions it may call: drawing geometry and naming
 #: helpers of its own command, never the solver of the problem it reports
 REPORT_CORE_FUNCTIONS = {
-    "mechcli.report.kin_plots": {"solve", "noise_floor"},  # poses for the frames; round-off of a curve
+    "mechcli.report.kin_plots": {"solve"},  # poses of the linkage for the animation frames
     "mechcli.report.synth_plots": {"solve"},  # the design in its positions and frames
     "mechcli.report.flywheel_plots": {"solve"},  # the mechanism in the animation frames
     "mechcli.report.force_plots": {"balancing_symbol"},
