@@ -56,7 +56,7 @@ def _plot_group(ax, spec, result, qs, x, t):
     for q in qs:
         f = factor_of(q.kind, scale)
         v = result.values[q.symbol] * f
-        ext = result.extremes.get(q.symbol)
+        ext = (getattr(result, "extremes", None) or {}).get(q.symbol)
         if ext is not None and ext[0].constant:   # constant to round-off (the engine says)
             constant.append(Line2D([], [], ls="none", label=t["const"].format(
                 sym=plotting.symbol(q.symbol), v=ext[0].value * f + 0.0,
