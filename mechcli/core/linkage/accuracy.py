@@ -191,8 +191,14 @@ def noise_floor(linkage: Linkage, sweep: Sweep, q: np.ndarray, kind: str,
     if k is None or not np.size(q):
         return None
     natural, L = natural_scales(linkage, sweep, np.asarray(q, dtype=float))
+    return _floor(natural, k, L, kind, rel)
+
+
+def _floor(natural: Any, k: int, L: float, kind: str, rel: float = NOISE_REL) -> float:
+    """``rel`` times the largest natural magnitude of order ``k``, times ``L`` for a
+    length, velocity or acceleration."""
     length = kind in ("length", "velocity", "acceleration")
-    return rel * float(np.max(natural[k])) * (L if length else 1.0)
+    return rel * float(np.max(natural[k], initial=0.0)) * (L if length else 1.0)
 
 
 def estimate_accuracy(linkage: Linkage, sweep: Sweep, quantities: Sequence[Any],
@@ -219,7 +225,7 @@ def estimate_accuracy(linkage: Linkage, sweep: Sweep, quantities: Sequence[Any],
         if k == 0:
             # an angle is good to EPS of a radian, a length to EPS of the linkage
             peak = max(peak, L if length else 1.0)
-        if peak <= NOISE_REL * float(np.max(natural[k], initial=0.0)) * (L if length else 1.0):
+        if peak <= _floor(natural, k, L, qt.kind):
             # identically zero (no input speed), or zero in truth and computed as
             # round-off (a coupler's α when it only translates): no digits to count
             # against a peak that is itself noise
